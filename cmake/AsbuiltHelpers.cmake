@@ -1,0 +1,47 @@
+# One helper call per library and per test binary (STYLE.md 11).
+
+set(ASBUILT_WARNINGS -Wall -Wextra -Wpedantic -Wno-unused-parameter -Wno-missing-field-initializers)
+
+function(asbuilt_apply_common target)
+  target_compile_options(${target} PRIVATE ${ASBUILT_WARNINGS})
+  if(ASBUILT_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
+endfunction()
+
+# asbuilt_library(NAME <module> SRCS <files> [DEPS <targets>] [PRIVATE_DEPS <targets>])
+# Declares library `asbuilt_<module>` with alias `asbuilt::<module>`; headers
+# are included as "asbuilt/<module>/x.h" from the src/ root.
+function(asbuilt_library)
+  cmake_parse_arguments(ARG "" "NAME" "SRCS;DEPS;PRIVATE_DEPS" ${ARGN})
+  set(target asbuilt_${ARG_NAME})
+  add_library(${target} STATIC ${ARG_SRCS})
+  add_library(asbuilt::${ARG_NAME} ALIAS ${target})
+  target_include_directories(${target} PUBLIC ${PROJECT_SOURCE_DIR}/src)
+  target_link_libraries(${target} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  asbuilt_apply_common(${target})
+endfunction()
+
+# asbuilt_test(NAME <module> SRCS <files> DEPS <targets>)
+# One GoogleTest binary per module; ctest names are "<module>/<Suite>.<Test>",
+# so `ctest -R render/` runs one module's tests.
+function(asbuilt_test)
+  cmake_parse_arguments(ARG "" "NAME;TIMEOUT" "SRCS;DEPS" ${ARGN})
+  if(NOT ASBUILT_BUILD_TESTS)
+    return()
+  endif()
+  if(NOT ARG_TIMEOUT)
+    set(ARG_TIMEOUT 300)
+  endif()
+  set(target ${ARG_NAME}_test)
+  add_executable(${target} ${ARG_SRCS})
+  target_link_libraries(${target} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main GTest::gmock)
+  target_compile_definitions(${target} PRIVATE
+    ASBUILT_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    ASBUILT_SHARED_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/data"
+    ASBUILT_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  asbuilt_apply_common(${target})
+  gtest_discover_tests(${target} TEST_PREFIX "${ARG_NAME}/"
+    DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT ${ARG_TIMEOUT})
+endfunction()

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Installs every Debian package asbuilt needs to build, test and benchmark.
+# Idempotent: a fast no-op when everything is present; runs `apt-get update`
+# only when something is missing. Works as root on a fresh Debian 12 machine
+# (uses sudo otherwise).
+#
+#   scripts/install-deps.sh          build + test dependencies
+#   scripts/install-deps.sh --bench  also what `make bench` compares against
+#                                    (Blender, Python PyTorch)
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libeigen3-dev nlohmann-json3-dev libcli11-dev libfmt-dev libspdlog-dev
+  libopencv-dev libopencv-contrib-dev
+  libtorch-dev libopenblas0-openmp
+  libembree-dev libtbb-dev
+  libcairo2-dev libcpp-httplib-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  clang libclang-rt-14-dev
+  python3 python3-ezdxf
+  chromium
+)
+if [[ "${1:-}" == "--bench" ]]; then
+  packages+=(blender python3-torch hyperfine)
+fi
+# Node.js (for the MCP SDK client test). Some images ship nodesource's nodejs,
+# which bundles npm and conflicts with Debian's npm package: only ask for
+# Debian's when no npm is on the PATH.
+command -v node >/dev/null 2>&1 || packages+=(nodejs)
+command -v npm >/dev/null 2>&1 || packages+=(npm)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed'; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]} == 0)); then
+  exit 0
+fi
+
+sudo=""
+if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
+echo "install-deps: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2

@@ -1,0 +1,35 @@
+#ifndef ASBUILT_CLI_CLI_TEST_UTIL_H_
+#define ASBUILT_CLI_CLI_TEST_UTIL_H_
+
+// For CLI tests (`cli/*_command_test.cc`): runs the real `asbuilt` binary.
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <string>
+
+namespace asbuilt::testing_util {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out;  // stdout and stderr together.
+};
+
+// Runs `asbuilt <args>` through the shell (quote arguments yourself).
+inline RunResult RunAsbuilt(const std::string& args) {
+  std::string cmd = std::string(ASBUILT_CLI) + " " + args + " 2>&1 </dev/null";
+  RunResult r;
+  std::FILE* p = ::popen(cmd.c_str(), "r");
+  if (p == nullptr) return r;
+  std::array<char, 4096> buf;
+  std::size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+  int status = ::pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+}  // namespace asbuilt::testing_util
+
+#endif  // ASBUILT_CLI_CLI_TEST_UTIL_H_

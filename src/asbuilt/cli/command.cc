@@ -1,0 +1,46 @@
+#include "asbuilt/cli/command.h"
+
+#include <cstdio>
+
+#include "asbuilt/util/log.h"
+
+namespace asbuilt::cli {
+
+std::span<const Command> Commands() {
+  static const Command kCommands[] = {
+      {"help", "list the commands, or show one command's help", &RunHelpCommand},
+      {"validate", "check asbuilt files (capture, plan/truth, scene, manifest) and report every problem",
+       &RunValidateCommand},
+      {"version", "print the version", &RunVersionCommand},
+  };
+  return kCommands;
+}
+
+const Command* FindCommand(std::string_view name) {
+  for (const Command& c : Commands()) {
+    if (c.name == name) return &c;
+  }
+  return nullptr;
+}
+
+void AddCommonFlags(CLI::App& app) {
+  app.add_flag_callback("-q,--quiet", [] { ConfigureLogging(Verbosity::kQuiet); },
+                        "only print errors");
+  app.add_flag_callback("-v,--verbose", [] { ConfigureLogging(Verbosity::kVerbose); },
+                        "print debug messages");
+}
+
+void Parse(CLI::App& app, int argc, char** argv) {
+  // CLI11 skips argv[0]; ours is the command name.
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::fputs(app.help().c_str(), stdout);
+    throw HelpPrinted{};
+  } catch (const CLI::CallForAllHelp&) {
+    std::fputs(app.help("", CLI::AppFormatMode::All).c_str(), stdout);
+    throw HelpPrinted{};
+  }
+}
+
+}  // namespace asbuilt::cli

@@ -1,0 +1,51 @@
+#ifndef ASBUILT_CLI_COMMAND_H_
+#define ASBUILT_CLI_COMMAND_H_
+
+// The CLI is one table of commands (STYLE.md 12). Each command lives in its
+// own file `cli/<name>_command.cc`, parses its flags with CLI11, builds an
+// Options struct, calls one library function and prints the summary.
+//
+// To add a command: write `int Run<Name>Command(int argc, char** argv)` in
+// its own file, declare it below and add one row to Commands() in
+// command.cc. Errors are thrown (STYLE.md 7); main() maps them to exit codes.
+
+#include <span>
+#include <string_view>
+
+#include <CLI/CLI.hpp>
+
+namespace asbuilt::cli {
+
+// argv[0] is the command name ("validate"), the rest its arguments.
+using CommandFn = int (*)(int argc, char** argv);
+
+struct Command {
+  std::string_view name;
+  std::string_view summary;  // One line, shown by `asbuilt help`.
+  CommandFn run;
+};
+
+// The command table, in the order `asbuilt help` lists it.
+std::span<const Command> Commands();
+const Command* FindCommand(std::string_view name);
+
+// A CLI11 app for a command, with the common flags (--quiet, --verbose)
+// already added and wired to the logger.
+void AddCommonFlags(CLI::App& app);
+
+// Thrown by Parse() after it printed the help text (main() exits 0).
+struct HelpPrinted {};
+
+// Parses argv into `app`. On --help prints the help and throws HelpPrinted;
+// on bad flags throws CLI::ParseError, which main() turns into a usage
+// error (exit 2).
+void Parse(CLI::App& app, int argc, char** argv);
+
+// One declaration per command.
+int RunHelpCommand(int argc, char** argv);
+int RunValidateCommand(int argc, char** argv);
+int RunVersionCommand(int argc, char** argv);
+
+}  // namespace asbuilt::cli
+
+#endif  // ASBUILT_CLI_COMMAND_H_

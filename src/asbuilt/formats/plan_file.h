@@ -1,0 +1,82 @@
+#ifndef ASBUILT_FORMATS_PLAN_FILE_H_
+#define ASBUILT_FORMATS_PLAN_FILE_H_
+
+// plan.json / truth.json — a floor plan (DESIGN.md). Walls are inner face
+// lines; openings lie on their host wall's line. Fields a method cannot
+// measure are optional. asbuilt adds optional ± uncertainties (1σ, metres)
+// per dimension: `length_sigma_m` on walls, `width_sigma_m`,
+// `height_sigma_m`, `sill_sigma_m` on openings, `area_sigma_m2` on rooms.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "asbuilt/formats/capture.h"
+#include "asbuilt/geometry/rig.h"
+
+namespace asbuilt {
+
+struct PlanWall {
+  Vec2 start = Vec2::Zero();
+  Vec2 end = Vec2::Zero();
+  std::optional<double> thickness;  // Outwards from the inner face.
+  std::optional<double> height;
+  std::optional<double> length_sigma_m;
+
+  double Length() const { return (end - start).norm(); }
+};
+
+enum class OpeningKind { kDoor, kWindow };
+const char* OpeningKindName(OpeningKind kind);  // "door" / "window"
+
+struct PlanOpening {
+  OpeningKind kind = OpeningKind::kDoor;
+  int wall = 0;  // Index into Plan::walls.
+  Vec2 start = Vec2::Zero();  // End nearer the wall's start.
+  Vec2 end = Vec2::Zero();
+  double width = 0.0;
+  std::optional<double> height;
+  std::optional<double> sill;
+  std::optional<double> width_sigma_m;
+  std::optional<double> height_sigma_m;
+  std::optional<double> sill_sigma_m;
+
+  Vec2 Centre() const { return 0.5 * (start + end); }
+};
+
+struct PlanRoom {
+  std::vector<Vec2> polygon;
+  double area_m2 = 0.0;
+  std::optional<double> area_sigma_m2;
+};
+
+struct Plan {
+  int version = 1;
+  std::vector<PlanWall> walls;
+  std::vector<PlanOpening> openings;
+  std::vector<PlanRoom> rooms;
+
+  std::string ToString() const;
+};
+
+// Signed area of a polygon (positive when counter-clockwise), m².
+double PolygonArea(const std::vector<Vec2>& polygon);
+
+// Reads and validates a plan. Throws InputError listing every problem with its
+// field path (wrong types, NaN/inf, negative sizes, wall index out of range,
+// unknown opening kind, degenerate walls, polygons with < 3 points).
+Plan ReadPlan(const std::filesystem::path& path);
+FileReport CheckPlanFile(const std::filesystem::path& path);
+// Same, from JSON already in memory; `name` stands for the file in messages.
+Plan PlanFromJson(const nlohmann::json& json, const std::string& name);
+
+nlohmann::json PlanToJson(const Plan& plan);
+// Writes atomically.
+void WritePlan(const Plan& plan, const std::filesystem::path& path);
+
+}  // namespace asbuilt
+
+#endif  // ASBUILT_FORMATS_PLAN_FILE_H_
