@@ -1,0 +1,178 @@
+#ifndef ASBUILT_SCENE_SCENE_H_
+#define ASBUILT_SCENE_SCENE_H_
+
+// The scene model: what asbuilt renders and what its truth plans come from.
+// A plain value type (aggregates, designated-initialiser friendly) with a JSON
+// form that round-trips exactly (scene_json.h) and semantic validation.
+//
+// Geometry conventions are DESIGN.md's (geometry/rig.h): world metres, +Z up,
+// floor at z = 0, yaw 0 looks along +Y, counter-clockwise positive.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "asbuilt/formats/plan_file.h"
+#include "asbuilt/geometry/rig.h"
+
+namespace asbuilt {
+
+// Procedural texture applied on top of a material's base colour.
+enum class TextureKind { kNone, kPlaster, kPaint, kWallpaper, kWood, kTiles, kCarpet, kConcrete };
+
+struct Material {
+  std::string name;                       // Referenced by surfaces; unique.
+  Vec3 base_color = Vec3(0.8, 0.8, 0.8);  // Linear RGB in [0, 1].
+  double roughness = 0.8;                 // [0, 1]; low = glossy highlights.
+  TextureKind texture = TextureKind::kNone;
+  double texture_scale_m = 0.5;           // Feature size of the texture, > 0.
+  Vec3 secondary_color = Vec3(0.6, 0.6, 0.6);  // Second colour (tiles' grout, wood grain…).
+};
+
+enum class HingeSide { kLeft, kRight };  // Seen from inside the room.
+
+// A door or window in wall `wall` of its room. The wall runs from
+// polygon[wall] to polygon[wall + 1]; `offset_m` is the distance along it
+// from the wall's start to the near edge of the clear opening.
+struct Opening {
+  OpeningKind kind = OpeningKind::kDoor;
+  int wall = 0;
+  double offset_m = 0.5;
+  double width_m = 0.9;   // Clear opening width.
+  double height_m = 2.1;  // Clear opening height.
+  double sill_m = 0.0;    // Bottom of the clear opening above the floor (0 for doors).
+  // Doors.
+  double open_deg = 0.0;  // Leaf angle, 0 = closed, up to 180; swings into the room.
+  HingeSide hinge = HingeSide::kLeft;
+  // Windows.
+  double frame_width_m = 0.05;
+  bool glass = true;
+  std::string material;  // Empty: the built-in door / window material.
+};
+
+struct Room {
+  std::string name;
+  // Inner wall faces, counter-clockwise seen from above (interior on the
+  // left of each wall), not repeating the first point. Wall i runs from
+  // polygon[i] to polygon[(i + 1) % n]. Any angles; must not self-intersect.
+  std::vector<Vec2> polygon;
+  double height_m = 2.7;          // Floor to ceiling.
+  double wall_thickness_m = 0.2;  // Outwards from the inner face.
+  std::vector<Opening> openings;
+  std::string wall_material = "wall";
+  std::string floor_material = "floor";
+  std::string ceiling_material = "ceiling";
+  bool skirting = true;           // Skirting boards (labelled wall).
+};
+
+// A furniture box standing in the room (occludes walls; label background).
+struct Furniture {
+  std::string name;
+  Vec2 centre_m = Vec2::Zero();        // Centre of the footprint on the floor.
+  double yaw_deg = 0.0;                // Rotation of the footprint about +Z.
+  Vec3 size_m = Vec3(1.0, 0.6, 0.75);  // Width (local x), depth (local y), height.
+  double elevation_m = 0.0;            // Bottom above the floor (shelves).
+  std::string material = "furniture";
+};
+
+enum class LightKind { kArea, kPoint, kSun };
+
+struct Light {
+  LightKind kind = LightKind::kArea;
+  Vec3 position_m = Vec3(0, 0, 2.6);  // Area: centre, facing down. Point: position.
+  Vec2 size_m = Vec2(1.2, 0.3);       // Area lights only.
+  Vec3 color = Vec3(1.0, 0.95, 0.9);  // Linear RGB.
+  double intensity = 1.0;             // Relative radiance / power scale, > 0.
+  // Sun only: direction the light comes from.
+  double azimuth_deg = 135.0;         // From +X towards +Y.
+  double elevation_deg = 35.0;        // Above the horizon.
+};
+
+// What is seen through windows and lights the room from outside.
+struct Environment {
+  bool sky = true;
+  Vec3 sky_color = Vec3(0.55, 0.7, 0.95);
+  Vec3 ground_color = Vec3(0.35, 0.4, 0.3);
+  bool exterior_objects = true;  // Trees and buildings outside windows.
+  double ambient = 0.15;         // Ambient fill, [0, 1].
+};
+
+// The stereo rig: two identical level cameras, parallel axes (DESIGN.md).
+struct StereoRigSpec {
+  int width_px = 640;
+  int height_px = 480;
+  double hfov_deg = 80.0;            // Used when fx is not given.
+  std::optional<double> fx, fy, cx, cy;  // Explicit intrinsics override the FOV.
+  double baseline_m = 0.12;
+
+  PinholeCamera Camera() const;
+};
+
+// One rig pose. pitch_deg tilts the view (dataset single views); survey
+// captures are level (pitch 0).
+struct Viewpoint {
+  Vec3 position_m = Vec3(0, 0, 1.5);
+  double yaw_deg = 0.0;
+  double pitch_deg = 0.0;  // Positive looks up.
+};
+
+// Turn-in-place: the rig stays at one spot and turns by step_deg, `count`
+// times (count 0: a full turn, 360 / step_deg views).
+struct TurnInPlace {
+  Vec3 position_m = Vec3(0, 0, 1.5);
+  double start_deg = 0.0;
+  double step_deg = 30.0;
+  int count = 0;
+};
+
+struct Scene {
+  int version = 1;
+  std::string name = "room";
+  std::uint64_t seed = 0;  // For procedural textures and randomisation.
+  std::vector<Material> materials;
+  std::vector<Room> rooms;
+  std::vector<Furniture> furniture;
+  std::vector<Light> lights;
+  Environment environment;
+  StereoRigSpec rig;
+  std::vector<Viewpoint> viewpoints;  // Listed poses, used in order…
+  std::optional<TurnInPlace> turn;    // …followed by the turn-in-place views.
+
+  std::string ToString() const;
+};
+
+// Materials every scene can name without defining them ("wall", "floor",
+// "ceiling", "door", "window_frame", "glass", "furniture", "skirting"). A
+// scene's own materials override these by name.
+const std::vector<Material>& BuiltinMaterials();
+// The material a name resolves to in this scene, or nullptr.
+const Material* FindMaterial(const Scene& scene, const std::string& name);
+
+// Every semantic problem, with field paths as in the JSON
+// ("rooms[0].openings[1]: overlaps openings[0] on wall 2"): open or
+// self-intersecting polygons (fewer than 3 points, repeated points, crossing
+// edges, clockwise order), openings outside their wall or overlapping,
+// sill + height above the wall, non-positive sizes, unknown material names,
+// viewpoints outside every room. `file` names the file in the problems.
+std::vector<Problem> ValidateScene(const Scene& scene, const std::string& file = "scene");
+// Throws InputError with every problem, if any.
+void CheckScene(const Scene& scene, const std::string& file = "scene");
+
+// All views of the scene, in order: listed viewpoints, then the turn.
+std::vector<Viewpoint> ResolveViewpoints(const Scene& scene);
+
+// The exact floor plan (DESIGN.md plan.json): inner-face walls of every room
+// in order, openings with clear width/height/sill on their wall's line, room
+// polygons and areas.
+Plan SceneTruth(const Scene& scene);
+
+// A plain-language summary ("6.00 × 8.00 m room, 3.00 m high, 1 door, …").
+std::string DescribeScene(const Scene& scene);
+
+const char* TextureKindName(TextureKind kind);
+const char* LightKindName(LightKind kind);
+
+}  // namespace asbuilt
+
+#endif  // ASBUILT_SCENE_SCENE_H_
