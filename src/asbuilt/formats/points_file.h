@@ -1,0 +1,54 @@
+#ifndef ASBUILT_FORMATS_POINTS_FILE_H_
+#define ASBUILT_FORMATS_POINTS_FILE_H_
+
+// The labelled point file (PAPER.md §7: "store corner points by class in a
+// labelled text file"): the output of `asbuilt points` and the input of
+// `asbuilt plan`. One point per line, world metres:
+//
+//   # asbuilt points v1
+//   # class x y z sigma_m source frame
+//   wall 1.2345 5.6789 1.5000 0.0040 corner 3
+//   door 2.0000 0.0000 2.1000 0.0100 dense 4
+//
+// `class` is wall, door or window (or the label id 1/2/3); `sigma_m` is the
+// point's 1σ position uncertainty (from the disparity error); `source` is
+// corner (matched contour corner), dense (per-pixel disparity), edge
+// (structure line: wall–floor, wall–ceiling, wall–wall) or other; `frame`
+// the capture frame index, −1 if none. The last three columns are optional
+// when reading (the paper's `class x y z` files load with sigma 0, source
+// other, frame −1). Lines starting with '#' and blank lines are skipped.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "asbuilt/geometry/rig.h"
+
+namespace asbuilt {
+
+// Label ids (DESIGN.md).
+enum class LabelClass : std::uint8_t { kBackground = 0, kWall = 1, kDoor = 2, kWindow = 3 };
+inline constexpr std::uint8_t kIgnoreLabel = 255;
+const char* LabelClassName(LabelClass c);  // "background", "wall", "door", "window"
+
+enum class PointSource : std::uint8_t { kCorner, kDense, kEdge, kOther };
+const char* PointSourceName(PointSource s);
+
+struct ClassPoint {
+  LabelClass label = LabelClass::kWall;
+  Vec3 position_m = Vec3::Zero();  // World frame.
+  double sigma_m = 0.0;
+  PointSource source = PointSource::kOther;
+  int frame = -1;
+};
+
+// Reads a point file. Throws InputError naming the file and the line
+// ("points.txt: line 12: expected 4 to 7 columns, got 2").
+std::vector<ClassPoint> ReadPoints(const std::filesystem::path& path);
+// Writes atomically, with the header comment.
+void WritePoints(const std::vector<ClassPoint>& points, const std::filesystem::path& path);
+
+}  // namespace asbuilt
+
+#endif  // ASBUILT_FORMATS_POINTS_FILE_H_
