@@ -14,11 +14,10 @@ namespace {
 // Intrinsics beyond these are surely a mistake (e.g. mm given for pixels).
 constexpr int kMaxImageSidePx = 32768;
 
-Capture ParseCapture(const fs::path& path, JsonDiagnostics& diag) {
+Capture ParseCaptureJson(const nlohmann::json& root, const fs::path& base_dir,
+                         JsonDiagnostics& diag) {
   Capture capture;
-  capture.base_dir = path.parent_path();
-  nlohmann::json root = ParseJsonFile(path, diag);
-  if (!diag.ok()) return capture;
+  capture.base_dir = base_dir;
   JsonField doc(root, diag);
   if (!doc.Object({"version", "camera", "rectified", "calibration", "frames"})) {
     return capture;
@@ -132,7 +131,26 @@ Capture ParseCapture(const fs::path& path, JsonDiagnostics& diag) {
   return capture;
 }
 
+Capture ParseCapture(const fs::path& path, JsonDiagnostics& diag) {
+  nlohmann::json root = ParseJsonFile(path, diag);
+  if (!diag.ok()) {
+    Capture capture;
+    capture.base_dir = path.parent_path();
+    return capture;
+  }
+  return ParseCaptureJson(root, path.parent_path(), diag);
+}
+
 }  // namespace
+
+Capture CaptureFromJson(const nlohmann::json& json, const std::string& name,
+                        const fs::path& base_dir) {
+  JsonDiagnostics diag(name);
+  Capture capture = ParseCaptureJson(json, base_dir, diag);
+  diag.ThrowIfErrors();
+  diag.LogWarnings();
+  return capture;
+}
 
 fs::path Capture::Resolve(const std::string& relative) const {
   fs::path p(relative);

@@ -62,6 +62,11 @@ struct Capture {
 // calibration for an unrectified capture. Unknown keys are logged as warnings.
 Capture ReadCapture(const std::filesystem::path& path);
 
+// Same, from JSON already in memory: `name` stands for the file in messages,
+// image paths resolve against `base_dir`.
+Capture CaptureFromJson(const nlohmann::json& json, const std::string& name,
+                        const std::filesystem::path& base_dir);
+
 // Every problem in a capture file (errors and warnings), without throwing.
 struct FileReport {
   std::vector<Problem> errors;

@@ -32,7 +32,11 @@ const char* PointSourceName(PointSource s) {
 }
 
 std::vector<ClassPoint> ReadPoints(const fs::path& path) {
-  std::string text = ReadFile(path);
+  return ParsePoints(ReadFile(path), path.string());
+}
+
+std::vector<ClassPoint> ParsePoints(std::string_view text_view, const std::string& name) {
+  std::string text(text_view);
   std::vector<ClassPoint> points;
   std::vector<Problem> problems;
   std::istringstream in(text);
@@ -40,7 +44,7 @@ std::vector<ClassPoint> ReadPoints(const fs::path& path) {
   int line_no = 0;
   auto fail = [&](const std::string& message) {
     if (problems.size() < 20) {
-      problems.push_back({path.string(), fmt::format("line {}", line_no), message});
+      problems.push_back({name, fmt::format("line {}", line_no), message});
     }
   };
   while (std::getline(in, line)) {

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "asbuilt/geometry/rig.h"
@@ -46,6 +47,8 @@ struct ClassPoint {
 // Reads a point file. Throws InputError naming the file and the line
 // ("points.txt: line 12: expected 4 to 7 columns, got 2").
 std::vector<ClassPoint> ReadPoints(const std::filesystem::path& path);
+// Same, from text in memory; `name` stands for the file in messages.
+std::vector<ClassPoint> ParsePoints(std::string_view text, const std::string& name);
 // Writes atomically, with the header comment.
 void WritePoints(const std::vector<ClassPoint>& points, const std::filesystem::path& path);
 
