@@ -172,6 +172,27 @@ std::string DescribeScene(const Scene& scene);
 
 const char* TextureKindName(TextureKind kind);
 const char* LightKindName(LightKind kind);
+const char* HingeSideName(HingeSide side);  // "left" / "right"
+// Inverse of the names above; nullopt for an unknown name.
+std::optional<TextureKind> TextureKindFromName(const std::string& name);
+std::optional<LightKind> LightKindFromName(const std::string& name);
+std::optional<HingeSide> HingeSideFromName(const std::string& name);
+
+// Geometry helpers shared by validation, truth, the text parser and the MCP
+// server. Wall i of a room runs from polygon[i] to polygon[(i + 1) % n].
+int WallCount(const Room& room);
+Vec2 WallStart(const Room& room, int wall);
+Vec2 WallEnd(const Room& room, int wall);
+double WallLength(const Room& room, int wall);
+// Unit vector pointing out of the room (to the right of the wall direction).
+Vec2 WallOutwardNormal(const Room& room, int wall);
+// Compass name of the way a wall faces outwards, north = +Y, east = +X:
+// "north", "north-east", "east", … (nearest of eight).
+std::string WallCompassName(const Room& room, int wall);
+// True when the point lies strictly inside the polygon (even-odd rule).
+bool PointInPolygon(const std::vector<Vec2>& polygon, const Vec2& point);
+// Centroid of the polygon's area (vertex mean for degenerate polygons).
+Vec2 PolygonCentroid(const std::vector<Vec2>& polygon);
 
 }  // namespace asbuilt
 
