@@ -1,0 +1,325 @@
+#include "asbuilt/stereo/disparity.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include <fmt/format.h>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/ximgproc/disparity_filter.hpp>
+
+#include "asbuilt/util/error.h"
+#include "asbuilt/util/file.h"
+
+namespace asbuilt {
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// The one place the OpenCV matchers are configured (STYLE.md 5).
+cv::Ptr<cv::StereoMatcher> MakeLeftMatcher(const DisparityOptions& o, int min_disp, int num_disp,
+                                           int channels) {
+  if (o.matcher == DisparityMatcher::kBm) {
+    auto bm = cv::StereoBM::create(num_disp, o.block_size_px);
+    bm->setMinDisparity(min_disp);
+    bm->setUniquenessRatio(o.uniqueness_percent);
+    bm->setSpeckleWindowSize(o.speckle_window_px);
+    bm->setSpeckleRange(o.speckle_range_px);
+    bm->setPreFilterCap(31);
+    bm->setTextureThreshold(10);
+    bm->setDisp12MaxDiff(-1);
+    return bm;
+  }
+  const int area = channels * o.block_size_px * o.block_size_px;
+  return cv::StereoSGBM::create(min_disp, num_disp, o.block_size_px, o.p1_per_block_px * area,
+                                o.p2_per_block_px * area, /*disp12MaxDiff=*/-1,
+                                /*preFilterCap=*/63, o.uniqueness_percent, o.speckle_window_px,
+                                o.speckle_range_px,
+                                o.full_dp ? cv::StereoSGBM::MODE_HH : cv::StereoSGBM::MODE_SGBM_3WAY);
+}
+
+cv::Mat ToFloatDisparity(const cv::Mat& fixed16, int min_disp) {
+  cv::Mat out(fixed16.size(), CV_32F);
+  const int invalid = (min_disp - 1) * 16;
+  for (int y = 0; y < fixed16.rows; ++y) {
+    const short* s = fixed16.ptr<short>(y);
+    float* d = out.ptr<float>(y);
+    for (int x = 0; x < fixed16.cols; ++x) {
+      d[x] = s[x] <= invalid ? kNaN : s[x] / 16.0f;
+    }
+  }
+  return out;
+}
+
+// Percentile of the finite values of a float map; NaN if none.
+double Percentile(const cv::Mat& m, double q) {
+  std::vector<float> v;
+  v.reserve(m.total());
+  for (int y = 0; y < m.rows; ++y) {
+    const float* p = m.ptr<float>(y);
+    for (int x = 0; x < m.cols; ++x) {
+      if (std::isfinite(p[x])) v.push_back(p[x]);
+    }
+  }
+  if (v.empty()) return NAN;
+  auto k = static_cast<std::size_t>(std::clamp(q, 0.0, 1.0) * (v.size() - 1));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[k];
+}
+
+struct RawPair {
+  cv::Mat left16, right16;
+};
+
+RawPair MatchBoth(const cv::Mat& left, const cv::Mat& right, const DisparityOptions& o,
+                  int min_disp, int num_disp, bool need_right) {
+  cv::Mat l = left, r = right;
+  if (o.matcher == DisparityMatcher::kBm && l.channels() == 3) {
+    cv::cvtColor(left, l, cv::COLOR_BGR2GRAY);
+    cv::cvtColor(right, r, cv::COLOR_BGR2GRAY);
+  }
+  auto matcher = MakeLeftMatcher(o, min_disp, num_disp, l.channels());
+  RawPair raw;
+  matcher->compute(l, r, raw.left16);
+  if (need_right) {
+    auto right_matcher = cv::ximgproc::createRightMatcher(matcher);
+    right_matcher->compute(r, l, raw.right16);
+  }
+  return raw;
+}
+
+}  // namespace
+
+void DisparityOptions::Check() const {
+  CheckArgument(num_disparities_px > 0 && num_disparities_px % 16 == 0,
+                fmt::format("DisparityOptions.num_disparities_px = {}, must be a positive multiple of 16",
+                            num_disparities_px));
+  CheckArgument(block_size_px >= 1 && block_size_px % 2 == 1 && block_size_px <= 255,
+                fmt::format("DisparityOptions.block_size_px = {}, must be odd in [1, 255]", block_size_px));
+  CheckArgument(matcher != DisparityMatcher::kBm || block_size_px >= 5,
+                fmt::format("DisparityOptions.block_size_px = {}, must be >= 5 for BM", block_size_px));
+  CheckArgument(p1_per_block_px > 0 && p2_per_block_px > p1_per_block_px,
+                fmt::format("DisparityOptions.p2_per_block_px = {} must exceed p1_per_block_px = {} > 0",
+                            p2_per_block_px, p1_per_block_px));
+  CheckArgument(uniqueness_percent >= 0 && uniqueness_percent <= 100,
+                fmt::format("DisparityOptions.uniqueness_percent = {}, must be in [0, 100]", uniqueness_percent));
+  CheckArgument(speckle_window_px >= 0, fmt::format("DisparityOptions.speckle_window_px = {}, must be >= 0",
+                                                    speckle_window_px));
+  CheckArgument(speckle_range_px >= 0,
+                fmt::format("DisparityOptions.speckle_range_px = {}, must be >= 0", speckle_range_px));
+  CheckArgument(max_left_right_diff_px >= 0,
+                fmt::format("DisparityOptions.max_left_right_diff_px = {}, must be >= 0", max_left_right_diff_px));
+  CheckArgument(wls_lambda > 0, fmt::format("DisparityOptions.wls_lambda = {}, must be > 0", wls_lambda));
+  CheckArgument(wls_sigma > 0, fmt::format("DisparityOptions.wls_sigma = {}, must be > 0", wls_sigma));
+}
+
+std::string DisparityOptions::ToString() const {
+  return fmt::format("{} range [{}, {}) block {} LR {} WLS {} multi-scale {}",
+                     matcher == DisparityMatcher::kSgbm ? (full_dp ? "SGBM-HH" : "SGBM") : "BM",
+                     min_disparity_px, min_disparity_px + num_disparities_px, block_size_px,
+                     left_right_check ? fmt::format("±{:g}px", max_left_right_diff_px) : "off",
+                     wls_filter ? "on" : "off", multi_scale ? "on" : "off");
+}
+
+std::string DisparityResult::ToString() const {
+  return fmt::format("disparity {}x{}, range [{}, {}), {:.1f}% valid, {:.0f} ms", disparity_px.cols,
+                     disparity_px.rows, min_disparity_px, min_disparity_px + num_disparities_px,
+                     100.0 * valid_fraction, 1000.0 * seconds);
+}
+
+DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right,
+                                 const DisparityOptions& options) {
+  options.Check();
+  CheckArgument(!left.empty() && !right.empty(), "ComputeDisparity: empty image");
+  CheckArgument(left.size() == right.size() && left.type() == right.type(),
+                fmt::format("ComputeDisparity: left {}x{} and right {}x{} images differ in size or type",
+                            left.cols, left.rows, right.cols, right.rows));
+  CheckArgument(left.depth() == CV_8U && (left.channels() == 1 || left.channels() == 3),
+                "ComputeDisparity: images must be 8-bit gray or BGR");
+  const auto start = std::chrono::steady_clock::now();
+  DisparityResult result;
+  int min_disp = options.min_disparity_px;
+  int num_disp = options.num_disparities_px;
+
+  // Coarse pass: half-size images, half the range; narrow the fine range.
+  if (options.multi_scale && num_disp >= 32) {
+    cv::Mat l2, r2;
+    cv::pyrDown(left, l2);
+    cv::pyrDown(right, r2);
+    DisparityOptions coarse = options;
+    coarse.multi_scale = false;
+    coarse.wls_filter = false;
+    coarse.left_right_check = true;
+    coarse.min_disparity_px = static_cast<int>(std::floor(min_disp / 2.0));
+    coarse.num_disparities_px = std::max(16, (num_disp / 2 + 15) / 16 * 16);
+    coarse.block_size_px = std::max(options.matcher == DisparityMatcher::kBm ? 5 : 3,
+                                    (options.block_size_px / 2) | 1);
+    DisparityResult c = ComputeDisparity(l2, r2, coarse);
+    const double lo = Percentile(c.disparity_px, 0.01), hi = Percentile(c.disparity_px, 0.99);
+    if (std::isfinite(lo) && std::isfinite(hi)) {
+      int new_min = std::max(min_disp, static_cast<int>(std::floor(2 * lo)) - 16);
+      int new_max = std::min(min_disp + num_disp, static_cast<int>(std::ceil(2 * hi)) + 16);
+      int new_num = std::max(16, (new_max - new_min + 15) / 16 * 16);
+      if (new_num < num_disp) {
+        min_disp = new_min;
+        num_disp = new_num;
+      }
+    }
+  }
+  result.min_disparity_px = min_disp;
+  result.num_disparities_px = num_disp;
+
+  const bool need_right = options.left_right_check || options.wls_filter;
+  RawPair raw = MatchBoth(left, right, options, min_disp, num_disp, need_right);
+  cv::Mat disp = ToFloatDisparity(raw.left16, min_disp);
+
+  // Left–right consistency: the right view's disparity (negated by the right
+  // matcher) at x − d must agree.
+  if (options.left_right_check) {
+    cv::Mat right_disp(raw.right16.size(), CV_32F);
+    for (int y = 0; y < raw.right16.rows; ++y) {
+      const short* s = raw.right16.ptr<short>(y);
+      float* d = right_disp.ptr<float>(y);
+      for (int x = 0; x < raw.right16.cols; ++x) {
+        // Right matcher disparities are negative; invalid ones sit below −max.
+        const float v = -s[x] / 16.0f;
+        d[x] = (v < min_disp || v >= min_disp + num_disp) ? kNaN : v;
+      }
+    }
+    for (int y = 0; y < disp.rows; ++y) {
+      float* d = disp.ptr<float>(y);
+      const float* r = right_disp.ptr<float>(y);
+      for (int x = 0; x < disp.cols; ++x) {
+        if (!std::isfinite(d[x])) continue;
+        const int xr = static_cast<int>(std::lround(x - d[x]));
+        if (xr < 0 || xr >= disp.cols || !std::isfinite(r[xr]) ||
+            std::abs(r[xr] - d[x]) > options.max_left_right_diff_px) {
+          d[x] = kNaN;
+        }
+      }
+    }
+  }
+  result.valid = cv::Mat(disp.size(), CV_8U);
+  int n_valid = 0;
+  for (int y = 0; y < disp.rows; ++y) {
+    const float* d = disp.ptr<float>(y);
+    unsigned char* m = result.valid.ptr<unsigned char>(y);
+    for (int x = 0; x < disp.cols; ++x) {
+      m[x] = std::isfinite(d[x]) ? 255 : 0;
+      n_valid += m[x] != 0;
+    }
+  }
+  result.valid_fraction = static_cast<double>(n_valid) / std::max<std::size_t>(1, disp.total());
+
+  if (options.wls_filter) {
+    // WLS on the fixed-point maps, with the consistency-checked holes.
+    cv::Mat left16 = raw.left16.clone();
+    const short invalid16 = static_cast<short>((min_disp - 1) * 16);
+    for (int y = 0; y < disp.rows; ++y) {
+      const unsigned char* m = result.valid.ptr<unsigned char>(y);
+      short* s = left16.ptr<short>(y);
+      for (int x = 0; x < disp.cols; ++x) {
+        if (!m[x]) s[x] = invalid16;
+      }
+    }
+    auto wls = cv::ximgproc::createDisparityWLSFilterGeneric(false);
+    wls->setLambda(options.wls_lambda);
+    wls->setSigmaColor(options.wls_sigma);
+    wls->setDepthDiscontinuityRadius(std::max(1, static_cast<int>(std::ceil(0.33 * options.block_size_px))));
+    cv::Mat filtered;
+    wls->filter(left16, left, filtered);
+    disp = ToFloatDisparity(filtered, min_disp);
+  }
+  result.disparity_px = disp;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+cv::Mat ColorizeDisparity(const cv::Mat& disparity_px, double lo, double hi) {
+  CV_Assert(disparity_px.type() == CV_32F);
+  if (!std::isfinite(lo)) lo = Percentile(disparity_px, 0.01);
+  if (!std::isfinite(hi)) hi = Percentile(disparity_px, 0.99);
+  if (!std::isfinite(lo) || !std::isfinite(hi) || hi <= lo) {
+    lo = 0;
+    hi = 1;
+  }
+  cv::Mat gray(disparity_px.size(), CV_8U), mask(disparity_px.size(), CV_8U);
+  for (int y = 0; y < gray.rows; ++y) {
+    const float* d = disparity_px.ptr<float>(y);
+    for (int x = 0; x < gray.cols; ++x) {
+      const bool ok = std::isfinite(d[x]);
+      mask.at<unsigned char>(y, x) = ok ? 0 : 255;
+      gray.at<unsigned char>(y, x) =
+          ok ? cv::saturate_cast<unsigned char>(255.0 * (d[x] - lo) / (hi - lo)) : 0;
+    }
+  }
+  cv::Mat color;
+  cv::applyColorMap(gray, color, cv::COLORMAP_TURBO);
+  color.setTo(cv::Scalar(0, 0, 0), mask);
+  return color;
+}
+
+void WritePfm(const cv::Mat& image_32f, const std::filesystem::path& path) {
+  CheckArgument(image_32f.type() == CV_32F, "WritePfm: image must be CV_32F, one channel");
+  std::string out = fmt::format("Pf\n{} {}\n-1\n", image_32f.cols, image_32f.rows);
+  const std::size_t header = out.size();
+  out.resize(header + image_32f.total() * sizeof(float));
+  char* dst = out.data() + header;
+  for (int y = image_32f.rows - 1; y >= 0; --y) {
+    const float* row = image_32f.ptr<float>(y);
+    for (int x = 0; x < image_32f.cols; ++x) {
+      float v = std::isfinite(row[x]) ? row[x] : std::numeric_limits<float>::infinity();
+      std::memcpy(dst, &v, sizeof(float));
+      dst += sizeof(float);
+    }
+  }
+  WriteFileAtomic(path, out);
+}
+
+cv::Mat ReadPfm(const std::filesystem::path& path) {
+  const std::string data = ReadFile(path);
+  const std::string name = path.string();
+  // Header: "Pf" <ws> width <ws> height <ws> scale <one ws char>.
+  std::size_t pos = 0;
+  auto token = [&]() {
+    while (pos < data.size() && std::isspace(static_cast<unsigned char>(data[pos]))) ++pos;
+    std::size_t start = pos;
+    while (pos < data.size() && !std::isspace(static_cast<unsigned char>(data[pos]))) ++pos;
+    return data.substr(start, pos - start);
+  };
+  const std::string magic = token();
+  if (magic != "Pf") throw InputError(name, "header", fmt::format("expected \"Pf\" (one-channel PFM), got \"{}\"", magic));
+  int width = 0, height = 0;
+  double scale = 0;
+  try {
+    width = std::stoi(token());
+    height = std::stoi(token());
+    scale = std::stod(token());
+  } catch (const std::exception&) {
+    throw InputError(name, "header", "bad width/height/scale");
+  }
+  ++pos;
+  if (width <= 0 || height <= 0 || scale == 0) throw InputError(name, "header", "bad width/height/scale");
+  const std::size_t need = static_cast<std::size_t>(width) * height * sizeof(float);
+  if (data.size() < pos + need) {
+    throw InputError(name, "data", fmt::format("truncated: need {} bytes of pixels, have {}", need, data.size() - pos));
+  }
+  if (scale > 0) throw InputError(name, "header", "big-endian PFM is not supported");
+  cv::Mat out(height, width, CV_32F);
+  const char* src = data.data() + pos;
+  for (int y = height - 1; y >= 0; --y) {
+    float* row = out.ptr<float>(y);
+    for (int x = 0; x < width; ++x) {
+      float v;
+      std::memcpy(&v, src, sizeof(float));
+      src += sizeof(float);
+      row[x] = std::isfinite(v) ? v : kNaN;
+    }
+  }
+  return out;
+}
+
+}  // namespace asbuilt

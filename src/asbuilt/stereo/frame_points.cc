@@ -1,0 +1,383 @@
+#include "asbuilt/stereo/frame_points.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "asbuilt/util/error.h"
+#include "asbuilt/util/file.h"
+
+namespace asbuilt {
+namespace {
+namespace fs = std::filesystem;
+
+bool IsComponent(unsigned char label) { return label >= 1 && label <= 3; }
+
+// Median of the valid disparities in a (2r+1)² window; NaN if fewer than 3.
+double GuideDisparity(const cv::Mat& disparity, const Vec2& px, int r) {
+  const int cu = static_cast<int>(std::lround(px.x())), cv_ = static_cast<int>(std::lround(px.y()));
+  std::vector<float> v;
+  for (int y = std::max(0, cv_ - r); y <= std::min(disparity.rows - 1, cv_ + r); ++y) {
+    const float* d = disparity.ptr<float>(y);
+    for (int x = std::max(0, cu - r); x <= std::min(disparity.cols - 1, cu + r); ++x) {
+      if (std::isfinite(d[x])) v.push_back(d[x]);
+    }
+  }
+  if (v.size() < 3) return NAN;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+bool RightLabelAgrees(const cv::Mat& labels_right, const Vec2& right_px, unsigned char label, int radius) {
+  if (labels_right.empty()) return true;
+  const int cu = static_cast<int>(std::lround(right_px.x())), cv_ = static_cast<int>(std::lround(right_px.y()));
+  for (int y = std::max(0, cv_ - radius); y <= std::min(labels_right.rows - 1, cv_ + radius); ++y) {
+    for (int x = std::max(0, cu - radius); x <= std::min(labels_right.cols - 1, cu + radius); ++x) {
+      if (labels_right.at<unsigned char>(y, x) == label) return true;
+    }
+  }
+  return false;
+}
+
+cv::Mat ToGray8(const cv::Mat& image) {
+  if (image.channels() == 1) return image;
+  cv::Mat gray;
+  cv::cvtColor(image, gray, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
+  return gray;
+}
+
+cv::Mat ReadLabelImage(const fs::path& path) {
+  cv::Mat labels = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+  if (labels.empty()) throw InputError(path.string(), "", "cannot read the label image");
+  if (labels.type() != CV_8UC1) {
+    throw InputError(path.string(), "", "labels must be a single-channel 8-bit image of label ids");
+  }
+  return labels;
+}
+
+}  // namespace
+
+void FramePointsOptions::Check() const {
+  disparity.Check();
+  corners.Check();
+  match.Check();
+  CheckArgument(dense_stride_px >= 1,
+                fmt::format("FramePointsOptions.dense_stride_px = {}, must be >= 1", dense_stride_px));
+  CheckArgument(dense_inset_px >= 0,
+                fmt::format("FramePointsOptions.dense_inset_px = {}, must be >= 0", dense_inset_px));
+  CheckArgument(edge_row_step_px >= 1,
+                fmt::format("FramePointsOptions.edge_row_step_px = {}, must be >= 1", edge_row_step_px));
+  CheckArgument(edge_min_gradient > 0,
+                fmt::format("FramePointsOptions.edge_min_gradient = {}, must be > 0", edge_min_gradient));
+  CheckArgument(guide_radius_px >= 1,
+                fmt::format("FramePointsOptions.guide_radius_px = {}, must be >= 1", guide_radius_px));
+  CheckArgument(corner_sigma_px > 0 && edge_sigma_px > 0 && dense_sigma_px > 0,
+                "FramePointsOptions.*_sigma_px must be > 0");
+  CheckArgument(min_depth_m > 0 && max_depth_m > min_depth_m,
+                fmt::format("FramePointsOptions.min_depth_m = {}, max_depth_m = {}: need 0 < min < max",
+                            min_depth_m, max_depth_m));
+  CheckArgument(right_label_radius_px >= 0,
+                fmt::format("FramePointsOptions.right_label_radius_px = {}, must be >= 0", right_label_radius_px));
+}
+
+std::string FrameCues::CarriedBy() const {
+  std::string out;
+  auto add = [&](bool on, const char* name) {
+    if (on) out += (out.empty() ? "" : "+") + std::string(name);
+  };
+  add(corners_matched > 0, "corner");
+  add(edge_points > 0, "edge");
+  add(dense_points > 0, "dense");
+  return out.empty() ? "none" : out;
+}
+
+std::string FrameCues::BriefReport() const {
+  return fmt::format("frame {}: corners {}/{}, edges {}/{}, dense {} ({:.0f}% of labelled px consistent) — {}, {:.0f} ms",
+                     index, corners_matched, corners_found, edge_points, edge_candidates, dense_points,
+                     100.0 * dense_valid_fraction, CarriedBy(), 1000.0 * seconds);
+}
+
+FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePointsOptions& options) {
+  options.Check();
+  frame.camera.Check();
+  CheckArgument(!frame.left.empty() && frame.left.size() == frame.right.size() &&
+                    frame.left.type() == frame.right.type(),
+                "ComputeFramePoints: left and right images must be non-empty, same size and type");
+  CheckArgument(frame.labels_left.type() == CV_8UC1 && frame.labels_left.size() == frame.left.size(),
+                fmt::format("ComputeFramePoints: frame {}: left labels must be CV_8UC1 of the image size", frame.index));
+  CheckArgument(frame.labels_right.empty() ||
+                    (frame.labels_right.type() == CV_8UC1 && frame.labels_right.size() == frame.left.size()),
+                fmt::format("ComputeFramePoints: frame {}: right labels must be CV_8UC1 of the image size", frame.index));
+  CheckArgument(frame.baseline_m > 0, "ComputeFramePoints: baseline_m must be > 0");
+  const auto start = std::chrono::steady_clock::now();
+
+  FramePointsResult result;
+  result.cues.index = frame.index;
+  const cv::Mat gray_left8 = ToGray8(frame.left), gray_right8 = ToGray8(frame.right);
+  cv::Mat gray_left, gray_right;
+  gray_left8.convertTo(gray_left, CV_32F);
+  gray_right8.convertTo(gray_right, CV_32F);
+  result.disparity = ComputeDisparity(frame.left, frame.right, options.disparity);
+  const cv::Mat& disparity = result.disparity.disparity_px;
+  const double full_min = result.disparity.min_disparity_px;
+  const double full_max = full_min + result.disparity.num_disparities_px - 1;
+
+  const Eigen::Isometry3d world_from_cam = WorldFromCamera(frame.pose, frame.baseline_m, StereoEye::kLeft);
+  const double fx = frame.camera.fx;
+  // Triangulate (Z = f·B/d, X = (u − cx)·Z/fx, Y = (v − cy)·Z/fy) → world.
+  auto add_point = [&](unsigned char label, const Vec2& px, double d, double sigma_d,
+                       PointSource source) -> std::optional<Vec3> {
+    const std::optional<double> z = DepthFromDisparity(fx, frame.baseline_m, d);
+    if (!z || *z < options.min_depth_m || *z > options.max_depth_m) return std::nullopt;
+    const Vec3 p = world_from_cam * UnprojectToCamera(frame.camera, px, *z);
+    result.points.push_back({static_cast<LabelClass>(label), p,
+                             DepthSigmaFromDisparitySigma(fx, frame.baseline_m, *z, sigma_d), source,
+                             frame.index});
+    return p;
+  };
+  auto match_guided = [&](const Vec2& px) -> std::optional<RowMatch> {
+    const double guide = GuideDisparity(disparity, px, static_cast<int>(std::ceil(options.guide_radius_px)));
+    const double lo = std::isfinite(guide) ? guide - options.guide_radius_px : full_min;
+    const double hi = std::isfinite(guide) ? guide + options.guide_radius_px : full_max;
+    return MatchAlongRow(gray_left, gray_right, px, lo, hi, options.match);
+  };
+
+  // Corners: contour polygons per class, matched along the row.
+  if (options.use_corners) {
+    const auto corners = FindClassCorners(frame.labels_left, gray_left8, options.corners);
+    result.cues.corners_found = static_cast<int>(corners.size());
+    for (const ClassCorner& c : corners) {
+      const auto m = match_guided(c.pixel);
+      if (!m) continue;
+      const unsigned char label = static_cast<unsigned char>(c.label);
+      const Vec2 right_px(c.pixel.x() - m->disparity_px, c.pixel.y() + m->row_offset_px);
+      if (!RightLabelAgrees(frame.labels_right, right_px, label, options.right_label_radius_px)) continue;
+      if (auto p = add_point(label, c.pixel, m->disparity_px, options.corner_sigma_px, PointSource::kCorner)) {
+        result.corners.push_back({c, *m, *p});
+        ++result.cues.corners_matched;
+      }
+    }
+  }
+
+  // Edges: row maxima of the horizontal gradient inside component regions,
+  // away from background (whose edges may be occlusions: furniture).
+  if (options.use_edges) {
+    cv::Mat gx;
+    cv::Sobel(gray_left, gx, CV_32F, 1, 0, 3, 0.25);  // Gray levels per pixel.
+    gx = cv::abs(gx);
+    const int h = options.match.patch_radius_px;
+    // Door/window regions hold the glass and what lies beyond; only their
+    // frames (a band along the region border) give edge points.
+    cv::Mat band_distance;
+    {
+      cv::Mat opening = (frame.labels_left == 2) | (frame.labels_left == 3);
+      cv::distanceTransform(opening, band_distance, cv::DIST_L2, 3);
+    }
+    const float opening_band_px = 14.0f;
+    for (int v = h + 2; v < gray_left.rows - h - 2; v += options.edge_row_step_px) {
+      const float* g = gx.ptr<float>(v);
+      const unsigned char* lab = frame.labels_left.ptr<unsigned char>(v);
+      for (int u = h + 2; u < gray_left.cols - h - 2; ++u) {
+        if (!IsComponent(lab[u]) || g[u] < options.edge_min_gradient || g[u] < g[u - 1] || g[u] <= g[u + 1]) {
+          continue;
+        }
+        if (lab[u] != 1 && band_distance.at<float>(v, u) > opening_band_px) continue;
+        bool clean = true;
+        for (int y = v - 1; y <= v + 1 && clean; ++y) {
+          const unsigned char* row = frame.labels_left.ptr<unsigned char>(y);
+          for (int x = u - h; x <= u + h; ++x) {
+            if (!IsComponent(row[x])) {
+              clean = false;
+              break;
+            }
+          }
+        }
+        if (!clean) continue;
+        ++result.cues.edge_candidates;
+        const Vec2 px(u, v);
+        const auto m = match_guided(px);
+        if (!m) continue;
+        if (!RightLabelAgrees(frame.labels_right, Vec2(u - m->disparity_px, v + m->row_offset_px), lab[u],
+                              options.right_label_radius_px)) {
+          continue;
+        }
+        if (add_point(lab[u], px, m->disparity_px, options.edge_sigma_px, PointSource::kEdge)) {
+          ++result.cues.edge_points;
+        }
+      }
+    }
+  }
+
+  // Dense: consistent disparities well inside each enabled class region.
+  {
+    int labelled = 0, consistent = 0;
+    for (int v = 0; v < frame.labels_left.rows; ++v) {
+      const unsigned char* lab = frame.labels_left.ptr<unsigned char>(v);
+      const unsigned char* ok = result.disparity.valid.ptr<unsigned char>(v);
+      for (int u = 0; u < frame.labels_left.cols; ++u) {
+        if (IsComponent(lab[u])) {
+          ++labelled;
+          consistent += ok[u] != 0;
+        }
+      }
+    }
+    result.cues.dense_valid_fraction = labelled > 0 ? static_cast<double>(consistent) / labelled : NAN;
+  }
+  if (options.use_dense) {
+    const bool enabled[4] = {false, options.dense_wall, options.dense_door, options.dense_window};
+    const cv::Mat kernel = cv::getStructuringElement(
+        cv::MORPH_RECT, cv::Size(2 * options.dense_inset_px + 1, 2 * options.dense_inset_px + 1));
+    for (int c = 1; c <= 3; ++c) {
+      if (!enabled[c]) continue;
+      cv::Mat mask = frame.labels_left == c;
+      if (options.dense_inset_px > 0) cv::erode(mask, mask, kernel);
+      for (int v = 0; v < mask.rows; v += options.dense_stride_px) {
+        const unsigned char* m = mask.ptr<unsigned char>(v);
+        const unsigned char* ok = result.disparity.valid.ptr<unsigned char>(v);
+        const float* d = disparity.ptr<float>(v);
+        for (int u = 0; u < mask.cols; u += options.dense_stride_px) {
+          if (!m[u] || !ok[u] || !std::isfinite(d[u])) continue;
+          if (!RightLabelAgrees(frame.labels_right, Vec2(u - d[u], v), static_cast<unsigned char>(c), 0)) continue;
+          if (add_point(static_cast<unsigned char>(c), Vec2(u, v), d[u], options.dense_sigma_px,
+                        PointSource::kDense)) {
+            ++result.cues.dense_points;
+          }
+        }
+      }
+    }
+  }
+  result.cues.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+LabelProvider LabelsFromDirectory(const fs::path& dir) {
+  return [dir](const CaptureFrame& frame, StereoEye eye) -> cv::Mat {
+    const std::string name = fmt::format("{:03d}.png", frame.index);
+    if (eye == StereoEye::kLeft) {
+      const fs::path path = dir / name;
+      if (!fs::exists(path)) {
+        throw InputError(path.string(), "", fmt::format("no labels for frame {} (expected {})", frame.index, name));
+      }
+      return ReadLabelImage(path);
+    }
+    const fs::path path = dir / "right" / name;
+    return fs::exists(path) ? ReadLabelImage(path) : cv::Mat();
+  };
+}
+
+LabelProvider LabelsFromCapture(const Capture& capture) {
+  const fs::path base = capture.base_dir;
+  return [base](const CaptureFrame& frame, StereoEye eye) -> cv::Mat {
+    if (eye != StereoEye::kLeft) return cv::Mat();
+    if (!frame.labels) {
+      throw InputError("capture.json", fmt::format("frames[index {}].labels", frame.index),
+                       "missing (needed with --use-capture-labels)");
+    }
+    return ReadLabelImage(base / *frame.labels);
+  };
+}
+
+StereoFrame LoadStereoFrame(const Capture& capture, const CaptureFrame& frame, const LabelProvider& labels,
+                            const StereoRectifier* rectifier) {
+  StereoFrame out;
+  auto read = [&](const std::string& rel) {
+    const fs::path path = capture.Resolve(rel);
+    cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
+    if (image.empty()) throw InputError(path.string(), "", "cannot read the image");
+    if (image.cols != capture.camera.width || image.rows != capture.camera.height) {
+      throw InputError(path.string(), "",
+                       fmt::format("image is {}x{}, capture camera is {}x{}", image.cols, image.rows,
+                                   capture.camera.width, capture.camera.height));
+    }
+    return image;
+  };
+  out.left = read(frame.left);
+  out.right = read(frame.right);
+  out.labels_left = labels(frame, StereoEye::kLeft);
+  out.labels_right = labels(frame, StereoEye::kRight);
+  for (const cv::Mat* l : {&out.labels_left, &out.labels_right}) {
+    if (!l->empty() && l->size() != out.left.size()) {
+      throw InputError(frame.left, "labels",
+                       fmt::format("frame {}: labels are {}x{}, images {}x{}", frame.index, l->cols, l->rows,
+                                   out.left.cols, out.left.rows));
+    }
+  }
+  if (out.labels_left.empty()) {
+    throw InputError(frame.left, "labels", fmt::format("frame {}: no left labels", frame.index));
+  }
+  out.camera = capture.camera.Pinhole();
+  out.baseline_m = capture.camera.baseline_m;
+  out.pose = frame.Pose();
+  out.index = frame.index;
+  if (!capture.rectified) {
+    CheckArgument(rectifier != nullptr, "LoadStereoFrame: an unrectified capture needs a rectifier");
+    out.left = RectifyImage(*rectifier, StereoEye::kLeft, out.left);
+    out.right = RectifyImage(*rectifier, StereoEye::kRight, out.right);
+    out.labels_left = RectifyImage(*rectifier, StereoEye::kLeft, out.labels_left, Interpolation::kNearest);
+    if (!out.labels_right.empty()) {
+      out.labels_right = RectifyImage(*rectifier, StereoEye::kRight, out.labels_right, Interpolation::kNearest);
+    }
+    out.camera = rectifier->camera;
+    out.baseline_m = rectifier->baseline_m;
+  }
+  return out;
+}
+
+std::string CapturePointsResult::BriefReport() const {
+  int by_class[4] = {0, 0, 0, 0}, by_source[4] = {0, 0, 0, 0};
+  for (const ClassPoint& p : points) {
+    ++by_class[static_cast<int>(p.label) & 3];
+    ++by_source[static_cast<int>(p.source) & 3];
+  }
+  int carried = 0;
+  for (const FrameCues& f : frames) carried += f.CarriedBy() != "none";
+  return fmt::format(
+      "{} frames ({} with points), {} points (wall {}, door {}, window {}; corner {}, edge {}, dense {}), {:.1f} s",
+      frames.size(), carried, points.size(), by_class[1], by_class[2], by_class[3], by_source[0], by_source[2],
+      by_source[1], seconds);
+}
+
+CapturePointsResult ComputeCapturePoints(const Capture& capture, const LabelProvider& labels,
+                                         const FramePointsOptions& options, const ProgressCallback& progress) {
+  options.Check();
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<StereoRectifier> rectifier;
+  if (!capture.rectified) {
+    if (!capture.calibration) throw InputError("capture.json", "calibration", "needed when rectified is false");
+    rectifier = MakeStereoRectifier(LoadCalibration(capture.Resolve(*capture.calibration)), {});
+  }
+  CapturePointsResult result;
+  int done = 0;
+  for (const CaptureFrame& frame : capture.frames) {
+    ReportProgress(progress, {"points", done, static_cast<std::int64_t>(capture.frames.size()), ""});
+    const StereoFrame stereo = LoadStereoFrame(capture, frame, labels, rectifier ? &*rectifier : nullptr);
+    FramePointsResult r = ComputeFramePoints(stereo, options);
+    result.points.insert(result.points.end(), r.points.begin(), r.points.end());
+    result.frames.push_back(r.cues);
+    ++done;
+  }
+  ReportProgress(progress, {"points", done, static_cast<std::int64_t>(capture.frames.size()), ""});
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+void WritePointsPly(const std::vector<ClassPoint>& points, const fs::path& path) {
+  static const int kColour[4][3] = {{128, 128, 128}, {150, 160, 190}, {150, 90, 40}, {40, 200, 220}};
+  std::string out = fmt::format(
+      "ply\nformat ascii 1.0\ncomment asbuilt points (world metres; wall, door, window)\n"
+      "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n"
+      "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar label\nend_header\n",
+      points.size());
+  for (const ClassPoint& p : points) {
+    const int c = static_cast<int>(p.label) & 3;
+    out += fmt::format("{:.4f} {:.4f} {:.4f} {} {} {} {}\n", p.position_m.x(), p.position_m.y(), p.position_m.z(),
+                       kColour[c][0], kColour[c][1], kColour[c][2], c);
+  }
+  WriteFileAtomic(path, out);
+}
+
+}  // namespace asbuilt

@@ -1,0 +1,154 @@
+#ifndef ASBUILT_STEREO_FRAME_POINTS_H_
+#define ASBUILT_STEREO_FRAME_POINTS_H_
+
+// World points by class from stereo frames and their segmentation — the
+// stereo stage's entry point for `asbuilt points` and `asbuilt survey`
+// (PAPER.md §7). Per frame, three cues, each with evidence from both images:
+//   corner  contour corners of each class region, matched along the row by
+//           patch correlation (guided by the dense disparity), triangulated;
+//   edge    image edges inside wall/door/window regions with horizontal
+//           structure (wall–wall corners, frames, casings), matched the same
+//           way — what carries textureless painted walls;
+//   dense   every labelled pixel with a left–right consistent disparity.
+// Points get σ from the disparity error: σ_Z = Z²·σ_d/(f·B). Nothing is
+// interpolated where neither image has evidence.
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "asbuilt/formats/capture.h"
+#include "asbuilt/formats/points_file.h"
+#include "asbuilt/geometry/rig.h"
+#include "asbuilt/stereo/corners.h"
+#include "asbuilt/stereo/disparity.h"
+#include "asbuilt/stereo/rectify.h"
+#include "asbuilt/util/progress.h"
+
+namespace asbuilt {
+
+// One rectified stereo frame with its labels, ready for ComputeFramePoints.
+struct StereoFrame {
+  cv::Mat left, right;          // Rectified CV_8UC3 (or CV_8UC1).
+  cv::Mat labels_left;          // CV_8UC1 label ids, left view (required).
+  cv::Mat labels_right;         // Optional; when given, matches must agree with it.
+  PinholeCamera camera;         // Rectified intrinsics.
+  double baseline_m = 0.12;
+  RigPose pose;
+  int index = -1;
+};
+
+struct FramePointsOptions {
+  DisparityOptions disparity = {.num_disparities_px = 80, .block_size_px = 5};
+  CornerOptions corners;
+  RowMatchOptions match;
+  bool use_corners = true;
+  bool use_edges = true;
+  bool use_dense = true;
+  // Classes that give dense points. Window regions are off by default: the
+  // glass shows the outside, whose disparity is not the window's.
+  bool dense_wall = true;
+  bool dense_door = true;
+  bool dense_window = false;
+  // Keep every n-th dense pixel in x and y (1 = all); fewer points, same fit.
+  int dense_stride_px = 2;
+  // Dense points only this far (px) inside their class region, so a
+  // foreground edge's disparity never lands on the wall behind it.
+  int dense_inset_px = 3;
+  // Edge points: sample every n-th row; a pixel is an edge when its
+  // horizontal gradient (Sobel, gray levels) is a row maximum above this.
+  int edge_row_step_px = 3;
+  double edge_min_gradient = 24.0;
+  // Search ±guide_radius_px around the dense disparity at a corner or edge
+  // pixel; the full range when the dense map has nothing nearby.
+  double guide_radius_px = 4.0;
+  // 1σ disparity errors used for the point uncertainty.
+  double corner_sigma_px = 0.25;
+  double edge_sigma_px = 0.3;
+  double dense_sigma_px = 0.5;
+  // Points outside this depth range are dropped.
+  double min_depth_m = 0.3;
+  double max_depth_m = 20.0;
+  // With right labels: a matched right position must carry the same class
+  // within this radius.
+  int right_label_radius_px = 2;
+
+  void Check() const;
+};
+
+// A corner with its stereo match, for reports and tests.
+struct MatchedCorner {
+  ClassCorner corner;
+  RowMatch match;
+  Vec3 point_in_world = Vec3::Zero();
+};
+
+// Which cues carried a frame (STYLE.md 6).
+struct FrameCues {
+  int index = -1;
+  int corners_found = 0;
+  int corners_matched = 0;
+  int edge_candidates = 0;
+  int edge_points = 0;
+  int dense_points = 0;
+  double dense_valid_fraction = NAN;  // Of labelled wall/door/window pixels.
+  double seconds = 0.0;
+
+  // "corner+edge+dense", or "none" — the cues that produced points.
+  std::string CarriedBy() const;
+  std::string BriefReport() const;
+};
+
+struct FramePointsResult {
+  std::vector<ClassPoint> points;  // World frame.
+  std::vector<MatchedCorner> corners;
+  FrameCues cues;
+  DisparityResult disparity;
+};
+
+// Points of one frame. Throws InvalidArgument on inconsistent sizes/types.
+FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePointsOptions& options);
+
+// Labels for a frame's view: empty Mat when there are none (for the right
+// view, "none" is normal). Images are as the capture's images (unrectified
+// when the capture is); they are rectified with nearest-neighbour lookup.
+using LabelProvider = std::function<cv::Mat(const CaptureFrame& frame, StereoEye eye)>;
+// Left labels from DIR/NNN.png (frame index, three digits); right labels from
+// DIR/right/NNN.png when present. Throws InputError if a left file is missing.
+LabelProvider LabelsFromDirectory(const std::filesystem::path& dir);
+// Left labels from each frame's `labels` key of capture.json.
+LabelProvider LabelsFromCapture(const Capture& capture);
+
+// Reads a frame's images and labels, rectifying them when the capture is not
+// rectified (`rectifier` must then be given). Throws InputError for missing
+// or unreadable images and labels, naming the file.
+StereoFrame LoadStereoFrame(const Capture& capture, const CaptureFrame& frame,
+                            const LabelProvider& labels, const StereoRectifier* rectifier);
+
+struct CapturePointsResult {
+  std::vector<ClassPoint> points;
+  std::vector<FrameCues> frames;
+  double seconds = 0.0;
+
+  // "12 frames, 45123 points (wall 40000, door 3000, window 2123; corner 150,
+  // edge 3000, dense 41973), 3.2 s".
+  std::string BriefReport() const;
+};
+
+// Every frame of a capture (rectifying first when `rectified` is false,
+// with the maps computed once from capture.calibration).
+CapturePointsResult ComputeCapturePoints(const Capture& capture, const LabelProvider& labels,
+                                         const FramePointsOptions& options,
+                                         const ProgressCallback& progress = {});
+
+// Coloured PLY (ASCII) for viewers: wall grey-blue, door brown, window cyan.
+// Written atomically.
+void WritePointsPly(const std::vector<ClassPoint>& points, const std::filesystem::path& path);
+
+}  // namespace asbuilt
+
+#endif  // ASBUILT_STEREO_FRAME_POINTS_H_
