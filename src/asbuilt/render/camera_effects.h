@@ -1,0 +1,43 @@
+#ifndef ASBUILT_RENDER_CAMERA_EFFECTS_H_
+#define ASBUILT_RENDER_CAMERA_EFFECTS_H_
+
+// What a real camera does to light before it becomes an 8-bit image:
+// exposure, white balance, vignetting, tone curve, slight blur, sensor noise
+// and JPEG artefacts — drawn at random per view (domain randomisation).
+
+#include <cstdint>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "asbuilt/geometry/rig.h"
+
+namespace asbuilt {
+
+struct ViewEffects {
+  double exposure = 1.0;                   // Multiplier on the automatic exposure.
+  Vec3 white_balance = Vec3::Ones();       // Per-channel gains (linear RGB).
+  double vignetting = 0.0;                 // Light lost in the image corners, [0, 1).
+  double blur_sigma_px = 0.0;              // Gaussian blur (defocus, lens softness).
+  double noise_sigma = 0.0;                // Sensor noise at mid-grey, in [0, 1] units.
+  int jpeg_quality = 0;                    // 0: none; else JPEG round trip at this quality.
+
+  std::string ToString() const;
+};
+
+// Effects drawn from `seed`; `strength` ∈ [0, 1] scales how far they stray
+// from a clean image (0 gives ViewEffects{}).
+ViewEffects RandomViewEffects(double strength, std::uint64_t seed);
+
+// Linear-RGB float image (CV_32FC3, channels R, G, B; already exposed) →
+// 8-bit BGR with the effects applied. `noise_seed` makes the noise
+// deterministic (use different seeds for the two eyes).
+cv::Mat DevelopImage(const cv::Mat& linear_rgb, const ViewEffects& effects, std::uint64_t noise_seed);
+
+// The automatic exposure: the scale bringing the image's log-average
+// luminance to `key` (0.18 is photographic mid-grey).
+double AutoExposure(const cv::Mat& linear_rgb, double key = 0.2);
+
+}  // namespace asbuilt
+
+#endif  // ASBUILT_RENDER_CAMERA_EFFECTS_H_
