@@ -9,6 +9,47 @@
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
+namespace {
+
+// Sub-pixel disparity by Gauss–Newton on the zero-mean, unit-variance patch
+// difference (a 1-D Lucas–Kanade along the row); starts from the parabola
+// estimate and keeps it if the refinement wanders off by more than a pixel.
+double RefineDisparity(const cv::Mat& patch, const cv::Mat& right_gray, double u, double v, double d0,
+                       int iterations) {
+  const int side = patch.cols;
+  cv::Scalar pm, ps;
+  cv::meanStdDev(patch, pm, ps);
+  if (ps[0] <= 0) return d0;
+  cv::Mat p = (patch - pm[0]) / ps[0];
+  double d = d0;
+  for (int it = 0; it < iterations; ++it) {
+    cv::Mat wide;
+    cv::getRectSubPix(right_gray, cv::Size(side + 2, side), cv::Point2f(u - d, v), wide, CV_32F);
+    cv::Mat q = wide(cv::Rect(1, 0, side, side));
+    cv::Scalar qm, qs;
+    cv::meanStdDev(q, qm, qs);
+    if (qs[0] <= 0) return d0;
+    double num = 0, den = 0;
+    for (int y = 0; y < side; ++y) {
+      const float* w = wide.ptr<float>(y);
+      const float* pp = p.ptr<float>(y);
+      for (int x = 0; x < side; ++x) {
+        const double qn = (w[x + 1] - qm[0]) / qs[0];
+        const double j = -0.5 * (w[x + 2] - w[x]) / qs[0];  // ∂q/∂d: x_right = u − d.
+        num += (qn - pp[x]) * j;
+        den += j * j;
+      }
+    }
+    if (den <= 1e-9) return d0;
+    const double step = -num / den;
+    d += std::clamp(step, -0.5, 0.5);
+    if (std::abs(d - d0) > 1.0) return d0;
+    if (std::abs(step) < 1e-3) break;
+  }
+  return d;
+}
+
+}  // namespace
 
 void CornerOptions::Check() const {
   CheckArgument(min_region_area_px >= 1,
@@ -37,6 +78,9 @@ void RowMatchOptions::Check() const {
                 fmt::format("RowMatchOptions.ambiguity_margin = {}, must be >= 0", ambiguity_margin));
   CheckArgument(min_patch_stddev >= 0,
                 fmt::format("RowMatchOptions.min_patch_stddev = {}, must be >= 0", min_patch_stddev));
+  CheckArgument(gauss_newton_iterations >= 0 && gauss_newton_iterations <= 100,
+                fmt::format("RowMatchOptions.gauss_newton_iterations = {}, must be in [0, 100]",
+                            gauss_newton_iterations));
   CheckArgument(min_horizontal_structure >= 0 && min_horizontal_structure <= 1,
                 fmt::format("RowMatchOptions.min_horizontal_structure = {}, must be in [0, 1]",
                             min_horizontal_structure));
@@ -174,6 +218,10 @@ std::optional<RowMatch> MatchAlongRow(const cv::Mat& left_gray, const cv::Mat& r
   const double denom = a - 2 * b + c;
   const double delta = denom < 0 ? std::clamp(0.5 * (a - c) / denom, -0.5, 0.5) : 0.0;
   best.disparity_px = dmax - (k + delta);
+  if (options.gauss_newton_iterations > 0) {
+    best.disparity_px = RefineDisparity(patch, right_gray, u, v + best.row_offset_px, best.disparity_px,
+                                        options.gauss_newton_iterations);
+  }
   return best;
 }
 

@@ -60,14 +60,18 @@ struct RowMatchOptions {
   int row_tolerance_px = 0;
   // Best correlation must reach min_score, and beat every other peak farther
   // than 2 px by ambiguity_margin (rejects repeated texture).
-  double min_score = 0.8;
-  double ambiguity_margin = 0.1;
+  double min_score = 0.6;
+  double ambiguity_margin = 0.15;
   // A left patch with a gray-level standard deviation below this has no
   // texture to match (textureless plaster) and is rejected outright.
   double min_patch_stddev = 3.0;
   // Patch must have horizontal structure: the mean |∂I/∂x| over the mean
   // |∇I| at least this (horizontal edges cannot be located along a row).
   double min_horizontal_structure = 0.25;
+  // Gauss–Newton steps refining the parabola's sub-pixel disparity on the
+  // normalised patch difference (0 keeps the parabola; it is biased towards
+  // whole pixels by up to ~0.1 px).
+  int gauss_newton_iterations = 5;
 
   void Check() const;
 };

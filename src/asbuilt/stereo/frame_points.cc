@@ -32,6 +32,24 @@ double GuideDisparity(const cv::Mat& disparity, const Vec2& px, int r) {
   return v[v.size() / 2];
 }
 
+// Median valid disparity over the pixels of `label` within radius r; NaN if
+// fewer than 5.
+double ClassDisparity(const cv::Mat& disparity, const cv::Mat& labels, const Vec2& px, unsigned char label,
+                      int r) {
+  const int cu = static_cast<int>(std::lround(px.x())), cv_ = static_cast<int>(std::lround(px.y()));
+  std::vector<float> v;
+  for (int y = std::max(0, cv_ - r); y <= std::min(disparity.rows - 1, cv_ + r); ++y) {
+    const float* d = disparity.ptr<float>(y);
+    const unsigned char* l = labels.ptr<unsigned char>(y);
+    for (int x = std::max(0, cu - r); x <= std::min(disparity.cols - 1, cu + r); ++x) {
+      if (l[x] == label && std::isfinite(d[x])) v.push_back(d[x]);
+    }
+  }
+  if (v.size() < 5) return NAN;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
 bool RightLabelAgrees(const cv::Mat& labels_right, const Vec2& right_px, unsigned char label, int radius) {
   if (labels_right.empty()) return true;
   const int cu = static_cast<int>(std::lround(right_px.x())), cv_ = static_cast<int>(std::lround(right_px.y()));
@@ -154,6 +172,11 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
       const auto m = match_guided(c.pixel);
       if (!m) continue;
       const unsigned char label = static_cast<unsigned char>(c.label);
+      // A corner where a nearer object cuts the region (a T-junction) takes
+      // the occluder's disparity; the region's own pixels disagree.
+      const double own = ClassDisparity(result.disparity.disparity_px, frame.labels_left, c.pixel, label,
+                                        2 * options.match.patch_radius_px);
+      if (std::isfinite(own) && std::abs(own - m->disparity_px) > options.corner_region_tolerance_px) continue;
       const Vec2 right_px(c.pixel.x() - m->disparity_px, c.pixel.y() + m->row_offset_px);
       if (!RightLabelAgrees(frame.labels_right, right_px, label, options.right_label_radius_px)) continue;
       if (auto p = add_point(label, c.pixel, m->disparity_px, options.corner_sigma_px, PointSource::kCorner)) {
@@ -201,6 +224,9 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
         const Vec2 px(u, v);
         const auto m = match_guided(px);
         if (!m) continue;
+        const double own = ClassDisparity(result.disparity.disparity_px, frame.labels_left, px, lab[u],
+                                          options.match.patch_radius_px);
+        if (std::isfinite(own) && std::abs(own - m->disparity_px) > options.corner_region_tolerance_px) continue;
         if (!RightLabelAgrees(frame.labels_right, Vec2(u - m->disparity_px, v + m->row_offset_px), lab[u],
                               options.right_label_radius_px)) {
           continue;

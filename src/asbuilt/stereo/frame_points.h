@@ -55,17 +55,21 @@ struct FramePointsOptions {
   bool dense_door = true;
   bool dense_window = false;
   // Keep every n-th dense pixel in x and y (1 = all); fewer points, same fit.
-  int dense_stride_px = 2;
+  int dense_stride_px = 3;
   // Dense points only this far (px) inside their class region, so a
   // foreground edge's disparity never lands on the wall behind it.
   int dense_inset_px = 3;
   // Edge points: sample every n-th row; a pixel is an edge when its
   // horizontal gradient (Sobel, gray levels) is a row maximum above this.
   int edge_row_step_px = 3;
-  double edge_min_gradient = 24.0;
+  double edge_min_gradient = 8.0;
   // Search ±guide_radius_px around the dense disparity at a corner or edge
   // pixel; the full range when the dense map has nothing nearby.
   double guide_radius_px = 4.0;
+  // A matched corner (or edge point) is dropped when the dense disparity of its own region
+  // nearby differs by more than this (occlusion corners: furniture in front
+  // of a wall takes the corner's match).
+  double corner_region_tolerance_px = 1.5;
   // 1σ disparity errors used for the point uncertainty.
   double corner_sigma_px = 0.25;
   double edge_sigma_px = 0.3;
