@@ -1,0 +1,909 @@
+#include "asbuilt/plan/reconstruct.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <numeric>
+#include <random>
+
+#include <Eigen/Eigenvalues>
+#include <fmt/format.h>
+
+#include "asbuilt/util/error.h"
+#include <spdlog/spdlog.h>
+
+namespace asbuilt {
+namespace {
+
+double Cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+Vec2 DirOf(double theta) { return Vec2(std::cos(theta), std::sin(theta)); }
+Vec2 NormalOf(double theta) { return Vec2(-std::sin(theta), std::cos(theta)); }
+
+// Difference of two undirected line angles, wrapped to (−π/2, π/2].
+double AngleDiffModPi(double a, double b) {
+  double d = std::fmod(a - b, kPi);
+  if (d > kPi / 2) d -= kPi;
+  if (d <= -kPi / 2) d += kPi;
+  return d;
+}
+
+double WrapAngle(double a) {  // To (−π, π].
+  a = std::fmod(a, 2 * kPi);
+  if (a > kPi) a -= 2 * kPi;
+  if (a <= -kPi) a += 2 * kPi;
+  return a;
+}
+
+// Quantile of sorted values, linear interpolation.
+double Quantile(const std::vector<double>& sorted, double q) {
+  if (sorted.empty()) return 0.0;
+  double pos = q * (sorted.size() - 1);
+  size_t i = static_cast<size_t>(std::floor(pos));
+  size_t j = std::min(i + 1, sorted.size() - 1);
+  return sorted[i] + (pos - i) * (sorted[j] - sorted[i]);
+}
+
+// Extent [a, b] of a sorted sample: the q and 1−q quantiles, extrapolated to
+// the ends with the local density of points near each end (robust to a few
+// strays, unbiased for any smooth density).
+std::pair<double, double> RobustExtent(const std::vector<double>& sorted, double q) {
+  const double n = static_cast<double>(sorted.size());
+  double lo = Quantile(sorted, q), hi = Quantile(sorted, 1 - q);
+  double span = hi - lo;
+  if (span <= 0 || q <= 0) return {lo, hi};
+  double window = 0.1 * span;
+  auto count_in = [&](double a, double b) {
+    return static_cast<double>(std::upper_bound(sorted.begin(), sorted.end(), b) -
+                               std::lower_bound(sorted.begin(), sorted.end(), a));
+  };
+  double density_lo = std::max(1.0, count_in(lo, lo + window)) / window;
+  double density_hi = std::max(1.0, count_in(hi - window, hi)) / window;
+  double beyond = q * (n - 1);  // Points outside each quantile.
+  return {lo - beyond / density_lo, hi + beyond / density_hi};
+}
+
+// Dense runs of sorted positions along a line, as index ranges [begin, end).
+// Positions are binned (10 cm); a bin is part of the wall when it holds at
+// least a tenth of a well-filled bin (the 75th percentile), so that sparse
+// outliers that happen to fall in the band neither bridge gaps nor stretch a
+// wall. Runs break at stretches longer than `max_gap` without such bins.
+// Few points (< 100): plain gaps between consecutive points.
+std::vector<std::pair<size_t, size_t>> DenseRuns(const std::vector<double>& ts, double max_gap) {
+  std::vector<std::pair<size_t, size_t>> runs;
+  if (ts.empty()) return runs;
+  if (ts.size() < 100) {
+    size_t begin = 0;
+    for (size_t i = 1; i <= ts.size(); ++i) {
+      if (i < ts.size() && ts[i] - ts[i - 1] <= max_gap) continue;
+      runs.push_back({begin, i});
+      begin = i;
+    }
+    return runs;
+  }
+  const double bin = 0.1;
+  const double t0 = ts.front();
+  const int nbins = static_cast<int>((ts.back() - t0) / bin) + 1;
+  std::vector<int> counts(nbins, 0);
+  for (double t : ts) counts[std::min(nbins - 1, static_cast<int>((t - t0) / bin))]++;
+  std::vector<int> filled;
+  for (int c : counts) {
+    if (c > 0) filled.push_back(c);
+  }
+  std::sort(filled.begin(), filled.end());
+  const double level = std::max(2.0, 0.1 * filled[filled.size() * 3 / 4]);
+  int run_first = -1, run_last = -1;
+  auto emit = [&]() {
+    if (run_first < 0) return;
+    double lo = t0 + run_first * bin, hi = t0 + (run_last + 1) * bin;
+    size_t b = std::lower_bound(ts.begin(), ts.end(), lo) - ts.begin();
+    size_t e = std::upper_bound(ts.begin(), ts.end(), hi) - ts.begin();
+    if (e > b) runs.push_back({b, e});
+  };
+  for (int i = 0; i < nbins; ++i) {
+    if (counts[i] < level) continue;
+    if (run_first >= 0 && (i - run_last - 1) * bin > max_gap) {
+      emit();
+      run_first = -1;
+    }
+    if (run_first < 0) run_first = i;
+    run_last = i;
+  }
+  emit();
+  return runs;
+}
+
+struct Pt {
+  Vec2 p;
+  double z;
+  double w;      // 1/σ².
+  double sigma;
+  double thr;    // Inlier band half-width.
+};
+
+// A wall line: direction θ through a weighted centroid c; ρ is the offset
+// along the normal (the centroid carries it). var_* are the fit's variances.
+struct Line {
+  Vec2 c = Vec2::Zero();
+  double theta = 0;
+  double var_theta = 0;
+  double var_rho = 0;
+  double t_min = 0, t_max = 0;  // Extent of its points along the direction, from c.
+  std::vector<int> members;
+  double chi2 = 0;
+  double sum_w = 0;
+  double z_top = 0;
+  bool inferred = false;
+
+  Vec2 Dir() const { return DirOf(theta); }
+  Vec2 Normal() const { return NormalOf(theta); }
+  Vec2 Start() const { return c + t_min * Dir(); }
+  Vec2 End() const { return c + t_max * Dir(); }
+  double Distance(const Vec2& p) const { return Normal().dot(p - c); }
+};
+
+// Weighted total least squares on `idx`; with `fixed_theta` only the offset
+// is estimated. Variances are scaled by the reduced χ² and by the correlation
+// cap (dense points are not independent measurements).
+Line FitLine(const std::vector<Pt>& pts, std::vector<int> idx, std::optional<double> fixed_theta,
+             int max_independent, double max_gap) {
+  Line line;
+  double sw = 0;
+  Vec2 c = Vec2::Zero();
+  for (int i : idx) {
+    sw += pts[i].w;
+    c += pts[i].w * pts[i].p;
+  }
+  c /= sw;
+  if (fixed_theta) {
+    line.theta = *fixed_theta;
+  } else {
+    Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+    for (int i : idx) {
+      Vec2 d = pts[i].p - c;
+      cov += pts[i].w * d * d.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
+    Vec2 dir = es.eigenvectors().col(1);
+    line.theta = std::atan2(dir.y(), dir.x());
+  }
+  line.c = c;
+  Vec2 dir = line.Dir(), n = line.Normal();
+  double chi2 = 0, swt2 = 0;
+  std::vector<double> ts;
+  ts.reserve(idx.size());
+  for (int i : idx) {
+    Vec2 d = pts[i].p - c;
+    double r = n.dot(d), t = dir.dot(d);
+    chi2 += pts[i].w * r * r;
+    swt2 += pts[i].w * t * t;
+    ts.push_back(t);
+  }
+  std::sort(ts.begin(), ts.end());
+  const int count = static_cast<int>(idx.size());
+  std::pair<size_t, size_t> main_run{0, ts.size()};
+  for (auto r : DenseRuns(ts, max_gap)) {
+    if (r.second - r.first > main_run.second - main_run.first || main_run.second - main_run.first == ts.size()) {
+      main_run = r;
+    }
+  }
+  double reduced = count > 2 ? chi2 / (count - 2) : 1.0;
+  double correlation = std::max(1.0, static_cast<double>(count) / max_independent);
+  line.var_rho = reduced / sw * correlation;
+  line.var_theta = fixed_theta ? 0.0 : reduced / std::max(swt2, 1e-12) * correlation;
+  line.t_min = ts[main_run.first];
+  line.t_max = ts[main_run.second - 1];
+  line.chi2 = chi2;
+  line.sum_w = sw;
+  std::vector<double> zs;
+  zs.reserve(idx.size());
+  for (int i : idx) zs.push_back(pts[i].z);
+  std::sort(zs.begin(), zs.end());
+  line.z_top = Quantile(zs, 0.995);
+  line.members = std::move(idx);
+  return line;
+}
+
+std::optional<Vec2> Intersect(const Line& a, const Line& b) {
+  double den = Cross(a.Dir(), b.Dir());
+  if (std::abs(den) < 1e-9) return std::nullopt;
+  double s = Cross(b.c - a.c, b.Dir()) / den;
+  return a.c + s * a.Dir();
+}
+
+// Sequential RANSAC over the wall points: returns lines with their members.
+std::vector<Line> FindLines(const std::vector<Pt>& pts, const PlanOptions& o, std::mt19937_64& rng) {
+  std::vector<int> remaining(pts.size());
+  std::iota(remaining.begin(), remaining.end(), 0);
+  std::vector<Line> lines;
+  int failures = 0;
+  while (static_cast<int>(remaining.size()) >= o.min_wall_points && lines.size() < 64 && failures < 4) {
+    // Score hypotheses on a random subset.
+    std::vector<int> subset = remaining;
+    int m = std::min<int>(subset.size(), o.ransac_subset_points);
+    for (int i = 0; i < m; ++i) {
+      std::uniform_int_distribution<int> pick(i, static_cast<int>(subset.size()) - 1);
+      std::swap(subset[i], subset[pick(rng)]);
+    }
+    subset.resize(m);
+    std::uniform_int_distribution<int> pick(0, m - 1);
+    int best = 0;
+    Vec2 best_n = Vec2::UnitY();
+    double best_rho = 0;
+    for (int it = 0; it < o.ransac_iterations; ++it) {
+      const Vec2& a = pts[subset[pick(rng)]].p;
+      const Vec2& b = pts[subset[pick(rng)]].p;
+      Vec2 d = b - a;
+      if (d.norm() < 0.1) continue;
+      Vec2 n = Vec2(-d.y(), d.x()).normalized();
+      double rho = n.dot(a);
+      int count = 0;
+      for (int k : subset) count += std::abs(n.dot(pts[k].p) - rho) < pts[k].thr;
+      if (count > best) {
+        best = count;
+        best_n = n;
+        best_rho = rho;
+      }
+    }
+    double expected = static_cast<double>(best) * remaining.size() / m;
+    if (expected < o.min_wall_points) break;
+
+    // Inliers among all remaining points, refined twice by least squares.
+    std::vector<int> inliers;
+    auto collect = [&](const Vec2& n, double rho) {
+      inliers.clear();
+      for (int k : remaining) {
+        if (std::abs(n.dot(pts[k].p) - rho) < pts[k].thr) inliers.push_back(k);
+      }
+    };
+    collect(best_n, best_rho);
+    for (int refine = 0; refine < 2 && static_cast<int>(inliers.size()) >= o.min_wall_points; ++refine) {
+      Line fit = FitLine(pts, inliers, std::nullopt, o.max_independent_points, o.max_gap_m);
+      collect(fit.Normal(), fit.Normal().dot(fit.c));
+    }
+    if (static_cast<int>(inliers.size()) < o.min_wall_points) {
+      ++failures;
+      // Drop the hypothesis' points so the next round looks elsewhere.
+      std::vector<bool> drop(pts.size(), false);
+      for (int k : inliers) drop[k] = true;
+      std::erase_if(remaining, [&](int k) { return drop[k]; });
+      continue;
+    }
+
+    // Split the inliers into dense runs along the line; points outside every
+    // run are strays (outliers in the band) and leave the pool too.
+    Line fit = FitLine(pts, inliers, std::nullopt, o.max_independent_points, o.max_gap_m);
+    Vec2 dir = fit.Dir();
+    std::sort(inliers.begin(), inliers.end(), [&](int a, int b) {
+      return dir.dot(pts[a].p - fit.c) < dir.dot(pts[b].p - fit.c);
+    });
+    std::vector<double> ts;
+    for (int k : inliers) ts.push_back(dir.dot(pts[k].p - fit.c));
+    bool accepted = false;
+    for (auto [b, e] : DenseRuns(ts, o.max_gap_m)) {
+      std::vector<int> run(inliers.begin() + b, inliers.begin() + e);
+      if (static_cast<int>(run.size()) < o.min_wall_points) continue;
+      Line piece = FitLine(pts, run, std::nullopt, o.max_independent_points, o.max_gap_m);
+      if (piece.t_max - piece.t_min < o.min_wall_length_m) continue;
+      lines.push_back(std::move(piece));
+      accepted = true;
+    }
+    failures = accepted ? 0 : failures + 1;
+    std::vector<bool> drop(pts.size(), false);
+    for (int k : inliers) drop[k] = true;
+    std::erase_if(remaining, [&](int k) { return drop[k]; });
+  }
+  return lines;
+}
+
+// Each point to the line it fits best (within the band and the line's
+// extent), then refit; removes the bias of points near corners that the first
+// line to be found took from its neighbour.
+void CompetitiveRefit(const std::vector<Pt>& pts, std::vector<Line>& lines, const PlanOptions& o) {
+  for (int round = 0; round < 2; ++round) {
+    std::vector<std::vector<int>> members(lines.size());
+    for (int k = 0; k < static_cast<int>(pts.size()); ++k) {
+      int best = -1;
+      double best_r = 0;
+      for (int l = 0; l < static_cast<int>(lines.size()); ++l) {
+        const Line& line = lines[l];
+        Vec2 d = pts[k].p - line.c;
+        double r = std::abs(line.Normal().dot(d));
+        if (r >= pts[k].thr) continue;
+        double t = line.Dir().dot(d);
+        if (t < line.t_min - 0.3 || t > line.t_max + 0.3) continue;
+        if (best < 0 || r < best_r) {
+          best = l;
+          best_r = r;
+        }
+      }
+      if (best >= 0) members[best].push_back(k);
+    }
+    std::vector<Line> refit;
+    for (size_t l = 0; l < lines.size(); ++l) {
+      if (static_cast<int>(members[l].size()) < o.min_wall_points) continue;
+      Line fit = FitLine(pts, std::move(members[l]), std::nullopt, o.max_independent_points, o.max_gap_m);
+      if (fit.t_max - fit.t_min < o.min_wall_length_m) continue;
+      refit.push_back(std::move(fit));
+    }
+    lines = std::move(refit);
+  }
+}
+
+void LogLines(const char* stage, const std::vector<Line>& lines) {
+  if (!spdlog::should_log(spdlog::level::debug)) return;
+  spdlog::debug("plan: {}: {} lines", stage, lines.size());
+  for (const Line& l : lines) {
+    spdlog::debug("  ({:.3f}, {:.3f}) → ({:.3f}, {:.3f}) θ {:.3f}° ±{:.4f}° ρ ±{:.4f} m, {} points{}", l.Start().x(),
+                  l.Start().y(), l.End().x(), l.End().y(), RadToDeg(l.theta), RadToDeg(std::sqrt(l.var_theta)),
+                  std::sqrt(l.var_rho), l.members.size(), l.inferred ? " (inferred)" : "");
+  }
+}
+
+bool Collinear(const Line& a, const Line& b, const PlanOptions& o) {
+  if (std::abs(AngleDiffModPi(a.theta, b.theta)) > DegToRad(3.0)) return false;
+  double tol = std::max(2 * o.epsilon_m, 3 * std::sqrt(a.var_rho + b.var_rho));
+  return std::abs(a.Distance(b.c)) < tol && std::abs(b.Distance(a.c)) < tol;
+}
+
+struct Direction {
+  double theta = 0;   // In [0, π).
+  double sum_w = 0;   // Σ 1/var_theta of its lines.
+  double Var() const { return 1.0 / sum_w; }
+};
+
+// Weighted circular mean of angles with period 2π/k (k = 2: lines, k = 4: a
+// Manhattan frame).
+double CircularMean(const std::vector<std::pair<double, double>>& angle_weight, int k) {
+  double s = 0, c = 0;
+  for (auto [a, w] : angle_weight) {
+    s += w * std::sin(k * a);
+    c += w * std::cos(k * a);
+  }
+  double m = std::atan2(s, c) / k;
+  return m < 0 ? m + 2 * kPi / k : m;
+}
+
+// Dominant directions from the lines, a Manhattan frame when supported, and
+// snapping of the lines that agree.
+std::vector<Direction> SnapDirections(const std::vector<Pt>& pts, std::vector<Line>& lines,
+                                      const PlanOptions& o, bool& manhattan) {
+  auto weight = [](const Line& l) { return 1.0 / (l.var_theta + 1e-12); };
+  std::vector<int> order(lines.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return lines[a].members.size() > lines[b].members.size(); });
+  std::vector<std::vector<std::pair<double, double>>> clusters;
+  std::vector<double> centre;
+  for (int i : order) {
+    double th = lines[i].theta;
+    int found = -1;
+    for (size_t c = 0; c < centre.size(); ++c) {
+      if (std::abs(AngleDiffModPi(th, centre[c])) < DegToRad(o.snap_max_deg)) found = static_cast<int>(c);
+    }
+    if (found < 0) {
+      clusters.push_back({{th, weight(lines[i])}});
+      centre.push_back(th);
+    } else {
+      clusters[found].push_back({th, weight(lines[i])});
+      centre[found] = CircularMean(clusters[found], 2);
+    }
+  }
+  std::vector<Direction> dirs;
+  for (size_t c = 0; c < clusters.size(); ++c) {
+    Direction d{CircularMean(clusters[c], 2), 0};
+    for (auto [a, w] : clusters[c]) d.sum_w += w;
+    dirs.push_back(d);
+  }
+  // Manhattan frame: the two strongest directions 90° apart within the data.
+  manhattan = false;
+  for (size_t a = 0; a < dirs.size() && !manhattan; ++a) {
+    for (size_t b = a + 1; b < dirs.size() && !manhattan; ++b) {
+      double off = std::abs(std::abs(AngleDiffModPi(dirs[a].theta, dirs[b].theta)) - kPi / 2);
+      double tol = std::max(DegToRad(o.snap_min_deg), o.snap_sigmas * std::sqrt(dirs[a].Var() + dirs[b].Var()));
+      if (off < DegToRad(o.manhattan_max_deg) && off <= tol) {
+        double frame = CircularMean({{dirs[a].theta, dirs[a].sum_w}, {dirs[b].theta, dirs[b].sum_w}}, 4);
+        double sw = dirs[a].sum_w + dirs[b].sum_w;
+        Direction da{frame, sw}, db{std::fmod(frame + kPi / 2, kPi), sw};
+        dirs[a] = da;
+        dirs[b] = db;
+        manhattan = true;
+      }
+    }
+  }
+  // Snap each line whose fitted direction agrees with a dominant one.
+  for (Line& line : lines) {
+    for (const Direction& d : dirs) {
+      double diff = AngleDiffModPi(line.theta, d.theta);
+      double tol = std::min(DegToRad(o.snap_max_deg),
+                            std::max(DegToRad(o.snap_min_deg),
+                                     o.snap_sigmas * std::sqrt(line.var_theta + d.Var())));
+      if (std::abs(diff) <= tol) {
+        Line snapped = FitLine(pts, line.members, line.theta - diff, o.max_independent_points, o.max_gap_m);
+        snapped.var_theta = d.Var();
+        line = std::move(snapped);
+        break;
+      }
+    }
+  }
+  return dirs;
+}
+
+// Merges collinear lines that are close along their direction too.
+void MergeCollinear(const std::vector<Pt>& pts, std::vector<Line>& lines, const PlanOptions& o) {
+  bool merged = true;
+  while (merged) {
+    merged = false;
+    for (size_t a = 0; a < lines.size() && !merged; ++a) {
+      for (size_t b = a + 1; b < lines.size() && !merged; ++b) {
+        if (!Collinear(lines[a], lines[b], o)) continue;
+        Vec2 dir = lines[a].Dir();
+        double b0 = dir.dot(lines[b].Start() - lines[a].c), b1 = dir.dot(lines[b].End() - lines[a].c);
+        if (b0 > b1) std::swap(b0, b1);
+        double gap = std::max(b0 - lines[a].t_max, lines[a].t_min - b1);
+        if (gap > o.max_gap_m) continue;
+        std::vector<int> all = lines[a].members;
+        all.insert(all.end(), lines[b].members.begin(), lines[b].members.end());
+        bool snapped = lines[a].var_theta > 0 && lines[a].members.size() >= lines[b].members.size();
+        double keep_var = lines[a].var_theta;
+        Line fit = FitLine(pts, std::move(all), std::nullopt, o.max_independent_points, o.max_gap_m);
+        if (snapped) {
+          fit = FitLine(pts, fit.members, lines[a].theta, o.max_independent_points, o.max_gap_m);
+          fit.var_theta = keep_var;
+        }
+        lines[a] = std::move(fit);
+        lines.erase(lines.begin() + b);
+        merged = true;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void PlanOptions::Check() const {
+  auto positive = [](double v, const char* name) {
+    CheckArgument(v > 0 && std::isfinite(v), fmt::format("PlanOptions.{} = {}, must be > 0", name, v));
+  };
+  auto non_negative = [](double v, const char* name) {
+    CheckArgument(v >= 0 && std::isfinite(v), fmt::format("PlanOptions.{} = {}, must be >= 0", name, v));
+  };
+  positive(epsilon_m, "epsilon_m");
+  non_negative(inlier_sigmas, "inlier_sigmas");
+  positive(max_inlier_distance_m, "max_inlier_distance_m");
+  positive(nominal_sigma_m, "nominal_sigma_m");
+  CheckArgument(min_wall_points >= 3, fmt::format("PlanOptions.min_wall_points = {}, must be >= 3", min_wall_points));
+  positive(min_wall_length_m, "min_wall_length_m");
+  positive(max_gap_m, "max_gap_m");
+  CheckArgument(ransac_iterations >= 1,
+                fmt::format("PlanOptions.ransac_iterations = {}, must be >= 1", ransac_iterations));
+  CheckArgument(ransac_subset_points >= 10,
+                fmt::format("PlanOptions.ransac_subset_points = {}, must be >= 10", ransac_subset_points));
+  non_negative(snap_sigmas, "snap_sigmas");
+  non_negative(snap_max_deg, "snap_max_deg");
+  non_negative(snap_min_deg, "snap_min_deg");
+  non_negative(manhattan_max_deg, "manhattan_max_deg");
+  CheckArgument(parallel_max_deg > 0 && parallel_max_deg < 90,
+                fmt::format("PlanOptions.parallel_max_deg = {}, must be in (0, 90)", parallel_max_deg));
+  positive(max_corner_extension_m, "max_corner_extension_m");
+  non_negative(door_casing_m, "door_casing_m");
+  non_negative(window_casing_m, "window_casing_m");
+  non_negative(casing_sigma_m, "casing_sigma_m");
+  positive(opening_band_m, "opening_band_m");
+  positive(opening_gap_m, "opening_gap_m");
+  CheckArgument(min_opening_points >= 2,
+                fmt::format("PlanOptions.min_opening_points = {}, must be >= 2", min_opening_points));
+  positive(min_opening_width_m, "min_opening_width_m");
+  CheckArgument(edge_quantile >= 0 && edge_quantile < 0.25,
+                fmt::format("PlanOptions.edge_quantile = {}, must be in [0, 0.25)", edge_quantile));
+  CheckArgument(max_independent_points >= 2,
+                fmt::format("PlanOptions.max_independent_points = {}, must be >= 2", max_independent_points));
+  if (viewpoint_m) {
+    CheckArgument(viewpoint_m->allFinite(), "PlanOptions.viewpoint_m must be finite");
+  }
+}
+
+std::string PlanSummary::BriefReport() const {
+  std::string dirs;
+  for (double d : dominant_directions_deg) dirs += fmt::format("{}{:.1f}°", dirs.empty() ? "" : "/", d);
+  return fmt::format(
+      "{} walls ({} inferred), {} openings, {}, {}, {}directions {}, {} of {} wall points on walls, rms {}, "
+      "{:.3f} s",
+      walls, inferred_walls, openings, closed ? "closed" : "NOT closed",
+      area_m2 >= 0 ? fmt::format("{:.2f} m²", area_m2) : std::string("no area"), manhattan ? "Manhattan " : "",
+      dirs.empty() ? "none" : dirs, wall_inliers, wall_points,
+      rms_residual_m >= 0 ? fmt::format("{:.3f} m", rms_residual_m) : std::string("n/a"), seconds);
+}
+
+std::vector<std::pair<double, double>> WallPiecesBetweenOpenings(const Plan& plan, int wall) {
+  const PlanWall& w = plan.walls.at(wall);
+  double length = w.Length();
+  Vec2 dir = (w.end - w.start) / std::max(length, 1e-12);
+  std::vector<std::pair<double, double>> cuts;
+  for (const PlanOpening& o : plan.openings) {
+    if (o.wall != wall) continue;
+    double a = dir.dot(o.start - w.start), b = dir.dot(o.end - w.start);
+    if (a > b) std::swap(a, b);
+    cuts.push_back({std::clamp(a, 0.0, length), std::clamp(b, 0.0, length)});
+  }
+  std::sort(cuts.begin(), cuts.end());
+  std::vector<std::pair<double, double>> pieces;
+  double at = 0;
+  for (auto [a, b] : cuts) {
+    if (a > at + 1e-9) pieces.push_back({at, a});
+    at = std::max(at, b);
+  }
+  if (length > at + 1e-9) pieces.push_back({at, length});
+  return pieces;
+}
+
+PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOptions& options) {
+  options.Check();
+  const auto start_time = std::chrono::steady_clock::now();
+  const PlanOptions& o = options;
+  PlanResult result;
+  PlanSummary& s = result.summary;
+  s.input_points = static_cast<int>(points.size());
+
+  // 1. Planarize.
+  std::vector<Pt> walls_pts;
+  std::vector<const ClassPoint*> opening_pts;
+  for (const ClassPoint& p : points) {
+    if (!p.position_m.allFinite()) continue;
+    double sigma = p.sigma_m > 0 ? p.sigma_m : o.nominal_sigma_m;
+    if (p.label == LabelClass::kWall) {
+      double thr = std::min(o.max_inlier_distance_m, std::max(o.epsilon_m, o.inlier_sigmas * sigma));
+      walls_pts.push_back({p.position_m.head<2>(), p.position_m.z(), 1.0 / (sigma * sigma), sigma, thr});
+    } else if (p.label == LabelClass::kDoor || p.label == LabelClass::kWindow) {
+      opening_pts.push_back(&p);
+      (p.label == LabelClass::kDoor ? s.door_points : s.window_points)++;
+    }
+  }
+  s.wall_points = static_cast<int>(walls_pts.size());
+  if (s.wall_points < 2 * o.min_wall_points) {
+    throw Error(fmt::format("plan: {} wall points, need at least {} (2 × PlanOptions.min_wall_points)",
+                            s.wall_points, 2 * o.min_wall_points));
+  }
+
+  // 2. Lines.
+  std::mt19937_64 rng(o.seed);
+  std::vector<Line> lines = FindLines(walls_pts, o, rng);
+  s.lines_found = static_cast<int>(lines.size());
+  LogLines("RANSAC", lines);
+  CompetitiveRefit(walls_pts, lines, o);
+  MergeCollinear(walls_pts, lines, o);
+  LogLines("refit + merge", lines);
+
+  // 3. Dominant directions, Manhattan frame, snapping.
+  std::vector<Direction> dirs = SnapDirections(walls_pts, lines, o, s.manhattan);
+  MergeCollinear(walls_pts, lines, o);
+  for (const Direction& d : dirs) s.dominant_directions_deg.push_back(RadToDeg(d.theta));
+  if (lines.size() < 2) {
+    throw Error(fmt::format("plan: found {} wall line(s) in {} wall points; need at least 2 "
+                            "(try a larger --epsilon-m or fewer --min-wall-points)",
+                            lines.size(), s.wall_points));
+  }
+
+  // 4. Order around the viewpoint and close the room.
+  Vec2 view = Vec2::Zero();
+  if (o.viewpoint_m) {
+    view = o.viewpoint_m->head<2>();
+  } else {
+    double sw = 0;
+    for (const Line& l : lines) {
+      double len = l.t_max - l.t_min;
+      view += len * 0.5 * (l.Start() + l.End());
+      sw += len;
+    }
+    view /= sw;
+  }
+  struct Ordered {
+    Line line;
+    double mid_angle;
+    double span;
+  };
+  std::vector<Ordered> ordered;
+  for (Line& l : lines) {
+    if (Cross(l.Start() - view, l.End() - view) < 0) {  // Make it run counter-clockwise.
+      l.theta = WrapAngle(l.theta + kPi);
+      std::swap(l.t_min, l.t_max);
+      l.t_min = -l.t_min;
+      l.t_max = -l.t_max;
+    }
+    double a0 = std::atan2((l.Start() - view).y(), (l.Start() - view).x());
+    double a1 = std::atan2((l.End() - view).y(), (l.End() - view).x());
+    double span = WrapAngle(a1 - a0);
+    if (span < 0) span += 2 * kPi;
+    ordered.push_back({l, WrapAngle(a0 + span / 2), span});
+  }
+  // Drop lines mostly hidden behind or in front of a much better supported
+  // one in the same viewing directions (clutter): visible wall surfaces do not
+  // overlap in angle seen from the capture point.
+  {
+    std::vector<bool> drop(ordered.size(), false);
+    for (size_t a = 0; a < ordered.size(); ++a) {
+      for (size_t b = 0; b < ordered.size(); ++b) {
+        if (a == b || drop[b]) continue;
+        double d = std::abs(WrapAngle(ordered[a].mid_angle - ordered[b].mid_angle));
+        double overlap = std::min(ordered[a].span, ordered[b].span) / 2 +
+                         std::max(ordered[a].span, ordered[b].span) / 2 - d;
+        overlap = std::min(overlap, std::min(ordered[a].span, ordered[b].span));
+        if (overlap > 0.5 * ordered[a].span &&
+            ordered[a].line.members.size() * 3 < ordered[b].line.members.size()) {
+          drop[a] = true;
+        }
+      }
+    }
+    std::vector<Ordered> kept;
+    for (size_t i = 0; i < ordered.size(); ++i) {
+      if (!drop[i]) kept.push_back(std::move(ordered[i]));
+    }
+    ordered = std::move(kept);
+  }
+  std::sort(ordered.begin(), ordered.end(),
+            [](const Ordered& a, const Ordered& b) { return a.mid_angle < b.mid_angle; });
+  spdlog::debug("plan: viewpoint ({:.3f}, {:.3f})", view.x(), view.y());
+  std::vector<Line> ring;
+  for (Ordered& e : ordered) ring.push_back(std::move(e.line));
+  // Merge neighbours that continue each other (one wall seen in pieces).
+  for (bool merged = true; merged && ring.size() > 2;) {
+    merged = false;
+    for (size_t i = 0; i < ring.size() && ring.size() > 2; ++i) {
+      size_t j = (i + 1) % ring.size();
+      if (!Collinear(ring[i], ring[j], o)) continue;
+      std::vector<int> all = ring[i].members;
+      all.insert(all.end(), ring[j].members.begin(), ring[j].members.end());
+      const Line& big = ring[i].members.size() >= ring[j].members.size() ? ring[i] : ring[j];
+      Line fit = FitLine(walls_pts, std::move(all), big.theta, o.max_independent_points, o.max_gap_m);
+      fit.var_theta = big.var_theta;
+      ring[i] = std::move(fit);
+      ring.erase(ring.begin() + j);
+      merged = true;
+      break;
+    }
+  }
+
+  // Corners between neighbours; inferred connecting walls where neighbours
+  // are parallel or meet implausibly far from their points.
+  const double ext = o.max_corner_extension_m;
+  auto plausible = [&](const Line& a, const Line& b, const Vec2& x) {
+    double ta = a.Dir().dot(x - a.c), tb = b.Dir().dot(x - b.c);
+    return ta > a.t_min && ta < a.t_max + ext && tb < b.t_max && tb > b.t_min - ext;
+  };
+  std::vector<Line> closed;
+  for (size_t i = 0; i < ring.size(); ++i) {
+    const Line& a = ring[i];
+    const Line& b = ring[(i + 1) % ring.size()];
+    closed.push_back(a);
+    bool meet = std::abs(AngleDiffModPi(a.theta, b.theta)) > DegToRad(o.parallel_max_deg);
+    std::optional<Vec2> x = meet ? Intersect(a, b) : std::nullopt;
+    if (x && plausible(a, b, *x)) continue;
+    // Connector through the middle of the gap, in the nearest dominant
+    // direction to the gap when one is close, else along the gap.
+    Vec2 p = a.End(), q = b.Start();
+    Vec2 gap = q - p;
+    if (gap.norm() < 1e-6) gap = b.Dir();
+    Line c;
+    c.inferred = true;
+    c.c = 0.5 * (p + q);
+    c.theta = std::atan2(gap.y(), gap.x());
+    c.var_theta = DegToRad(5.0) * DegToRad(5.0);
+    c.var_rho = 0.05 * 0.05;
+    for (const Direction& d : dirs) {
+      double diff = AngleDiffModPi(c.theta, d.theta);
+      if (std::abs(diff) < DegToRad(30.0)) {
+        c.theta -= diff;
+        c.var_theta = d.Var();
+        break;
+      }
+    }
+    // Orient it from a towards b.
+    if (c.Dir().dot(gap) < 0) c.theta = WrapAngle(c.theta + kPi);
+    c.t_min = -0.5 * gap.norm();
+    c.t_max = 0.5 * gap.norm();
+    c.z_top = 0.5 * (a.z_top + b.z_top);
+    closed.push_back(c);
+    ++s.inferred_walls;
+  }
+  ring = std::move(closed);
+  LogLines("closed ring", ring);
+  const int n = static_cast<int>(ring.size());
+
+  // Corner i joins ring[i−1] and ring[i]. Parallel neighbours (possible only
+  // around inferred connectors) fall back to the midpoint of their ends.
+  auto corners_of = [&](const std::vector<Line>& L) {
+    std::vector<Vec2> c(n);
+    for (int i = 0; i < n; ++i) {
+      const Line& a = L[(i + n - 1) % n];
+      const Line& b = L[i];
+      std::optional<Vec2> x;
+      if (std::abs(AngleDiffModPi(a.theta, b.theta)) > DegToRad(1.0)) x = Intersect(a, b);
+      c[i] = x ? *x : 0.5 * (a.End() + b.Start());
+    }
+    return c;
+  };
+  std::vector<Vec2> corners = corners_of(ring);
+  s.closed = n >= 3;
+
+  // Room height: a high quantile of all wall inliers' heights.
+  double height = 0;
+  for (const Line& l : ring) height = std::max(height, l.z_top);
+
+  // ± by numerical propagation of each line's (θ, ρ) variances.
+  auto perturbed = [&](int line, int param, double h) {
+    std::vector<Line> L = ring;
+    if (param == 0) {
+      L[line].theta += h;
+    } else {
+      L[line].c += h * L[line].Normal();
+    }
+    return L;
+  };
+  auto variance_of = [&](const std::function<double(const std::vector<Line>&)>& f, const std::vector<int>& lines_used) {
+    double var = 0;
+    for (int l : lines_used) {
+      for (int param = 0; param < 2; ++param) {
+        double v = param == 0 ? ring[l].var_theta : ring[l].var_rho;
+        if (v <= 0) continue;
+        double h = std::max(1e-7, 1e-3 * std::sqrt(v));
+        double d = (f(perturbed(l, param, h)) - f(perturbed(l, param, -h))) / (2 * h);
+        var += d * d * v;
+      }
+    }
+    return var;
+  };
+
+  Plan& plan = result.plan;
+  for (int i = 0; i < n; ++i) {
+    PlanWall w;
+    w.start = corners[i];
+    w.end = corners[(i + 1) % n];
+    if (height > 1.0) w.height = height;
+    auto length = [&, i](const std::vector<Line>& L) {
+      std::vector<Vec2> c = corners_of(L);
+      return (c[(i + 1) % n] - c[i]).norm();
+    };
+    w.length_sigma_m = std::sqrt(variance_of(length, {(i + n - 1) % n, i, (i + 1) % n}));
+    plan.walls.push_back(w);
+  }
+  PlanRoom room;
+  room.polygon = corners;
+  room.area_m2 = PolygonArea(corners);
+  if (room.area_m2 < 0) {
+    // The viewpoint was outside the room's kernel; report honestly.
+    spdlog::warn("plan: room polygon runs clockwise around the viewpoint; the ordering may be wrong");
+    room.area_m2 = -room.area_m2;
+  }
+  std::vector<int> all_lines(n);
+  std::iota(all_lines.begin(), all_lines.end(), 0);
+  room.area_sigma_m2 = std::sqrt(
+      variance_of([&](const std::vector<Line>& L) { return std::abs(PolygonArea(corners_of(L))); }, all_lines));
+  plan.rooms.push_back(room);
+  s.walls = n;
+  s.area_m2 = room.area_m2;
+
+  // Residual statistics.
+  {
+    double chi = 0, sw = 0;
+    int inl = 0;
+    for (const Line& l : ring) {
+      for (int k : l.members) {
+        double r = l.Distance(walls_pts[k].p);
+        chi += walls_pts[k].w * r * r;
+        sw += walls_pts[k].w;
+        ++inl;
+      }
+    }
+    s.wall_inliers = inl;
+    s.outliers = s.wall_points - inl;
+    s.rms_residual_m = sw > 0 ? std::sqrt(chi / sw) : -1;
+  }
+
+  // 5. Openings: host wall, projection, grouping, extent minus casing.
+  struct OpeningPoint {
+    double t;
+    double z;
+    double sigma;
+  };
+  std::vector<std::vector<OpeningPoint>> per_wall_kind(2 * n);
+  for (const ClassPoint* p : opening_pts) {
+    Vec2 xy = p->position_m.head<2>();
+    double sigma = p->sigma_m > 0 ? p->sigma_m : o.nominal_sigma_m;
+    int best = -1;
+    double best_r = 0, best_t = 0;
+    for (int i = 0; i < n; ++i) {
+      const PlanWall& w = plan.walls[i];
+      double len = w.Length();
+      if (len < 1e-9) continue;
+      Vec2 d = (w.end - w.start) / len;
+      Vec2 inward(-d.y(), d.x());
+      double r = inward.dot(xy - w.start);  // > 0: in the room.
+      double front = std::min(o.opening_band_m, std::max(0.08, o.inlier_sigmas * sigma));
+      if (r > front || r < -o.opening_band_m) continue;
+      double t = d.dot(xy - w.start);
+      if (o.viewpoint_m) {
+        // Along the viewing ray onto the wall's line.
+        Vec2 ray = xy - view;
+        double den = inward.dot(ray);
+        if (std::abs(den) > 1e-6) {
+          double s_ray = inward.dot(w.start - view) / den;
+          if (s_ray > 0) t = d.dot(view + s_ray * ray - w.start);
+        }
+      }
+      if (t < -0.3 || t > len + 0.3) continue;
+      if (best < 0 || std::abs(r) < std::abs(best_r)) {
+        best = i;
+        best_r = r;
+        best_t = t;
+      }
+    }
+    if (best < 0) continue;
+    int slot = 2 * best + (p->label == LabelClass::kWindow ? 1 : 0);
+    per_wall_kind[slot].push_back({best_t, p->position_m.z(), sigma});
+  }
+  for (int slot = 0; slot < 2 * n; ++slot) {
+    std::vector<OpeningPoint>& v = per_wall_kind[slot];
+    if (v.empty()) continue;
+    const int wi = slot / 2;
+    const bool door = slot % 2 == 0;
+    const double casing = door ? o.door_casing_m : o.window_casing_m;
+    const PlanWall& w = plan.walls[wi];
+    const double len = w.Length();
+    const Vec2 d = (w.end - w.start) / len;
+    std::sort(v.begin(), v.end(), [](const OpeningPoint& a, const OpeningPoint& b) { return a.t < b.t; });
+    size_t begin = 0;
+    for (size_t i = 1; i <= v.size(); ++i) {
+      if (i < v.size() && v[i].t - v[i - 1].t <= o.opening_gap_m) continue;
+      std::vector<OpeningPoint> group(v.begin() + begin, v.begin() + i);
+      begin = i;
+      if (static_cast<int>(group.size()) < o.min_opening_points) continue;
+      std::vector<double> ts, zs;
+      double sum_var = 0;
+      for (const OpeningPoint& g : group) {
+        ts.push_back(g.t);
+        zs.push_back(g.z);
+        sum_var += g.sigma * g.sigma;
+      }
+      std::sort(ts.begin(), ts.end());
+      std::sort(zs.begin(), zs.end());
+      auto [a, b] = RobustExtent(ts, o.edge_quantile);
+      double t0 = std::clamp(a + casing, 0.0, len), t1 = std::clamp(b - casing, 0.0, len);
+      if (t1 - t0 < o.min_opening_width_m) continue;
+      auto [z0, z1] = RobustExtent(zs, o.edge_quantile);
+      PlanOpening op;
+      op.kind = door ? OpeningKind::kDoor : OpeningKind::kWindow;
+      op.wall = wi;
+      op.start = w.start + t0 * d;
+      op.end = w.start + t1 * d;
+      op.width = t1 - t0;
+      if (door) {
+        op.sill = 0.0;
+        op.height = z1 - casing;
+      } else {
+        op.sill = std::max(0.0, z0 + casing);
+        op.height = z1 - casing - *op.sill;
+      }
+      // Edge uncertainty: the points' σ averaged over the few that fix an
+      // edge, plus sampling spacing, plus the casing-width uncertainty.
+      double n_edge = std::max(1.0, o.edge_quantile * group.size() * 4);
+      double mean_var = sum_var / group.size();
+      double spacing = (b - a) / group.size();
+      double edge_var = mean_var / n_edge + spacing * spacing + o.casing_sigma_m * o.casing_sigma_m;
+      op.width_sigma_m = std::sqrt(2 * edge_var);
+      double zspacing = (z1 - z0) / group.size();
+      double zedge_var = mean_var / n_edge + zspacing * zspacing + o.casing_sigma_m * o.casing_sigma_m;
+      op.height_sigma_m = std::sqrt((door ? 1 : 2) * zedge_var);
+      op.sill_sigma_m = door ? 0.0 : std::sqrt(zedge_var);
+      plan.openings.push_back(op);
+    }
+  }
+  std::stable_sort(plan.openings.begin(), plan.openings.end(), [&](const PlanOpening& a, const PlanOpening& b) {
+    if (a.wall != b.wall) return a.wall < b.wall;
+    return (a.start - plan.walls[a.wall].start).norm() < (b.start - plan.walls[b.wall].start).norm();
+  });
+  s.openings = static_cast<int>(plan.openings.size());
+  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  return result;
+}
+
+}  // namespace asbuilt

@@ -1,0 +1,106 @@
+#ifndef ASBUILT_PLAN_RECONSTRUCT_H_
+#define ASBUILT_PLAN_RECONSTRUCT_H_
+
+// Floor plan from labelled class points (PAPER.md §8, issue 8):
+//
+//  1. Planarize: wall points → (x, y); each point weighted by 1/σ².
+//  2. Lines: sequential RANSAC with a per-point inlier band
+//     max(ε, k·σ) (capped), weighted total least squares on the inliers,
+//     split at gaps along the line; points in no line are outliers.
+//     A final competitive assignment (each point to the line it fits best,
+//     within that line's extent) and refit removes corner bias.
+//  3. Dominant directions from the lines themselves (any angle), paired into
+//     a Manhattan frame when two are 90° apart within the data's
+//     uncertainty; a line is snapped to its dominant direction only when its
+//     own fitted direction agrees within `snap_sigmas` standard errors.
+//  4. Closing the room: lines ordered by angle around the viewpoint (the
+//     capture centre, or the wall points' centroid), collinear neighbours
+//     merged, neighbours intersected into corners; parallel or implausible
+//     neighbours get an inferred connecting wall. Walls run corner to corner,
+//     counter-clockwise (room on the left), so the polygon is the room.
+//  5. Openings: door/window points within `opening_band_m` of a wall are
+//     projected onto it (along the viewing ray when the viewpoint is known),
+//     grouped along the wall, their label extent estimated robustly and the
+//     casing removed to give the clear opening; height and sill from z.
+//  6. ± (1σ) for every dimension from the line fits' covariances (scaled by
+//     the fit residuals) propagated to corners, lengths and area, and from
+//     the opening points' spread.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "asbuilt/formats/plan_file.h"
+#include "asbuilt/formats/points_file.h"
+
+namespace asbuilt {
+
+struct PlanOptions {
+  double epsilon_m = 0.05;            // Collinearity tolerance ε: base half-width of a wall's inlier band.
+  double inlier_sigmas = 3.0;         // A point is also an inlier within this many of its own σ…
+  double max_inlier_distance_m = 0.3; // …but never farther than this from the line.
+  double nominal_sigma_m = 0.01;      // σ for points whose file gives 0 (paper-style files).
+  int min_wall_points = 30;           // Fewer inliers: not a wall (outliers, clutter).
+  double min_wall_length_m = 0.3;     // Shorter point runs are not walls.
+  double max_gap_m = 1.0;             // A line's points split into separate walls at longer gaps.
+  int ransac_iterations = 250;        // Hypotheses per line; more = surer on clutter, slower.
+  int ransac_subset_points = 3000;    // Hypotheses are scored on a random subset of this size.
+  double snap_sigmas = 3.0;           // Snap to a dominant direction within this many σ of the fit…
+  double snap_max_deg = 5.0;          // …and never more than this many degrees.
+  double snap_min_deg = 0.05;         // Always snap within this (depth quantisation, exact labels).
+  double manhattan_max_deg = 3.0;     // Two dominant directions this close to 90° may form a frame.
+  double parallel_max_deg = 20.0;     // Neighbours closer than this in angle are not intersected.
+  double max_corner_extension_m = 2.5;  // A corner may lie at most this far beyond a wall's points.
+  double door_casing_m = 0.07;        // Door labels extend this far beyond the clear opening (casing).
+  double window_casing_m = 0.05;      // Window labels extend this far beyond the clear opening.
+  double casing_sigma_m = 0.01;       // Uncertainty of the casing widths (enters the ± of openings).
+  double opening_band_m = 0.3;        // Door/window points within this of a wall's line belong to it.
+  double opening_gap_m = 0.25;        // Openings on one wall are split at gaps longer than this.
+  int min_opening_points = 12;        // Fewer points: not an opening.
+  double min_opening_width_m = 0.25;  // Narrower clear openings are dropped.
+  double edge_quantile = 0.01;        // Extent from the q / 1−q quantiles, extrapolated to the edges.
+  int max_independent_points = 400;   // Dense points are correlated: cap the points a ± assumes.
+  std::optional<Vec3> viewpoint_m;    // Capture centre (rig position), if known; improves openings.
+  std::uint64_t seed = 1;             // RANSAC sampling.
+
+  void Check() const;
+};
+
+struct PlanSummary {
+  int input_points = 0;
+  int wall_points = 0;
+  int door_points = 0;
+  int window_points = 0;
+  int wall_inliers = 0;        // Wall points assigned to a wall line.
+  int outliers = -1;           // Wall points in no line (−1: never computed).
+  int lines_found = 0;         // Lines before ordering/merging.
+  int walls = 0;
+  int inferred_walls = 0;      // Connecting walls with no points of their own.
+  int openings = 0;
+  bool closed = false;         // Walls form a closed room polygon.
+  bool manhattan = false;      // A Manhattan frame was found and used.
+  std::vector<double> dominant_directions_deg;  // In [0, 180).
+  double rms_residual_m = -1;  // Of wall inliers about their lines (−1: never computed).
+  double area_m2 = -1;
+  double seconds = 0;
+
+  // "6 walls (0 inferred), 3 openings, closed, 21.84 m², Manhattan 12.0°, rms 0.012 m, 0.04 s".
+  std::string BriefReport() const;
+};
+
+struct PlanResult {
+  Plan plan;
+  PlanSummary summary;
+};
+
+// Throws InvalidArgument on bad options, and Error when fewer than two wall
+// lines can be found (too few or too scattered wall points).
+PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOptions& options = {});
+
+// Pieces of wall `wall` left after cutting out its openings (interval
+// trimming), as [t0, t1] distances from the wall's start, in order.
+std::vector<std::pair<double, double>> WallPiecesBetweenOpenings(const Plan& plan, int wall);
+
+}  // namespace asbuilt
+
+#endif  // ASBUILT_PLAN_RECONSTRUCT_H_
