@@ -91,6 +91,7 @@ StereoCalibration LoadCalibration(const std::filesystem::path& path) {
   if (w <= 0 || h <= 0) problems.push_back({file, "image_width", "missing or not positive (need image_width, image_height)"});
   c.image_size = cv::Size(w, h);
   if (!fs["rms"].empty()) c.rms_px = static_cast<double>(fs["rms"]);
+  if (!fs["mean_epipolar_error_px"].empty()) c.epipolar_error_px = static_cast<double>(fs["mean_epipolar_error_px"]);
   if (!problems.empty()) throw InputError(problems);
   return c;
 }
@@ -103,6 +104,7 @@ void WriteCalibration(const StereoCalibration& c, const std::filesystem::path& p
     fs << "image_width" << c.image_size.width << "image_height" << c.image_size.height;
     fs << "K1" << c.K1 << "D1" << c.D1 << "K2" << c.K2 << "D2" << c.D2 << "R" << c.R << "T" << c.T;
     fs << "rms" << c.rms_px;
+    if (std::isfinite(c.epipolar_error_px)) fs << "mean_epipolar_error_px" << c.epipolar_error_px;
   }
   out.Commit();
 }

@@ -20,6 +20,7 @@ struct StereoCalibration {
   cv::Mat K1, D1, K2, D2;  // 3×3 camera matrices, distortion vectors (CV_64F).
   cv::Mat R, T;            // Right camera from left: x_R = R·x_L + T (T in metres).
   double rms_px = NAN;     // Stereo reprojection RMS, NaN if unknown.
+  double epipolar_error_px = NAN;  // Mean distance to the epipolar line, NaN if unknown.
 
   std::string ToString() const;
 };
