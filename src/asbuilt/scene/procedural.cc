@@ -1,0 +1,293 @@
+#include "asbuilt/scene/procedural.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "asbuilt/scene/furnish.h"
+#include "asbuilt/scene/scene_json.h"
+#include "asbuilt/util/error.h"
+
+namespace asbuilt {
+namespace fs = std::filesystem;
+namespace {
+
+double DistanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
+  Vec2 ab = b - a;
+  double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (p - (a + t * ab)).norm();
+}
+
+Vec3 Jitter(SceneRng& rng, const Vec3& c, double amount) {
+  Vec3 out;
+  for (int i = 0; i < 3; ++i) out[i] = std::clamp(c[i] + rng.Uniform(-amount, amount), 0.0, 1.0);
+  return out;
+}
+
+template <typename T>
+const T& Pick(SceneRng& rng, const std::vector<T>& items) {
+  return items[rng.UniformInt(0, static_cast<int>(items.size()) - 1)];
+}
+
+std::vector<Vec2> RandomPolygon(SceneRng& rng, const RandomSceneOptions& o, bool l_shape) {
+  double w = rng.Uniform(o.min_side_m, o.max_side_m);
+  double d = rng.Uniform(o.min_side_m, o.max_side_m);
+  if (!l_shape || w < 3.0 || d < 3.0) return {{0, 0}, {w, 0}, {w, d}, {0, d}};
+  // Cut a corner out, leaving at least 1.5 m on each arm.
+  double cw = std::clamp(rng.Uniform(0.3, 0.6) * w, 1.0, w - 1.5);
+  double cd = std::clamp(rng.Uniform(0.3, 0.6) * d, 1.0, d - 1.5);
+  switch (rng.UniformInt(0, 3)) {
+    case 0: return {{0, 0}, {w, 0}, {w, d - cd}, {w - cw, d - cd}, {w - cw, d}, {0, d}};
+    case 1: return {{0, 0}, {w, 0}, {w, d}, {cw, d}, {cw, d - cd}, {0, d - cd}};
+    case 2: return {{0, 0}, {w - cw, 0}, {w - cw, cd}, {w, cd}, {w, d}, {0, d}};
+    default: return {{cw, 0}, {w, 0}, {w, d}, {0, d}, {0, cd}, {cw, cd}};
+  }
+}
+
+// Tries to add one opening of `kind` to the room; false when nothing fits.
+bool AddOpening(SceneRng& rng, const RandomSceneOptions& o, Room& room, OpeningKind kind,
+                std::vector<int>& used_walls) {
+  const int n = WallCount(room);
+  for (int attempt = 0; attempt < 60; ++attempt) {
+    int wall;
+    if (!used_walls.empty() && rng.Chance(o.same_wall_probability)) {
+      wall = Pick(rng, used_walls);
+    } else {
+      wall = rng.UniformInt(0, n - 1);
+    }
+    const double length = WallLength(room, wall);
+    Opening op;
+    op.kind = kind;
+    op.wall = wall;
+    if (kind == OpeningKind::kDoor) {
+      op.width_m = rng.Uniform(0.7, 1.2);
+      op.height_m = std::min(rng.Uniform(1.95, 2.3), room.height_m - 0.1);
+      op.sill_m = 0.0;
+      op.open_deg = rng.Chance(0.6) ? 0.0 : rng.Uniform(10.0, 100.0);
+      op.hinge = rng.Chance(0.5) ? HingeSide::kLeft : HingeSide::kRight;
+    } else {
+      op.width_m = rng.Uniform(0.6, 2.0);
+      op.sill_m = rng.Uniform(0.5, 1.2);
+      op.height_m = std::min(rng.Uniform(0.8, 1.6), room.height_m - 0.15 - op.sill_m);
+      op.glass = rng.Chance(0.9);
+      op.frame_width_m = rng.Uniform(0.03, 0.08);
+    }
+    if (op.height_m < 0.4 || op.width_m > length - 0.2) continue;
+    if (kind == OpeningKind::kDoor && rng.Chance(o.corner_door_probability)) {
+      double gap = rng.Uniform(0.05, 0.15);
+      op.offset_m = rng.Chance(0.5) ? gap : length - op.width_m - gap;
+    } else {
+      op.offset_m = rng.Uniform(0.1, length - op.width_m - 0.1);
+    }
+    bool clear = true;
+    for (const Opening& other : room.openings) {
+      if (other.wall == wall && op.offset_m < other.offset_m + other.width_m + 0.1 &&
+          op.offset_m + op.width_m + 0.1 > other.offset_m) {
+        clear = false;
+      }
+    }
+    if (!clear) continue;
+    room.openings.push_back(op);
+    if (std::find(used_walls.begin(), used_walls.end(), wall) == used_walls.end()) used_walls.push_back(wall);
+    return true;
+  }
+  return false;
+}
+
+void RandomMaterials(SceneRng& rng, Scene& scene) {
+  const std::vector<Vec3> wall_colours = {Vec3(0.9, 0.9, 0.88), Vec3(0.86, 0.82, 0.72), Vec3(0.75, 0.8, 0.85),
+                                          Vec3(0.7, 0.78, 0.68), Vec3(0.92, 0.85, 0.7), Vec3(0.6, 0.6, 0.62),
+                                          Vec3(0.85, 0.7, 0.65)};
+  const std::vector<TextureKind> wall_textures = {TextureKind::kPlaster, TextureKind::kPaint, TextureKind::kWallpaper,
+                                                  TextureKind::kConcrete, TextureKind::kNone};
+  const std::vector<std::pair<TextureKind, Vec3>> floors = {
+      {TextureKind::kWood, Vec3(0.5, 0.35, 0.2)},    {TextureKind::kWood, Vec3(0.7, 0.55, 0.35)},
+      {TextureKind::kTiles, Vec3(0.75, 0.75, 0.72)}, {TextureKind::kCarpet, Vec3(0.35, 0.38, 0.45)},
+      {TextureKind::kConcrete, Vec3(0.55, 0.55, 0.55)}};
+  Material wall = *FindMaterial(scene, "wall");
+  wall.base_color = Jitter(rng, Pick(rng, wall_colours), 0.05);
+  wall.secondary_color = Jitter(rng, 0.9 * wall.base_color, 0.03);
+  wall.texture = Pick(rng, wall_textures);
+  wall.texture_scale_m = rng.Uniform(0.1, 0.6);
+  wall.roughness = rng.Uniform(0.6, 1.0);
+  Material floor = *FindMaterial(scene, "floor");
+  const auto& [floor_texture, floor_colour] = Pick(rng, floors);
+  floor.texture = floor_texture;
+  floor.base_color = Jitter(rng, floor_colour, 0.06);
+  floor.secondary_color = Jitter(rng, 0.75 * floor.base_color, 0.03);
+  floor.texture_scale_m = rng.Uniform(0.1, 0.6);
+  floor.roughness = rng.Uniform(0.3, 0.9);
+  Material ceiling = *FindMaterial(scene, "ceiling");
+  ceiling.base_color = Jitter(rng, Vec3(0.92, 0.92, 0.9), 0.04);
+  Material furniture = *FindMaterial(scene, "furniture");
+  furniture.base_color = Jitter(rng, Pick(rng, std::vector<Vec3>{Vec3(0.6, 0.5, 0.4), Vec3(0.3, 0.3, 0.32),
+                                                                  Vec3(0.85, 0.85, 0.82), Vec3(0.45, 0.3, 0.2)}),
+                                0.05);
+  furniture.texture = rng.Chance(0.5) ? TextureKind::kWood : TextureKind::kNone;
+  scene.materials = {wall, floor, ceiling, furniture};
+}
+
+// A point inside the polygon at least `margin_m` from every wall.
+std::optional<Vec2> InteriorPoint(SceneRng& rng, const std::vector<Vec2>& polygon, double margin_m) {
+  Vec2 lo = polygon[0], hi = polygon[0];
+  for (const Vec2& p : polygon) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  for (int attempt = 0; attempt < 500; ++attempt) {
+    Vec2 p(rng.Uniform(lo.x(), hi.x()), rng.Uniform(lo.y(), hi.y()));
+    if (!PointInPolygon(polygon, p)) continue;
+    bool far = true;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+      far = far && DistanceToSegment(p, polygon[i], polygon[(i + 1) % polygon.size()]) >= margin_m;
+    }
+    if (far) return p;
+  }
+  return std::nullopt;
+}
+
+bool IsRotated(const Room& room) {
+  Vec2 d = WallEnd(room, 0) - WallStart(room, 0);
+  return std::abs(d.x()) > 1e-9 && std::abs(d.y()) > 1e-9;
+}
+
+}  // namespace
+
+void RandomSceneOptions::Check() const {
+  CheckArgument(min_side_m >= 1.5, fmt::format("RandomSceneOptions.min_side_m = {}, must be >= 1.5", min_side_m));
+  CheckArgument(max_side_m >= min_side_m,
+                fmt::format("RandomSceneOptions.max_side_m = {}, must be >= min_side_m ({})", max_side_m, min_side_m));
+  CheckArgument(min_height_m >= 2.2, fmt::format("RandomSceneOptions.min_height_m = {}, must be >= 2.2", min_height_m));
+  CheckArgument(max_height_m >= min_height_m,
+                fmt::format("RandomSceneOptions.max_height_m = {}, must be >= min_height_m ({})", max_height_m,
+                            min_height_m));
+  CheckArgument(l_shape_probability >= 0 && l_shape_probability <= 1,
+                fmt::format("RandomSceneOptions.l_shape_probability = {}, must be in [0, 1]", l_shape_probability));
+  CheckArgument(rotated_probability >= 0 && rotated_probability <= 1,
+                fmt::format("RandomSceneOptions.rotated_probability = {}, must be in [0, 1]", rotated_probability));
+  CheckArgument(min_openings >= 1, fmt::format("RandomSceneOptions.min_openings = {}, must be >= 1", min_openings));
+  CheckArgument(max_openings >= min_openings && max_openings <= 12,
+                fmt::format("RandomSceneOptions.max_openings = {}, must be in [min_openings, 12]", max_openings));
+  CheckArgument(same_wall_probability >= 0 && same_wall_probability <= 1,
+                fmt::format("RandomSceneOptions.same_wall_probability = {}, must be in [0, 1]", same_wall_probability));
+  CheckArgument(corner_door_probability >= 0 && corner_door_probability <= 1,
+                fmt::format("RandomSceneOptions.corner_door_probability = {}, must be in [0, 1]",
+                            corner_door_probability));
+  CheckArgument(min_furniture >= 0 && max_furniture >= min_furniture,
+                fmt::format("RandomSceneOptions.min_furniture/max_furniture = {}/{}, need 0 <= min <= max",
+                            min_furniture, max_furniture));
+  CheckArgument(turn_step_deg > 0 && turn_step_deg <= 360,
+                fmt::format("RandomSceneOptions.turn_step_deg = {}, must be in (0, 360]", turn_step_deg));
+  rig.Camera().Check();
+  CheckArgument(rig.baseline_m > 0, fmt::format("RandomSceneOptions.rig.baseline_m = {}, must be > 0", rig.baseline_m));
+}
+
+Scene RandomScene(const RandomSceneOptions& options, std::uint64_t seed) {
+  options.Check();
+  // Decorrelate neighbouring seeds.
+  SceneRng rng(seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull);
+  Scene scene;
+  scene.name = fmt::format("random-{}", seed);
+  scene.seed = seed;
+  scene.rig = options.rig;
+
+  Room room;
+  room.name = "room";
+  room.polygon = RandomPolygon(rng, options, rng.Chance(options.l_shape_probability));
+  if (rng.Chance(options.rotated_probability)) {
+    Eigen::Rotation2Dd rot(DegToRad(rng.Uniform(5.0, 85.0) + 90.0 * rng.UniformInt(0, 3)));
+    Vec2 shift(rng.Uniform(-3, 3), rng.Uniform(-3, 3));
+    for (Vec2& p : room.polygon) p = rot * p + shift;
+  }
+  room.height_m = rng.Uniform(options.min_height_m, options.max_height_m);
+  room.wall_thickness_m = rng.Uniform(0.1, 0.35);
+  room.skirting = rng.Chance(0.7);
+
+  // Openings: the first is a door.
+  int n_openings = rng.UniformInt(options.min_openings, options.max_openings);
+  std::vector<int> used_walls;
+  for (int i = 0; i < n_openings; ++i) {
+    OpeningKind kind = (i == 0 || rng.Chance(0.3)) ? OpeningKind::kDoor : OpeningKind::kWindow;
+    AddOpening(rng, options, room, kind, used_walls);
+  }
+  scene.rooms.push_back(room);
+  RandomMaterials(rng, scene);
+
+  // Rig first, so furniture keeps clear of it.
+  std::optional<Vec2> spot = InteriorPoint(rng, room.polygon, 0.8);
+  if (!spot) spot = InteriorPoint(rng, room.polygon, 0.3);
+  if (!spot) spot = PolygonCentroid(room.polygon);
+  scene.turn = TurnInPlace{.position_m = Vec3(spot->x(), spot->y(), std::min(rng.Uniform(1.2, 1.7), room.height_m - 0.3)),
+                           .start_deg = rng.Uniform(0.0, options.turn_step_deg),
+                           .step_deg = options.turn_step_deg,
+                           .count = 0};
+
+  // Furniture from the whole catalogue, against walls mostly.
+  static const std::vector<std::string> kPieces = {"desk", "table", "chair", "bed", "sofa", "armchair",
+                                                   "wardrobe", "bookshelf", "cabinet", "counter", "fridge",
+                                                   "dresser", "plant", "box", "tv", "piano"};
+  std::vector<FurnitureSpec> pieces;
+  int n_pieces = rng.UniformInt(options.min_furniture, options.max_furniture);
+  for (int i = 0; i < n_pieces; ++i) {
+    FurnitureSpec spec = *FurnitureByName(Pick(rng, kPieces));
+    spec.size_m = spec.size_m.cwiseProduct(Vec3(rng.Uniform(0.85, 1.15), rng.Uniform(0.85, 1.15), rng.Uniform(0.9, 1.1)));
+    pieces.push_back(spec);
+  }
+  PlaceFurniture(scene, 0, pieces, rng.Next());
+
+  // Lights and environment.
+  AddCeilingLights(scene, 0, rng.Chance(0.7) ? 0 : rng.UniformInt(1, 3), rng.Uniform(0.7, 1.5));
+  if (rng.Chance(0.25)) {
+    std::optional<Vec2> lamp = InteriorPoint(rng, room.polygon, 0.3);
+    if (lamp) {
+      scene.lights.push_back({.kind = LightKind::kPoint,
+                              .position_m = Vec3(lamp->x(), lamp->y(), rng.Uniform(1.0, room.height_m - 0.3)),
+                              .color = Jitter(rng, Vec3(1.0, 0.85, 0.7), 0.05),
+                              .intensity = rng.Uniform(0.3, 1.0)});
+    }
+  }
+  if (rng.Chance(0.7)) {
+    scene.lights.push_back({.kind = LightKind::kSun,
+                            .intensity = rng.Uniform(0.5, 2.0),
+                            .azimuth_deg = rng.Uniform(0.0, 360.0),
+                            .elevation_deg = rng.Uniform(10.0, 70.0)});
+  }
+  scene.environment.sky_color = Jitter(rng, Vec3(0.55, 0.7, 0.95), 0.1);
+  scene.environment.ground_color = Jitter(rng, Vec3(0.35, 0.4, 0.3), 0.08);
+  scene.environment.exterior_objects = rng.Chance(0.7);
+  scene.environment.ambient = rng.Uniform(0.05, 0.3);
+
+  std::vector<Problem> problems = ValidateScene(scene, scene.name);
+  if (!problems.empty()) {
+    // A generator bug, not bad input: say how to reproduce it.
+    throw Error(fmt::format("RandomScene(seed {}) made an invalid scene: {}", seed, problems.front().ToString()));
+  }
+  return scene;
+}
+
+std::string RandomScenesSummary::BriefReport() const {
+  return fmt::format("{} scene{} in {} ({} rectangular, {} L-shaped, {} rotated; {} doors, {} windows)", written,
+                     written == 1 ? "" : "s", dir.string(), rectangular, l_shaped, rotated, doors, windows);
+}
+
+RandomScenesSummary WriteRandomScenes(const RandomSceneOptions& options, std::uint64_t seed, int count,
+                                      const fs::path& dir, const ProgressCallback& progress) {
+  options.Check();
+  CheckArgument(count >= 1, fmt::format("count = {}, must be >= 1", count));
+  RandomScenesSummary summary;
+  summary.dir = dir;
+  for (int i = 0; i < count; ++i) {
+    Scene scene = RandomScene(options, seed + static_cast<std::uint64_t>(i));
+    WriteScene(scene, dir / fmt::format("scene_{:04d}.json", i));
+    const Room& room = scene.rooms[0];
+    (room.polygon.size() == 4 ? summary.rectangular : summary.l_shaped)++;
+    if (IsRotated(room)) summary.rotated++;
+    for (const Opening& o : room.openings) (o.kind == OpeningKind::kDoor ? summary.doors : summary.windows)++;
+    ++summary.written;
+    ReportProgress(progress, {.stage = "scenes", .done = i + 1, .total = count});
+  }
+  return summary;
+}
+
+}  // namespace asbuilt

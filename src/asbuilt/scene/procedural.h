@@ -1,0 +1,63 @@
+#ifndef ASBUILT_SCENE_PROCEDURAL_H_
+#define ASBUILT_SCENE_PROCEDURAL_H_
+
+// Procedural rooms for synthetic training data: rectangular, L-shaped and
+// rotated rooms with 1–4 doors and windows on varied walls (several on one
+// wall, doors tight in corners), furniture that occludes walls, randomised
+// materials, lights and environment, and a turn-in-place rig. Every scene
+// passes ValidateScene. Deterministic: the same options and seed give the
+// same scene on any platform (own RNG, no std:: distributions).
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "asbuilt/scene/scene.h"
+#include "asbuilt/util/progress.h"
+
+namespace asbuilt {
+
+struct RandomSceneOptions {
+  double min_side_m = 2.5;            // Bounding-box sides of the room, metres.
+  double max_side_m = 9.0;
+  double min_height_m = 2.4;          // Floor to ceiling, metres.
+  double max_height_m = 3.5;
+  double l_shape_probability = 0.3;   // Share of L-shaped rooms.
+  double rotated_probability = 0.3;   // Share of rooms turned by a random angle (not axis-aligned).
+  int min_openings = 1;               // Doors + windows per room; the first is always a door.
+  int max_openings = 4;
+  double same_wall_probability = 0.35;  // Chance an opening joins a wall that already has one.
+  double corner_door_probability = 0.4; // Chance a door sits tight in a corner.
+  int min_furniture = 2;              // Pieces tried per room (some may not fit).
+  int max_furniture = 8;
+  double turn_step_deg = 30.0;        // Rig yaw step; 360 / step views.
+  StereoRigSpec rig;                  // Image size, FOV, baseline of every scene.
+
+  void Check() const;
+};
+
+// One random scene. Throws InvalidArgument for bad options.
+Scene RandomScene(const RandomSceneOptions& options, std::uint64_t seed);
+
+struct RandomScenesSummary {
+  int written = 0;
+  int rectangular = 0;
+  int l_shaped = 0;
+  int rotated = 0;
+  int doors = 0;
+  int windows = 0;
+  std::filesystem::path dir;
+
+  // "10 scenes in out/ (7 rectangular, 3 L-shaped, 4 rotated; 12 doors, 15 windows)".
+  std::string BriefReport() const;
+};
+
+// Writes scenes seed, seed + 1, …, seed + count − 1 as DIR/scene_NNNN.json
+// (atomically, one file each; NNNN = index). Throws InvalidArgument for
+// count < 1.
+RandomScenesSummary WriteRandomScenes(const RandomSceneOptions& options, std::uint64_t seed, int count,
+                                      const std::filesystem::path& dir, const ProgressCallback& progress = {});
+
+}  // namespace asbuilt
+
+#endif  // ASBUILT_SCENE_PROCEDURAL_H_

@@ -1,0 +1,98 @@
+#include "asbuilt/scene/procedural.h"
+
+#include <filesystem>
+#include <set>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "asbuilt/scene/scene_json.h"
+#include "asbuilt/util/error.h"
+
+namespace asbuilt {
+namespace {
+namespace fs = std::filesystem;
+
+TEST(RandomSceneOptions, DefaultsAreValidAndBadOnesThrow) {
+  EXPECT_NO_THROW(RandomSceneOptions{}.Check());
+  EXPECT_THROW(RandomSceneOptions{.max_side_m = 2.0}.Check(), InvalidArgument);
+  EXPECT_THROW(RandomSceneOptions{.min_openings = 0}.Check(), InvalidArgument);
+  EXPECT_THROW(RandomSceneOptions{.l_shape_probability = 1.5}.Check(), InvalidArgument);
+}
+
+TEST(RandomScene, IsAlwaysValid) {
+  for (std::uint64_t seed = 0; seed < 400; ++seed) {
+    Scene s = RandomScene({}, seed);
+    ASSERT_THAT(ValidateScene(s), ::testing::IsEmpty()) << "seed " << seed;
+    ASSERT_GE(s.rooms[0].openings.size(), 1u) << "seed " << seed;
+    ASSERT_LE(s.rooms[0].openings.size(), 4u) << "seed " << seed;
+    EXPECT_EQ(s.rooms[0].openings[0].kind, OpeningKind::kDoor) << "seed " << seed;
+  }
+}
+
+TEST(RandomScene, IsDeterministicPerSeed) {
+  for (std::uint64_t seed : {0ull, 1ull, 77ull, 123456789ull}) {
+    EXPECT_EQ(SceneToJson(RandomScene({}, seed)), SceneToJson(RandomScene({}, seed)));
+  }
+  EXPECT_NE(SceneToJson(RandomScene({}, 1)), SceneToJson(RandomScene({}, 2)));
+}
+
+TEST(RandomScene, CoversTheVarietyTheDatasetNeeds) {
+  int l_shaped = 0, rotated = 0, shared_wall = 0, corner_door = 0, against_wall = 0, sun = 0, windows = 0;
+  const int n = 200;
+  for (std::uint64_t seed = 0; seed < n; ++seed) {
+    Scene s = RandomScene({}, seed);
+    const Room& r = s.rooms[0];
+    l_shaped += r.polygon.size() == 6;
+    Vec2 d = WallEnd(r, 0) - WallStart(r, 0);
+    rotated += std::abs(d.x()) > 1e-9 && std::abs(d.y()) > 1e-9;
+    std::set<int> walls;
+    bool shared = false;
+    for (const Opening& o : r.openings) {
+      shared = shared || !walls.insert(o.wall).second;
+      windows += o.kind == OpeningKind::kWindow;
+      double length = WallLength(r, o.wall);
+      if (o.kind == OpeningKind::kDoor && (o.offset_m < 0.16 || o.offset_m + o.width_m > length - 0.16)) {
+        ++corner_door;
+      }
+    }
+    shared_wall += shared;
+    // A piece whose back is within 5 cm of a wall occludes it.
+    bool wall_piece = false;
+    for (const Furniture& f : s.furniture) {
+      for (int w = 0; w < WallCount(r); ++w) {
+        Vec2 a = WallStart(r, w), b = WallEnd(r, w);
+        Vec2 dir = (b - a).normalized();
+        Vec2 inward(-dir.y(), dir.x());
+        double dist = (f.centre_m - a).dot(inward);
+        wall_piece = wall_piece || std::abs(dist - 0.5 * f.size_m.y() - 0.02) < 0.05;
+      }
+    }
+    against_wall += wall_piece;
+    for (const Light& l : s.lights) sun += l.kind == LightKind::kSun;
+  }
+  EXPECT_GT(l_shaped, n / 8);
+  EXPECT_GT(rotated, n / 8);
+  EXPECT_GT(shared_wall, n / 10);
+  EXPECT_GT(corner_door, n / 10);
+  EXPECT_GT(against_wall, n / 2);
+  EXPECT_GT(sun, n / 3);
+  EXPECT_GT(windows, n / 2);
+}
+
+TEST(WriteRandomScenes, WritesOneValidFilePerSeed) {
+  fs::path dir = fs::temp_directory_path() / "asbuilt_random_scenes";
+  fs::remove_all(dir);
+  int calls = 0;
+  RandomScenesSummary s = WriteRandomScenes({}, 10, 5, dir, [&](const ProgressUpdate&) { ++calls; });
+  EXPECT_EQ(s.written, 5);
+  EXPECT_EQ(calls, 5);
+  EXPECT_EQ(s.rectangular + s.l_shaped, 5);
+  EXPECT_THAT(s.BriefReport(), ::testing::StartsWith("5 scenes in "));
+  Scene third = ReadScene(dir / "scene_0002.json");
+  EXPECT_EQ(SceneToJson(third), SceneToJson(RandomScene({}, 12)));
+  EXPECT_THROW(WriteRandomScenes({}, 0, 0, dir), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace asbuilt
