@@ -1,0 +1,360 @@
+#include "asbuilt/mcp/tool_args.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+namespace asbuilt::mcp {
+namespace {
+
+std::string Path(std::string_view name) { return fmt::format("arguments.{}", name); }
+
+std::string Short(const nlohmann::json& v) {
+  if (v.is_object()) return v.empty() ? "{}" : "an object";
+  if (v.is_array()) return v.empty() ? "[]" : fmt::format("an array of {}", v.size());
+  std::string s = v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  if (s.size() > 40) s = s.substr(0, 37) + "...";
+  return s;
+}
+
+std::string Fmt(double v) {
+  // Shortest form that reads well: 2, 0.5, 1e-06.
+  std::string s = fmt::format("{}", v);
+  return s;
+}
+
+// "a number > 0 and <= 100" from the field's bounds.
+std::string RangeText(const ToolField& f) {
+  std::vector<std::string> parts;
+  if (f.exclusive_minimum) parts.push_back("> " + Fmt(*f.exclusive_minimum));
+  if (f.minimum) parts.push_back(">= " + Fmt(*f.minimum));
+  if (f.maximum) parts.push_back("<= " + Fmt(*f.maximum));
+  return fmt::format("{}", fmt::join(parts, " and "));
+}
+
+bool InRange(const ToolField& f, double v) {
+  if (f.exclusive_minimum && !(v > *f.exclusive_minimum)) return false;
+  if (f.minimum && !(v >= *f.minimum)) return false;
+  if (f.maximum && !(v <= *f.maximum)) return false;
+  return true;
+}
+
+bool HasBounds(const ToolField& f) {
+  return f.minimum || f.exclusive_minimum || f.maximum;
+}
+
+bool IsFiniteNumber(const nlohmann::json& v) {
+  return v.is_number() && std::isfinite(v.get<double>());
+}
+
+void AddBounds(const ToolField& f, nlohmann::json& s) {
+  if (f.minimum) s["minimum"] = *f.minimum;
+  if (f.exclusive_minimum) s["exclusiveMinimum"] = *f.exclusive_minimum;
+  if (f.maximum) s["maximum"] = *f.maximum;
+}
+
+nlohmann::json FixedNumberArray(std::size_t n, const ToolField* bounds) {
+  nlohmann::json item = {{"type", "number"}};
+  if (bounds) AddBounds(*bounds, item);
+  return {{"type", "array"}, {"items", item}, {"minItems", n}, {"maxItems", n}};
+}
+
+nlohmann::json FieldSchema(const ToolField& f) {
+  nlohmann::json s;
+  switch (f.type) {
+    case ArgType::kNumber:
+      s = {{"type", "number"}};
+      AddBounds(f, s);
+      break;
+    case ArgType::kInteger:
+      s = {{"type", "integer"}};
+      AddBounds(f, s);
+      break;
+    case ArgType::kString:
+      s = {{"type", "string"}};
+      if (f.max_length) s["maxLength"] = f.max_length;
+      break;
+    case ArgType::kBool: s = {{"type", "boolean"}}; break;
+    case ArgType::kEnum: {
+      nlohmann::json values = nlohmann::json::array();
+      for (auto c : f.choices) values.push_back(c);
+      s = {{"type", "string"}, {"enum", values}};
+      break;
+    }
+    case ArgType::kPoint2: s = FixedNumberArray(2, HasBounds(f) ? &f : nullptr); break;
+    case ArgType::kPoint3: s = FixedNumberArray(3, HasBounds(f) ? &f : nullptr); break;
+    case ArgType::kColor: {
+      ToolField unit{.minimum = 0.0, .maximum = 1.0};
+      s = FixedNumberArray(3, &unit);
+      break;
+    }
+    case ArgType::kPolygon:
+      s = {{"type", "array"}, {"items", FixedNumberArray(2, nullptr)}};
+      if (f.min_items) s["minItems"] = f.min_items;
+      if (f.max_items) s["maxItems"] = f.max_items;
+      break;
+    case ArgType::kNumberList: {
+      nlohmann::json item = {{"type", "number"}};
+      AddBounds(f, item);
+      s = {{"type", "array"}, {"items", item}};
+      if (f.min_items) s["minItems"] = f.min_items;
+      if (f.max_items) s["maxItems"] = f.max_items;
+      break;
+    }
+  }
+  s["description"] = f.description;
+  if (!f.default_value.is_null()) s["default"] = f.default_value;
+  return s;
+}
+
+const char* TypeWord(ArgType t) {
+  switch (t) {
+    case ArgType::kNumber: return "number";
+    case ArgType::kInteger: return "integer";
+    case ArgType::kString: return "string";
+    case ArgType::kBool: return "boolean";
+    case ArgType::kEnum: return "string (enum)";
+    case ArgType::kPoint2: return "[x, y]";
+    case ArgType::kPoint3: return "[x, y, z]";
+    case ArgType::kColor: return "[r, g, b] in 0..1";
+    case ArgType::kPolygon: return "[[x, y], ...]";
+    case ArgType::kNumberList: return "[number, ...]";
+  }
+  return "?";
+}
+
+// Checks one argument; appends problems.
+void CheckField(const ToolField& f, const nlohmann::json& v, std::vector<std::string>& problems) {
+  std::string path = Path(f.name);
+  auto problem = [&](const std::string& msg) { problems.push_back(path + ": " + msg); };
+  auto number_problem = [&](const nlohmann::json& x, const std::string& where, const ToolField& b) {
+    if (!IsFiniteNumber(x)) {
+      problems.push_back(fmt::format("{}: must be a finite number, got {}", where, Short(x)));
+    } else if (!InRange(b, x.get<double>())) {
+      problems.push_back(fmt::format("{}: must be {}, got {}", where, RangeText(b), Short(x)));
+    }
+  };
+  auto fixed_array = [&](std::size_t n, const std::string& what, const ToolField* b) {
+    if (!v.is_array() || v.size() != n) {
+      problem(fmt::format("must be {}, got {}", what, Short(v)));
+      return;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      std::string where = fmt::format("{}[{}]", path, i);
+      if (b) {
+        number_problem(v[i], where, *b);
+      } else if (!IsFiniteNumber(v[i])) {
+        problems.push_back(fmt::format("{}: must be a finite number, got {}", where, Short(v[i])));
+      }
+    }
+  };
+  auto count_ok = [&](std::size_t n, const char* noun) {
+    if (n < f.min_items || (f.max_items && n > f.max_items)) {
+      if (f.max_items) {
+        problem(fmt::format("must have {} to {} {}, got {}", f.min_items, f.max_items, noun, n));
+      } else {
+        problem(fmt::format("must have at least {} {}, got {}", f.min_items, noun, n));
+      }
+      return false;
+    }
+    return true;
+  };
+
+  switch (f.type) {
+    case ArgType::kNumber:
+      number_problem(v, path, f);
+      break;
+    case ArgType::kInteger: {
+      bool whole = v.is_number_integer() ||
+                   (v.is_number_float() && std::isfinite(v.get<double>()) &&
+                    v.get<double>() == std::floor(v.get<double>()) &&
+                    std::abs(v.get<double>()) < 9e15);
+      if (!whole) {
+        problem(fmt::format("must be a whole number{}, got {}",
+                            RangeText(f).empty() ? "" : " " + RangeText(f), Short(v)));
+      } else if (!InRange(f, v.get<double>())) {
+        problem(fmt::format("must be an integer {}, got {}", RangeText(f), Short(v)));
+      }
+      break;
+    }
+    case ArgType::kString:
+      if (!v.is_string()) {
+        problem(fmt::format("must be a string, got {}", Short(v)));
+      } else if (f.max_length && v.get_ref<const std::string&>().size() > f.max_length) {
+        problem(fmt::format("must be at most {} characters, got {}", f.max_length,
+                            v.get_ref<const std::string&>().size()));
+      }
+      break;
+    case ArgType::kBool:
+      if (!v.is_boolean()) problem(fmt::format("must be true or false, got {}", Short(v)));
+      break;
+    case ArgType::kEnum: {
+      bool ok = false;
+      if (v.is_string()) {
+        for (auto c : f.choices) ok = ok || v.get_ref<const std::string&>() == c;
+      }
+      if (!ok) {
+        problem(fmt::format("must be one of {}, got {}",
+                            fmt::format("\"{}\"", fmt::join(f.choices, "\", \"")), Short(v)));
+      }
+      break;
+    }
+    case ArgType::kPoint2:
+      fixed_array(2, "[x, y] (two numbers, metres)", HasBounds(f) ? &f : nullptr);
+      break;
+    case ArgType::kPoint3:
+      fixed_array(3, "three numbers", HasBounds(f) ? &f : nullptr);
+      break;
+    case ArgType::kColor: {
+      ToolField unit{.minimum = 0.0, .maximum = 1.0};
+      fixed_array(3, "[r, g, b] with each value in 0..1", &unit);
+      break;
+    }
+    case ArgType::kPolygon: {
+      if (!v.is_array()) {
+        problem(fmt::format("must be an array of [x, y] points, got {}", Short(v)));
+        break;
+      }
+      if (!count_ok(v.size(), "points")) break;
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        const auto& p = v[i];
+        std::string where = fmt::format("{}[{}]", path, i);
+        if (!p.is_array() || p.size() != 2 || !IsFiniteNumber(p[0]) || !IsFiniteNumber(p[1])) {
+          problems.push_back(fmt::format("{}: must be [x, y] (two numbers, metres), got {}",
+                                         where, Short(p)));
+        }
+      }
+      break;
+    }
+    case ArgType::kNumberList: {
+      if (!v.is_array()) {
+        problem(fmt::format("must be an array of numbers, got {}", Short(v)));
+        break;
+      }
+      if (!count_ok(v.size(), "numbers")) break;
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        number_problem(v[i], fmt::format("{}[{}]", path, i), f);
+      }
+      break;
+    }
+  }
+}
+
+}  // namespace
+
+ToolArgsError::ToolArgsError(std::vector<std::string> problems)
+    : InvalidArgument(fmt::format("{}", fmt::join(problems, "\n"))),
+      problems_(std::move(problems)) {}
+
+nlohmann::json ToolInputSchema(std::span<const ToolField> fields) {
+  nlohmann::json properties = nlohmann::json::object();
+  nlohmann::json required = nlohmann::json::array();
+  for (const ToolField& f : fields) {
+    properties[std::string(f.name)] = FieldSchema(f);
+    if (f.required) required.push_back(f.name);
+  }
+  nlohmann::json schema = {{"type", "object"},
+                           {"properties", properties},
+                           {"additionalProperties", false}};
+  if (!required.empty()) schema["required"] = required;
+  return schema;
+}
+
+ToolArgs ParseToolArgs(std::span<const ToolField> fields, const nlohmann::json& arguments) {
+  std::vector<std::string> problems;
+  ToolArgs args;
+  if (!arguments.is_null() && !arguments.is_object()) {
+    throw ToolArgsError({fmt::format("arguments: must be an object, got {}", Short(arguments))});
+  }
+  const nlohmann::json empty = nlohmann::json::object();
+  const nlohmann::json& given = arguments.is_object() ? arguments : empty;
+  for (auto it = given.begin(); it != given.end(); ++it) {
+    bool known = false;
+    for (const ToolField& f : fields) known = known || f.name == it.key();
+    if (!known) {
+      std::vector<std::string_view> names;
+      for (const ToolField& f : fields) names.push_back(f.name);
+      problems.push_back(
+          names.empty()
+              ? fmt::format("{}: unknown argument; this tool takes no arguments", Path(it.key()))
+              : fmt::format("{}: unknown argument; allowed: {}", Path(it.key()),
+                            fmt::join(names, ", ")));
+    }
+  }
+  for (const ToolField& f : fields) {
+    auto it = given.find(f.name);
+    if (it == given.end() || it->is_null()) {
+      if (f.required) {
+        problems.push_back(fmt::format("{}: required ({}: {})", Path(f.name), TypeWord(f.type),
+                                       f.description));
+      } else if (!f.default_value.is_null()) {
+        args.values_[std::string(f.name)] = f.default_value;
+      }
+      continue;
+    }
+    std::size_t before = problems.size();
+    CheckField(f, *it, problems);
+    if (problems.size() == before) args.values_[std::string(f.name)] = *it;
+  }
+  if (!problems.empty()) throw ToolArgsError(std::move(problems));
+  return args;
+}
+
+bool ToolArgs::Has(std::string_view name) const { return values_.contains(name); }
+
+const nlohmann::json& ToolArgs::Get(std::string_view name) const {
+  auto it = values_.find(name);
+  if (it == values_.end()) {
+    throw InvalidArgument(fmt::format("{}: missing and has no default", Path(name)));
+  }
+  return *it;
+}
+
+double ToolArgs::Number(std::string_view name) const { return Get(name).get<double>(); }
+std::optional<double> ToolArgs::OptNumber(std::string_view name) const {
+  if (!Has(name)) return std::nullopt;
+  return Number(name);
+}
+std::int64_t ToolArgs::Integer(std::string_view name) const {
+  const auto& v = Get(name);
+  return v.is_number_integer() ? v.get<std::int64_t>()
+                               : static_cast<std::int64_t>(v.get<double>());
+}
+std::optional<std::int64_t> ToolArgs::OptInteger(std::string_view name) const {
+  if (!Has(name)) return std::nullopt;
+  return Integer(name);
+}
+std::string ToolArgs::String(std::string_view name) const { return Get(name).get<std::string>(); }
+std::optional<std::string> ToolArgs::OptString(std::string_view name) const {
+  if (!Has(name)) return std::nullopt;
+  return String(name);
+}
+bool ToolArgs::Bool(std::string_view name) const { return Get(name).get<bool>(); }
+std::vector<double> ToolArgs::Numbers(std::string_view name) const {
+  return Get(name).get<std::vector<double>>();
+}
+std::vector<std::vector<double>> ToolArgs::Points(std::string_view name) const {
+  return Get(name).get<std::vector<std::vector<double>>>();
+}
+
+std::string ToolFieldsMarkdown(std::span<const ToolField> fields) {
+  if (fields.empty()) return "No arguments.\n";
+  std::string out = "| argument | type | default | description |\n|---|---|---|---|\n";
+  for (const ToolField& f : fields) {
+    std::string type = TypeWord(f.type);
+    if (f.type == ArgType::kEnum) {
+      type = fmt::format("`{}`", fmt::join(f.choices, "` \\| `"));
+    }
+    std::string range = RangeText(f);
+    if (!range.empty() && f.type != ArgType::kEnum) type += " " + range;
+    std::string def = f.required ? "required"
+                      : f.default_value.is_null()
+                          ? "—"
+                          : "`" + f.default_value.dump() + "`";
+    out += fmt::format("| `{}` | {} | {} | {} |\n", f.name, type, def, f.description);
+  }
+  return out;
+}
+
+}  // namespace asbuilt::mcp

@@ -1,0 +1,1220 @@
+#include "asbuilt/mcp/tools.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <new>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
+#include "asbuilt/formats/plan_file.h"
+#include "asbuilt/mcp/jsonrpc.h"
+#include "asbuilt/mcp/plan_preview.h"
+#include "asbuilt/scene/scene_json.h"
+#include "asbuilt/scene/scene_text.h"
+#include "asbuilt/util/base64.h"
+#include "asbuilt/util/error.h"
+#include "asbuilt/util/file.h"
+#include "asbuilt/util/json_reader.h"
+
+namespace asbuilt::mcp {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr std::string_view kConventions =
+    " Units are metres and degrees. Plan coordinates: +x is east, +y is north, the floor is "
+    "z = 0. A room's walls are numbered from its first corner: wall i runs from corner i to "
+    "corner i+1, counter-clockwise seen from above (add_room's reply lists them with the "
+    "direction each faces).";
+
+std::string P2(const Vec2& p) { return fmt::format("({:.2f}, {:.2f})", p.x(), p.y()); }
+
+// "field: message" without the "scene: " file prefix.
+std::string ProblemText(const Problem& p) {
+  return p.field_path.empty() ? p.message : fmt::format("{}: {}", p.field_path, p.message);
+}
+
+std::string Bullets(const std::vector<std::string>& lines) {
+  std::string out;
+  for (const auto& l : lines) out += "\n- " + l;
+  return out;
+}
+
+std::vector<std::string_view> TextureNames() {
+  std::vector<std::string_view> out;
+  for (TextureKind k : {TextureKind::kNone, TextureKind::kPlaster, TextureKind::kPaint,
+                        TextureKind::kWallpaper, TextureKind::kWood, TextureKind::kTiles,
+                        TextureKind::kCarpet, TextureKind::kConcrete}) {
+    out.push_back(TextureKindName(k));
+  }
+  return out;
+}
+
+struct FurniturePreset {
+  std::string_view kind;
+  Vec3 size_m;
+};
+const FurniturePreset kFurniturePresets[] = {
+    {"box", {1.0, 0.6, 0.75}},      {"table", {1.6, 0.9, 0.75}},  {"desk", {1.4, 0.7, 0.75}},
+    {"chair", {0.5, 0.5, 0.9}},     {"bed", {1.6, 2.0, 0.5}},     {"sofa", {2.0, 0.9, 0.85}},
+    {"wardrobe", {1.2, 0.6, 2.0}},  {"shelf", {0.9, 0.35, 1.8}},  {"cabinet", {0.8, 0.45, 0.9}},
+};
+
+std::vector<std::string_view> FurnitureKinds() {
+  std::vector<std::string_view> out;
+  for (const auto& p : kFurniturePresets) out.push_back(p.kind);
+  return out;
+}
+
+const std::vector<std::string_view> kCompass = {"north", "north-east", "east", "south-east",
+                                                "south", "south-west", "west", "north-west"};
+
+Vec2 CompassVector(std::string_view name) {
+  for (std::size_t i = 0; i < kCompass.size(); ++i) {
+    if (kCompass[i] == name) {
+      double a = DegToRad(90.0 - 45.0 * static_cast<double>(i));  // north = +Y.
+      return {std::cos(a), std::sin(a)};
+    }
+  }
+  return {0, 1};
+}
+
+// The wall of `room` facing `side` (outward normal nearest that direction;
+// the longest among equals). Throws InvalidArgument when none faces it.
+int WallFacing(const Room& room, std::string_view side) {
+  Vec2 dir = CompassVector(side);
+  int best = -1;
+  double best_dot = -2, best_len = 0;
+  for (int w = 0; w < WallCount(room); ++w) {
+    if (WallLength(room, w) < 1e-9) continue;
+    double dot = WallOutwardNormal(room, w).dot(dir);
+    double len = WallLength(room, w);
+    if (dot > best_dot + 1e-6 || (std::abs(dot - best_dot) <= 1e-6 && len > best_len)) {
+      best = w, best_dot = dot, best_len = len;
+    }
+  }
+  if (best < 0 || best_dot < std::cos(DegToRad(30.0))) {
+    throw InvalidArgument(fmt::format(
+        "arguments.side: no wall of this room faces {}; give the wall number instead. "
+        "Walls:\n{}",
+        side, DescribeWalls(room)));
+  }
+  return best;
+}
+
+// Tool fields shared by add_door and add_window.
+std::vector<ToolField> OpeningFields(OpeningKind kind, const ToolLimits& limits) {
+  bool door = kind == OpeningKind::kDoor;
+  std::vector<ToolField> f = {
+      {.name = "room", .type = ArgType::kInteger,
+       .description = "Room index (0 = first room added).", .minimum = 0.0,
+       .maximum = limits.max_rooms - 1.0, .default_value = 0},
+      {.name = "wall", .type = ArgType::kInteger,
+       .description = "Wall number (see add_room's reply or describe_scene). Give wall or side.",
+       .minimum = 0.0, .maximum = limits.max_polygon_points - 1.0},
+      {.name = "side", .type = ArgType::kEnum,
+       .description = "Compass side instead of a wall number: the wall facing that way "
+                      "(north = +y, east = +x).",
+       .choices = kCompass},
+      {.name = "offset_m", .type = ArgType::kNumber,
+       .description = "Distance along the wall from its start corner to the near edge of the "
+                      "opening. Omit to centre it (or to space several evenly).",
+       .minimum = 0.0, .maximum = 1000.0},
+      {.name = "width_m", .type = ArgType::kNumber, .description = "Clear opening width.",
+       .exclusive_minimum = 0.0, .maximum = 20.0, .default_value = door ? 0.9 : 1.2},
+      {.name = "height_m", .type = ArgType::kNumber, .description = "Clear opening height.",
+       .exclusive_minimum = 0.0, .maximum = 20.0, .default_value = door ? 2.1 : 1.2},
+      {.name = "count", .type = ArgType::kInteger,
+       .description = door ? "How many identical doors to space evenly along the wall."
+                           : "How many identical windows to space evenly along the wall.",
+       .minimum = 1.0, .maximum = 8.0, .default_value = 1},
+      {.name = "material", .type = ArgType::kString,
+       .description = "Material name (set_material); default: the built-in door/window look.",
+       .max_length = 64},
+  };
+  if (door) {
+    f.push_back({.name = "open_deg", .type = ArgType::kNumber,
+                 .description = "Door leaf angle: 0 closed, 90 wide open; swings into the room.",
+                 .minimum = 0.0, .maximum = 180.0, .default_value = 0.0});
+    f.push_back({.name = "hinge", .type = ArgType::kEnum,
+                 .description = "Hinge side seen from inside the room.",
+                 .choices = {"left", "right"}, .default_value = "left"});
+  } else {
+    f.push_back({.name = "sill_m", .type = ArgType::kNumber,
+                 .description = "Height of the bottom of the opening above the floor.",
+                 .minimum = 0.0, .maximum = 20.0, .default_value = 0.9});
+    f.push_back({.name = "frame_width_m", .type = ArgType::kNumber,
+                 .description = "Width of the window frame profile.", .minimum = 0.0,
+                 .maximum = 0.5, .default_value = 0.05});
+    f.push_back({.name = "glass", .type = ArgType::kBool,
+                 .description = "Whether the window is glazed.", .default_value = true});
+  }
+  return f;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------ values
+
+void ToolLimits::Check() const {
+  auto positive = [](int v, const char* name) {
+    CheckArgument(v > 0, fmt::format("ToolLimits.{} = {}, must be > 0", name, v));
+  };
+  positive(max_rooms, "max_rooms");
+  CheckArgument(max_polygon_points >= 3,
+                fmt::format("ToolLimits.max_polygon_points = {}, must be >= 3", max_polygon_points));
+  positive(max_openings, "max_openings");
+  positive(max_furniture, "max_furniture");
+  positive(max_lights, "max_lights");
+  positive(max_materials, "max_materials");
+  positive(max_views, "max_views");
+  CheckArgument(max_image_width_px >= 16,
+                fmt::format("ToolLimits.max_image_width_px = {}, must be >= 16", max_image_width_px));
+  CheckArgument(max_image_height_px >= 16, fmt::format("ToolLimits.max_image_height_px = {}, must be >= 16",
+                                                       max_image_height_px));
+  CheckArgument(max_preview_width_px >= 64 && max_preview_width_px <= 4096,
+                fmt::format("ToolLimits.max_preview_width_px = {}, must be in 64..4096",
+                            max_preview_width_px));
+  CheckArgument(max_text_chars > 0, "ToolLimits.max_text_chars = 0, must be > 0");
+  CheckArgument(max_file_bytes > 0, "ToolLimits.max_file_bytes = 0, must be > 0");
+}
+
+ToolResult ToolResult::Text(std::string text) {
+  ToolResult r;
+  r.content.push_back({.kind = ToolContent::Kind::kText, .text = std::move(text)});
+  return r;
+}
+
+ToolResult ToolResult::Failure(std::string message) {
+  ToolResult r = Text(std::move(message));
+  r.is_error = true;
+  return r;
+}
+
+nlohmann::json ToolResult::ToJson() const {
+  nlohmann::json blocks = nlohmann::json::array();
+  for (const ToolContent& c : content) {
+    if (c.kind == ToolContent::Kind::kText) {
+      blocks.push_back({{"type", "text"}, {"text", c.text}});
+    } else {
+      blocks.push_back({{"type", "image"}, {"data", c.data}, {"mimeType", c.mime_type}});
+    }
+  }
+  nlohmann::json out = {{"content", blocks}, {"isError", is_error}};
+  if (!structured.is_null()) out["structuredContent"] = structured;
+  return out;
+}
+
+nlohmann::json ToolSpec::ToJson() const {
+  return {{"name", name},
+          {"title", title},
+          {"description", description},
+          {"inputSchema", ToolInputSchema(fields)},
+          {"annotations",
+           {{"title", title},
+            {"readOnlyHint", read_only},
+            {"destructiveHint", destructive},
+            {"openWorldHint", false}}}};
+}
+
+std::size_t CountViews(const Scene& scene) {
+  double n = static_cast<double>(scene.viewpoints.size());
+  if (scene.turn && scene.turn->step_deg > 0) {
+    const TurnInPlace& t = *scene.turn;
+    n += t.count > 0 ? t.count : std::max(1.0, std::floor(360.0 / t.step_deg + 1e-9));
+  }
+  return n >= 1e15 ? static_cast<std::size_t>(1e15) : static_cast<std::size_t>(n);
+}
+
+std::string DescribeWalls(const Room& room) {
+  std::string out;
+  for (int w = 0; w < WallCount(room); ++w) {
+    if (!out.empty()) out += "\n";
+    std::vector<std::string> on_wall;
+    for (const Opening& o : room.openings) {
+      if (o.wall == w) {
+        on_wall.push_back(fmt::format("{} {:.2f} m at offset {:.2f} m", OpeningKindName(o.kind),
+                                      o.width_m, o.offset_m));
+      }
+    }
+    out += fmt::format("  wall {}: {} → {}, {:.2f} m, faces {}{}", w, P2(WallStart(room, w)),
+                       P2(WallEnd(room, w)), WallLength(room, w), WallCompassName(room, w),
+                       on_wall.empty() ? "" : fmt::format(" ({})", fmt::join(on_wall, "; ")));
+  }
+  return out;
+}
+
+// ------------------------------------------------------------------ table
+
+SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
+    : workspace_(std::move(workspace)), limits_(limits) {
+  limits_.Check();
+  const ToolLimits& L = limits_;
+  const ToolField path_field_required = {
+      .name = "path", .type = ArgType::kString, .required = true, .max_length = 512};
+
+  ToolSpec s;
+  s = {.name = "new_scene", .title = "New scene",
+       .description = "Start a new, empty scene (discards the current one). Then add rooms "
+                      "with add_room." + std::string(kConventions),
+       .fields = {{.name = "name", .type = ArgType::kString, .description = "Scene name.",
+                   .max_length = 128, .default_value = "room"},
+                  {.name = "seed", .type = ArgType::kInteger,
+                   .description = "Seed for procedural textures and exterior objects.",
+                   .minimum = 0.0, .maximum = 4294967295.0, .default_value = 0}},
+       .destructive = true};
+  Register(s, &SceneTools::NewScene);
+
+  s = {.name = "add_room", .title = "Add room",
+       .description =
+           "Add a room: either a rectangle (width_m along x/east, depth_m along y/north, its "
+           "south-west corner at origin) or a polygon of inner wall-face corners. The rectangle "
+           "or polygon can be rotated about origin. The reply lists the walls with their numbers "
+           "and the compass direction each faces, for add_door/add_window." +
+           std::string(kConventions),
+       .fields = {
+           {.name = "width_m", .type = ArgType::kNumber,
+            .description = "Rectangle size along x (east-west). Give with depth_m, or give polygon.",
+            .exclusive_minimum = 0.0, .maximum = 200.0},
+           {.name = "depth_m", .type = ArgType::kNumber,
+            .description = "Rectangle size along y (north-south).", .exclusive_minimum = 0.0,
+            .maximum = 200.0},
+           {.name = "polygon", .type = ArgType::kPolygon,
+            .description = "Corners [[x, y], ...] of the inner wall faces, in order around the "
+                           "room, not repeating the first (counter-clockwise preferred; "
+                           "clockwise is reversed).",
+            .min_items = 3, .max_items = static_cast<std::size_t>(L.max_polygon_points)},
+           {.name = "origin", .type = ArgType::kPoint2,
+            .description = "Where the rectangle's south-west corner goes; for a polygon, added to "
+                           "every corner.",
+            .default_value = {0.0, 0.0}},
+           {.name = "rotation_deg", .type = ArgType::kNumber,
+            .description = "Counter-clockwise rotation about origin.", .minimum = -360.0,
+            .maximum = 360.0, .default_value = 0.0},
+           {.name = "height_m", .type = ArgType::kNumber, .description = "Floor to ceiling.",
+            .exclusive_minimum = 0.0, .maximum = 20.0, .default_value = 2.7},
+           {.name = "wall_thickness_m", .type = ArgType::kNumber,
+            .description = "Wall thickness outwards from the inner face.",
+            .exclusive_minimum = 0.0, .maximum = 2.0, .default_value = 0.2},
+           {.name = "name", .type = ArgType::kString, .description = "Room name.",
+            .max_length = 128},
+       }};
+  Register(s, &SceneTools::AddRoom);
+
+  s = {.name = "add_door", .title = "Add door",
+       .description = "Add a door (or several, evenly spaced) to a room's wall, by wall number "
+                      "or compass side. Offsets run from the wall's start corner." +
+                      std::string(kConventions),
+       .fields = OpeningFields(OpeningKind::kDoor, L)};
+  Register(s, &SceneTools::AddDoor);
+
+  s = {.name = "add_window", .title = "Add window",
+       .description = "Add a window (or several, evenly spaced) to a room's wall, by wall number "
+                      "or compass side, with its sill height. Offsets run from the wall's start "
+                      "corner." + std::string(kConventions),
+       .fields = OpeningFields(OpeningKind::kWindow, L)};
+  Register(s, &SceneTools::AddWindow);
+
+  s = {.name = "add_furniture", .title = "Add furniture",
+       .description = "Add a furniture box standing on the floor (it hides parts of walls in "
+                      "renders, like real furniture). Pick a kind for typical sizes, or give "
+                      "size_m." + std::string(kConventions),
+       .fields = {
+           {.name = "centre", .type = ArgType::kPoint2, .description = "Footprint centre [x, y].",
+            .required = true, .minimum = -1000.0, .maximum = 1000.0},
+           {.name = "kind", .type = ArgType::kEnum,
+            .description = "Preset that sets a typical size (size_m overrides it).",
+            .choices = FurnitureKinds(), .default_value = "box"},
+           {.name = "size_m", .type = ArgType::kPoint3,
+            .description = "[width (local x), depth (local y), height], each > 0.",
+            .exclusive_minimum = 0.0, .maximum = 20.0},
+           {.name = "yaw_deg", .type = ArgType::kNumber,
+            .description = "Counter-clockwise rotation of the footprint.", .minimum = -360.0,
+            .maximum = 360.0, .default_value = 0.0},
+           {.name = "elevation_m", .type = ArgType::kNumber,
+            .description = "Bottom above the floor (wall shelves).", .minimum = 0.0,
+            .maximum = 20.0, .default_value = 0.0},
+           {.name = "material", .type = ArgType::kString, .description = "Material name.",
+            .max_length = 64, .default_value = "furniture"},
+           {.name = "name", .type = ArgType::kString, .description = "Name; default: the kind.",
+            .max_length = 128},
+       }};
+  Register(s, &SceneTools::AddFurniture);
+
+  s = {.name = "set_material", .title = "Set material",
+       .description = "Define or change a material (colour, roughness, procedural texture) and "
+                      "optionally apply it to walls, floors, ceilings, furniture, doors or "
+                      "windows. Built-in names: wall, floor, ceiling, door, window_frame, glass, "
+                      "furniture, skirting; changing one of these restyles everything using it.",
+       .fields = {
+           {.name = "name", .type = ArgType::kString, .description = "Material name.",
+            .required = true, .max_length = 64},
+           {.name = "base_color", .type = ArgType::kColor,
+            .description = "Linear RGB, each 0..1 (e.g. [0.8, 0.8, 0.75] off-white)."},
+           {.name = "roughness", .type = ArgType::kNumber,
+            .description = "0 glossy … 1 matte.", .minimum = 0.0, .maximum = 1.0},
+           {.name = "texture", .type = ArgType::kEnum, .description = "Procedural texture.",
+            .choices = TextureNames()},
+           {.name = "texture_scale_m", .type = ArgType::kNumber,
+            .description = "Feature size of the texture (tile size, plank width…).",
+            .exclusive_minimum = 0.0, .maximum = 10.0},
+           {.name = "secondary_color", .type = ArgType::kColor,
+            .description = "Second colour (grout, wood grain), each 0..1."},
+           {.name = "apply_to", .type = ArgType::kEnum,
+            .description = "Also assign the material to these surfaces.",
+            .choices = {"none", "walls", "floor", "ceiling", "furniture", "doors", "windows"},
+            .default_value = "none"},
+           {.name = "room", .type = ArgType::kInteger,
+            .description = "With apply_to walls/floor/ceiling/doors/windows: only this room "
+                           "(default: every room).",
+            .minimum = 0.0, .maximum = L.max_rooms - 1.0},
+       }};
+  Register(s, &SceneTools::SetMaterial);
+
+  s = {.name = "set_lighting", .title = "Set lighting",
+       .description = "Set the lights: replace all lights with one (mode replace) or add one "
+                      "(mode add): a ceiling area light, a point light or the sun; and the "
+                      "ambient level and sky. kind none with mode replace removes all lights." +
+                      std::string(kConventions),
+       .fields = {
+           {.name = "mode", .type = ArgType::kEnum, .description = "Replace all lights or add one.",
+            .choices = {"replace", "add"}, .default_value = "replace"},
+           {.name = "kind", .type = ArgType::kEnum, .description = "Light type.",
+            .choices = {"area", "point", "sun", "none"}, .default_value = "area"},
+           {.name = "position_m", .type = ArgType::kPoint3,
+            .description = "[x, y, z]; default: above the first room's centre, just under the "
+                           "ceiling. Ignored for the sun.",
+            .minimum = -1000.0, .maximum = 1000.0},
+           {.name = "size_m", .type = ArgType::kPoint2,
+            .description = "Area light panel size [x, y].", .exclusive_minimum = 0.0,
+            .maximum = 20.0, .default_value = {1.2, 0.3}},
+           {.name = "color", .type = ArgType::kColor, .description = "Linear RGB, each 0..1.",
+            .default_value = {1.0, 0.95, 0.9}},
+           {.name = "intensity", .type = ArgType::kNumber,
+            .description = "Relative brightness (1 = typical).", .exclusive_minimum = 0.0,
+            .maximum = 100.0, .default_value = 1.0},
+           {.name = "azimuth_deg", .type = ArgType::kNumber,
+            .description = "Sun: direction it shines from, counter-clockwise from east.",
+            .minimum = -360.0, .maximum = 360.0, .default_value = 135.0},
+           {.name = "elevation_deg", .type = ArgType::kNumber,
+            .description = "Sun: height above the horizon.", .minimum = 0.0, .maximum = 90.0,
+            .default_value = 35.0},
+           {.name = "ambient", .type = ArgType::kNumber,
+            .description = "Ambient fill light, 0..1.", .minimum = 0.0, .maximum = 1.0},
+           {.name = "sky", .type = ArgType::kBool,
+            .description = "Whether a sky is seen through windows."},
+       }};
+  Register(s, &SceneTools::SetLighting);
+
+  s = {.name = "place_rig", .title = "Place stereo rig",
+       .description = fmt::format(
+           "Place the stereo camera rig and choose its views: either a turn in place (step_deg, "
+           "start_deg, count; count 0 = a full turn) or a list of yaws. Yaw 0 looks north (+y), "
+           "90 looks west (counter-clockwise). Also sets the image size, field of view and "
+           "baseline. Limits: at most {} views, images at most {}×{} px.",
+           L.max_views, L.max_image_width_px, L.max_image_height_px),
+       .fields = {
+           {.name = "position", .type = ArgType::kPoint2,
+            .description = "Rig centre [x, y]; default: the centre of the room.",
+            .minimum = -1000.0, .maximum = 1000.0},
+           {.name = "room", .type = ArgType::kInteger,
+            .description = "Room whose centre is the default position.", .minimum = 0.0,
+            .maximum = L.max_rooms - 1.0, .default_value = 0},
+           {.name = "height_m", .type = ArgType::kNumber,
+            .description = "Camera height above the floor.", .exclusive_minimum = 0.0,
+            .maximum = 20.0, .default_value = 1.5},
+           {.name = "yaws_deg", .type = ArgType::kNumberList,
+            .description = "Explicit view directions (instead of a turn).", .minimum = -360.0,
+            .maximum = 360.0, .min_items = 1, .max_items = static_cast<std::size_t>(L.max_views)},
+           {.name = "step_deg", .type = ArgType::kNumber, .description = "Turn step.",
+            .exclusive_minimum = 0.0, .maximum = 360.0, .default_value = 30.0},
+           {.name = "start_deg", .type = ArgType::kNumber, .description = "Yaw of the first view.",
+            .minimum = -360.0, .maximum = 360.0, .default_value = 0.0},
+           {.name = "count", .type = ArgType::kInteger,
+            .description = "Views in the turn; 0 = a full turn (360 / step_deg).",
+            .minimum = 0.0, .maximum = static_cast<double>(L.max_views), .default_value = 0},
+           {.name = "width_px", .type = ArgType::kInteger, .description = "Image width.",
+            .minimum = 16.0, .maximum = static_cast<double>(L.max_image_width_px)},
+           {.name = "height_px", .type = ArgType::kInteger, .description = "Image height.",
+            .minimum = 16.0, .maximum = static_cast<double>(L.max_image_height_px)},
+           {.name = "hfov_deg", .type = ArgType::kNumber,
+            .description = "Horizontal field of view.", .minimum = 10.0, .maximum = 150.0},
+           {.name = "baseline_m", .type = ArgType::kNumber,
+            .description = "Distance between the two cameras.", .minimum = 0.01, .maximum = 2.0},
+       }};
+  Register(s, &SceneTools::PlaceRig);
+
+  s = {.name = "remove_item", .title = "Remove item",
+       .description = "Remove a room, an opening (door/window) of a room, a piece of furniture, a "
+                      "light or a scene material, by index (describe_scene lists them).",
+       .fields = {
+           {.name = "what", .type = ArgType::kEnum, .description = "What to remove.",
+            .required = true, .choices = {"room", "opening", "furniture", "light", "material"}},
+           {.name = "index", .type = ArgType::kInteger,
+            .description = "Index of the item (openings: within the room).", .required = true,
+            .minimum = 0.0, .maximum = 100000.0},
+           {.name = "room", .type = ArgType::kInteger, .description = "Room of the opening.",
+            .minimum = 0.0, .maximum = L.max_rooms - 1.0, .default_value = 0},
+       },
+       .destructive = true};
+  Register(s, &SceneTools::RemoveItem);
+
+  s = {.name = "scene_from_text", .title = "Scene from text",
+       .description = fmt::format(
+           "Build a whole scene from an English description with the built-in parser (no "
+           "network), replacing the current scene, e.g. \"a 6 by 8 m classroom, 3 m high, a 1 m "
+           "door on the east wall and two 1.5 m windows on the north wall\". The reply says which "
+           "words were not used. At most {} characters.",
+           L.max_text_chars),
+       .fields = {{.name = "text", .type = ArgType::kString,
+                   .description = "The description.", .required = true,
+                   .max_length = L.max_text_chars},
+                  {.name = "furnish", .type = ArgType::kBool,
+                   .description = "Add the room kind's usual furniture when the text names none.",
+                   .default_value = true},
+                  {.name = "seed", .type = ArgType::kInteger,
+                   .description = "Seed for furniture placement (same text + seed → same scene).",
+                   .minimum = 0.0, .maximum = 4294967295.0, .default_value = 0}},
+       .destructive = true};
+  Register(s, &SceneTools::SceneFromText);
+
+  s = {.name = "describe_scene", .title = "Describe scene",
+       .description = "Plain-language summary of the current scene (rooms, walls with numbers "
+                      "and directions, openings, furniture, lights, rig) and warnings.",
+       .fields = {},
+       .read_only = true};
+  Register(s, &SceneTools::Describe);
+
+  s = {.name = "validate_scene", .title = "Validate scene",
+       .description = "Check the current scene and list every problem with its field path "
+                      "(open or crossing polygons, openings off their wall or overlapping, sills "
+                      "too high, rig outside the room, unknown materials…).",
+       .fields = {},
+       .read_only = true};
+  Register(s, &SceneTools::Validate);
+
+  s = {.name = "get_scene", .title = "Get scene JSON",
+       .description = "The current scene as scene JSON (the format save_scene writes).",
+       .fields = {},
+       .read_only = true};
+  Register(s, &SceneTools::GetScene);
+
+  s = {.name = "render_preview", .title = "Render preview",
+       .description = fmt::format(
+           "A PNG picture of the scene: view plan (default) draws it from above with walls, "
+           "doors, windows, furniture, lights, the rig and wall numbers; view camera renders "
+           "what the left camera of viewpoint view_index sees. Width at most {} px (plan) or "
+           "{} px (camera).",
+           L.max_preview_width_px, L.max_image_width_px),
+       .fields = {
+           {.name = "view", .type = ArgType::kEnum, .description = "plan (top-down) or camera.",
+            .choices = {"plan", "camera"}, .default_value = "plan"},
+           {.name = "width_px", .type = ArgType::kInteger, .description = "Image width.",
+            .minimum = 64.0, .maximum = static_cast<double>(L.max_preview_width_px),
+            .default_value = 768},
+           {.name = "view_index", .type = ArgType::kInteger,
+            .description = "Camera view: which viewpoint (place_rig).", .minimum = 0.0,
+            .maximum = L.max_views - 1.0, .default_value = 0},
+       },
+       .read_only = true};
+  Register(s, &SceneTools::RenderPreview);
+
+  s = {.name = "render_capture", .title = "Render capture",
+       .description = fmt::format(
+           "Render a labelled stereo capture of every viewpoint (left/right images, labels, "
+           "depth, capture.json, truth.json) into a folder of the workspace. Long: sends "
+           "progress notifications when the request has a progressToken. The folder appears "
+           "only when complete. At most {} views.",
+           L.max_views),
+       .fields = {
+           {.name = "output", .type = ArgType::kString,
+            .description = "Folder to create, relative to the workspace (e.g. \"captures/a\").",
+            .required = true, .max_length = 512},
+           {.name = "overwrite", .type = ArgType::kBool,
+            .description = "Replace the folder if it exists.", .default_value = false},
+           {.name = "samples_per_pixel", .type = ArgType::kInteger,
+            .description = "Path-tracing samples per pixel (quality vs time).", .minimum = 1.0,
+            .maximum = 256.0, .default_value = 4},
+       }};
+  Register(s, &SceneTools::RenderCapture);
+
+  s = {.name = "export_plan", .title = "Export plan",
+       .description = "The exact floor plan of the scene as plan JSON (version, units, walls "
+                      "as inner-face lines, openings with width/height/sill on their wall, "
+                      "rooms with area); with path, also written into the workspace.",
+       .fields = {{.name = "path", .type = ArgType::kString,
+                   .description = "Optional file to write, ending in .json (e.g. "
+                                  "\"plans/truth.json\").",
+                   .max_length = 512}},
+       .read_only = false};
+  Register(s, &SceneTools::ExportPlan);
+
+  ToolField save_path = path_field_required;
+  save_path.description = "File to write, relative to the workspace, ending in .json.";
+  s = {.name = "save_scene", .title = "Save scene",
+       .description = "Write the current scene as scene JSON into the workspace (replacing the "
+                      "file if it exists).",
+       .fields = {save_path}};
+  Register(s, &SceneTools::SaveScene);
+
+  ToolField load_path = path_field_required;
+  load_path.description = "Scene JSON file relative to the workspace.";
+  s = {.name = "load_scene", .title = "Load scene",
+       .description = fmt::format("Replace the current scene with a scene JSON file from the "
+                                  "workspace (validated; at most {} bytes).",
+                                  L.max_file_bytes),
+       .fields = {load_path},
+       .destructive = true};
+  Register(s, &SceneTools::LoadScene);
+}
+
+void SceneTools::Register(ToolSpec spec, Handler handler) {
+  specs_.push_back(std::move(spec));
+  handlers_.push_back(handler);
+}
+
+const ToolSpec* SceneTools::Find(std::string_view name) const {
+  for (const ToolSpec& s : specs_) {
+    if (s.name == name) return &s;
+  }
+  return nullptr;
+}
+
+nlohmann::json SceneTools::ListJson() const {
+  nlohmann::json tools = nlohmann::json::array();
+  for (const ToolSpec& s : specs_) tools.push_back(s.ToJson());
+  return tools;
+}
+
+std::string SceneTools::ToolsMarkdown() const {
+  std::string out;
+  for (const ToolSpec& s : specs_) {
+    out += fmt::format("### `{}` — {}\n\n{}\n\n{}\n", s.name, s.title, s.description,
+                       ToolFieldsMarkdown(s.fields));
+  }
+  return out;
+}
+
+ToolResult SceneTools::Call(std::string_view name, const nlohmann::json& arguments,
+                            const ToolCallContext& ctx) {
+  std::size_t index = 0;
+  while (index < specs_.size() && specs_[index].name != name) ++index;
+  if (index == specs_.size()) {
+    return ToolResult::Failure(fmt::format("unknown tool \"{}\"", name));
+  }
+  const ToolSpec& spec = specs_[index];
+  try {
+    ToolArgs args = ParseToolArgs(spec.fields, arguments);
+    return (this->*handlers_[index])(args, ctx);
+  } catch (const ToolArgsError& e) {
+    return ToolResult::Failure(fmt::format("{}: invalid arguments (nothing was changed):{}",
+                                           spec.name, Bullets(e.problems())));
+  } catch (const InputError& e) {
+    std::vector<std::string> lines;
+    for (const Problem& p : e.problems()) lines.push_back(p.ToString());
+    return ToolResult::Failure(fmt::format("{}: {}", spec.name, Bullets(lines).substr(1)));
+  } catch (const Error& e) {
+    return ToolResult::Failure(fmt::format("{}: {}", spec.name, e.what()));
+  } catch (const std::bad_alloc&) {
+    return ToolResult::Failure(fmt::format("{}: out of memory; use smaller sizes", spec.name));
+  } catch (const std::exception& e) {
+    spdlog::error("mcp: tool {} failed: {}", spec.name, e.what());
+    return ToolResult::Failure(fmt::format("{}: internal error: {}", spec.name, e.what()));
+  }
+}
+
+// ------------------------------------------------------------------ helpers
+
+void SceneTools::CheckSceneLimits(const Scene& s) const {
+  const ToolLimits& L = limits_;
+  std::vector<std::string> over;
+  auto limit = [&](std::size_t n, int max, std::string_view what) {
+    if (n > static_cast<std::size_t>(max)) {
+      over.push_back(fmt::format("{} {}; the limit is {}", n, what, max));
+    }
+  };
+  limit(s.rooms.size(), L.max_rooms, "rooms");
+  std::size_t openings = 0;
+  for (std::size_t r = 0; r < s.rooms.size(); ++r) {
+    openings += s.rooms[r].openings.size();
+    if (s.rooms[r].polygon.size() > static_cast<std::size_t>(L.max_polygon_points)) {
+      over.push_back(fmt::format("rooms[{}] has {} corners; the limit is {}", r,
+                                 s.rooms[r].polygon.size(), L.max_polygon_points));
+    }
+  }
+  limit(openings, L.max_openings, "doors and windows");
+  limit(s.furniture.size(), L.max_furniture, "pieces of furniture");
+  limit(s.lights.size(), L.max_lights, "lights");
+  limit(s.materials.size(), L.max_materials, "materials");
+  std::size_t views = CountViews(s);
+  if (views > static_cast<std::size_t>(L.max_views)) {
+    over.push_back(fmt::format("{} views; the limit is {} (use a larger step_deg or a count)",
+                               views, L.max_views));
+  }
+  if (s.rig.width_px > L.max_image_width_px || s.rig.height_px > L.max_image_height_px) {
+    over.push_back(fmt::format("images of {}×{} px; the limit is {}×{}", s.rig.width_px,
+                               s.rig.height_px, L.max_image_width_px, L.max_image_height_px));
+  }
+  if (!over.empty()) {
+    throw InvalidArgument(fmt::format("scene too large (server limits):{}", Bullets(over)));
+  }
+}
+
+void SceneTools::Commit(Scene next, std::string_view what) {
+  CheckSceneLimits(next);
+  std::map<std::string, int> before;
+  for (const Problem& p : ValidateScene(scene_)) ++before[ProblemText(p)];
+  std::vector<std::string> added;
+  for (const Problem& p : ValidateScene(next)) {
+    auto it = before.find(ProblemText(p));
+    if (it != before.end() && it->second > 0) {
+      --it->second;
+    } else {
+      added.push_back(ProblemText(p));
+    }
+  }
+  if (!added.empty()) {
+    throw InvalidArgument(
+        fmt::format("{} would make the scene invalid, so nothing was changed:{}", what,
+                    Bullets(added)));
+  }
+  scene_ = std::move(next);
+}
+
+int SceneTools::RoomArg(const ToolArgs& a) const {
+  if (scene_.rooms.empty()) throw InvalidArgument("the scene has no room yet: call add_room first");
+  std::int64_t r = a.Integer("room");
+  if (r >= static_cast<std::int64_t>(scene_.rooms.size())) {
+    throw InvalidArgument(fmt::format("arguments.room: the scene has rooms 0..{}, got {}",
+                                      scene_.rooms.size() - 1, r));
+  }
+  return static_cast<int>(r);
+}
+
+// ------------------------------------------------------------------ tools
+
+ToolResult SceneTools::NewScene(const ToolArgs& a, const ToolCallContext&) {
+  Scene s;
+  s.name = a.String("name");
+  s.seed = static_cast<std::uint64_t>(a.Integer("seed"));
+  scene_ = std::move(s);
+  return ToolResult::Text(fmt::format("New empty scene \"{}\". Next: add_room.", scene_.name));
+}
+
+ToolResult SceneTools::AddRoom(const ToolArgs& a, const ToolCallContext&) {
+  bool has_rect = a.Has("width_m") || a.Has("depth_m");
+  bool has_poly = a.Has("polygon");
+  if (has_rect == has_poly) {
+    throw InvalidArgument(
+        "give either width_m and depth_m (a rectangle) or polygon (corners), not both or neither");
+  }
+  std::vector<Vec2> poly;
+  if (has_rect) {
+    if (!a.Has("width_m") || !a.Has("depth_m")) {
+      throw InvalidArgument(fmt::format("arguments.{}: required with {} (a rectangle needs both)",
+                                        a.Has("width_m") ? "depth_m" : "width_m",
+                                        a.Has("width_m") ? "width_m" : "depth_m"));
+    }
+    double w = a.Number("width_m"), d = a.Number("depth_m");
+    poly = {{0, 0}, {w, 0}, {w, d}, {0, d}};
+  } else {
+    for (const auto& p : a.Points("polygon")) poly.emplace_back(p[0], p[1]);
+  }
+  std::vector<double> origin = a.Numbers("origin");
+  double rot = DegToRad(a.Number("rotation_deg"));
+  for (Vec2& p : poly) {
+    p = Vec2(std::cos(rot) * p.x() - std::sin(rot) * p.y(),
+             std::sin(rot) * p.x() + std::cos(rot) * p.y()) +
+        Vec2(origin[0], origin[1]);
+  }
+  std::string note;
+  if (poly.size() >= 3 && PolygonArea(poly) < 0) {
+    std::reverse(poly.begin(), poly.end());
+    note = " (the corners were clockwise; they were reversed, so the walls are numbered from the "
+           "last corner given)";
+  }
+  Room room;
+  room.name = a.OptString("name").value_or(fmt::format("room {}", scene_.rooms.size()));
+  room.polygon = poly;
+  room.height_m = a.Number("height_m");
+  room.wall_thickness_m = a.Number("wall_thickness_m");
+  Scene next = scene_;
+  next.rooms.push_back(room);
+  Commit(std::move(next), "the room");
+  const Room& added = scene_.rooms.back();
+  return ToolResult::Text(fmt::format(
+      "Added room {} \"{}\": {} corners, {:.2f} m², {:.2f} m high{}. Walls (use these numbers "
+      "with add_door/add_window):\n{}",
+      scene_.rooms.size() - 1, added.name, added.polygon.size(), PolygonArea(added.polygon),
+      added.height_m, note, DescribeWalls(added)));
+}
+
+ToolResult SceneTools::AddDoor(const ToolArgs& a, const ToolCallContext&) {
+  return AddOpenings(a, OpeningKind::kDoor);
+}
+
+ToolResult SceneTools::AddWindow(const ToolArgs& a, const ToolCallContext&) {
+  return AddOpenings(a, OpeningKind::kWindow);
+}
+
+ToolResult SceneTools::AddOpenings(const ToolArgs& a, OpeningKind kind) {
+  const char* noun = OpeningKindName(kind);
+  int r = RoomArg(a);
+  const Room& room = scene_.rooms[r];
+  if (a.Has("wall") == a.Has("side")) {
+    throw InvalidArgument(fmt::format(
+        "give either wall (a number) or side (north, east, south, west…), not both or neither. "
+        "Walls of room {}:\n{}",
+        r, DescribeWalls(room)));
+  }
+  int wall;
+  if (a.Has("wall")) {
+    std::int64_t w = a.Integer("wall");
+    if (w >= WallCount(room)) {
+      throw InvalidArgument(fmt::format("arguments.wall: room {} has walls 0..{}, got {}. Walls:\n{}",
+                                        r, WallCount(room) - 1, w, DescribeWalls(room)));
+    }
+    wall = static_cast<int>(w);
+  } else {
+    wall = WallFacing(room, a.String("side"));
+  }
+  const double length = WallLength(room, wall);
+  const double width = a.Number("width_m");
+  const double height = a.Number("height_m");
+  const double sill = kind == OpeningKind::kWindow ? a.Number("sill_m") : 0.0;
+  const int count = static_cast<int>(a.Integer("count"));
+  if (sill + height > room.height_m + 1e-9) {
+    throw InvalidArgument(fmt::format(
+        "arguments.height_m: sill {:.2f} m + height {:.2f} m = {:.2f} m is above the {:.2f} m "
+        "ceiling; lower height_m{}",
+        sill, height, sill + height, room.height_m,
+        kind == OpeningKind::kWindow ? " or sill_m" : ""));
+  }
+  std::vector<double> offsets;
+  if (a.Has("offset_m")) {
+    if (count != 1) {
+      throw InvalidArgument("arguments.offset_m: give offset_m only with count 1; several "
+                            "openings are spaced evenly along the wall");
+    }
+    double off = a.Number("offset_m");
+    if (off + width > length + 1e-9) {
+      throw InvalidArgument(fmt::format(
+          "arguments.offset_m: the {} would end at {:.2f} m but wall {} is {:.2f} m long; use "
+          "offset_m <= {:.2f} or a narrower width_m",
+          noun, off + width, wall, length, std::max(0.0, length - width)));
+    }
+    offsets.push_back(off);
+  } else {
+    double gap = (length - count * width) / (count + 1);
+    if (gap < 0.05) {
+      throw InvalidArgument(fmt::format(
+          "arguments.width_m: {} {}{} {:.2f} m wide do not fit on wall {} ({:.2f} m long)", count,
+          noun, count == 1 ? "" : "s", width, wall, length));
+    }
+    for (int i = 0; i < count; ++i) offsets.push_back(gap + i * (width + gap));
+  }
+
+  Scene next = scene_;
+  Room& target = next.rooms[r];
+  for (double off : offsets) {
+    Opening o;
+    o.kind = kind;
+    o.wall = wall;
+    o.offset_m = off;
+    o.width_m = width;
+    o.height_m = height;
+    o.sill_m = sill;
+    if (auto m = a.OptString("material")) o.material = *m;
+    if (kind == OpeningKind::kDoor) {
+      o.open_deg = a.Number("open_deg");
+      o.hinge = a.String("hinge") == "right" ? HingeSide::kRight : HingeSide::kLeft;
+    } else {
+      o.frame_width_m = a.Number("frame_width_m");
+      o.glass = a.Bool("glass");
+    }
+    target.openings.push_back(o);
+  }
+  Commit(std::move(next), fmt::format("the {}", noun));
+  std::vector<std::string> placed;
+  for (double off : offsets) {
+    placed.push_back(fmt::format("{:.2f}–{:.2f} m", off, off + width));
+  }
+  return ToolResult::Text(fmt::format(
+      "Added {} {}{} to room {} wall {} (faces {}, {:.2f} m long) at {} along the wall; {:.2f} m "
+      "wide, {:.2f} m high{}.",
+      count, noun, count == 1 ? "" : "s", r, wall, WallCompassName(room, wall), length,
+      fmt::join(placed, ", "), width, height,
+      kind == OpeningKind::kWindow ? fmt::format(", sill {:.2f} m", sill) : ""));
+}
+
+ToolResult SceneTools::AddFurniture(const ToolArgs& a, const ToolCallContext&) {
+  std::string kind = a.String("kind");
+  Furniture f;
+  for (const auto& p : kFurniturePresets) {
+    if (p.kind == kind) f.size_m = p.size_m;
+  }
+  if (a.Has("size_m")) {
+    auto s = a.Numbers("size_m");
+    f.size_m = Vec3(s[0], s[1], s[2]);
+  }
+  auto c = a.Numbers("centre");
+  f.centre_m = Vec2(c[0], c[1]);
+  f.yaw_deg = a.Number("yaw_deg");
+  f.elevation_m = a.Number("elevation_m");
+  f.material = a.String("material");
+  f.name = a.OptString("name").value_or(kind);
+  Scene next = scene_;
+  next.furniture.push_back(f);
+  Commit(std::move(next), "the furniture");
+  bool inside = false;
+  for (const Room& r : scene_.rooms) inside = inside || PointInPolygon(r.polygon, f.centre_m);
+  return ToolResult::Text(fmt::format(
+      "Added furniture {} \"{}\": {:.2f} × {:.2f} × {:.2f} m at {}{}.", scene_.furniture.size() - 1,
+      f.name, f.size_m.x(), f.size_m.y(), f.size_m.z(), P2(f.centre_m),
+      inside ? "" : " (warning: its centre is outside every room)"));
+}
+
+ToolResult SceneTools::SetMaterial(const ToolArgs& a, const ToolCallContext&) {
+  Scene next = scene_;
+  const std::string name = a.String("name");
+  if (name.empty()) throw InvalidArgument("arguments.name: must not be empty");
+  auto it = std::find_if(next.materials.begin(), next.materials.end(),
+                         [&](const Material& m) { return m.name == name; });
+  bool created = it == next.materials.end();
+  if (created) {
+    const Material* base = FindMaterial(next, name);  // A built-in of that name, if any.
+    Material m = base ? *base : Material{};
+    m.name = name;
+    next.materials.push_back(m);
+    it = next.materials.end() - 1;
+  }
+  Material& m = *it;
+  if (a.Has("base_color")) {
+    auto v = a.Numbers("base_color");
+    m.base_color = Vec3(v[0], v[1], v[2]);
+  }
+  if (a.Has("secondary_color")) {
+    auto v = a.Numbers("secondary_color");
+    m.secondary_color = Vec3(v[0], v[1], v[2]);
+  }
+  if (a.Has("roughness")) m.roughness = a.Number("roughness");
+  if (a.Has("texture")) m.texture = *TextureKindFromName(a.String("texture"));
+  if (a.Has("texture_scale_m")) m.texture_scale_m = a.Number("texture_scale_m");
+
+  const std::string apply = a.String("apply_to");
+  std::optional<int> only_room;
+  if (a.Has("room")) only_room = RoomArg(a);
+  int assigned = 0;
+  for (int r = 0; r < static_cast<int>(next.rooms.size()); ++r) {
+    if (only_room && r != *only_room) continue;
+    Room& room = next.rooms[r];
+    if (apply == "walls") room.wall_material = name, ++assigned;
+    if (apply == "floor") room.floor_material = name, ++assigned;
+    if (apply == "ceiling") room.ceiling_material = name, ++assigned;
+    for (Opening& o : room.openings) {
+      if ((apply == "doors" && o.kind == OpeningKind::kDoor) ||
+          (apply == "windows" && o.kind == OpeningKind::kWindow)) {
+        o.material = name, ++assigned;
+      }
+    }
+  }
+  if (apply == "furniture") {
+    for (Furniture& f : next.furniture) f.material = name, ++assigned;
+  }
+  Commit(std::move(next), "the material");
+  const Material& done = *FindMaterial(scene_, name);
+  return ToolResult::Text(fmt::format(
+      "{} material \"{}\": colour [{:.2f}, {:.2f}, {:.2f}], roughness {:.2f}, texture {} "
+      "(scale {:.2f} m){}.",
+      created ? "Defined" : "Updated", name, done.base_color.x(), done.base_color.y(),
+      done.base_color.z(), done.roughness, TextureKindName(done.texture), done.texture_scale_m,
+      apply == "none" ? "" : fmt::format("; applied to {} {}", assigned, apply)));
+}
+
+ToolResult SceneTools::SetLighting(const ToolArgs& a, const ToolCallContext&) {
+  Scene next = scene_;
+  const std::string kind = a.String("kind");
+  if (a.String("mode") == "replace") next.lights.clear();
+  if (kind != "none") {
+    Light l;
+    l.kind = *LightKindFromName(kind);
+    if (a.Has("position_m")) {
+      auto p = a.Numbers("position_m");
+      l.position_m = Vec3(p[0], p[1], p[2]);
+    } else if (l.kind != LightKind::kSun) {
+      if (next.rooms.empty() || next.rooms[0].polygon.size() < 3) {
+        throw InvalidArgument("arguments.position_m: required while the scene has no room");
+      }
+      const Room& room = next.rooms[0];
+      Vec2 c = PolygonCentroid(room.polygon);
+      double z = room.height_m - (l.kind == LightKind::kArea ? 0.02 : 0.3);
+      l.position_m = Vec3(c.x(), c.y(), z);
+    }
+    auto s = a.Numbers("size_m");
+    l.size_m = Vec2(s[0], s[1]);
+    auto col = a.Numbers("color");
+    l.color = Vec3(col[0], col[1], col[2]);
+    l.intensity = a.Number("intensity");
+    l.azimuth_deg = a.Number("azimuth_deg");
+    l.elevation_deg = a.Number("elevation_deg");
+    next.lights.push_back(l);
+  }
+  if (a.Has("ambient")) next.environment.ambient = a.Number("ambient");
+  if (a.Has("sky")) next.environment.sky = a.Bool("sky");
+  Commit(std::move(next), "the light");
+  std::vector<std::string> lines;
+  for (std::size_t i = 0; i < scene_.lights.size(); ++i) {
+    const Light& l = scene_.lights[i];
+    lines.push_back(l.kind == LightKind::kSun
+                        ? fmt::format("light {}: sun from azimuth {:.0f}°, elevation {:.0f}°, "
+                                      "intensity {:.2f}",
+                                      i, l.azimuth_deg, l.elevation_deg, l.intensity)
+                        : fmt::format("light {}: {} at ({:.2f}, {:.2f}, {:.2f}), intensity {:.2f}",
+                                      i, LightKindName(l.kind), l.position_m.x(), l.position_m.y(),
+                                      l.position_m.z(), l.intensity));
+  }
+  return ToolResult::Text(fmt::format("Lighting set: {} light{}, ambient {:.2f}, sky {}.{}",
+                                      scene_.lights.size(), scene_.lights.size() == 1 ? "" : "s",
+                                      scene_.environment.ambient,
+                                      scene_.environment.sky ? "on" : "off", Bullets(lines)));
+}
+
+ToolResult SceneTools::PlaceRig(const ToolArgs& a, const ToolCallContext&) {
+  Scene next = scene_;
+  Vec2 xy;
+  if (a.Has("position")) {
+    auto p = a.Numbers("position");
+    xy = Vec2(p[0], p[1]);
+  } else {
+    int r = RoomArg(a);
+    xy = PolygonCentroid(scene_.rooms[r].polygon);
+  }
+  Vec3 pos(xy.x(), xy.y(), a.Number("height_m"));
+  next.viewpoints.clear();
+  next.turn.reset();
+  if (a.Has("yaws_deg")) {
+    if (a.Has("count") && a.Integer("count") != 0) {
+      throw InvalidArgument("arguments.count: give either yaws_deg or a turn (step_deg, count)");
+    }
+    for (double yaw : a.Numbers("yaws_deg")) {
+      next.viewpoints.push_back({.position_m = pos, .yaw_deg = yaw, .pitch_deg = 0.0});
+    }
+  } else {
+    TurnInPlace t;
+    t.position_m = pos;
+    t.step_deg = a.Number("step_deg");
+    t.start_deg = a.Number("start_deg");
+    t.count = static_cast<int>(a.Integer("count"));
+    next.turn = t;
+    std::size_t views = CountViews(next);
+    if (views > static_cast<std::size_t>(limits_.max_views)) {
+      throw InvalidArgument(fmt::format(
+          "arguments.step_deg: a full turn at {} ° steps is {} views; the limit is {}: use "
+          "step_deg >= {:.1f} or give count <= {}",
+          t.step_deg, views, limits_.max_views, 360.0 / limits_.max_views, limits_.max_views));
+    }
+  }
+  if (a.Has("width_px")) next.rig.width_px = static_cast<int>(a.Integer("width_px"));
+  if (a.Has("height_px")) next.rig.height_px = static_cast<int>(a.Integer("height_px"));
+  if (a.Has("hfov_deg")) {
+    next.rig.hfov_deg = a.Number("hfov_deg");
+    next.rig.fx.reset(), next.rig.fy.reset(), next.rig.cx.reset(), next.rig.cy.reset();
+  }
+  if (a.Has("baseline_m")) next.rig.baseline_m = a.Number("baseline_m");
+  Commit(std::move(next), "the rig position");
+  std::vector<Viewpoint> views = ResolveViewpoints(scene_);
+  std::vector<std::string> yaws;
+  for (const Viewpoint& v : views) yaws.push_back(fmt::format("{:g}", v.yaw_deg));
+  return ToolResult::Text(fmt::format(
+      "Rig at ({:.2f}, {:.2f}), {:.2f} m high: {} view{} (yaw {} °), {}×{} px, {:.0f}° HFOV, "
+      "baseline {:.3f} m.",
+      pos.x(), pos.y(), pos.z(), views.size(), views.size() == 1 ? "" : "s",
+      fmt::join(yaws, ", "), scene_.rig.width_px, scene_.rig.height_px,
+      scene_.rig.Camera().HorizontalFovDeg(), scene_.rig.baseline_m));
+}
+
+ToolResult SceneTools::RemoveItem(const ToolArgs& a, const ToolCallContext&) {
+  const std::string what = a.String("what");
+  const std::int64_t i = a.Integer("index");
+  Scene next = scene_;
+  auto erase = [&](auto& list, std::string_view noun) {
+    if (i >= static_cast<std::int64_t>(list.size())) {
+      throw InvalidArgument(list.empty()
+                                ? fmt::format("arguments.index: there is no {} to remove", noun)
+                                : fmt::format("arguments.index: {} indices are 0..{}, got {}", noun,
+                                              list.size() - 1, i));
+    }
+    list.erase(list.begin() + i);
+  };
+  if (what == "room") erase(next.rooms, "room");
+  if (what == "opening") erase(next.rooms.at(RoomArg(a)).openings, "opening");
+  if (what == "furniture") erase(next.furniture, "furniture");
+  if (what == "light") erase(next.lights, "light");
+  if (what == "material") erase(next.materials, "material");
+  // Indices shift on removal, so compare problem counts, not texts.
+  std::size_t before = ValidateScene(scene_).size();
+  std::vector<Problem> after = ValidateScene(next);
+  scene_ = std::move(next);
+  std::string warning;
+  if (after.size() > before) {
+    std::vector<std::string> lines;
+    for (const Problem& p : after) lines.push_back(ProblemText(p));
+    warning = fmt::format(" The scene now has problems to fix:{}", Bullets(lines));
+  }
+  return ToolResult::Text(fmt::format("Removed {} {}.{}", what, i, warning));
+}
+
+ToolResult SceneTools::SceneFromText(const ToolArgs& a, const ToolCallContext&) {
+  SceneTextOptions options;
+  options.furnish = a.Bool("furnish");
+  options.seed = static_cast<std::uint64_t>(a.Integer("seed"));
+  SceneTextResult result = ::asbuilt::SceneFromText(a.String("text"), options);
+  CheckSceneLimits(result.scene);
+  scene_ = std::move(result.scene);
+  std::string out = fmt::format("New scene from the text: {}", DescribeScene(scene_));
+  for (std::size_t r = 0; r < scene_.rooms.size(); ++r) {
+    out += fmt::format("\nRoom {} walls:\n{}", r, DescribeWalls(scene_.rooms[r]));
+  }
+  if (!result.assumptions.empty()) out += "\nAssumed:" + Bullets(result.assumptions);
+  if (!result.unused_words.empty()) {
+    out += fmt::format("\nWords not understood (not used): {}. Adjust the scene with the other "
+                       "tools if they mattered.",
+                       fmt::join(result.unused_words, ", "));
+  }
+  return ToolResult::Text(out);
+}
+
+ToolResult SceneTools::Describe(const ToolArgs&, const ToolCallContext&) {
+  std::string out = DescribeScene(scene_);
+  for (std::size_t r = 0; r < scene_.rooms.size(); ++r) {
+    out += fmt::format("\nRoom {} walls:\n{}", r, DescribeWalls(scene_.rooms[r]));
+  }
+  for (std::size_t i = 0; i < scene_.furniture.size(); ++i) {
+    const Furniture& f = scene_.furniture[i];
+    out += fmt::format("\nFurniture {}: {} at {}, {:.2f} × {:.2f} × {:.2f} m", i, f.name,
+                       P2(f.centre_m), f.size_m.x(), f.size_m.y(), f.size_m.z());
+  }
+  std::vector<std::string> warnings;
+  for (const Problem& p : ValidateScene(scene_)) warnings.push_back(ProblemText(p));
+  if (CountViews(scene_) == 0) warnings.push_back("no rig views yet: call place_rig");
+  if (scene_.lights.empty()) warnings.push_back("no lights: only ambient and sky light (set_lighting)");
+  std::size_t openings = 0;
+  for (const Room& r : scene_.rooms) openings += r.openings.size();
+  if (!scene_.rooms.empty() && openings == 0) warnings.push_back("no doors or windows");
+  if (!warnings.empty()) out += "\nWarnings:" + Bullets(warnings);
+  return ToolResult::Text(out);
+}
+
+ToolResult SceneTools::Validate(const ToolArgs&, const ToolCallContext&) {
+  std::vector<Problem> problems = ValidateScene(scene_);
+  nlohmann::json list = nlohmann::json::array();
+  std::vector<std::string> lines;
+  for (const Problem& p : problems) {
+    list.push_back({{"path", p.field_path}, {"message", p.message}});
+    lines.push_back(ProblemText(p));
+  }
+  ToolResult r = ToolResult::Text(
+      problems.empty() ? "The scene is valid."
+                       : fmt::format("The scene has {} problem{}:{}", problems.size(),
+                                     problems.size() == 1 ? "" : "s", Bullets(lines)));
+  r.structured = {{"valid", problems.empty()}, {"problems", list}};
+  return r;
+}
+
+ToolResult SceneTools::GetScene(const ToolArgs&, const ToolCallContext&) {
+  return ToolResult::Text(SceneToJson(scene_).dump(2));
+}
+
+ToolResult SceneTools::RenderPreview(const ToolArgs& a, const ToolCallContext&) {
+  if (a.String("view") == "camera") {
+    throw Error("view \"camera\" needs the renderer, which is not built into this server yet; "
+                "use view \"plan\"");
+  }
+  PlanPreviewOptions options{.width_px = static_cast<int>(a.Integer("width_px"))};
+  options.max_height_px = std::max(options.width_px * 2, 256);
+  options.margin_px = std::min(48, options.width_px / 8);
+  std::string png = RenderPlanPreviewPng(scene_, options);
+  ToolResult r = ToolResult::Text(fmt::format("Top-down plan of \"{}\" ({} bytes PNG).",
+                                              scene_.name, png.size()));
+  r.content.insert(r.content.begin(), ToolContent{.kind = ToolContent::Kind::kImage,
+                                                  .data = Base64Encode(png),
+                                                  .mime_type = "image/png"});
+  return r;
+}
+
+ToolResult SceneTools::RenderCapture(const ToolArgs& a, const ToolCallContext&) {
+  (void)a;
+  throw Error("the renderer is not built into this server yet, so captures cannot be rendered; "
+              "render_preview (view plan) and export_plan work");
+}
+
+ToolResult SceneTools::ExportPlan(const ToolArgs& a, const ToolCallContext&) {
+  std::vector<Problem> problems = ValidateScene(scene_);
+  if (!problems.empty()) {
+    std::vector<std::string> lines;
+    for (const Problem& p : problems) lines.push_back(ProblemText(p));
+    throw InvalidArgument(fmt::format("the scene is not valid yet, fix these first:{}",
+                                      Bullets(lines)));
+  }
+  Plan plan = SceneTruth(scene_);
+  nlohmann::json json = PlanToJson(plan);
+  ToolResult r = ToolResult::Text(json.dump(2));
+  r.structured = json;
+  if (auto path = a.OptString("path")) {
+    if (!path->ends_with(".json")) {
+      throw InvalidArgument(fmt::format("arguments.path: \"{}\" must end in .json", *path));
+    }
+    fs::path target = workspace_.Resolve(*path, "arguments.path");
+    WritePlan(plan, target);
+    r.content.push_back({.text = fmt::format("Wrote {}.", workspace_.Display(target))});
+  }
+  return r;
+}
+
+ToolResult SceneTools::SaveScene(const ToolArgs& a, const ToolCallContext&) {
+  std::string path = a.String("path");
+  if (!path.ends_with(".json")) {
+    throw InvalidArgument(fmt::format("arguments.path: \"{}\" must end in .json", path));
+  }
+  fs::path target = workspace_.Resolve(path, "arguments.path");
+  bool existed = fs::exists(target);
+  WriteScene(scene_, target);
+  std::size_t problems = ValidateScene(scene_).size();
+  return ToolResult::Text(fmt::format(
+      "{} {}{}.", existed ? "Replaced" : "Wrote", workspace_.Display(target),
+      problems ? fmt::format(" (the scene has {} validation problem{}; validate_scene lists them)",
+                             problems, problems == 1 ? "" : "s")
+               : ""));
+}
+
+ToolResult SceneTools::LoadScene(const ToolArgs& a, const ToolCallContext&) {
+  std::string path = a.String("path");
+  fs::path source = workspace_.Resolve(path, "arguments.path");
+  std::error_code ec;
+  if (!fs::is_regular_file(source, ec)) {
+    throw InvalidArgument(fmt::format("arguments.path: \"{}\" is not a file in the workspace", path));
+  }
+  auto size = fs::file_size(source, ec);
+  if (ec || size > limits_.max_file_bytes) {
+    throw InvalidArgument(fmt::format("arguments.path: \"{}\" is {} bytes; the limit is {}", path,
+                                      size, limits_.max_file_bytes));
+  }
+  std::string text = ReadFile(source);
+  JsonDiagnostics diag(path);
+  if (JsonNestingDepth(text) > 64) {
+    throw InvalidArgument(fmt::format("{}: nested too deeply to be a scene file", path));
+  }
+  nlohmann::json json = ParseJsonText(text, diag);
+  diag.ThrowIfErrors();
+  Scene loaded = SceneFromJson(json, path);
+  CheckSceneLimits(loaded);
+  scene_ = std::move(loaded);
+  return ToolResult::Text(fmt::format("Loaded {}: {}", path, DescribeScene(scene_)));
+}
+
+}  // namespace asbuilt::mcp
