@@ -44,25 +44,6 @@ double Quantile(const std::vector<double>& sorted, double q) {
   return sorted[i] + (pos - i) * (sorted[j] - sorted[i]);
 }
 
-// Extent [a, b] of a sorted sample: the q and 1−q quantiles, extrapolated to
-// the ends with the local density of points near each end (robust to a few
-// strays, unbiased for any smooth density).
-std::pair<double, double> RobustExtent(const std::vector<double>& sorted, double q) {
-  const double n = static_cast<double>(sorted.size());
-  double lo = Quantile(sorted, q), hi = Quantile(sorted, 1 - q);
-  double span = hi - lo;
-  if (span <= 0 || q <= 0) return {lo, hi};
-  double window = 0.1 * span;
-  auto count_in = [&](double a, double b) {
-    return static_cast<double>(std::upper_bound(sorted.begin(), sorted.end(), b) -
-                               std::lower_bound(sorted.begin(), sorted.end(), a));
-  };
-  double density_lo = std::max(1.0, count_in(lo, lo + window)) / window;
-  double density_hi = std::max(1.0, count_in(hi - window, hi)) / window;
-  double beyond = q * (n - 1);  // Points outside each quantile.
-  return {lo - beyond / density_lo, hi + beyond / density_hi};
-}
-
 // Dense runs of sorted positions along a line, as index ranges [begin, end).
 // Positions are binned (10 cm); a bin is part of the wall when it holds at
 // least a tenth of a well-filled bin (the 75th percentile), so that sparse
@@ -111,6 +92,48 @@ std::vector<std::pair<size_t, size_t>> DenseRuns(const std::vector<double>& ts, 
   }
   emit();
   return runs;
+}
+
+// Extent of an opening's label along one axis from sorted positions: 2 cm
+// bins, grown from the densest bin while bins hold at least `rel_level` of a
+// well-filled bin (the 75th percentile; at least 2 points), across gaps of at
+// most `max_gap`. Partly occluded stretches (furniture in front of a window)
+// still count, sparse strays do not. Edges are the outermost points of the
+// outermost bins.
+std::pair<double, double> BinnedExtent(const std::vector<double>& ts, double rel_level, double max_gap) {
+  const double bin = 0.02;
+  const double t0 = ts.front();
+  const int nbins = static_cast<int>((ts.back() - t0) / bin) + 1;
+  std::vector<int> counts(nbins, 0);
+  for (double t : ts) counts[std::min(nbins - 1, static_cast<int>((t - t0) / bin))]++;
+  std::vector<int> filled;
+  for (int c : counts) {
+    if (c > 0) filled.push_back(c);
+  }
+  std::sort(filled.begin(), filled.end());
+  const double level = std::max(2.0, rel_level * filled[filled.size() * 3 / 4]);
+  const int peak = static_cast<int>(std::max_element(counts.begin(), counts.end()) - counts.begin());
+  const int max_skip = static_cast<int>(max_gap / bin);
+  int lo = peak, hi = peak;
+  for (int i = peak - 1, skipped = 0; i >= 0 && skipped <= max_skip; --i) {
+    if (counts[i] >= level) {
+      lo = i;
+      skipped = 0;
+    } else {
+      ++skipped;
+    }
+  }
+  for (int i = peak + 1, skipped = 0; i < nbins && skipped <= max_skip; ++i) {
+    if (counts[i] >= level) {
+      hi = i;
+      skipped = 0;
+    } else {
+      ++skipped;
+    }
+  }
+  double a = *std::lower_bound(ts.begin(), ts.end(), t0 + lo * bin - 1e-12);
+  double b = *(std::upper_bound(ts.begin(), ts.end(), t0 + (hi + 1) * bin) - 1);
+  return {a, b};
 }
 
 struct Pt {
@@ -494,8 +517,8 @@ void PlanOptions::Check() const {
   CheckArgument(min_opening_points >= 2,
                 fmt::format("PlanOptions.min_opening_points = {}, must be >= 2", min_opening_points));
   positive(min_opening_width_m, "min_opening_width_m");
-  CheckArgument(edge_quantile >= 0 && edge_quantile < 0.25,
-                fmt::format("PlanOptions.edge_quantile = {}, must be in [0, 0.25)", edge_quantile));
+  CheckArgument(edge_level > 0 && edge_level < 1,
+                fmt::format("PlanOptions.edge_level = {}, must be in (0, 1)", edge_level));
   CheckArgument(max_independent_points >= 2,
                 fmt::format("PlanOptions.max_independent_points = {}, must be >= 2", max_independent_points));
   if (viewpoint_m) {
@@ -818,11 +841,19 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
       Vec2 d = (w.end - w.start) / len;
       Vec2 inward(-d.y(), d.x());
       double r = inward.dot(xy - w.start);  // > 0: in the room.
-      double front = std::min(o.opening_band_m, std::max(0.08, o.inlier_sigmas * sigma));
+      // In front of the face only casings and sill boards (a few cm) belong
+      // to the opening; farther in are open leaves and clutter.
+      double front = std::min(o.opening_band_m, std::max(0.03, o.inlier_sigmas * sigma));
       if (r > front || r < -o.opening_band_m) continue;
       double t = d.dot(xy - w.start);
-      if (o.viewpoint_m) {
-        // Along the viewing ray onto the wall's line.
+      // Noisy points (error mostly along the viewing ray) are projected
+      // along the ray, which cancels that error. Precise points on or in front
+      // of the face (casings, sill boards) keep the perpendicular projection,
+      // which is exact for them, while precise points behind the face (glass,
+      // jamb linings, a recessed leaf) go along the ray to where the opening
+      // cuts the face.
+      bool along_ray = o.viewpoint_m && (sigma > 0.01 || r < -0.01);
+      if (along_ray) {
         Vec2 ray = xy - view;
         double den = inward.dot(ray);
         if (std::abs(den) > 1e-6) {
@@ -866,10 +897,10 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
       }
       std::sort(ts.begin(), ts.end());
       std::sort(zs.begin(), zs.end());
-      auto [a, b] = RobustExtent(ts, o.edge_quantile);
+      auto [a, b] = BinnedExtent(ts, o.edge_level, o.opening_gap_m);
       double t0 = std::clamp(a + casing, 0.0, len), t1 = std::clamp(b - casing, 0.0, len);
       if (t1 - t0 < o.min_opening_width_m) continue;
-      auto [z0, z1] = RobustExtent(zs, o.edge_quantile);
+      auto [z0, z1] = BinnedExtent(zs, o.edge_level, o.opening_gap_m);
       PlanOpening op;
       op.kind = door ? OpeningKind::kDoor : OpeningKind::kWindow;
       op.wall = wi;
@@ -885,7 +916,7 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
       }
       // Edge uncertainty: the points' σ averaged over the few that fix an
       // edge, plus sampling spacing, plus the casing-width uncertainty.
-      double n_edge = std::max(1.0, o.edge_quantile * group.size() * 4);
+      double n_edge = std::max(1.0, 0.02 * group.size());
       double mean_var = sum_var / group.size();
       double spacing = (b - a) / group.size();
       double edge_var = mean_var / n_edge + spacing * spacing + o.casing_sigma_m * o.casing_sigma_m;

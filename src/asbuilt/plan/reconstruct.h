@@ -20,7 +20,8 @@
 //     counter-clockwise (room on the left), so the polygon is the room.
 //  5. Openings: door/window points within `opening_band_m` of a wall are
 //     projected onto it (along the viewing ray when the viewpoint is known),
-//     grouped along the wall, their label extent estimated robustly and the
+//     grouped along the wall, their label extent taken from the binned
+//     density (partly occluded stretches count, strays do not) and the
 //     casing removed to give the clear opening; height and sill from z.
 //  6. ± (1σ) for every dimension from the line fits' covariances (scaled by
 //     the fit residuals) propagated to corners, lengths and area, and from
@@ -58,7 +59,7 @@ struct PlanOptions {
   double opening_gap_m = 0.25;        // Openings on one wall are split at gaps longer than this.
   int min_opening_points = 12;        // Fewer points: not an opening.
   double min_opening_width_m = 0.25;  // Narrower clear openings are dropped.
-  double edge_quantile = 0.01;        // Extent from the q / 1−q quantiles, extrapolated to the edges.
+  double edge_level = 0.01;           // Opening extent: 2 cm bins with at least this fraction of a full bin.
   int max_independent_points = 400;   // Dense points are correlated: cap the points a ± assumes.
   std::optional<Vec3> viewpoint_m;    // Capture centre (rig position), if known; improves openings.
   std::uint64_t seed = 1;             // RANSAC sampling.
