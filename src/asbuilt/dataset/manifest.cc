@@ -156,6 +156,13 @@ FileReport CheckManifestFile(const fs::path& path) {
   return {diag.errors(), diag.warnings()};
 }
 
+Manifest ReadManifestLenient(const fs::path& path, const ReadManifestOptions& options, FileReport& report) {
+  JsonDiagnostics diag(path.string());
+  Manifest manifest = ParseManifest(path, options, diag);
+  report = {diag.errors(), diag.warnings()};
+  return manifest;
+}
+
 nlohmann::json ManifestToJson(const Manifest& manifest) {
   nlohmann::json j;
   j["version"] = manifest.version;

@@ -80,6 +80,12 @@ Manifest ReadManifest(const std::filesystem::path& path, const ReadManifestOptio
 // `asbuilt validate`. Verifies checksums.
 FileReport CheckManifestFile(const std::filesystem::path& path);
 
+// Reads what can be read and reports every problem in `report` without
+// throwing (entries with a missing file are kept); for `asbuilt dataset
+// check`, which goes on with the pairs that exist.
+Manifest ReadManifestLenient(const std::filesystem::path& path, const ReadManifestOptions& options,
+                             FileReport& report);
+
 // Writes atomically. `manifest.base_dir` is ignored: paths are written as
 // stored, so they must already be relative to path's folder (and root).
 void WriteManifest(const Manifest& manifest, const std::filesystem::path& path);
