@@ -11,6 +11,8 @@ std::span<const Command> Commands() {
       {"help", "list the commands, or show one command's help", &RunHelpCommand},
       {"validate", "check asbuilt files (capture, plan/truth, scene, manifest) and report every problem",
        &RunValidateCommand},
+      {"render", "render a scene's stereo views into a capture (RGB, labels, ID map, depth, truth)",
+       &RunRenderCommand},
       {"version", "print the version", &RunVersionCommand},
   };
   return kCommands;

@@ -44,6 +44,7 @@ void Parse(CLI::App& app, int argc, char** argv);
 // One declaration per command.
 int RunHelpCommand(int argc, char** argv);
 int RunValidateCommand(int argc, char** argv);
+int RunRenderCommand(int argc, char** argv);
 int RunVersionCommand(int argc, char** argv);
 
 }  // namespace asbuilt::cli

@@ -1,1 +1,244 @@
+#include "asbuilt/render/renderer.h"
 
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "asbuilt/formats/capture.h"
+#include "asbuilt/render/capture_render.h"
+#include "asbuilt/util/error.h"
+
+namespace asbuilt {
+namespace {
+namespace fs = std::filesystem;
+
+// A 4 × 3 m room, 2.5 m high: walls at y = 0 (wall 0), x = 4 (1), y = 3 (2),
+// x = 0 (3). A closed door on wall 2 (the one a yaw-0 camera faces), a
+// window on wall 1.
+Scene TestRoom() {
+  Scene s;
+  s.seed = 3;
+  Room r;
+  r.name = "room";
+  r.polygon = {{0, 0}, {4, 0}, {4, 3}, {0, 3}};
+  r.height_m = 2.5;
+  r.wall_thickness_m = 0.2;
+  // Wall 2 runs from (4, 3) to (0, 3): offset 1.2 puts the door at x ∈ [1.9, 2.8].
+  r.openings.push_back({.kind = OpeningKind::kDoor, .wall = 2, .offset_m = 1.2, .width_m = 0.9, .height_m = 2.0});
+  r.openings.push_back({.kind = OpeningKind::kWindow, .wall = 1, .offset_m = 0.8, .width_m = 1.2,
+                        .height_m = 1.0, .sill_m = 0.9});
+  s.rooms.push_back(r);
+  s.lights.push_back({.kind = LightKind::kArea, .position_m = Vec3(2, 1.5, 2.5)});
+  s.lights.push_back({.kind = LightKind::kSun});
+  return s;
+}
+
+StereoCamera SmallCamera(const Viewpoint& vp, double fx = 100.0) {
+  PinholeCamera k{.width_px = 160, .height_px = 120, .fx = fx, .fy = fx, .cx = 79.5, .cy = 59.5};
+  return {k, vp, 0.12};
+}
+
+RenderOptions FastOptions() {
+  return {.samples_per_pixel = 2, .camera_effects = 0.0};
+}
+
+// Left-eye pixel of a world point (nullopt behind the camera).
+std::optional<Vec2> ProjectLeft(const StereoCamera& cam, const Vec3& world) {
+  Eigen::Isometry3d world_from_cam = WorldFromStereoEye(cam.viewpoint, cam.baseline_m, StereoEye::kLeft);
+  return ProjectFromCamera(cam.camera, world_from_cam.inverse() * world);
+}
+
+TEST(RenderOptions, DefaultsAreValid) { EXPECT_NO_THROW(RenderOptions{}.Check()); }
+
+TEST(RenderOptions, RejectsZeroSamplesNamingTheField) {
+  try {
+    RenderOptions{.samples_per_pixel = 0}.Check();
+    FAIL();
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("RenderOptions.samples_per_pixel = 0"), std::string::npos);
+  }
+}
+
+TEST(Render, DepthEqualsAnalyticDistanceOnWallAndFloor) {
+  SceneRenderer renderer(TestRoom());
+  // Facing wall 2 (y = 3) from y = 0.5: every wall pixel is 2.5 m away along z.
+  StereoCamera cam = SmallCamera({Vec3(2.0, 0.5, 1.25), 0.0, 0.0});
+  RenderedView v = renderer.Render(cam, FastOptions(), 0, false);
+  int wall_checked = 0, floor_checked = 0;
+  for (int y = 0; y < 120; ++y) {
+    for (int x = 0; x < 160; ++x) {
+      int label = v.labels.at<std::uint8_t>(y, x);
+      int depth = v.depth_mm.at<std::uint16_t>(y, x);
+      double ray_z = (y - cam.camera.cy) / cam.camera.fy;  // Downward slope per metre of z.
+      if (label == kLabelWall && y > 5 && y < 40 && x > 5 && x < 155) {
+        EXPECT_NEAR(depth, 2500, 1) << "wall pixel " << x << "," << y;
+        ++wall_checked;
+      }
+      // Floor: z = 1.25 / slope, in front of the skirting (2.488 m).
+      if (ray_z > 0 && 1.25 / ray_z < 2.4 && label == kLabelBackground) {
+        EXPECT_NEAR(depth, 1250.0 / ray_z, 1.0) << "floor pixel " << x << "," << y;
+        ++floor_checked;
+      }
+    }
+  }
+  EXPECT_GT(wall_checked, 1000);
+  EXPECT_GT(floor_checked, 300);
+}
+
+TEST(Render, PitchedCameraSeesTheCeilingAtTheRightDepth) {
+  SceneRenderer renderer(TestRoom());
+  Viewpoint vp{Vec3(1.0, 1.0, 1.25), 0.0, 60.0};
+  RenderedView v = renderer.Render(SmallCamera(vp), FastOptions(), 0, false);
+  // The centre ray of the left eye rises 60°: ceiling 1.25 m above → 1.25 / sin 60°.
+  // The centre pixel (79.5, 59.5) is between pixels; (80, 59) is within 0.5 px.
+  double expected_mm = 1250.0 / std::sin(DegToRad(60.0));
+  int depth = v.depth_mm.at<std::uint16_t>(59, 80);
+  EXPECT_NEAR(depth, expected_mm, 0.01 * expected_mm);
+}
+
+TEST(Render, RightImageIsTheLeftShiftedByTheDisparity) {
+  Scene s = TestRoom();
+  s.rooms[0].openings.clear();
+  s.materials.push_back({.name = "wall", .base_color = Vec3(0.7, 0.6, 0.5), .texture = TextureKind::kWallpaper,
+                         .texture_scale_m = 0.2, .secondary_color = Vec3(0.2, 0.3, 0.5)});
+  SceneRenderer renderer(s);
+  // fx = 100, B = 0.12, Z = 1.5 → d = 8 px exactly.
+  StereoCamera cam = SmallCamera({Vec3(2.0, 1.5, 1.25), 0.0, 0.0});
+  RenderedView v = renderer.Render(cam, {.samples_per_pixel = 8, .camera_effects = 0.0}, 0, true);
+  cv::Mat l, r;
+  cv::cvtColor(v.left, l, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(v.right, r, cv::COLOR_BGR2GRAY);
+  double shifted = 0, unshifted = 0;
+  int n = 0;
+  for (int y = 10; y < 40; ++y) {
+    for (int x = 30; x < 130; ++x) {
+      ASSERT_EQ(v.labels.at<std::uint8_t>(y, x), kLabelWall);
+      shifted += std::abs(l.at<std::uint8_t>(y, x) - r.at<std::uint8_t>(y, x - 8));
+      unshifted += std::abs(l.at<std::uint8_t>(y, x) - r.at<std::uint8_t>(y, x));
+      ++n;
+    }
+  }
+  shifted /= n;
+  unshifted /= n;
+  EXPECT_LT(shifted, 4.0);
+  EXPECT_GT(unshifted, 3.0 * shifted);
+}
+
+TEST(Render, ProjectedDoorAndWindowCornersLandOnTheirLabels) {
+  SceneRenderer renderer(TestRoom());
+  // Door clear opening on y = 3: x ∈ [1.9, 2.8], z ∈ [0, 2.0]; corners inset 3 cm.
+  const std::vector<Vec3> door = {{1.93, 3, 0.03}, {2.77, 3, 0.03}, {2.77, 3, 1.97}, {1.93, 3, 1.97}};
+  // Window on x = 4 (wall 1 from (4, 0) to (4, 3)): y ∈ [0.8, 2.0], z ∈ [0.9, 1.9].
+  const std::vector<Vec3> window = {{4, 0.83, 0.93}, {4, 1.97, 0.93}, {4, 1.97, 1.87}, {4, 0.83, 1.87}};
+  struct Case { std::vector<Vec3> corners; double yaw_deg; std::uint8_t label; };
+  for (const Case& c : {Case{door, 0.0, kLabelDoor}, Case{window, -90.0, kLabelWindow}}) {
+    StereoCamera cam = SmallCamera({Vec3(2.0, 1.5, 1.3), c.yaw_deg, 0.0}, 70.0);
+    RenderedView v = renderer.Render(cam, FastOptions(), 0, false);
+    for (std::size_t k = 0; k < c.corners.size(); ++k) {
+      auto px = ProjectLeft(cam, c.corners[k]);
+      ASSERT_TRUE(px.has_value());
+      int u = static_cast<int>(std::lround(px->x())), w = static_cast<int>(std::lround(px->y()));
+      ASSERT_TRUE(u >= 0 && u < 160 && w >= 0 && w < 120) << u << "," << w;
+      EXPECT_EQ(v.labels.at<std::uint8_t>(w, u), c.label) << "corner " << k << " at " << u << "," << w;
+    }
+  }
+}
+
+TEST(Render, DoorLabelAreaMatchesTheProjectedOpeningWithCasing) {
+  SceneRenderer renderer(TestRoom());
+  StereoCamera cam = SmallCamera({Vec3(2.35, 0.6, 1.2), 0.0, 0.0}, 60.0);
+  RenderedView v = renderer.Render(cam, FastOptions(), 0, false);
+  // Door incl. casing: x ∈ [1.9 − 0.07, 2.8 + 0.07], z ∈ [0, 2.0 + 0.07] on y = 3.
+  std::vector<cv::Point2f> poly;
+  for (const Vec3& p : {Vec3(1.83, 3, 0), Vec3(2.87, 3, 0), Vec3(2.87, 3, 2.07), Vec3(1.83, 3, 2.07)}) {
+    auto px = ProjectLeft(cam, p);
+    ASSERT_TRUE(px.has_value());
+    poly.emplace_back(static_cast<float>(px->x()), static_cast<float>(px->y()));
+  }
+  int inside = 0, labelled = 0;
+  for (int y = 0; y < 120; ++y) {
+    for (int x = 0; x < 160; ++x) {
+      if (cv::pointPolygonTest(poly, cv::Point2f(x, y), false) >= 0) ++inside;
+      if (v.labels.at<std::uint8_t>(y, x) == kLabelDoor) ++labelled;
+    }
+  }
+  double perimeter = cv::arcLength(poly, true);
+  EXPECT_GT(inside, 1000);
+  EXPECT_NEAR(labelled, inside, perimeter) << "within a one-pixel band";
+}
+
+TEST(Render, SameSeedGivesIdenticalImagesAndAnotherSeedDoesNot) {
+  SceneRenderer renderer(TestRoom());
+  StereoCamera cam = SmallCamera({Vec3(2.0, 1.0, 1.4), 30.0, 0.0});
+  RenderOptions o{.samples_per_pixel = 2, .camera_effects = 1.0, .seed = 5};
+  RenderedView a = renderer.Render(cam, o, 7);
+  RenderedView b = renderer.Render(cam, o, 7);
+  EXPECT_EQ(cv::norm(a.left, b.left, cv::NORM_INF), 0);
+  EXPECT_EQ(cv::norm(a.right, b.right, cv::NORM_INF), 0);
+  EXPECT_EQ(cv::norm(a.idmap, b.idmap, cv::NORM_INF), 0);
+  o.seed = 6;
+  RenderedView c = renderer.Render(cam, o, 7);
+  EXPECT_GT(cv::norm(a.left, c.left, cv::NORM_L1), 0);
+  EXPECT_EQ(cv::norm(a.labels, c.labels, cv::NORM_INF), 0) << "labels do not depend on the seed";
+}
+
+TEST(Render, IdMapColoursStayNearTheirClassColour) {
+  SceneRenderer renderer(TestRoom());
+  StereoCamera cam = SmallCamera({Vec3(2.6, 1.2, 1.3), 20.0, 0.0}, 70.0);
+  RenderedView v = renderer.Render(cam, {.samples_per_pixel = 2, .id_drift = 0.15, .camera_effects = 0.0}, 0, false);
+  for (int y = 0; y < 120; y += 3) {
+    for (int x = 0; x < 160; x += 3) {
+      const auto& nominal = kIdMapColors[v.labels.at<std::uint8_t>(y, x)];
+      cv::Vec3b c = v.idmap.at<cv::Vec3b>(y, x);
+      double d = std::hypot(std::hypot(c[2] - nominal[0], c[1] - nominal[1]), c[0] - nominal[2]);
+      EXPECT_LT(d, 90.0) << x << "," << y;
+    }
+  }
+}
+
+TEST(RenderCapture, WritesACaptureThatValidatesAndResumes) {
+  fs::path dir = fs::path(ASBUILT_BINARY_DIR) / "render_test_capture";
+  fs::remove_all(dir);
+  Scene s = TestRoom();
+  s.rig.width_px = 96;
+  s.rig.height_px = 72;
+  CaptureRenderOptions o{.render = {.samples_per_pixel = 1, .camera_effects = 0.3}, .views = 3};
+  CaptureRenderSummary first = RenderCapture(s, dir, o);
+  EXPECT_EQ(first.rendered, 3);
+  Capture c = ReadCapture(dir / "capture.json");
+  ASSERT_EQ(c.frames.size(), 3u);
+  EXPECT_EQ(c.camera.width, 96);
+  EXPECT_DOUBLE_EQ(c.camera.cx, 47.5);
+  EXPECT_DOUBLE_EQ(c.frames[1].yaw_deg, 120.0);
+  ASSERT_TRUE(c.frames[0].depth.has_value());
+  cv::Mat depth = cv::imread(c.Resolve(*c.frames[0].depth).string(), cv::IMREAD_UNCHANGED);
+  EXPECT_EQ(depth.type(), CV_16U);
+  cv::Mat labels = cv::imread(c.Resolve(*c.frames[0].labels).string(), cv::IMREAD_UNCHANGED);
+  EXPECT_EQ(labels.type(), CV_8U);
+  EXPECT_TRUE(fs::exists(dir / "truth.json"));
+  EXPECT_TRUE(fs::exists(dir / "idmap" / "002.png"));
+
+  fs::remove(dir / "right" / "001.png");
+  CaptureRenderSummary second = RenderCapture(s, dir, o);
+  EXPECT_EQ(second.skipped, 2);
+  EXPECT_EQ(second.rendered, 1);
+  EXPECT_TRUE(fs::exists(dir / "right" / "001.png"));
+}
+
+TEST(RenderCapture, RejectsPitchedViewsNamingTheViewpoint) {
+  Scene s = TestRoom();
+  s.viewpoints.push_back({Vec3(2, 1.5, 1.5), 0.0, 10.0});
+  try {
+    RenderCapture(s, fs::path(ASBUILT_BINARY_DIR) / "render_test_pitched", {});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problems()[0].field_path, "viewpoints[0].pitch_deg");
+  }
+}
+
+}  // namespace
+}  // namespace asbuilt
