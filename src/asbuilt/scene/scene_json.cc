@@ -300,6 +300,13 @@ Scene ReadScene(const fs::path& path) {
   return scene;
 }
 
+FileReport CheckSceneJson(const json& json_doc, const std::string& name) {
+  JsonDiagnostics diag(name);
+  Scene scene;
+  ParseAndValidate(json_doc, diag, scene);
+  return {diag.errors(), diag.warnings()};
+}
+
 FileReport CheckSceneFile(const fs::path& path) {
   JsonDiagnostics diag(path.string());
   json root = ParseJsonFile(path, diag);

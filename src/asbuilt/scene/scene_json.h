@@ -18,6 +18,9 @@ Scene ReadScene(const std::filesystem::path& path);
 FileReport CheckSceneFile(const std::filesystem::path& path);
 // `name` stands for the file in messages (e.g. "llm answer").
 Scene SceneFromJson(const nlohmann::json& json, const std::string& name);
+// Every type and semantic problem of a scene document, without throwing
+// (for feedback loops: the LLM repair rounds, the MCP server).
+FileReport CheckSceneJson(const nlohmann::json& json, const std::string& name);
 nlohmann::json SceneToJson(const Scene& scene);
 void WriteScene(const Scene& scene, const std::filesystem::path& path);  // Atomic.
 
