@@ -72,7 +72,42 @@ double Percentile(const cv::Mat& m, double q) {
 
 struct RawPair {
   cv::Mat left16, right16;
+  cv::Ptr<cv::StereoMatcher> matcher;
 };
+
+// Each run of holes on a row takes the smaller of the valid disparities that
+// bound it: holes are mostly occlusions, and occluded pixels belong to the
+// farther surface.
+void FillHolesFromBackground(cv::Mat& disp) {
+  for (int y = 0; y < disp.rows; ++y) {
+    float* r = disp.ptr<float>(y);
+    int x = 0;
+    while (x < disp.cols) {
+      if (std::isfinite(r[x])) {
+        ++x;
+        continue;
+      }
+      const int start = x;
+      while (x < disp.cols && !std::isfinite(r[x])) ++x;
+      const float a = start > 0 ? r[start - 1] : kNaN, b = x < disp.cols ? r[x] : kNaN;
+      const float v = std::isfinite(a) && std::isfinite(b) ? std::min(a, b) : (std::isfinite(a) ? a : b);
+      for (int i = start; i < x; ++i) r[i] = v;
+    }
+  }
+  // Rows with no valid pixel at all copy the nearest filled row.
+  std::vector<int> filled;
+  for (int y = 0; y < disp.rows; ++y) {
+    if (disp.cols > 0 && std::isfinite(disp.at<float>(y, 0))) filled.push_back(y);
+  }
+  if (filled.empty()) return;
+  for (int y = 0; y < disp.rows; ++y) {
+    if (std::isfinite(disp.at<float>(y, 0))) continue;
+    auto it = std::lower_bound(filled.begin(), filled.end(), y);
+    int src = it == filled.end() ? filled.back() : *it;
+    if (it != filled.begin() && (it == filled.end() || y - *(it - 1) < *it - y)) src = *(it - 1);
+    disp.row(src).copyTo(disp.row(y));
+  }
+}
 
 RawPair MatchBoth(const cv::Mat& left, const cv::Mat& right, const DisparityOptions& o,
                   int min_disp, int num_disp, bool need_right) {
@@ -83,6 +118,7 @@ RawPair MatchBoth(const cv::Mat& left, const cv::Mat& right, const DisparityOpti
   }
   auto matcher = MakeLeftMatcher(o, min_disp, num_disp, l.channels());
   RawPair raw;
+  raw.matcher = matcher;
   matcher->compute(l, r, raw.left16);
   if (need_right) {
     auto right_matcher = cv::ximgproc::createRightMatcher(matcher);
@@ -112,16 +148,18 @@ void DisparityOptions::Check() const {
                 fmt::format("DisparityOptions.speckle_range_px = {}, must be >= 0", speckle_range_px));
   CheckArgument(max_left_right_diff_px >= 0,
                 fmt::format("DisparityOptions.max_left_right_diff_px = {}, must be >= 0", max_left_right_diff_px));
+  CheckArgument(median_px == 0 || median_px == 3 || median_px == 5,
+                fmt::format("DisparityOptions.median_px = {}, must be 0, 3 or 5", median_px));
   CheckArgument(wls_lambda > 0, fmt::format("DisparityOptions.wls_lambda = {}, must be > 0", wls_lambda));
   CheckArgument(wls_sigma > 0, fmt::format("DisparityOptions.wls_sigma = {}, must be > 0", wls_sigma));
 }
 
 std::string DisparityOptions::ToString() const {
-  return fmt::format("{} range [{}, {}) block {} LR {} WLS {} multi-scale {}",
+  return fmt::format("{} range [{}, {}) block {} LR {} WLS {} fill {} multi-scale {}",
                      matcher == DisparityMatcher::kSgbm ? (full_dp ? "SGBM-HH" : "SGBM") : "BM",
                      min_disparity_px, min_disparity_px + num_disparities_px, block_size_px,
                      left_right_check ? fmt::format("±{:g}px", max_left_right_diff_px) : "off",
-                     wls_filter ? "on" : "off", multi_scale ? "on" : "off");
+                     wls_filter ? "on" : "off", fill_holes ? "on" : "off", multi_scale ? "on" : "off");
 }
 
 std::string DisparityResult::ToString() const {
@@ -173,6 +211,7 @@ DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right,
   result.num_disparities_px = num_disp;
 
   const bool need_right = options.left_right_check || options.wls_filter;
+  // Left images for WLS guidance must match the matcher's input channels.
   RawPair raw = MatchBoth(left, right, options, min_disp, num_disp, need_right);
   cv::Mat disp = ToFloatDisparity(raw.left16, min_disp);
 
@@ -215,23 +254,21 @@ DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right,
   result.valid_fraction = static_cast<double>(n_valid) / std::max<std::size_t>(1, disp.total());
 
   if (options.wls_filter) {
-    // WLS on the fixed-point maps, with the consistency-checked holes.
-    cv::Mat left16 = raw.left16.clone();
-    const short invalid16 = static_cast<short>((min_disp - 1) * 16);
-    for (int y = 0; y < disp.rows; ++y) {
-      const unsigned char* m = result.valid.ptr<unsigned char>(y);
-      short* s = left16.ptr<short>(y);
-      for (int x = 0; x < disp.cols; ++x) {
-        if (!m[x]) s[x] = invalid16;
-      }
-    }
-    auto wls = cv::ximgproc::createDisparityWLSFilterGeneric(false);
+    // ximgproc's confidence-weighted WLS with both views (its own LR test).
+    auto wls = cv::ximgproc::createDisparityWLSFilter(raw.matcher);
     wls->setLambda(options.wls_lambda);
     wls->setSigmaColor(options.wls_sigma);
-    wls->setDepthDiscontinuityRadius(std::max(1, static_cast<int>(std::ceil(0.33 * options.block_size_px))));
     cv::Mat filtered;
-    wls->filter(left16, left, filtered);
+    wls->filter(raw.left16, left, filtered, raw.right16);
     disp = ToFloatDisparity(filtered, min_disp);
+  }
+  if (options.fill_holes) {
+    FillHolesFromBackground(disp);
+    if (options.median_px > 0 && cv::countNonZero(disp == disp) == static_cast<int>(disp.total())) {
+      cv::Mat smoothed;
+      cv::medianBlur(disp, smoothed, options.median_px);
+      disp = smoothed;
+    }
   }
   result.disparity_px = disp;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

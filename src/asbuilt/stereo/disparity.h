@@ -41,11 +41,20 @@ struct DisparityOptions {
   // left pixel only when both agree within max_left_right_diff_px.
   bool left_right_check = true;
   double max_left_right_diff_px = 1.0;
-  // Edge-aware WLS filter (ximgproc) guided by the left image: fills holes and
-  // smooths; `valid` still marks only the raw consistent pixels.
+  // Edge-aware, confidence-weighted WLS filter (ximgproc) guided by the left
+  // image: smooths and fills most holes (not the left band where the right
+  // view has no match); `valid` still marks only the raw consistent pixels.
   bool wls_filter = false;
   double wls_lambda = 8000.0;  // Smoothness strength.
   double wls_sigma = 1.5;      // Edge sensitivity (colour distance).
+  // Fill every hole along its row with the smaller (farther) of the valid
+  // disparities bounding it — occlusions belong to the background. No holes
+  // remain; `valid` still marks only the raw consistent pixels. Best measured
+  // accuracy on Middlebury/ETH3D (bench/results/stereo.md) at no extra time.
+  bool fill_holes = false;
+  // Median filter (3 or 5 px; 0 = off) after filling: removes isolated
+  // outliers; applied only when fill_holes is on (holes would spread).
+  int median_px = 0;
   // Coarse pass at half size; the full-size range becomes the coarse 1st–99th
   // percentile (× 2, padded by 16 px) when that is narrower.
   bool multi_scale = false;
@@ -57,7 +66,7 @@ struct DisparityOptions {
 
 struct DisparityResult {
   // CV_32F, left view, pixels. NaN where no disparity (holes, occlusions);
-  // with WLS every pixel the filter could reach has a value.
+  // with WLS or fill_holes, filled values too.
   cv::Mat disparity_px;
   // CV_8U, 255 where the raw matcher found a disparity that passed the
   // uniqueness, speckle and left–right checks.

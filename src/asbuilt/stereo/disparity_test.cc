@@ -59,6 +59,17 @@ TEST(ComputeDisparity, MultiScaleNarrowsTheRange) {
   EXPECT_NEAR(r.disparity_px.at<float>(120, 200), 10.0, 0.5);
 }
 
+TEST(ComputeDisparity, BackgroundFillLeavesNoHolesAndKeepsValidMask) {
+  cv::Mat left, right;
+  ShiftedPair(12.0, left, right);
+  const DisparityResult r =
+      ComputeDisparity(left, right, {.num_disparities_px = 32, .fill_holes = true, .median_px = 5});
+  EXPECT_EQ(cv::countNonZero(r.disparity_px == r.disparity_px), static_cast<int>(r.disparity_px.total()));
+  // The left band (no match possible) is filled but not marked valid.
+  EXPECT_EQ(r.valid.at<unsigned char>(100, 2), 0);
+  EXPECT_NEAR(r.disparity_px.at<float>(100, 2), 12.0, 1.0);
+}
+
 TEST(ComputeDisparity, MismatchedImagesAreInvalidArguments) {
   EXPECT_THROW(ComputeDisparity(cv::Mat(10, 10, CV_8UC1), cv::Mat(10, 12, CV_8UC1), {}), InvalidArgument);
 }
