@@ -1,6 +1,7 @@
 #include "asbuilt/render/renderer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -31,6 +32,7 @@ inline std::uint64_t SplitMix(std::uint64_t x) {
 // Small fast generator, seeded per pixel so results do not depend on threads.
 struct Rng {
   std::uint64_t state;
+  std::int64_t rays = 0;  // Rays traced for this pixel (statistics).
   float Next() {
     state = state * 6364136223846793005ULL + 1442695040888963407ULL;
     std::uint64_t x = SplitMix(state);
@@ -124,6 +126,7 @@ struct SceneRenderer::Impl {
       float cos_s = n.dot(l);
       float cos_l = -light.normal.cast<float>().dot(l);
       if (cos_s <= 0 || cos_l <= 0) continue;
+      ++rng.rays;
       if (tracer->Occluded(origin, l, 0.0f, d - 1e-3f)) continue;
       Vec3f contrib = light.radiance.cast<float>() *
                       (static_cast<float>(light.area_m2) * cos_s * cos_l / std::max(d2, 1e-4f));
@@ -142,6 +145,7 @@ struct SceneRenderer::Impl {
       s = (s + t * (a * (2 * rng.Next() - 1)) + b * (a * (2 * rng.Next() - 1))).normalized();
       float cos_s = n.dot(s);
       if (cos_s <= 0) continue;
+      ++rng.rays;
       if (tracer->Occluded(origin, s, 0.0f, kFar)) continue;
       Vec3f contrib = sun.irradiance.cast<float>() * cos_s;
       e += contrib;
@@ -158,6 +162,7 @@ struct SceneRenderer::Impl {
   Vec3f Indirect(const Vec3f& p, const Vec3f& n, Rng& rng) const {
     Vec3f d = CosineSample(n, rng);
     RayHit hit;
+    ++rng.rays;
     if (!tracer->Intersect(p + n * kEpsilon, d, 0.0f, kFar, false, &hit)) return kPiF * Sky(d);
     const MeshObject& o = mesh.objects[hit.object];
     if (o.emission.squaredNorm() > 0) return Vec3f::Zero();  // Counted as direct light.
@@ -277,6 +282,7 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
 
   double exposure = 1.0;
   PixelBuffers left_buffers;
+  std::atomic<std::int64_t> total_rays{0};
   for (int eye_index = 0; eye_index < (right_eye ? 2 : 1); ++eye_index) {
     const StereoEye eye = eye_index == 0 ? StereoEye::kLeft : StereoEye::kRight;
     const bool with_aux = eye == StereoEye::kLeft;
@@ -288,6 +294,7 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
     b.Resize(W, H);
 
     tbb::parallel_for(tbb::blocked_range2d<int>(0, H, 16, 0, W, 16), [&](const tbb::blocked_range2d<int>& r) {
+      std::int64_t tile_rays = 0;
       for (int y = r.rows().begin(); y < r.rows().end(); ++y) {
         for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
           const std::size_t i = static_cast<std::size_t>(y) * W + x;
@@ -308,6 +315,7 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
             bool first = true;
             for (int layer = 0; layer < 4; ++layer) {
               RayHit hit;
+              ++rng.rays;
               bool found = im.tracer->Intersect(origin, dir, layer == 0 ? 0.0f : kEpsilon, kFar, true, &hit);
               if (s == 0 && first && with_aux) {
                 // Exact aux outputs from the first hit through the centre.
@@ -379,12 +387,14 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
               break;
             }
           }
+          tile_rays += rng.rays;
           const float inv = 1.0f / spp;
           b.albedo[i] = albedo_sum * inv;
           b.irradiance[i] = e_sum * inv;
           b.extra[i] = extra_sum * inv;
         }
       }
+      total_rays.fetch_add(tile_rays, std::memory_order_relaxed);
     });
 
     // Irradiance averaged over samples that hit a surface: E_sum / spp is
@@ -443,6 +453,7 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
   out.depth_mm = aux.depth_mm;
   out.normals = aux.normals;
   out.instance_ids = aux.instance_ids;
+  out.rays_traced = total_rays.load();
   return out;
 }
 

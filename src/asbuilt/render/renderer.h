@@ -72,6 +72,7 @@ struct RenderedView {
   cv::Mat normals;       // 8-bit BGR encoding (n + 1) / 2 of camera-frame normals; empty unless asked.
   cv::Mat instance_ids;  // 16-bit: SceneMesh object index + 1, 0 = sky; empty unless asked.
   ViewEffects effects;   // The camera effects applied.
+  std::int64_t rays_traced = 0;  // Every ray cast (primary, shadow, bounce), both eyes.
 };
 
 // A scene prepared for rendering (triangles + Embree BVH), reused across views.

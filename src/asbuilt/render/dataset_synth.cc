@@ -1,0 +1,247 @@
+#include "asbuilt/render/dataset_synth.h"
+
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "asbuilt/render/image_io.h"
+#include "asbuilt/scene/furnish.h"
+#include "asbuilt/util/error.h"
+#include "asbuilt/util/file.h"
+
+namespace asbuilt {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr double kMinWallClearanceM = 0.3;
+
+std::uint64_t Mix(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ULL;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+  return x ^ (x >> 31);
+}
+
+double DistanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
+  Vec2 ab = b - a;
+  double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
+bool InsidePolygon(const std::vector<Vec2>& poly, const Vec2& p) {
+  bool inside = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    if ((poly[i].y() > p.y()) != (poly[j].y() > p.y()) &&
+        p.x() < (poly[j].x() - poly[i].x()) * (p.y() - poly[i].y()) / (poly[j].y() - poly[i].y()) + poly[i].x()) {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
+
+// A camera spot inside the room, clear of walls and furniture.
+bool FreeSpot(const Scene& scene, const Room& room, const Vec3& p) {
+  Vec2 q = p.head<2>();
+  if (!InsidePolygon(room.polygon, q)) return false;
+  const int n = static_cast<int>(room.polygon.size());
+  for (int i = 0; i < n; ++i) {
+    if (DistanceToSegment(q, room.polygon[i], room.polygon[(i + 1) % n]) < kMinWallClearanceM) return false;
+  }
+  for (const Furniture& f : scene.furniture) {
+    double y = DegToRad(f.yaw_deg);
+    Vec2 ex(std::cos(y), std::sin(y)), ey(-std::sin(y), std::cos(y));
+    Vec2 r = q - f.centre_m;
+    if (std::abs(r.dot(ex)) < 0.5 * f.size_m.x() + 0.2 && std::abs(r.dot(ey)) < 0.5 * f.size_m.y() + 0.2) return false;
+  }
+  return p.z() > 0.3 && p.z() < room.height_m - 0.3;
+}
+
+Vec2 Centroid(const std::vector<Vec2>& poly) {
+  Vec2 c = Vec2::Zero();
+  for (const Vec2& p : poly) c += p;
+  return c / std::max<std::size_t>(poly.size(), 1);
+}
+
+nlohmann::json Vec3Json(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+}  // namespace
+
+void DatasetSynthOptions::Check() const {
+  CheckArgument(count >= 1, fmt::format("DatasetSynthOptions.count = {}, must be >= 1", count));
+  CheckArgument(count <= 99999999, fmt::format("DatasetSynthOptions.count = {}, must be <= 99999999", count));
+  CheckArgument(shard_count >= 1, fmt::format("DatasetSynthOptions.shard_count = {}, must be >= 1", shard_count));
+  CheckArgument(shard_index >= 0 && shard_index < shard_count,
+                fmt::format("DatasetSynthOptions.shard_index = {}, must be in [0, {})", shard_index, shard_count));
+  CheckArgument(width_px >= 8 && width_px <= 8192 && height_px >= 8 && height_px <= 8192,
+                fmt::format("DatasetSynthOptions size = {}x{}, must be in [8, 8192]", width_px, height_px));
+  CheckArgument(min_hfov_deg > 10 && max_hfov_deg >= min_hfov_deg && max_hfov_deg < 170,
+                fmt::format("DatasetSynthOptions.min_hfov_deg/max_hfov_deg = {}/{}, need 10 < min <= max < 170",
+                            min_hfov_deg, max_hfov_deg));
+  CheckArgument(rig_view_share >= 0 && rig_view_share <= 1,
+                fmt::format("DatasetSynthOptions.rig_view_share = {}, must be in [0, 1]", rig_view_share));
+  CheckArgument(items_per_scene >= 1,
+                fmt::format("DatasetSynthOptions.items_per_scene = {}, must be >= 1", items_per_scene));
+  render.Check();
+  scene.Check();
+}
+
+std::string DatasetSynthSummary::BriefReport() const {
+  std::int64_t total = 0;
+  for (auto c : class_pixels) total += c;
+  auto pct = [&](int k) { return total > 0 ? 100.0 * class_pixels[k] / total : 0.0; };
+  return fmt::format(
+      "rendered {} of {} items ({} already done, {} rooms) in {:.1f} s → {}; pixels: background {:.1f}%, "
+      "wall {:.1f}%, door {:.1f}%, window {:.1f}%",
+      rendered, items, skipped, scenes, seconds, dir, pct(0), pct(1), pct(2), pct(3));
+}
+
+std::pair<int, int> ShardRange(int count, int shard_index, int shard_count) {
+  auto at = [&](int k) { return static_cast<int>(static_cast<std::int64_t>(count) * k / shard_count); };
+  return {at(shard_index), at(shard_index + 1)};
+}
+
+std::uint64_t SynthSceneSeed(const DatasetSynthOptions& options, int index) {
+  return Mix(options.seed ^ 0x5CE4E5EEDULL) + static_cast<std::uint64_t>(index / options.items_per_scene);
+}
+
+SynthItem PlanSynthItem(const DatasetSynthOptions& options, const Scene& scene, int index) {
+  SceneRng rng(Mix(options.seed * 0x100000001B3ULL + static_cast<std::uint64_t>(index)));
+  SynthItem item;
+  item.index = index;
+  item.scene_seed = scene.seed;
+  double hfov = rng.Uniform(options.min_hfov_deg, options.max_hfov_deg);
+  item.camera.camera = PinholeCamera::FromHorizontalFov(options.width_px, options.height_px, hfov);
+  item.camera.baseline_m = scene.rig.baseline_m;
+  const Room& room = scene.rooms.at(0);
+  const int n = static_cast<int>(room.polygon.size());
+
+  bool rig_view = rng.Chance(options.rig_view_share);
+  if (!rig_view) {
+    // Pick what the photo is of.
+    std::vector<const Opening*> doors, windows;
+    for (const Opening& o : room.openings) (o.kind == OpeningKind::kDoor ? doors : windows).push_back(&o);
+    double r = rng.Uniform(0, 1);
+    const Opening* target_opening = nullptr;
+    if (r < 0.3 && !doors.empty()) {
+      target_opening = doors[rng.UniformInt(0, static_cast<int>(doors.size()) - 1)];
+      item.target = "door";
+    } else if (r < 0.65 && !windows.empty()) {
+      target_opening = windows[rng.UniformInt(0, static_cast<int>(windows.size()) - 1)];
+      item.target = "window";
+    } else {
+      item.target = "wall";
+    }
+    for (int attempt = 0; attempt < 40; ++attempt) {
+      int wall = target_opening ? target_opening->wall : rng.UniformInt(0, n - 1);
+      Vec2 a = room.polygon[wall], b = room.polygon[(wall + 1) % n];
+      double len = (b - a).norm();
+      Vec2 d = (b - a) / len;
+      Vec2 inward(-d.y(), d.x());
+      double s, z;
+      if (target_opening) {
+        s = target_opening->offset_m + target_opening->width_m * rng.Uniform(0.3, 0.7);
+        z = target_opening->sill_m + target_opening->height_m * rng.Uniform(0.35, 0.65);
+      } else {
+        s = rng.Uniform(std::min(0.3, 0.5 * len), std::max(len - 0.3, 0.5 * len));
+        z = rng.Uniform(0.6, std::min(2.0, room.height_m - 0.3));
+      }
+      Vec3 target(a.x() + s * d.x(), a.y() + s * d.y(), z);
+      double dist = rng.Uniform(1.5, 3.0) * (attempt < 20 ? 1.0 : 0.6);
+      double side = DegToRad(rng.Uniform(-35.0, 35.0));
+      Vec2 dir2 = std::cos(side) * inward + std::sin(side) * d;
+      Vec3 cam(target.x() + dist * dir2.x(), target.y() + dist * dir2.y(),
+               rng.Uniform(1.0, std::min(1.9, room.height_m - 0.4)));
+      if (!FreeSpot(scene, room, cam)) continue;
+      Vec3 v = target - cam;
+      double horizontal = v.head<2>().norm();
+      item.kind = "photo";
+      item.camera.viewpoint.position_m = cam;
+      item.camera.viewpoint.yaw_deg = RadToDeg(std::atan2(-v.x(), v.y())) + rng.Uniform(-8.0, 8.0);
+      item.camera.viewpoint.pitch_deg =
+          std::clamp(RadToDeg(std::atan2(v.z(), horizontal)) + rng.Uniform(-8.0, 8.0), -35.0, 35.0);
+      return item;
+    }
+  }
+  // A level rig view from the room's turn-in-place spot (or its centre).
+  item.kind = "rig";
+  item.target = "turn";
+  Vec3 pos = scene.turn ? scene.turn->position_m : Vec3(Centroid(room.polygon).x(), Centroid(room.polygon).y(), 1.5);
+  pos.z() += rng.Uniform(-0.2, 0.2);
+  item.camera.viewpoint = {pos, rng.Uniform(0.0, 360.0), 0.0};
+  return item;
+}
+
+DatasetSynthSummary SynthesizeDataset(const fs::path& dir, const DatasetSynthOptions& options,
+                                      const ProgressCallback& progress) {
+  options.Check();
+  const auto start = std::chrono::steady_clock::now();
+  auto [begin, end] = ShardRange(options.count, options.shard_index, options.shard_count);
+  DatasetSynthSummary summary;
+  summary.items = end - begin;
+  summary.dir = dir.string();
+  for (const char* sub : {"images", "labels", "idmaps", "depth", "meta"}) fs::create_directories(dir / sub);
+
+  std::uint64_t current_seed = 0;
+  std::unique_ptr<Scene> scene;
+  std::unique_ptr<SceneRenderer> renderer;
+  for (int i = begin; i < end; ++i) {
+    const std::string stem = fmt::format("{:06d}", i);
+    const fs::path meta_path = dir / "meta" / (stem + ".json");
+    const fs::path files[4] = {dir / "images" / (stem + ".png"), dir / "labels" / (stem + ".png"),
+                               dir / "idmaps" / (stem + ".png"), dir / "depth" / (stem + ".png")};
+    bool done = options.resume && fs::exists(meta_path);
+    for (const fs::path& f : files) done = done && fs::exists(f);
+    if (done) {
+      ++summary.skipped;
+    } else {
+      std::uint64_t scene_seed = SynthSceneSeed(options, i);
+      if (!renderer || scene_seed != current_seed) {
+        renderer.reset();  // Free the old BVH first: memory stays flat.
+        RandomSceneOptions scene_options = options.scene;
+        scene_options.rig.width_px = options.width_px;
+        scene_options.rig.height_px = options.height_px;
+        scene = std::make_unique<Scene>(RandomScene(scene_options, scene_seed));
+        renderer = std::make_unique<SceneRenderer>(*scene);
+        current_seed = scene_seed;
+        ++summary.scenes;
+      }
+      SynthItem item = PlanSynthItem(options, *scene, i);
+      RenderedView view = renderer->Render(item.camera, options.render, static_cast<std::uint64_t>(i), false);
+      std::array<std::int64_t, 4> counts{};
+      for (int y = 0; y < view.labels.rows; ++y) {
+        const auto* row = view.labels.ptr<std::uint8_t>(y);
+        for (int x = 0; x < view.labels.cols; ++x) counts[std::min<int>(row[x], 3)]++;
+      }
+      for (int k = 0; k < 4; ++k) summary.class_pixels[k] += counts[k];
+      WriteImageAtomic(files[0], view.left);
+      WriteImageAtomic(files[1], view.labels);
+      WriteImageAtomic(files[2], view.idmap);
+      WriteImageAtomic(files[3], view.depth_mm);
+      const PinholeCamera& k = item.camera.camera;
+      const double total = static_cast<double>(k.width_px) * k.height_px;
+      nlohmann::json meta = {
+          {"version", 1},
+          {"index", i},
+          {"scene_seed", item.scene_seed},
+          {"kind", item.kind},
+          {"target", item.target},
+          {"camera", {{"width", k.width_px}, {"height", k.height_px}, {"fx", k.fx}, {"fy", k.fy},
+                      {"cx", k.cx}, {"cy", k.cy}}},
+          {"position_m", Vec3Json(item.camera.viewpoint.position_m)},
+          {"yaw_deg", item.camera.viewpoint.yaw_deg},
+          {"pitch_deg", item.camera.viewpoint.pitch_deg},
+          {"effects", view.effects.ToString()},
+          {"class_fraction", {counts[0] / total, counts[1] / total, counts[2] / total, counts[3] / total}},
+      };
+      WriteFileAtomic(meta_path, meta.dump(1) + "\n");  // Last: marks the item complete.
+      ++summary.rendered;
+    }
+    ReportProgress(progress, {"synth", static_cast<std::int64_t>(i - begin + 1), summary.items, ""});
+  }
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace asbuilt

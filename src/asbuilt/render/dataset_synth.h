@@ -1,0 +1,82 @@
+#ifndef ASBUILT_RENDER_DATASET_SYNTH_H_
+#define ASBUILT_RENDER_DATASET_SYNTH_H_
+
+// `asbuilt dataset synth`: a synthetic segmentation training set from random
+// rooms (scene/procedural.h) rendered by the ray tracer.
+//
+//   DIR/images/NNNNNN.png   8-bit RGB (left eye), camera effects randomised
+//   DIR/labels/NNNNNN.png   8-bit label ids (0 background, 1 wall, 2 door, 3 window)
+//   DIR/idmaps/NNNNNN.png   ID-map colours (render/renderer.h kIdMapColors, drifting)
+//   DIR/depth/NNNNNN.png    uint16 mm along the optical axis (0 = none)
+//   DIR/meta/NNNNNN.json    scene seed, view kind, camera, pose, effects, class fractions
+//
+// Items are like the paper's photographs: a single camera 1.5–3 m from a
+// wall, door or window, 1–2 classes dominating, varied height and pitch; a
+// share are level rig views from the room's turn-in-place spot. Item i is a
+// pure function of (options, i): shards split the items into contiguous
+// blocks, so shards never overlap and their union equals the unsharded run.
+// Resumable: an item whose meta file exists (written last) is skipped; every
+// file is written atomically. Memory stays flat: one scene is held at a time.
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+
+#include "asbuilt/render/renderer.h"
+#include "asbuilt/scene/procedural.h"
+#include "asbuilt/util/progress.h"
+
+namespace asbuilt {
+
+struct DatasetSynthOptions {
+  int count = 100;                 // Items in the whole dataset (all shards).
+  std::uint64_t seed = 0;          // Scenes, views and rendering.
+  int shard_index = 0;             // This run renders shard shard_index of shard_count.
+  int shard_count = 1;
+  int width_px = 320;              // Image size of every item.
+  int height_px = 240;
+  double min_hfov_deg = 60.0;      // Horizontal field of view, drawn per item.
+  double max_hfov_deg = 80.0;
+  double rig_view_share = 0.25;    // Share of level rig views (the rest: photo-like views).
+  int items_per_scene = 8;         // Consecutive items share a room (amortises scene building).
+  RenderOptions render = {.samples_per_pixel = 2, .camera_effects = 1.0};
+  RandomSceneOptions scene;        // The random rooms.
+  bool resume = true;              // Skip items already written.
+
+  void Check() const;
+};
+
+struct DatasetSynthSummary {
+  int items = 0;        // In this shard.
+  int rendered = 0;
+  int skipped = 0;      // Already complete (resume).
+  int scenes = 0;       // Rooms built in this run.
+  double seconds = -1;  // Wall time; −1 if not run.
+  std::array<std::int64_t, 4> class_pixels{};  // Over the rendered items.
+  std::string dir;
+
+  std::string BriefReport() const;
+};
+
+// The items [begin, end) of shard `shard_index` of `shard_count` over `count`.
+std::pair<int, int> ShardRange(int count, int shard_index, int shard_count);
+
+// The scene and camera of item `index` (exposed for tests and tools).
+struct SynthItem {
+  int index = 0;
+  std::uint64_t scene_seed = 0;
+  std::string kind;  // "photo" or "rig".
+  std::string target;  // "wall", "door", "window" (photo views) or "turn".
+  StereoCamera camera;
+};
+SynthItem PlanSynthItem(const DatasetSynthOptions& options, const Scene& scene, int index);
+std::uint64_t SynthSceneSeed(const DatasetSynthOptions& options, int index);
+
+DatasetSynthSummary SynthesizeDataset(const std::filesystem::path& dir, const DatasetSynthOptions& options,
+                                      const ProgressCallback& progress = {});
+
+}  // namespace asbuilt
+
+#endif  // ASBUILT_RENDER_DATASET_SYNTH_H_
