@@ -1,0 +1,197 @@
+#include "asbuilt/seg/seg_data.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "asbuilt/dataset/manifest.h"
+#include "asbuilt/dataset/pairs.h"
+#include "asbuilt/util/error.h"
+
+namespace asbuilt {
+namespace fs = std::filesystem;
+
+SegDataSplit SplitFromManifest(const fs::path& manifest_path) {
+  Manifest m = ReadManifest(manifest_path);
+  SegDataSplit split;
+  auto convert = [&](const std::vector<ManifestEntry>& entries, std::vector<SegSample>& out) {
+    for (const ManifestEntry& e : entries) {
+      out.push_back({e.image, m.Resolve(e.image), m.Resolve(e.label)});
+    }
+  };
+  convert(m.train, split.train);
+  convert(m.val, split.val);
+  convert(m.test, split.test);
+  split.source = fmt::format("manifest {} ({})", manifest_path.string(), m.ToString());
+  if (split.train.empty()) throw InputError(manifest_path.string(), "train", "no training pairs");
+  return split;
+}
+
+SegDataSplit SplitFromFolders(const fs::path& images_dir, const fs::path& labels_dir, double val_fraction,
+                              std::uint64_t seed) {
+  CheckArgument(val_fraction >= 0 && val_fraction < 1,
+                fmt::format("validation fraction = {}, must be in [0, 1)", val_fraction));
+  PairListing listing = labels_dir.empty() ? ListDatasetPairs(images_dir) : ListPairs(images_dir, labels_dir);
+  if (listing.pairs.empty()) {
+    throw InputError(images_dir.string(), "", "no (image, label) pairs found: " + listing.ToString());
+  }
+  std::vector<SegSample> all;
+  for (const ImagePair& p : listing.pairs) all.push_back({p.name, p.image, p.label});
+  std::mt19937_64 rng(seed);
+  std::shuffle(all.begin(), all.end(), rng);
+  size_t n_val = static_cast<size_t>(std::round(val_fraction * all.size()));
+  if (val_fraction > 0 && n_val == 0 && all.size() >= 2) n_val = 1;
+  SegDataSplit split;
+  split.val.assign(all.begin(), all.begin() + n_val);
+  split.train.assign(all.begin() + n_val, all.end());
+  split.source = labels_dir.empty() ? fmt::format("folder {} ({})", images_dir.string(), listing.ToString())
+                                    : fmt::format("folders {} + {} ({})", images_dir.string(),
+                                                  labels_dir.string(), listing.ToString());
+  return split;
+}
+
+cv::Mat ReadImageBgr(const fs::path& path) {
+  cv::Mat img = cv::imread(path.string(), cv::IMREAD_COLOR);
+  if (img.empty()) throw InputError(path.string(), "", "cannot read as an image");
+  return img;
+}
+
+SegPair ReadSegPair(const SegSample& sample, int num_classes) {
+  SegPair p;
+  p.bgr = ReadImageBgr(sample.image);
+  p.label = cv::imread(sample.label.string(), cv::IMREAD_UNCHANGED);
+  if (p.label.empty()) throw InputError(sample.label.string(), "", "cannot read as an image");
+  if (p.label.type() != CV_8UC1) {
+    throw InputError(sample.label.string(), "",
+                     fmt::format("label must be single-channel 8-bit (got {} channels, depth {})",
+                                 p.label.channels(), p.label.depth()));
+  }
+  if (p.label.size() != p.bgr.size()) {
+    throw InputError(sample.label.string(), "",
+                     fmt::format("label is {}x{} but image {} is {}x{}", p.label.cols, p.label.rows,
+                                 sample.image.string(), p.bgr.cols, p.bgr.rows));
+  }
+  for (int r = 0; r < p.label.rows; ++r) {
+    const std::uint8_t* l = p.label.ptr<std::uint8_t>(r);
+    for (int c = 0; c < p.label.cols; ++c) {
+      if (l[c] >= num_classes && l[c] != 255) {
+        throw InputError(sample.label.string(), "",
+                         fmt::format("label id {} at ({}, {}) is not a class (0..{}) or 255 (ignore)", l[c], c, r,
+                                     num_classes - 1));
+      }
+    }
+  }
+  return p;
+}
+
+void AugmentOptions::Check() const {
+  CheckArgument(scale_width_px > 0 && scale_height_px > 0,
+                fmt::format("AugmentOptions scale {}x{}, must be > 0", scale_width_px, scale_height_px));
+  CheckArgument(crop_width_px > 0 && crop_height_px > 0,
+                fmt::format("AugmentOptions crop {}x{}, must be > 0", crop_width_px, crop_height_px));
+  CheckArgument(ratio_min > 0 && ratio_min <= ratio_max,
+                fmt::format("AugmentOptions ratio range [{}, {}] is empty or not positive", ratio_min, ratio_max));
+}
+
+cv::Size FitSize(cv::Size image, int width_px, int height_px) {
+  double s = std::min(static_cast<double>(width_px) / image.width, static_cast<double>(height_px) / image.height);
+  return {std::max(1, static_cast<int>(std::lround(image.width * s))),
+          std::max(1, static_cast<int>(std::lround(image.height * s)))};
+}
+
+void AugmentPair(SegPair& pair, const AugmentOptions& o, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u01(0, 1);
+  auto U = [&](double a, double b) { return a + (b - a) * u01(rng); };
+  // Random resize around the base scale.
+  cv::Size fit = FitSize(pair.bgr.size(), o.scale_width_px, o.scale_height_px);
+  double ratio = U(o.ratio_min, o.ratio_max);
+  cv::Size size(std::max(1, static_cast<int>(fit.width * ratio)), std::max(1, static_cast<int>(fit.height * ratio)));
+  cv::resize(pair.bgr, pair.bgr, size, 0, 0, cv::INTER_LINEAR);
+  cv::resize(pair.label, pair.label, size, 0, 0, cv::INTER_NEAREST);
+  // Pad to the crop size (label 255 = ignore), then crop.
+  int pad_w = std::max(0, o.crop_width_px - size.width), pad_h = std::max(0, o.crop_height_px - size.height);
+  if (pad_w > 0 || pad_h > 0) {
+    cv::copyMakeBorder(pair.bgr, pair.bgr, 0, pad_h, 0, pad_w, cv::BORDER_CONSTANT, cv::Scalar(0, 0, 0));
+    cv::copyMakeBorder(pair.label, pair.label, 0, pad_h, 0, pad_w, cv::BORDER_CONSTANT, cv::Scalar(255));
+  }
+  cv::Rect crop;
+  for (int attempt = 0; attempt < 10; ++attempt) {
+    int x = static_cast<int>(U(0, pair.bgr.cols - o.crop_width_px + 1 - 1e-9));
+    int y = static_cast<int>(U(0, pair.bgr.rows - o.crop_height_px + 1 - 1e-9));
+    crop = cv::Rect(x, y, o.crop_width_px, o.crop_height_px);
+    // mmseg cat_max_ratio: accept unless one class covers too much.
+    int hist[256] = {0};
+    cv::Mat l = pair.label(crop);
+    for (int r = 0; r < l.rows; ++r) {
+      const std::uint8_t* p = l.ptr<std::uint8_t>(r);
+      for (int c = 0; c < l.cols; ++c) ++hist[p[c]];
+    }
+    int total = 0, best = 0, kinds = 0;
+    for (int k = 0; k < 255; ++k) {
+      total += hist[k];
+      best = std::max(best, hist[k]);
+      kinds += hist[k] > 0;
+    }
+    if (kinds > 1 && best < o.cat_max_ratio * total) break;
+  }
+  pair.bgr = pair.bgr(crop).clone();
+  pair.label = pair.label(crop).clone();
+  if (o.flip && u01(rng) < 0.5) {
+    cv::flip(pair.bgr, pair.bgr, 1);
+    cv::flip(pair.label, pair.label, 1);
+  }
+  if (o.photometric) {
+    cv::Mat f;
+    pair.bgr.convertTo(f, CV_32FC3);
+    if (u01(rng) < 0.5) f += cv::Scalar::all(U(-32, 32));  // Brightness.
+    bool contrast_first = u01(rng) < 0.5;
+    auto contrast = [&] {
+      if (u01(rng) < 0.5) f *= U(0.5, 1.5);
+    };
+    if (contrast_first) contrast();
+    cv::Mat clipped;
+    f.convertTo(clipped, CV_8UC3);
+    if (u01(rng) < 0.5 || u01(rng) < 0.5) {  // Saturation / hue in HSV.
+      cv::Mat hsv;
+      cv::cvtColor(clipped, hsv, cv::COLOR_BGR2HSV);
+      std::vector<cv::Mat> ch;
+      cv::split(hsv, ch);
+      if (u01(rng) < 0.5) ch[1].convertTo(ch[1], CV_8U, U(0.5, 1.5));
+      if (u01(rng) < 0.5) {
+        int dh = static_cast<int>(U(-9, 9));  // OpenCV hue is 0..179: ±18° in mmseg units.
+        cv::Mat h16;
+        ch[0].convertTo(h16, CV_16S);
+        h16 += dh + 180;
+        for (int r = 0; r < h16.rows; ++r) {
+          auto* p = h16.ptr<std::int16_t>(r);
+          for (int c = 0; c < h16.cols; ++c) p[c] = static_cast<std::int16_t>(p[c] % 180);
+        }
+        h16.convertTo(ch[0], CV_8U);
+      }
+      cv::merge(ch, hsv);
+      cv::cvtColor(hsv, clipped, cv::COLOR_HSV2BGR);
+    }
+    if (!contrast_first) {
+      clipped.convertTo(f, CV_32FC3);
+      contrast();
+      f.convertTo(clipped, CV_8UC3);
+    }
+    pair.bgr = clipped;
+  }
+  if (o.blur_noise) {
+    if (u01(rng) < 0.3) cv::GaussianBlur(pair.bgr, pair.bgr, cv::Size(0, 0), U(0.3, 1.5));
+    if (u01(rng) < 0.3) {
+      cv::Mat noise(pair.bgr.size(), CV_16SC3), img16;
+      cv::RNG cv_rng(rng());
+      cv_rng.fill(noise, cv::RNG::NORMAL, 0, U(2, 10));
+      pair.bgr.convertTo(img16, CV_16SC3);
+      img16 += noise;
+      img16.convertTo(pair.bgr, CV_8UC3);
+    }
+  }
+}
+
+}  // namespace asbuilt

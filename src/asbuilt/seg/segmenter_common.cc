@@ -1,0 +1,52 @@
+// Parts of segmenter.h that need no LibTorch (built with and without it).
+#include <fmt/format.h>
+
+#include "asbuilt/seg/segmenter.h"
+#include "asbuilt/util/error.h"
+
+namespace asbuilt {
+
+void SegmentOptions::Check() const {
+  CheckArgument(mode == "whole" || mode == "slide",
+                fmt::format("SegmentOptions.mode = '{}', must be 'whole' or 'slide'", mode));
+  CheckArgument(scale_width_px >= 0 && scale_height_px >= 0 && (scale_width_px == 0) == (scale_height_px == 0),
+                fmt::format("SegmentOptions scale {}x{}: give both or neither (0 = model's)", scale_width_px,
+                            scale_height_px));
+  CheckArgument(batch_size > 0, fmt::format("SegmentOptions.batch_size = {}, must be > 0", batch_size));
+}
+
+std::string SegmenterInfo::ToString() const {
+  return fmt::format("SegFormer {} ({:.2f}M params, {} classes), trained {} epoch{} at {}x{}", config.arch,
+                     parameters / 1e6, config.num_classes, epoch, epoch == 1 ? "" : "s", scale_width_px,
+                     scale_height_px);
+}
+
+cv::Mat LabelOverlay(const cv::Mat& bgr, const cv::Mat& labels, double alpha) {
+  CheckArgument(bgr.type() == CV_8UC3 && labels.type() == CV_8UC1 && bgr.size() == labels.size(),
+                "LabelOverlay: needs an 8-bit BGR image and 8-bit labels of the same size");
+  static const cv::Vec3b kColours[4] = {{0, 0, 0}, {255, 128, 0}, {0, 200, 0}, {0, 0, 255}};
+  cv::Mat out = bgr.clone();
+  for (int r = 0; r < out.rows; ++r) {
+    cv::Vec3b* o = out.ptr<cv::Vec3b>(r);
+    const std::uint8_t* l = labels.ptr<std::uint8_t>(r);
+    for (int c = 0; c < out.cols; ++c) {
+      if (l[c] == 0 || l[c] > 3) continue;
+      for (int k = 0; k < 3; ++k) {
+        o[c][k] = static_cast<std::uint8_t>((1 - alpha) * o[c][k] + alpha * kColours[l[c]][k]);
+      }
+    }
+  }
+  return out;
+}
+
+#ifdef ASBUILT_SEG_NO_TORCH
+std::unique_ptr<Segmenter> LoadSegmenter(const std::filesystem::path& path, const SegmentOptions&) {
+  throw Error(path.string() + ": this asbuilt was built without LibTorch (ASBUILT_WITH_TORCH=OFF)");
+}
+SegmenterInfo ReadSegmenterInfo(const std::filesystem::path& path) {
+  throw Error(path.string() + ": this asbuilt was built without LibTorch (ASBUILT_WITH_TORCH=OFF)");
+}
+bool SegmenterAvailable() { return false; }
+#endif
+
+}  // namespace asbuilt

@@ -1,0 +1,408 @@
+#include "asbuilt/seg/train.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <fmt/format.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <spdlog/spdlog.h>
+
+#include "asbuilt/seg/metrics.h"
+#include "asbuilt/seg/model_io.h"
+#include "asbuilt/util/error.h"
+#include "asbuilt/util/file.h"
+
+namespace asbuilt {
+namespace {
+namespace fs = std::filesystem;
+namespace F = torch::nn::functional;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+nlohmann::json Num(double x) { return std::isnan(x) ? nlohmann::json(nullptr) : nlohmann::json(x); }
+double FromNum(const nlohmann::json& j) { return j.is_null() ? kNaN : j.get<double>(); }
+
+EpochRecord RecordFromJson(const nlohmann::json& j) {
+  EpochRecord r;
+  r.epoch = j.at("epoch");
+  r.step = j.at("step");
+  r.lr = j.at("lr");
+  r.train_loss = FromNum(j.at("train_loss"));
+  r.val_miou = FromNum(j.at("val_mIoU"));
+  r.val_mfscore = FromNum(j.at("val_mFscore"));
+  r.val_mprecision = FromNum(j.at("val_mPrecision"));
+  r.val_mrecall = FromNum(j.at("val_mRecall"));
+  r.val_aacc = FromNum(j.at("val_aAcc"));
+  r.wall_s = j.at("wall_s");
+  return r;
+}
+
+// lr at `step` (0-based) of `total`: linear warm-up, then poly decay.
+double LearningRate(const TrainOptions& o, std::int64_t step, std::int64_t total) {
+  double poly = std::pow(std::max(0.0, 1.0 - static_cast<double>(step) / std::max<std::int64_t>(1, total)), o.poly_power);
+  double lr = o.lr * poly;
+  if (step < o.warmup_steps) {
+    double k = (1.0 - static_cast<double>(step) / o.warmup_steps) * (1.0 - o.warmup_ratio);
+    lr *= (1.0 - k);
+  }
+  return lr;
+}
+
+// Sample index for global draw k: a fresh permutation every pass over the
+// data, each seeded by (seed, pass), so resume reproduces the order.
+size_t SampleIndex(std::uint64_t seed, std::int64_t k, size_t n, std::vector<size_t>& perm, std::int64_t& perm_pass) {
+  std::int64_t pass = k / static_cast<std::int64_t>(n);
+  if (pass != perm_pass) {
+    perm.resize(n);
+    for (size_t i = 0; i < n; ++i) perm[i] = i;
+    std::mt19937_64 rng(seed * 1000003ull + static_cast<std::uint64_t>(pass));
+    std::shuffle(perm.begin(), perm.end(), rng);
+    perm_pass = pass;
+  }
+  return perm[static_cast<size_t>(k % static_cast<std::int64_t>(n))];
+}
+
+std::string CsvOf(const std::vector<EpochRecord>& history) {
+  std::string s = "epoch,step,lr,train_loss,val_mIoU,val_mFscore,val_mPrecision,val_mRecall,val_aAcc,wall_s\n";
+  auto f = [](double x) { return std::isnan(x) ? std::string("nan") : fmt::format("{:.6g}", x); };
+  for (const auto& r : history) {
+    s += fmt::format("{},{},{:.6g},{},{},{},{},{},{},{:.1f}\n", r.epoch, r.step, r.lr, f(r.train_loss),
+                     f(r.val_miou), f(r.val_mfscore), f(r.val_mprecision), f(r.val_mrecall), f(r.val_aacc),
+                     r.wall_s);
+  }
+  return s;
+}
+
+// Loss (left axis, blue) and validation mIoU (right axis 0..1, red) per epoch.
+void WritePlot(const fs::path& path, const std::vector<EpochRecord>& history) {
+  const int W = 640, H = 400, L = 60, R = 60, T = 30, B = 50;
+  cv::Mat img(H, W, CV_8UC3, cv::Scalar(255, 255, 255));
+  cv::rectangle(img, {L, T}, {W - R, H - B}, cv::Scalar(0, 0, 0), 1);
+  double max_loss = 1e-6;
+  for (const auto& r : history) {
+    if (!std::isnan(r.train_loss)) max_loss = std::max(max_loss, r.train_loss);
+  }
+  const int n = static_cast<int>(history.size());
+  auto X = [&](int i) { return L + (n <= 1 ? (W - L - R) / 2 : i * (W - L - R) / (n - 1)); };
+  auto Yl = [&](double v) { return static_cast<int>(H - B - v / max_loss * (H - T - B)); };
+  auto Ym = [&](double v) { return static_cast<int>(H - B - v * (H - T - B)); };
+  for (int i = 0; i < n; ++i) {
+    const auto& r = history[i];
+    if (!std::isnan(r.train_loss)) {
+      cv::circle(img, {X(i), Yl(r.train_loss)}, 3, cv::Scalar(200, 80, 0), cv::FILLED);
+      if (i > 0 && !std::isnan(history[i - 1].train_loss)) {
+        cv::line(img, {X(i - 1), Yl(history[i - 1].train_loss)}, {X(i), Yl(r.train_loss)}, cv::Scalar(200, 80, 0), 2);
+      }
+    }
+    if (!std::isnan(r.val_miou)) {
+      cv::circle(img, {X(i), Ym(r.val_miou)}, 3, cv::Scalar(0, 0, 220), cv::FILLED);
+      if (i > 0 && !std::isnan(history[i - 1].val_miou)) {
+        cv::line(img, {X(i - 1), Ym(history[i - 1].val_miou)}, {X(i), Ym(r.val_miou)}, cv::Scalar(0, 0, 220), 2);
+      }
+    }
+  }
+  const auto font = cv::FONT_HERSHEY_SIMPLEX;
+  cv::putText(img, "train loss", {L, T - 10}, font, 0.5, cv::Scalar(200, 80, 0), 1, cv::LINE_AA);
+  cv::putText(img, "val mIoU", {W - R - 80, T - 10}, font, 0.5, cv::Scalar(0, 0, 220), 1, cv::LINE_AA);
+  cv::putText(img, fmt::format("{:.3g}", max_loss), {5, T + 5}, font, 0.4, cv::Scalar(200, 80, 0), 1, cv::LINE_AA);
+  cv::putText(img, "0", {L - 15, H - B}, font, 0.4, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  cv::putText(img, "1.0", {W - R + 5, T + 5}, font, 0.4, cv::Scalar(0, 0, 220), 1, cv::LINE_AA);
+  cv::putText(img, fmt::format("epoch (1..{})", n), {W / 2 - 40, H - 15}, font, 0.5, cv::Scalar(0, 0, 0), 1,
+              cv::LINE_AA);
+  AtomicFile out(path);
+  if (!cv::imwrite(out.temp_path().string(), img)) throw Error(path.string() + ": cannot write plot");
+  out.Commit();
+}
+
+void WriteLogs(const fs::path& dir, const std::vector<EpochRecord>& history) {
+  WriteFileAtomic(dir / "log.csv", CsvOf(history));
+  std::string jsonl;
+  for (const auto& r : history) jsonl += r.ToJson().dump() + "\n";
+  WriteFileAtomic(dir / "log.jsonl", jsonl);
+  WritePlot(dir / "plot.png", history);
+}
+
+}  // namespace
+
+void TrainOptions::Check() const {
+  CheckArgument(!out_dir.empty(), "TrainOptions.out_dir is empty: give an output folder (-o)");
+  CheckArgument(!manifest.empty() || !images_dir.empty(),
+                "TrainOptions: give a manifest (--manifest) or an image folder (--images [--labels])");
+  CheckArgument(manifest.empty() || images_dir.empty(), "TrainOptions: give --manifest or --images, not both");
+  SegformerConfigFor(arch, num_classes);  // Throws for an unknown arch.
+  CheckArgument(epochs > 0, fmt::format("TrainOptions.epochs = {}, must be > 0", epochs));
+  CheckArgument(steps_per_epoch >= 0, fmt::format("TrainOptions.steps_per_epoch = {}, must be >= 0", steps_per_epoch));
+  CheckArgument(batch_size > 0, fmt::format("TrainOptions.batch_size = {}, must be > 0", batch_size));
+  CheckArgument(lr > 0, fmt::format("TrainOptions.lr = {}, must be > 0", lr));
+  CheckArgument(weight_decay >= 0, fmt::format("TrainOptions.weight_decay = {}, must be >= 0", weight_decay));
+  CheckArgument(head_lr_mult > 0, fmt::format("TrainOptions.head_lr_mult = {}, must be > 0", head_lr_mult));
+  CheckArgument(warmup_steps >= 0, fmt::format("TrainOptions.warmup_steps = {}, must be >= 0", warmup_steps));
+  CheckArgument(poly_power >= 0, fmt::format("TrainOptions.poly_power = {}, must be >= 0", poly_power));
+  CheckArgument(drop_path_rate >= 0 && drop_path_rate < 1,
+                fmt::format("TrainOptions.drop_path_rate = {}, must be in [0, 1)", drop_path_rate));
+  CheckArgument(val_max_images >= 0, fmt::format("TrainOptions.val_max_images = {}, must be >= 0", val_max_images));
+  CheckArgument(threads >= 0, fmt::format("TrainOptions.threads = {}, must be >= 0", threads));
+  augment.Check();
+}
+
+nlohmann::json TrainOptions::ToJson() const {
+  return {{"manifest", manifest.string()},
+          {"images_dir", images_dir.string()},
+          {"labels_dir", labels_dir.string()},
+          {"val_fraction", val_fraction},
+          {"out_dir", out_dir.string()},
+          {"arch", arch},
+          {"num_classes", num_classes},
+          {"epochs", epochs},
+          {"steps_per_epoch", steps_per_epoch},
+          {"batch_size", batch_size},
+          {"lr", lr},
+          {"weight_decay", weight_decay},
+          {"head_lr_mult", head_lr_mult},
+          {"warmup_steps", warmup_steps},
+          {"warmup_ratio", warmup_ratio},
+          {"poly_power", poly_power},
+          {"drop_path_rate", drop_path_rate},
+          {"augment",
+           {{"scale", {augment.scale_width_px, augment.scale_height_px}},
+            {"ratio_range", {augment.ratio_min, augment.ratio_max}},
+            {"crop", {augment.crop_width_px, augment.crop_height_px}},
+            {"cat_max_ratio", augment.cat_max_ratio},
+            {"flip", augment.flip},
+            {"photometric", augment.photometric},
+            {"blur_noise", augment.blur_noise}}},
+          {"val_max_images", val_max_images},
+          {"seed", seed},
+          {"init", init.string()},
+          {"resume", resume},
+          {"threads", threads}};
+}
+
+nlohmann::json EpochRecord::ToJson() const {
+  return {{"epoch", epoch},          {"step", step},
+          {"lr", lr},                {"train_loss", Num(train_loss)},
+          {"val_mIoU", Num(val_miou)}, {"val_mFscore", Num(val_mfscore)},
+          {"val_mPrecision", Num(val_mprecision)}, {"val_mRecall", Num(val_mrecall)},
+          {"val_aAcc", Num(val_aacc)}, {"wall_s", wall_s}};
+}
+
+std::string TrainSummary::BriefReport() const {
+  return fmt::format("{} epoch{} ({} steps, {} train / {} val pairs{}), loss {:.4f} → {:.4f}, best val mIoU {} "
+                     "(epoch {}), {:.0f} s{} → {}",
+                     epochs_done, epochs_done == 1 ? "" : "s", steps, train_pairs, val_pairs,
+                     resumed_from_epoch > 0 ? fmt::format(", resumed after epoch {}", resumed_from_epoch) : "",
+                     first_loss, last_loss, std::isnan(best_miou) ? "n/a" : fmt::format("{:.4f}", best_miou),
+                     best_epoch, wall_s, stopped ? " (stopped)" : "", out_dir.string());
+}
+
+TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallback& progress, std::stop_token stop) {
+  options_in.Check();
+  TrainOptions options = options_in;
+  const auto start_time = std::chrono::steady_clock::now();
+  SetTorchThreads(options.threads);
+  torch::manual_seed(options.seed);
+
+  SegDataSplit split = options.manifest.empty()
+                           ? SplitFromFolders(options.images_dir, options.labels_dir, options.val_fraction, options.seed)
+                           : SplitFromManifest(options.manifest);
+  if (options.val_max_images > 0 && static_cast<int>(split.val.size()) > options.val_max_images) {
+    split.val.resize(options.val_max_images);
+  }
+  spdlog::info("train: {} ({} train, {} val pairs)", split.source, split.train.size(), split.val.size());
+
+  SegformerConfig config = SegformerConfigFor(options.arch, options.num_classes);
+  config.drop_path_rate = options.drop_path_rate;
+  Segformer model(config);
+  const std::int64_t n_params = CountParameters(*model);
+
+  // Decoder parameters may get a larger lr (mmseg: head lr_mult 10).
+  std::vector<torch::Tensor> enc_params = model->encoder->parameters(), dec_params = model->decoder->parameters();
+  std::vector<torch::optim::OptimizerParamGroup> groups;
+  groups.emplace_back(enc_params, std::make_unique<torch::optim::AdamWOptions>(
+                                      torch::optim::AdamWOptions(options.lr).weight_decay(options.weight_decay)));
+  groups.emplace_back(dec_params, std::make_unique<torch::optim::AdamWOptions>(
+                                      torch::optim::AdamWOptions(options.lr * options.head_lr_mult)
+                                          .weight_decay(options.weight_decay)));
+  torch::optim::AdamW optimizer(std::move(groups), torch::optim::AdamWOptions(options.lr));
+
+  const fs::path out = options.out_dir;
+  fs::create_directories(out);
+  const fs::path last_path = out / "last.pt", best_path = out / "best.pt";
+
+  TrainSummary summary;
+  summary.out_dir = out;
+  summary.train_pairs = static_cast<int>(split.train.size());
+  summary.val_pairs = static_cast<int>(split.val.size());
+  summary.best_miou = kNaN;
+  double wall_offset = 0;
+  int start_epoch = 0;
+
+  if (options.resume && fs::exists(last_path)) {
+    nlohmann::json meta = ReadCheckpointMeta(last_path);
+    SegformerConfig saved = ConfigFromMeta(meta, last_path.string());
+    if (saved.arch != config.arch || saved.num_classes != config.num_classes) {
+      throw InvalidArgument(fmt::format("{} holds a {} model with {} classes, but --arch {} with {} classes was "
+                                        "asked; use another -o or --no-resume",
+                                        last_path.string(), saved.arch, saved.num_classes, config.arch,
+                                        config.num_classes));
+    }
+    LoadWeights(last_path, model, &optimizer, /*strict=*/true);
+    start_epoch = meta.value("epoch", 0);
+    for (const auto& r : meta.at("history")) summary.history.push_back(RecordFromJson(r));
+    if (!summary.history.empty()) wall_offset = summary.history.back().wall_s;
+    summary.best_miou = meta.contains("best_miou") ? FromNum(meta["best_miou"]) : kNaN;
+    summary.best_epoch = meta.value("best_epoch", 0);
+    summary.resumed_from_epoch = start_epoch;
+    spdlog::info("train: resuming {} after epoch {}", last_path.string(), start_epoch);
+  } else if (!options.init.empty()) {
+    int skipped = 0;
+    int loaded = LoadWeights(options.init, model, nullptr, /*strict=*/false, &skipped);
+    if (loaded == 0) throw InputError(options.init.string(), "", "no tensor matches the model (wrong architecture?)");
+    spdlog::info("train: initialised {} tensors from {} ({} skipped)", loaded, options.init.string(), skipped);
+  }
+
+  const int steps_per_epoch =
+      options.steps_per_epoch > 0
+          ? options.steps_per_epoch
+          : static_cast<int>((split.train.size() + options.batch_size - 1) / options.batch_size);
+  const std::int64_t total_steps = static_cast<std::int64_t>(steps_per_epoch) * options.epochs;
+
+  nlohmann::json resolved = options.ToJson();
+  resolved["config"] = ConfigToJson(config);
+  resolved["parameters"] = n_params;
+  resolved["data"] = {{"source", split.source},
+                      {"train_pairs", split.train.size()},
+                      {"val_pairs", split.val.size()},
+                      {"steps_per_epoch", steps_per_epoch},
+                      {"total_steps", total_steps}};
+  WriteFileAtomic(out / "options.json", resolved.dump(2) + "\n");
+
+  auto make_meta = [&](int epoch) {
+    nlohmann::json meta;
+    meta["format"] = kCheckpointFormat;
+    meta["config"] = ConfigToJson(config);
+    meta["scale"] = {options.augment.scale_width_px, options.augment.scale_height_px};
+    meta["crop"] = {options.augment.crop_width_px, options.augment.crop_height_px};
+    meta["epoch"] = epoch;
+    meta["step"] = static_cast<std::int64_t>(epoch) * steps_per_epoch;
+    meta["parameters"] = n_params;
+    meta["class_names"] = DefaultClassNames();
+    meta["options"] = resolved;
+    meta["best_miou"] = Num(summary.best_miou);
+    meta["best_epoch"] = summary.best_epoch;
+    nlohmann::json hist = nlohmann::json::array();
+    for (const auto& r : summary.history) hist.push_back(r.ToJson());
+    meta["history"] = hist;
+    return meta;
+  };
+
+  SegmenterInfo info;
+  info.config = config;
+  info.scale_width_px = options.augment.scale_width_px;
+  info.scale_height_px = options.augment.scale_height_px;
+  info.crop_width_px = options.augment.crop_width_px;
+  info.crop_height_px = options.augment.crop_height_px;
+  info.parameters = n_params;
+  auto validator = MakeSegmenter(model, info, {});
+
+  std::vector<size_t> perm;
+  std::int64_t perm_pass = -1;
+  for (int epoch = start_epoch + 1; epoch <= options.epochs; ++epoch) {
+    model->train();
+    double loss_sum = 0;
+    int loss_count = 0;
+    double lr = 0;
+    const std::string stage = fmt::format("train epoch {}/{}", epoch, options.epochs);
+    for (int s = 0; s < steps_per_epoch; ++s) {
+      if (stop.stop_requested()) {
+        summary.stopped = true;
+        break;
+      }
+      const std::int64_t step = static_cast<std::int64_t>(epoch - 1) * steps_per_epoch + s;
+      std::vector<cv::Mat> images, labels;
+      for (int b = 0; b < options.batch_size; ++b) {
+        const std::int64_t k = step * options.batch_size + b;
+        const SegSample& sample = split.train[SampleIndex(options.seed, k, split.train.size(), perm, perm_pass)];
+        SegPair pair = ReadSegPair(sample, options.num_classes);
+        std::mt19937_64 rng(options.seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(k));
+        AugmentPair(pair, options.augment, rng);
+        images.push_back(pair.bgr);
+        labels.push_back(pair.label);
+      }
+      lr = LearningRate(options, step, total_steps);
+      optimizer.param_groups()[0].options().set_lr(lr);
+      optimizer.param_groups()[1].options().set_lr(lr * options.head_lr_mult);
+
+      torch::Tensor x = ImagesToTensor(images), y = LabelsToTensor(labels);
+      torch::Tensor logits = model->forward(x);
+      logits = F::interpolate(logits, F::InterpolateFuncOptions()
+                                          .size(std::vector<int64_t>{y.size(1), y.size(2)})
+                                          .mode(torch::kBilinear)
+                                          .align_corners(false));
+      torch::Tensor loss = F::cross_entropy(logits, y, F::CrossEntropyFuncOptions().ignore_index(255));
+      optimizer.zero_grad();
+      loss.backward();
+      optimizer.step();
+      double l = loss.item<double>();
+      if (!std::isfinite(l)) {
+        throw Error(fmt::format("training diverged at epoch {} step {} (loss {}); lower --lr", epoch, s, l));
+      }
+      loss_sum += l;
+      ++loss_count;
+      const std::string detail = fmt::format("loss {:.4f} lr {:.2e}", loss_sum / loss_count, lr);
+      ReportProgress(progress, {.stage = stage, .done = s + 1, .total = steps_per_epoch, .detail = detail});
+    }
+    if (summary.stopped) break;  // The partial epoch is dropped: resume redoes it.
+
+    // Validation.
+    EpochRecord rec;
+    rec.epoch = epoch;
+    rec.step = static_cast<std::int64_t>(epoch) * steps_per_epoch;
+    rec.lr = lr;
+    rec.train_loss = loss_count > 0 ? loss_sum / loss_count : kNaN;
+    rec.val_miou = rec.val_mfscore = rec.val_mprecision = rec.val_mrecall = rec.val_aacc = kNaN;
+    if (!split.val.empty()) {
+      ConfusionMatrix cm(options.num_classes);
+      for (size_t i = 0; i < split.val.size(); ++i) {
+        SegPair pair = ReadSegPair(split.val[i], options.num_classes);
+        cm.Add(pair.label, validator->Segment(pair.bgr));
+        ReportProgress(progress, {.stage = fmt::format("validate epoch {}", epoch),
+                                  .done = static_cast<std::int64_t>(i + 1),
+                                  .total = static_cast<std::int64_t>(split.val.size())});
+      }
+      SegmentationMetrics m = ComputeMetrics(cm);
+      rec.val_miou = m.miou;
+      rec.val_mfscore = m.mfscore;
+      rec.val_mprecision = m.mprecision;
+      rec.val_mrecall = m.mrecall;
+      rec.val_aacc = m.aacc;
+    }
+    rec.wall_s = wall_offset + std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+    summary.history.push_back(rec);
+    bool best = !std::isnan(rec.val_miou) && (std::isnan(summary.best_miou) || rec.val_miou > summary.best_miou);
+    if (best || (split.val.empty() && epoch == options.epochs)) {
+      summary.best_miou = rec.val_miou;
+      summary.best_epoch = epoch;
+    }
+    // Checkpoints: best first, then last (the resume point) — both atomic.
+    if (best || split.val.empty()) SaveCheckpoint(best_path, model, nullptr, make_meta(epoch));
+    SaveCheckpoint(last_path, model, &optimizer, make_meta(epoch));
+    WriteLogs(out, summary.history);
+    spdlog::info("epoch {}: loss {:.4f}, val mIoU {:.4f}, lr {:.2e}", epoch, rec.train_loss, rec.val_miou, lr);
+  }
+
+  summary.epochs_done = summary.history.empty() ? 0 : summary.history.back().epoch;
+  summary.steps = static_cast<std::int64_t>(summary.epochs_done) * steps_per_epoch;
+  if (!summary.history.empty()) {
+    summary.first_loss = summary.history.front().train_loss;
+    summary.last_loss = summary.history.back().train_loss;
+    summary.wall_s = summary.history.back().wall_s;
+  }
+  return summary;
+}
+
+}  // namespace asbuilt
