@@ -13,6 +13,9 @@ std::span<const Command> Commands() {
        &RunValidateCommand},
       {"render", "render a scene's stereo views into a capture (RGB, labels, ID map, depth, truth)",
        &RunRenderCommand},
+      {"plan", "floor plan from labelled points: walls, openings, dimensions → JSON, SVG, DXF, PDF, PNG",
+       &RunPlanCommand},
+      {"eval", "score results against the truth (eval plan: a floor plan vs truth.json)", &RunEvalCommand},
       {"version", "print the version", &RunVersionCommand},
   };
   return kCommands;

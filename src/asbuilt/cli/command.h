@@ -47,6 +47,8 @@ int RunValidateCommand(int argc, char** argv);
 int RunRenderCommand(int argc, char** argv);
 // `dataset synth` (dataset_synth_command.cc): adds the subcommand, whose callback runs it.
 CLI::App* AddDatasetSynthSubcommand(CLI::App& dataset_app);
+int RunEvalCommand(int argc, char** argv);
+int RunPlanCommand(int argc, char** argv);
 int RunVersionCommand(int argc, char** argv);
 
 }  // namespace asbuilt::cli
