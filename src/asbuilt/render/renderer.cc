@@ -105,9 +105,19 @@ struct SceneRenderer::Impl {
 
   // Direct irradiance at p (normal n) from area lights and suns, one shadow
   // ray each; adds a Blinn–Phong highlight towards `to_eye` into *specular.
+  // With `one_light`, a single light drawn at random stands for all of them
+  // (weighted by their count): cheaper, noisier — for bounce points.
   Vec3f Direct(const Vec3f& p, const Vec3f& n, const Vec3f* to_eye, float roughness, Rng& rng,
-               Vec3f* specular) const {
+               Vec3f* specular, bool one_light = false) const {
     Vec3f e = Vec3f::Zero();
+    const int lights = static_cast<int>(mesh.area_lights.size() + mesh.suns.size());
+    int only = -1;
+    float weight = 1.0f;
+    if (one_light && lights > 1) {
+      only = std::min(lights - 1, static_cast<int>(rng.Next() * lights));
+      weight = static_cast<float>(lights);
+    }
+    int light_index = -1;
     const Vec3f origin = p + n * kEpsilon;
     float shininess = 0, ks = 0;
     if (to_eye != nullptr) {
@@ -116,6 +126,7 @@ struct SceneRenderer::Impl {
       ks = 0.04f + 0.25f * (1.0f - roughness) * (1.0f - roughness);
     }
     for (const AreaLight& light : mesh.area_lights) {
+      if (only >= 0 && ++light_index != only) continue;
       Vec3f q = (light.centre + (2.0 * rng.Next() - 1.0) * light.half_u +
                  (2.0 * rng.Next() - 1.0) * light.half_v)
                     .cast<float>();
@@ -138,6 +149,7 @@ struct SceneRenderer::Impl {
       }
     }
     for (const SunLight& sun : mesh.suns) {
+      if (only >= 0 && ++light_index != only) continue;
       Vec3f s = sun.direction_to_sun.cast<float>();
       Vec3f t, b;
       Basis(s, &t, &b);
@@ -155,7 +167,7 @@ struct SceneRenderer::Impl {
                                 std::pow(std::max(n.dot(h), 0.0f), shininess));
       }
     }
-    return e + Vec3f::Constant(static_cast<float>(0.5 * mesh.environment.ambient) * kAmbientScale);
+    return weight * e + Vec3f::Constant(static_cast<float>(0.5 * mesh.environment.ambient) * kAmbientScale);
   }
 
   // Irradiance at p from one diffuse bounce (cosine-sampled: E ≈ π·L).
@@ -168,7 +180,7 @@ struct SceneRenderer::Impl {
     if (o.emission.squaredNorm() > 0) return Vec3f::Zero();  // Counted as direct light.
     Vec3f q = p + n * kEpsilon + d * hit.t;
     Vec3f nq = hit.geometric_normal.dot(d) > 0 ? Vec3f(-hit.geometric_normal) : hit.geometric_normal;
-    Vec3f e = Albedo(o, q, nq).cwiseProduct(Direct(q, nq, nullptr, 1.0f, rng, nullptr));
+    Vec3f e = Albedo(o, q, nq).cwiseProduct(Direct(q, nq, nullptr, 1.0f, rng, nullptr, true));
     float lum = Luminance(e);
     if (lum > 4.0f) e *= 4.0f / lum;  // Clamp fireflies (as Cycles' indirect clamp).
     return e;
