@@ -1,0 +1,68 @@
+// CLI tests of `asbuilt train`, `segment`, `eval seg` and `experiment`
+// on tiny toy-room sets (seconds, one thread).
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "asbuilt/cli/cli_test_util.h"
+
+namespace asbuilt {
+namespace {
+namespace fs = std::filesystem;
+using testing_util::RunAsbuilt;
+
+fs::path TempDir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / fmt::format("asbuilt_cli_seg_{}_{}", name, ::getpid());
+  fs::remove_all(d);
+  return d;
+}
+
+TEST(SegCommands, TrainSegmentAndEvaluateToyRooms) {
+  fs::path d = TempDir("flow");
+  auto r = RunAsbuilt(fmt::format("experiment toy-rooms -o {} --count 8 --width 64 --height 48 --seed 2", (d / "toy").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  r = RunAsbuilt(fmt::format("train --images {} -o {} --arch tiny --epochs 2 --steps-per-epoch 3 --scale 64x48 "
+                             "--crop 48x48 --threads 1 --lr 1e-3",
+                             (d / "toy").string(), (d / "run").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("2 epochs"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(d / "run" / "best.pt"));
+  EXPECT_TRUE(fs::exists(d / "run" / "options.json"));
+  r = RunAsbuilt(fmt::format("segment --model {} {} -o {} --overlay", (d / "run" / "best.pt").string(),
+                             (d / "toy" / "images").string(), (d / "seg").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_TRUE(fs::exists(d / "seg" / "00000.png"));
+  EXPECT_TRUE(fs::exists(d / "seg" / "00007_overlay.png"));
+  r = RunAsbuilt(fmt::format("eval seg --model {} --images {} --json {}", (d / "run" / "best.pt").string(),
+                             (d / "toy").string(), (d / "m.json").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("mIoU"), std::string::npos);
+  EXPECT_TRUE(fs::exists(d / "m.json"));
+}
+
+TEST(SegCommands, BadInputsExitWithClearErrors) {
+  fs::path d = TempDir("bad");
+  fs::create_directories(d);
+  std::FILE* f = std::fopen((d / "fake.pt").c_str(), "w");
+  std::fputs("not a checkpoint", f);
+  std::fclose(f);
+  auto r = RunAsbuilt(fmt::format("segment --model {} {} -o {}", (d / "fake.pt").string(), (d / "fake.pt").string(),
+                                  (d / "out").string()));
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_NE(r.out.find("fake.pt"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(d / "out"));
+  r = RunAsbuilt("train --images /nonexistent -o " + (d / "run").string());
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  r = RunAsbuilt("train --arch b7 --images x -o y");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  r = RunAsbuilt("segment");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+}
+
+}  // namespace
+}  // namespace asbuilt

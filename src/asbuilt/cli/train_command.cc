@@ -1,0 +1,96 @@
+// `asbuilt train` — trains SegFormer on a manifest or image/label folders
+// (seg/train.h): checkpoints, logs and a plot in -o, resumable after a kill.
+
+#include <cstdio>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "asbuilt/cli/command.h"
+#include "asbuilt/seg/segformer_config.h"
+#include "asbuilt/seg/train.h"
+#include "asbuilt/util/error.h"
+#include "asbuilt/util/progress.h"
+
+namespace asbuilt::cli {
+namespace {
+
+// "256x192" → (256, 192); throws CLI::ValidationError naming the flag.
+void ParseSize(const std::string& text, const std::string& flag, int& w, int& h) {
+  if (text.empty()) return;
+  int a = 0, b = 0;
+  char x = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d", &a, &x, &b) != 3 || (x != 'x' && x != 'X') || a <= 0 || b <= 0) {
+    throw CLI::ValidationError(flag, fmt::format("expected WIDTHxHEIGHT (e.g. 256x192), got '{}'", text));
+  }
+  w = a;
+  h = b;
+}
+
+}  // namespace
+
+int RunTrainCommand(int argc, char** argv) {
+  CLI::App app(
+      "Train the SegFormer segmenter (walls, doors, windows) with AdamW, poly schedule, augmentation,\n"
+      "validation each epoch and atomic checkpoints; re-running the same command resumes after a kill.\n"
+      "Writes OUT/options.json, last.pt, best.pt, log.csv, log.jsonl, plot.png.",
+      "asbuilt train");
+  AddCommonFlags(app);
+  TrainOptions o;
+  std::string manifest, images, labels, out, init, scale, crop;
+  bool no_resume = false, no_flip = false, no_photometric = false, no_blur_noise = false;
+  app.add_option("--manifest", manifest, "dataset manifest.json (train/val pairs)");
+  app.add_option("--images", images, "image folder (or a dataset folder when --labels is absent)");
+  app.add_option("--labels", labels, "label folder (PNG, same stems as the images)");
+  app.add_option("-o,--out", out, "output folder for checkpoints and logs")->required();
+  app.add_option("--arch", o.arch, "architecture: b0, b1, b2, tiny")->capture_default_str();
+  app.add_option("--epochs", o.epochs, "epochs (paper: 50)")->capture_default_str();
+  app.add_option("--steps-per-epoch", o.steps_per_epoch, "steps per epoch; 0 = one pass over the data")
+      ->capture_default_str();
+  app.add_option("--batch", o.batch_size, "batch size (paper: 2)")->capture_default_str();
+  app.add_option("--lr", o.lr, "AdamW learning rate (paper: 1e-4)")->capture_default_str();
+  app.add_option("--weight-decay", o.weight_decay, "AdamW weight decay (paper: 1e-3)")->capture_default_str();
+  app.add_option("--head-lr-mult", o.head_lr_mult, "decoder learning-rate multiplier (mmseg: 10)")
+      ->capture_default_str();
+  app.add_option("--warmup", o.warmup_steps, "linear warm-up steps")->capture_default_str();
+  app.add_option("--poly-power", o.poly_power, "poly schedule power")->capture_default_str();
+  app.add_option("--drop-path", o.drop_path_rate, "stochastic depth rate")->capture_default_str();
+  app.add_option("--scale", scale, "base scale WxH images are fitted to (default 256x192)");
+  app.add_option("--crop", crop, "training crop WxH (default 192x192)");
+  app.add_option("--ratio-min", o.augment.ratio_min, "random resize ratio, min")->capture_default_str();
+  app.add_option("--ratio-max", o.augment.ratio_max, "random resize ratio, max")->capture_default_str();
+  app.add_flag("--no-flip", no_flip, "no horizontal flips");
+  app.add_flag("--no-photometric", no_photometric, "no photometric distortion");
+  app.add_flag("--no-blur-noise", no_blur_noise, "no blur / noise augmentation");
+  app.add_option("--val-fraction", o.val_fraction, "folders: share held out for validation")->capture_default_str();
+  app.add_option("--val-max", o.val_max_images, "validate on at most N images (0 = all)")->capture_default_str();
+  app.add_option("--seed", o.seed, "seed for split, order, augmentation, init")->capture_default_str();
+  app.add_option("--init", init, "initial weights (an asbuilt checkpoint; mismatched tensors skipped)");
+  app.add_flag("--no-resume", no_resume, "start afresh even if OUT/last.pt exists");
+  app.add_option("--threads", o.threads, "LibTorch threads (0 = every core)")->capture_default_str();
+  Parse(app, argc, argv);
+
+  o.manifest = manifest;
+  o.images_dir = images;
+  o.labels_dir = labels;
+  o.out_dir = out;
+  o.init = init;
+  o.resume = !no_resume;
+  o.augment.flip = !no_flip;
+  o.augment.photometric = !no_photometric;
+  o.augment.blur_noise = !no_blur_noise;
+  ParseSize(scale, "--scale", o.augment.scale_width_px, o.augment.scale_height_px);
+  ParseSize(crop, "--crop", o.augment.crop_width_px, o.augment.crop_height_px);
+
+#ifdef ASBUILT_SEG_NO_TORCH
+  throw Error("asbuilt train: this build has no LibTorch (configured with ASBUILT_WITH_TORCH=OFF)");
+#else
+  ProgressPrinter printer;
+  TrainSummary summary = TrainSegmenter(o, printer.Callback());
+  printer.Finish();
+  fmt::print("{}\n", summary.BriefReport());
+  return 0;
+#endif
+}
+
+}  // namespace asbuilt::cli
