@@ -240,6 +240,7 @@ std::vector<Line> FindLines(const std::vector<Pt>& pts, const PlanOptions& o, st
   std::iota(remaining.begin(), remaining.end(), 0);
   std::vector<Line> lines;
   int failures = 0;
+  double best_density = 0;  // Points per metre of the densest wall so far.
   while (static_cast<int>(remaining.size()) >= o.min_wall_points && lines.size() < 64 && failures < 4) {
     // Score hypotheses on a random subset.
     std::vector<int> subset = remaining;
@@ -308,6 +309,11 @@ std::vector<Line> FindLines(const std::vector<Pt>& pts, const PlanOptions& o, st
       if (static_cast<int>(run.size()) < o.min_wall_points) continue;
       Line piece = FitLine(pts, run, std::nullopt, o.max_independent_points, o.max_gap_m);
       if (piece.t_max - piece.t_min < o.min_wall_length_m) continue;
+      // Outliers that happen to line up are far sparser than any wall.
+      double density = run.size() / (piece.t_max - piece.t_min);
+      if (density < o.min_relative_density * best_density) continue;
+      if (run.size() < o.min_wall_fraction * pts.size()) continue;
+      best_density = std::max(best_density, density);
       lines.push_back(std::move(piece));
       accepted = true;
     }
@@ -459,12 +465,19 @@ void MergeCollinear(const std::vector<Pt>& pts, std::vector<Line>& lines, const 
     merged = false;
     for (size_t a = 0; a < lines.size() && !merged; ++a) {
       for (size_t b = a + 1; b < lines.size() && !merged; ++b) {
-        if (!Collinear(lines[a], lines[b], o)) continue;
         Vec2 dir = lines[a].Dir();
         double b0 = dir.dot(lines[b].Start() - lines[a].c), b1 = dir.dot(lines[b].End() - lines[a].c);
         if (b0 > b1) std::swap(b0, b1);
         double gap = std::max(b0 - lines[a].t_max, lines[a].t_min - b1);
-        if (gap > o.max_gap_m) continue;
+        // Two fits of one wall's points (crossing at a small angle through
+        // the same stretch) are duplicates even when their angles differ more
+        // than collinear pieces may.
+        double overlap = std::min(lines[a].t_max, b1) - std::max(lines[a].t_min, b0);
+        double shorter = std::min(lines[a].t_max - lines[a].t_min, b1 - b0);
+        bool duplicate = std::abs(AngleDiffModPi(lines[a].theta, lines[b].theta)) < DegToRad(15.0) &&
+                         overlap > 0.5 * shorter && std::abs(lines[a].Distance(lines[b].c)) < o.max_inlier_distance_m &&
+                         std::abs(lines[b].Distance(lines[a].c)) < o.max_inlier_distance_m;
+        if (!duplicate && (!Collinear(lines[a], lines[b], o) || gap > o.max_gap_m)) continue;
         std::vector<int> all = lines[a].members;
         all.insert(all.end(), lines[b].members.begin(), lines[b].members.end());
         bool snapped = lines[a].var_theta > 0 && lines[a].members.size() >= lines[b].members.size();
@@ -498,6 +511,10 @@ void PlanOptions::Check() const {
   CheckArgument(min_wall_points >= 3, fmt::format("PlanOptions.min_wall_points = {}, must be >= 3", min_wall_points));
   positive(min_wall_length_m, "min_wall_length_m");
   positive(max_gap_m, "max_gap_m");
+  CheckArgument(min_wall_fraction >= 0 && min_wall_fraction < 0.2,
+                fmt::format("PlanOptions.min_wall_fraction = {}, must be in [0, 0.2)", min_wall_fraction));
+  CheckArgument(min_relative_density >= 0 && min_relative_density < 1,
+                fmt::format("PlanOptions.min_relative_density = {}, must be in [0, 1)", min_relative_density));
   CheckArgument(ransac_iterations >= 1,
                 fmt::format("PlanOptions.ransac_iterations = {}, must be >= 1", ransac_iterations));
   CheckArgument(ransac_subset_points >= 10,
@@ -595,6 +612,14 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
   LogLines("RANSAC", lines);
   CompetitiveRefit(walls_pts, lines, o);
   MergeCollinear(walls_pts, lines, o);
+  {
+    double best = 0;
+    for (const Line& l : lines) best = std::max(best, l.members.size() / std::max(0.1, l.t_max - l.t_min));
+    std::erase_if(lines, [&](const Line& l) {
+      return l.members.size() / std::max(0.1, l.t_max - l.t_min) < o.min_relative_density * best ||
+             l.members.size() < o.min_wall_fraction * walls_pts.size();
+    });
+  }
   LogLines("refit + merge", lines);
 
   // 3. Dominant directions, Manhattan frame, snapping.
@@ -753,8 +778,11 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
   for (const Line& l : ring) height = std::max(height, l.z_top);
 
   // ± by numerical propagation of each line's (θ, ρ) variances.
+  // Propagation works on copies without the member lists (cheap to copy).
+  std::vector<Line> light = ring;
+  for (Line& l : light) l.members = {};
   auto perturbed = [&](int line, int param, double h) {
-    std::vector<Line> L = ring;
+    std::vector<Line> L = light;
     if (param == 0) {
       L[line].theta += h;
     } else {

@@ -41,9 +41,11 @@ struct PlanOptions {
   double inlier_sigmas = 3.0;         // A point is also an inlier within this many of its own σ…
   double max_inlier_distance_m = 0.3; // …but never farther than this from the line.
   double nominal_sigma_m = 0.01;      // σ for points whose file gives 0 (paper-style files).
-  int min_wall_points = 30;           // Fewer inliers: not a wall (outliers, clutter).
+  int min_wall_points = 30;           // Fewer inliers: not a wall (outliers, clutter)…
+  double min_wall_fraction = 0.005;   // …nor fewer than this fraction of all wall points.
   double min_wall_length_m = 0.3;     // Shorter point runs are not walls.
   double max_gap_m = 1.0;             // A line's points split into separate walls at longer gaps.
+  double min_relative_density = 0.05; // Walls need this fraction of the densest wall's points per metre.
   int ransac_iterations = 250;        // Hypotheses per line; more = surer on clutter, slower.
   int ransac_subset_points = 3000;    // Hypotheses are scored on a random subset of this size.
   double snap_sigmas = 3.0;           // Snap to a dominant direction within this many σ of the fit…

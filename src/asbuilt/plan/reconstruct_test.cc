@@ -73,6 +73,14 @@ Plan Trapezoid() {
   return p;
 }
 
+// Eight walls, two corners cut out; every wall visible from the centre.
+Plan EightWalls() {
+  Plan p = PolygonPlan({{0, 0}, {5.5, 0}, {5.5, 1}, {7, 1}, {7, 5}, {1.2, 5}, {1.2, 4}, {0, 4}});
+  AddOpening(p, OpeningKind::kDoor, 0, 3.0, 1.0, 2.1, 0.0);
+  AddOpening(p, OpeningKind::kWindow, 4, 1.5, 1.5, 1.4, 0.9);
+  return p;
+}
+
 struct Pooled {
   RelativeErrors length, width;
   std::vector<double> area;
@@ -131,7 +139,8 @@ TEST(ReconstructPlan, MeetsTheAccuracyTargetsOnNoisyRoomsWithOutliers) {
                              {"L", LShape()},
                              {"rect rotated 23°", Rotated(Rectangle(), 23, {1.5, -2})},
                              {"L rotated -61°", Rotated(LShape(), -61, {-3, 4})},
-                             {"trapezoid rotated 7°", Rotated(Trapezoid(), 7, {0, 0})}};
+                             {"trapezoid rotated 7°", Rotated(Trapezoid(), 7, {0, 0})},
+                             {"8 walls rotated 40°", Rotated(EightWalls(), 40, {2, 2})}};
   Pooled pool;
   for (const Case& c : cases) {
     for (std::uint64_t seed = 1; seed <= 6; ++seed) {
