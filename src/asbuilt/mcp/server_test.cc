@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <sstream>
+#include <streambuf>
+#include <thread>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -184,6 +186,118 @@ TEST_F(ServerTest, ServeMcpWritesOnlyProtocolLinesAndSurvivesGarbage) {
   EXPECT_EQ(summary.tool_calls, 3u);
   EXPECT_EQ(summary.protocol_version, "2025-06-18");
   EXPECT_THAT(summary.BriefReport(), HasSubstr("3 tool calls"));
+}
+
+// An input stream over a pipe's read end, so a test can "disconnect" by
+// closing the write end while the server works.
+class FdInBuf : public std::streambuf {
+ public:
+  explicit FdInBuf(int fd) : fd_(fd) {}
+
+ protected:
+  int_type underflow() override {
+    ssize_t n = ::read(fd_, buf_, sizeof buf_);
+    if (n <= 0) return traits_type::eof();
+    setg(buf_, buf_, buf_ + n);
+    return traits_type::to_int_type(buf_[0]);
+  }
+
+ private:
+  int fd_;
+  char buf_[4096];
+};
+
+// An output stream that hands each complete line to a hook.
+class LineHookBuf : public std::streambuf {
+ public:
+  explicit LineHookBuf(std::function<void(const std::string&)> hook) : hook_(std::move(hook)) {}
+  std::vector<std::string> lines;
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (c == '\n') {
+      lines.push_back(line_);
+      hook_(line_);
+      line_.clear();
+    } else if (c != traits_type::eof()) {
+      line_.push_back(static_cast<char>(c));
+    }
+    return c;
+  }
+
+ private:
+  std::function<void(const std::string&)> hook_;
+  std::string line_;
+};
+
+TEST_F(ServerTest, ClientLeavingMidRenderLeavesNoPartialCapture) {
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  std::string requests =
+      Initialize() + "\n" + R"({"jsonrpc":"2.0","method":"notifications/initialized"})" + "\n" +
+      Call(2, "add_room", {{"width_m", 4}, {"depth_m", 3}}) + "\n" +
+      Call(3, "place_rig", {{"step_deg", 30}, {"width_px", 48}, {"height_px", 32}}) + "\n" +
+      Request(4, "tools/call",
+              {{"name", "render_capture"},
+               {"arguments", {{"output", "captures/gone"}, {"samples_per_pixel", 1}}},
+               {"_meta", {{"progressToken", "tok"}}}}) + "\n";
+  ASSERT_EQ(::write(fds[1], requests.data(), requests.size()), static_cast<ssize_t>(requests.size()));
+  int progress_seen = 0;
+  LineHookBuf out_buf([&](const std::string& line) {
+    nlohmann::json m = nlohmann::json::parse(line);
+    if (m.value("method", "") == "notifications/progress" && m["params"]["progress"] >= 1) {
+      EXPECT_EQ(m["params"]["progressToken"], "tok");
+      EXPECT_EQ(m["params"]["total"], 12);
+      if (++progress_seen == 1) {
+        ::close(fds[1]);  // The client goes away mid-render…
+        // …and the reader thread sees it before the next view is done.
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      }
+    }
+  });
+  FdInBuf in_buf(fds[0]);
+  std::istream in(&in_buf);
+  std::ostream out(&out_buf);
+  McpSessionSummary summary = ServeMcp(options_, in, out);
+  ::close(fds[0]);
+  EXPECT_GE(progress_seen, 1);
+  EXPECT_LT(progress_seen, 12);
+  // The render stopped, and neither the capture nor its temp folder is left.
+  EXPECT_FALSE(fs::exists(root_ / "ws" / "captures" / "gone"));
+  for (const auto& e : fs::recursive_directory_iterator(root_ / "ws")) {
+    EXPECT_FALSE(e.path().filename().string().starts_with(kWorkspaceTempPrefix)) << e.path();
+  }
+  nlohmann::json last = nlohmann::json::parse(out_buf.lines.back());
+  EXPECT_EQ(last["id"], 4);
+  EXPECT_EQ(last["result"]["isError"], true);
+  EXPECT_EQ(summary.tool_calls, 3u);
+}
+
+TEST_F(ServerTest, ProgressNotificationsPrecedeTheReply) {
+  std::stringstream in, out;
+  in << Initialize() << "\n"
+     << Call(2, "add_room", {{"width_m", 4}, {"depth_m", 3}}) << "\n"
+     << Call(3, "place_rig", {{"yaws_deg", {0, 120, 240}}, {"width_px", 48}, {"height_px", 32}}) << "\n";
+  McpServer server(options_);
+  for (std::string line; std::getline(in, line);) server.HandleText(line);
+  auto messages = server.HandleText(
+      Request(4, "tools/call",
+              {{"name", "render_capture"},
+               {"arguments", {{"output", "cap"}, {"samples_per_pixel", 1}}},
+               {"_meta", {{"progressToken", 99}}}}));
+  ASSERT_GE(messages.size(), 2u);
+  double last = -1;
+  for (std::size_t i = 0; i + 1 < messages.size(); ++i) {
+    EXPECT_EQ(messages[i]["method"], "notifications/progress");
+    EXPECT_EQ(messages[i]["params"]["progressToken"], 99);
+    double p = messages[i]["params"]["progress"];
+    EXPECT_GT(p, last);  // Progress increases.
+    last = p;
+  }
+  EXPECT_EQ(last, 3);  // The final update is always sent.
+  EXPECT_EQ(messages.back()["id"], 4);
+  EXPECT_EQ(messages.back()["result"]["isError"], false) << messages.back().dump();
+  EXPECT_TRUE(fs::exists(root_ / "ws" / "cap" / "capture.json"));
 }
 
 TEST(McpServerOptions, ChecksNameTheField) {

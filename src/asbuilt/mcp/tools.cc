@@ -9,12 +9,15 @@
 #include <new>
 
 #include <fmt/format.h>
+#include <opencv2/imgcodecs.hpp>
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/mcp/jsonrpc.h"
 #include "asbuilt/mcp/plan_preview.h"
+#include "asbuilt/render/capture_render.h"
+#include "asbuilt/render/renderer.h"
 #include "asbuilt/scene/scene_json.h"
 #include "asbuilt/scene/scene_text.h"
 #include "asbuilt/util/base64.h"
@@ -611,6 +614,8 @@ ToolResult SceneTools::Call(std::string_view name, const nlohmann::json& argumen
   try {
     ToolArgs args = ParseToolArgs(spec.fields, arguments);
     return (this->*handlers_[index])(args, ctx);
+  } catch (const Cancelled& e) {
+    return ToolResult::Failure(e.what());
   } catch (const ToolArgsError& e) {
     return ToolResult::Failure(fmt::format("{}: invalid arguments (nothing was changed):{}",
                                            spec.name, Bullets(e.problems())));
@@ -1131,10 +1136,7 @@ ToolResult SceneTools::GetScene(const ToolArgs&, const ToolCallContext&) {
 }
 
 ToolResult SceneTools::RenderPreview(const ToolArgs& a, const ToolCallContext&) {
-  if (a.String("view") == "camera") {
-    throw Error("view \"camera\" needs the renderer, which is not built into this server yet; "
-                "use view \"plan\"");
-  }
+  if (a.String("view") == "camera") return CameraPreview(a);
   PlanPreviewOptions options{.width_px = static_cast<int>(a.Integer("width_px"))};
   options.max_height_px = std::max(options.width_px * 2, 256);
   options.margin_px = std::min(48, options.width_px / 8);
@@ -1147,10 +1149,100 @@ ToolResult SceneTools::RenderPreview(const ToolArgs& a, const ToolCallContext&) 
   return r;
 }
 
-ToolResult SceneTools::RenderCapture(const ToolArgs& a, const ToolCallContext&) {
-  (void)a;
-  throw Error("the renderer is not built into this server yet, so captures cannot be rendered; "
-              "render_preview (view plan) and export_plan work");
+ToolResult SceneTools::RenderCapture(const ToolArgs& a, const ToolCallContext& ctx) {
+  const std::string output = a.String("output");
+  const bool overwrite = a.Bool("overwrite");
+  fs::path final_dir = workspace_.Resolve(output, "arguments.output");
+  std::error_code ec;
+  if (fs::exists(fs::symlink_status(final_dir, ec)) && !overwrite) {
+    throw InvalidArgument(fmt::format(
+        "arguments.output: \"{}\" already exists; choose another name or pass overwrite: true",
+        output));
+  }
+  std::vector<Problem> problems = ValidateScene(scene_);
+  if (!problems.empty()) {
+    std::vector<std::string> lines;
+    for (const Problem& p : problems) lines.push_back(ProblemText(p));
+    throw InvalidArgument(fmt::format("the scene is not valid yet, fix these first:{}",
+                                      Bullets(lines)));
+  }
+  CheckSceneLimits(scene_);
+  if (CountViews(scene_) == 0) {
+    throw InvalidArgument("the scene has no views to render: call place_rig first");
+  }
+  CaptureRenderOptions options;
+  options.render.samples_per_pixel = static_cast<int>(a.Integer("samples_per_pixel"));
+  options.render.seed = scene_.seed;
+  options.resume = false;
+  options.Check();
+
+  // Render into a hidden temp folder; it becomes `output` only when complete,
+  // and is removed if anything stops the render (error, cancel, disconnect).
+  TempOutputDir temp(workspace_, final_dir);
+  auto progress = [&ctx](const ProgressUpdate& u) {
+    if (ctx.stop.stop_requested()) throw Cancelled("render_capture cancelled; nothing was written");
+    ReportProgress(ctx.progress, u);
+  };
+  progress({"render", 0, static_cast<std::int64_t>(CountViews(scene_)), ""});
+  CaptureRenderSummary summary = ::asbuilt::RenderCapture(scene_, temp.path(), options, progress);
+  if (ctx.stop.stop_requested()) throw Cancelled("render_capture cancelled; nothing was written");
+  WriteScene(scene_, temp.path() / "scene.json");
+  temp.Commit(overwrite);
+  return ToolResult::Text(fmt::format(
+      "Rendered {} view{} in {:.1f} s into {}/: capture.json, truth.json, scene.json, left/, "
+      "right/, labels/ (0 background, 1 wall, 2 door, 3 window), depth/ (uint16 mm), idmap/.",
+      summary.views, summary.views == 1 ? "" : "s", summary.seconds,
+      workspace_.Display(final_dir)));
+}
+
+ToolResult SceneTools::CameraPreview(const ToolArgs& a) {
+  std::vector<Problem> problems = ValidateScene(scene_);
+  if (!problems.empty()) {
+    std::vector<std::string> lines;
+    for (const Problem& p : problems) lines.push_back(ProblemText(p));
+    throw InvalidArgument(fmt::format("the scene is not valid yet, fix these first:{}",
+                                      Bullets(lines)));
+  }
+  CheckSceneLimits(scene_);
+  std::vector<Viewpoint> views = ResolveViewpoints(scene_);
+  if (views.empty()) throw InvalidArgument("the scene has no views yet: call place_rig first");
+  const std::int64_t index = a.Integer("view_index");
+  if (index >= static_cast<std::int64_t>(views.size())) {
+    throw InvalidArgument(fmt::format("arguments.view_index: the scene has views 0..{}, got {}",
+                                      views.size() - 1, index));
+  }
+  const int width = static_cast<int>(a.Integer("width_px"));
+  if (width > limits_.max_image_width_px) {
+    throw InvalidArgument(fmt::format(
+        "arguments.width_px: camera views are at most {} px wide, got {}",
+        limits_.max_image_width_px, width));
+  }
+  // The rig's camera scaled to the asked width (same field of view).
+  PinholeCamera rig = scene_.rig.Camera();
+  const double s = static_cast<double>(width) / rig.width_px;
+  PinholeCamera cam = rig;
+  cam.width_px = width;
+  cam.height_px = std::clamp(static_cast<int>(std::lround(rig.height_px * s)), 16,
+                             limits_.max_image_height_px);
+  cam.fx = rig.fx * s;
+  cam.fy = rig.fy * s;
+  cam.cx = (rig.cx + 0.5) * s - 0.5;
+  cam.cy = (rig.cy + 0.5) * s - 0.5;
+  RenderOptions options{.samples_per_pixel = 2, .camera_effects = 0.0, .seed = scene_.seed};
+  SceneRenderer renderer(scene_);
+  RenderedView view = renderer.Render({cam, views[index], scene_.rig.baseline_m}, options,
+                                      static_cast<std::uint64_t>(index), /*right_eye=*/false);
+  std::vector<unsigned char> png;
+  if (!cv::imencode(".png", view.left, png)) throw Error("PNG encoding failed");
+  ToolResult r = ToolResult::Text(fmt::format(
+      "Left camera of view {} (position ({:.2f}, {:.2f}, {:.2f}), yaw {:g}°), {}×{} px.", index,
+      views[index].position_m.x(), views[index].position_m.y(), views[index].position_m.z(),
+      views[index].yaw_deg, cam.width_px, cam.height_px));
+  r.content.insert(r.content.begin(),
+                   ToolContent{.kind = ToolContent::Kind::kImage,
+                               .data = Base64Encode(std::string(png.begin(), png.end())),
+                               .mime_type = "image/png"});
+  return r;
 }
 
 ToolResult SceneTools::ExportPlan(const ToolArgs& a, const ToolCallContext&) {

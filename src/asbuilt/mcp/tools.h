@@ -46,6 +46,12 @@ struct ToolLimits {
   void Check() const;
 };
 
+// Thrown inside a tool when its request was cancelled or the client left.
+class Cancelled : public Error {
+ public:
+  using Error::Error;
+};
+
 // One block of a tool result (MCP content): text, or a base64 image.
 struct ToolContent {
   enum class Kind { kText, kImage } kind = Kind::kText;
@@ -122,6 +128,7 @@ class SceneTools {
   ToolResult Validate(const ToolArgs& a, const ToolCallContext&);
   ToolResult GetScene(const ToolArgs& a, const ToolCallContext&);
   ToolResult RenderPreview(const ToolArgs& a, const ToolCallContext&);
+  ToolResult CameraPreview(const ToolArgs& a);
   ToolResult RenderCapture(const ToolArgs& a, const ToolCallContext& ctx);
   ToolResult ExportPlan(const ToolArgs& a, const ToolCallContext&);
   ToolResult SaveScene(const ToolArgs& a, const ToolCallContext&);

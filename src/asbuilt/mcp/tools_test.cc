@@ -319,6 +319,74 @@ TEST_F(ToolsTest, ExportPlanOfAnInvalidSceneSaysWhatToFix) {
   EXPECT_THAT(Fails("export_plan"), HasSubstr("needs at least one room"));
 }
 
+// A tiny scene that renders in well under a second per view.
+void SmallCapturableScene(SceneTools& tools) {
+  tools.Call("add_room", {{"width_m", 4}, {"depth_m", 3}});
+  tools.Call("add_door", {{"side", "east"}});
+  tools.Call("add_window", {{"side", "north"}});
+  ToolResult r = tools.Call("place_rig", {{"yaws_deg", {0, 90, 180}}, {"width_px", 48}, {"height_px", 32}});
+  ASSERT_FALSE(r.is_error) << r.content[0].text;
+}
+
+bool HasTempFolders(const fs::path& root) {
+  for (const auto& e : fs::directory_iterator(root)) {
+    if (e.path().filename().string().starts_with(kWorkspaceTempPrefix)) return true;
+  }
+  return false;
+}
+
+TEST_F(ToolsTest, RenderCaptureWritesACompleteFolderWithProgress) {
+  SmallCapturableScene(*tools_);
+  std::vector<std::int64_t> done;
+  ToolCallContext ctx;
+  ctx.progress = [&](const ProgressUpdate& u) { done.push_back(u.done); };
+  ToolResult r = tools_->Call("render_capture", {{"output", "captures/a"}, {"samples_per_pixel", 1}}, ctx);
+  ASSERT_FALSE(r.is_error) << r.content[0].text;
+  fs::path out = root_ / "ws" / "captures" / "a";
+  EXPECT_TRUE(fs::exists(out / "capture.json"));
+  EXPECT_TRUE(fs::exists(out / "truth.json"));
+  EXPECT_TRUE(fs::exists(out / "scene.json"));
+  EXPECT_TRUE(fs::exists(out / "left" / "002.png"));
+  EXPECT_EQ(done.back(), 3);
+  EXPECT_FALSE(HasTempFolders(root_ / "ws"));
+  // Again without overwrite: refused before rendering; with it: replaced.
+  EXPECT_THAT(Fails("render_capture", {{"output", "captures/a"}}), HasSubstr("already exists"));
+  EXPECT_FALSE(tools_->Call("render_capture", {{"output", "captures/a"}, {"overwrite", true},
+                                               {"samples_per_pixel", 1}}).is_error);
+  EXPECT_THAT(Fails("render_capture", {{"output", "../a"}}), HasSubstr("contains \"..\""));
+}
+
+TEST_F(ToolsTest, CancelledCaptureLeavesNothingBehind) {
+  SmallCapturableScene(*tools_);
+  std::stop_source stop;
+  ToolCallContext ctx;
+  ctx.stop = stop.get_token();
+  ctx.progress = [&](const ProgressUpdate& u) {
+    if (u.done >= 1) stop.request_stop();  // The client leaves after the first view.
+  };
+  ToolResult r = tools_->Call("render_capture", {{"output", "captures/b"}, {"samples_per_pixel", 1}}, ctx);
+  EXPECT_TRUE(r.is_error);
+  EXPECT_THAT(r.content[0].text, HasSubstr("cancelled"));
+  EXPECT_FALSE(fs::exists(root_ / "ws" / "captures" / "b"));
+  EXPECT_FALSE(HasTempFolders(root_ / "ws"));
+}
+
+TEST_F(ToolsTest, CameraPreviewRendersTheLeftView) {
+  SmallCapturableScene(*tools_);
+  ToolResult r = tools_->Call("render_preview", {{"view", "camera"}, {"width_px", 64}, {"view_index", 1}});
+  ASSERT_FALSE(r.is_error) << r.content.back().text;
+  EXPECT_EQ(r.content[0].kind, ToolContent::Kind::kImage);
+  EXPECT_EQ(r.content[0].data.substr(0, 8), "iVBORw0K");
+  EXPECT_THAT(Fails("render_preview", {{"view", "camera"}, {"view_index", 5}}),
+              HasSubstr("arguments.view_index: the scene has views 0..2, got 5"));
+}
+
+TEST_F(ToolsTest, RenderCaptureNeedsAValidSceneWithViews) {
+  EXPECT_THAT(Fails("render_capture", {{"output", "c"}}), HasSubstr("needs at least one room"));
+  Ok("add_room", {{"width_m", 4}, {"depth_m", 3}});
+  EXPECT_THAT(Fails("render_capture", {{"output", "c"}}), HasSubstr("call place_rig first"));
+}
+
 TEST_F(ToolsTest, ToolsMarkdownDocumentsEveryTool) {
   std::string md = tools_->ToolsMarkdown();
   EXPECT_THAT(md, HasSubstr("### `add_room`"));
