@@ -16,6 +16,8 @@ std::span<const Command> Commands() {
       {"plan", "floor plan from labelled points: walls, openings, dimensions → JSON, SVG, DXF, PDF, PNG",
        &RunPlanCommand},
       {"eval", "score results against the truth (eval plan: a floor plan vs truth.json)", &RunEvalCommand},
+      {"mcp", "MCP server on stdio: scene-building and rendering tools for LLM agents (Claude Desktop)",
+       &RunMcpCommand},
       {"version", "print the version", &RunVersionCommand},
   };
   return kCommands;

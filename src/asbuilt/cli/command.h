@@ -49,6 +49,7 @@ int RunRenderCommand(int argc, char** argv);
 CLI::App* AddDatasetSynthSubcommand(CLI::App& dataset_app);
 int RunEvalCommand(int argc, char** argv);
 int RunPlanCommand(int argc, char** argv);
+int RunMcpCommand(int argc, char** argv);
 int RunVersionCommand(int argc, char** argv);
 
 }  // namespace asbuilt::cli
