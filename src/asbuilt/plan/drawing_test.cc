@@ -1,5 +1,9 @@
 #include "asbuilt/plan/drawing.h"
 
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include <gtest/gtest.h>
@@ -45,6 +49,22 @@ TEST(PlanSvg, DrawsWallsDoorSwingWindowDimensionsAreaAndScaleBar) {
   size_t polygons = 0;
   for (size_t at = svg.find("<polygon"); at != std::string::npos; at = svg.find("<polygon", at + 1)) ++polygons;
   EXPECT_EQ(polygons, 6u + 1u + 4u);  // 6 wall pieces, the door leaf, 4 scale-bar blocks.
+}
+
+// An independent SVG reader (librsvg's rsvg-convert, Debian librsvg2-bin)
+// parses the drawing and rasterises it to the drawing's size.
+TEST(PlanSvg, RendersWithAnIndependentSvgReader) {
+  if (std::system("command -v rsvg-convert > /dev/null 2>&1") != 0) GTEST_SKIP() << "rsvg-convert not installed";
+  fs::path dir = fs::temp_directory_path() / "asbuilt_plan_svg";
+  fs::create_directories(dir);
+  WritePlanSvg(RoomWithDoorAndWindow(), dir / "plan.svg");
+  fs::remove(dir / "plan.png");
+  std::string cmd = "rsvg-convert " + (dir / "plan.svg").string() + " -o " + (dir / "plan.png").string() + " 2>&1";
+  int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << cmd;
+  std::string png = ReadFile(dir / "plan.png");
+  ASSERT_GT(png.size(), 1000u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
 }
 
 TEST(PlanFiles, WritesAllFiveAtomically) {
