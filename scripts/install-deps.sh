@@ -18,7 +18,7 @@ packages=(
   libcairo2-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev
-  python3 python3-ezdxf
+  python3 python3-ezdxf librsvg2-bin
   chromium
 )
 if [[ "${1:-}" == "--bench" ]]; then
