@@ -1229,12 +1229,22 @@ void LayOutWall(const Room& room, int wall, std::vector<PendingOpening*>& ops,
       throw InputError("text", "", fmt::format("\"{}\": a {:.2f} m {} at {:.2f} m along the {} does not fit",
                                                p->text, w, OpeningKindName(o.kind), *offset, wall_name));
     }
-    o.offset_m = std::max(0.0, *offset);
-    for (auto [lo, hi] : taken) {
-      if (o.offset_m < hi && o.offset_m + w > lo) {
-        throw InputError("text", "", fmt::format("\"{}\": overlaps another opening on the {}", p->text, wall_name));
+    // Several openings at one spot ("three windows near the north end"):
+    // each next one moves away from the anchor until it is clear.
+    auto clashes = [&](double at) {
+      for (auto [lo, hi] : taken) {
+        if (at < hi + 0.1 && at + w > lo - 0.1) return true;
       }
+      return false;
+    };
+    double at = std::max(0.0, *offset);
+    const double step = at + 0.5 * w > 0.5 * length ? -0.05 : 0.05;
+    while (clashes(at) && at >= 0 && at + w <= length) at += step;
+    if (at < -1e-9 || at + w > length + 1e-9) {
+      throw InputError("text", "", fmt::format("\"{}\": no room left for a {:.2f} m {} there on the {}", p->text, w,
+                                               OpeningKindName(o.kind), wall_name));
     }
+    o.offset_m = std::max(0.0, at);
     taken.push_back({o.offset_m, o.offset_m + w});
   }
   if (automatic.empty()) return;

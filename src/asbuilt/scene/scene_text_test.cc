@@ -185,6 +185,11 @@ TEST(SceneFromText, Positions) {
   EXPECT_NEAR(first("a window near the west end of the north wall").offset_m, 6 - 1.2 - 0.3, 1e-9);
   EXPECT_NEAR(first("a door 1 m from the west end of the south wall").offset_m, 1.0, 1e-9);
   EXPECT_NEAR(first("a door 2 m from the north end of the east wall").offset_m, 8 - 2 - 0.9, 1e-9);
+  // Several at one spot line up away from it: the west wall runs from y = 5 down to 0.
+  Scene three = Parse("a 6 by 5 m room with three windows on the west wall near the north end").scene;
+  ASSERT_EQ(three.rooms[0].openings.size(), 4u);
+  EXPECT_NEAR(three.rooms[0].openings[0].offset_m, 0.3, 1e-9);
+  EXPECT_GE(three.rooms[0].openings[1].offset_m, 0.3 + 1.2 + 0.1 - 1e-9);
   Opening nw = first("a door in the north-west corner");
   Scene s = Parse("a 6 by 8 m room, a door in the north-west corner").scene;
   EXPECT_EQ(WallCompassName(s.rooms[0], nw.wall), "north");
