@@ -11,6 +11,9 @@ std::span<const Command> Commands() {
       {"help", "list the commands, or show one command's help", &RunHelpCommand},
       {"validate", "check asbuilt files (capture, plan/truth, scene, manifest) and report every problem",
        &RunValidateCommand},
+      {"scene", "scenes from words or at random: text (built-in parser or --llm URL), random, truth, describe, "
+                "export-blender, schema",
+       &RunSceneCommand},
       {"render", "render a scene's stereo views into a capture (RGB, labels, ID map, depth, truth)",
        &RunRenderCommand},
       {"plan", "floor plan from labelled points: walls, openings, dimensions → JSON, SVG, DXF, PDF, PNG",

@@ -44,6 +44,7 @@ void Parse(CLI::App& app, int argc, char** argv);
 // One declaration per command.
 int RunHelpCommand(int argc, char** argv);
 int RunValidateCommand(int argc, char** argv);
+int RunSceneCommand(int argc, char** argv);
 int RunRenderCommand(int argc, char** argv);
 // `dataset synth` (dataset_synth_command.cc): adds the subcommand, whose callback runs it.
 CLI::App* AddDatasetSynthSubcommand(CLI::App& dataset_app);

@@ -10,6 +10,7 @@
 #include "asbuilt/cli/command.h"
 #include "asbuilt/formats/capture.h"
 #include "asbuilt/formats/plan_file.h"
+#include "asbuilt/scene/scene_json.h"
 #include "asbuilt/util/json_reader.h"
 
 namespace asbuilt::cli {
@@ -28,6 +29,8 @@ const FileKind kFileKinds[] = {
     {"capture", [](const nlohmann::json& d) { return d.contains("frames") && d.contains("camera"); },
      &CheckCaptureFile},
     {"plan", [](const nlohmann::json& d) { return d.contains("walls"); }, &CheckPlanFile},
+    {"scene", [](const nlohmann::json& d) { return d.contains("rooms") && !d.contains("walls"); },
+     &CheckSceneFile},
 };
 
 std::string KindNames() {
