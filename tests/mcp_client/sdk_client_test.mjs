@@ -135,6 +135,21 @@ try {
     return true;
   });
 
+  step = "render_capture with progress";
+  await ok(client, "place_rig", { yaws_deg: [0, 90, 180, 270], width_px: 64, height_px: 48 });
+  const updates = [];
+  const capture = await client.callTool(
+    { name: "render_capture", arguments: { output: "captures/classroom", samples_per_pixel: 1 } },
+    undefined, { onprogress: (p) => updates.push(p) });
+  assert.equal(capture.isError, false, text(capture));
+  assert.ok(updates.length >= 1, "progress notifications arrive");
+  assert.equal(updates.at(-1).progress, 4);
+  assert.equal(updates.at(-1).total, 4);
+  const captureJson = JSON.parse(
+    fs.readFileSync(path.join(workspace, "captures", "classroom", "capture.json"), "utf8"));
+  assert.equal(captureJson.frames.length, 4);
+  assert.ok(!fs.readdirSync(workspace).some((n) => n.startsWith(".asbuilt-tmp-")), "no temp left");
+
   step = "save and load";
   await ok(client, "save_scene", { path: "scenes/classroom.json" });
   await ok(client, "new_scene");

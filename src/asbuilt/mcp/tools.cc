@@ -597,7 +597,12 @@ nlohmann::json SceneTools::ListJson() const {
 std::string SceneTools::ToolsMarkdown() const {
   std::string out;
   for (const ToolSpec& s : specs_) {
-    out += fmt::format("### `{}` — {}\n\n{}\n\n{}\n", s.name, s.title, s.description,
+    // The conventions are documented once in docs/mcp.md, not per tool.
+    std::string description = s.description;
+    if (auto at = description.find(kConventions); at != std::string::npos) {
+      description.erase(at, kConventions.size());
+    }
+    out += fmt::format("### `{}` — {}\n\n{}\n\n{}\n", s.name, s.title, description,
                        ToolFieldsMarkdown(s.fields));
   }
   return out;
