@@ -96,6 +96,16 @@ StereoCalibration LoadCalibration(const std::filesystem::path& path) {
   return c;
 }
 
+FileReport CheckCalibrationFile(const std::filesystem::path& path) {
+  FileReport report;
+  try {
+    LoadCalibration(path);
+  } catch (const InputError& e) {
+    report.errors = e.problems();
+  }
+  return report;
+}
+
 void WriteCalibration(const StereoCalibration& c, const std::filesystem::path& path) {
   AtomicFile out(path);
   {

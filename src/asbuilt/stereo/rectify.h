@@ -11,6 +11,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "asbuilt/formats/capture.h"
 #include "asbuilt/geometry/rig.h"
 
 namespace asbuilt {
@@ -28,6 +29,9 @@ struct StereoCalibration {
 // Reads an OpenCV FileStorage YAML/XML. Throws InputError naming the file and
 // the missing or malformed key ("calibration.yml: K1: expected a 3x3 matrix").
 StereoCalibration LoadCalibration(const std::filesystem::path& path);
+// Every problem of a calibration file, without throwing (`asbuilt validate
+// --kind calibration`).
+FileReport CheckCalibrationFile(const std::filesystem::path& path);
 // Writes K1 D1 K2 D2 R T, image_width/image_height, rms (and any extra
 // scalars) atomically, readable by cv::FileStorage.
 void WriteCalibration(const StereoCalibration& calibration, const std::filesystem::path& path);
