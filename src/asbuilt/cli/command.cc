@@ -21,6 +21,12 @@ std::span<const Command> Commands() {
       {"eval", "score results against the truth (eval plan: a floor plan vs truth.json)", &RunEvalCommand},
       {"mcp", "MCP server on stdio: scene-building and rendering tools for LLM agents (Claude Desktop)",
        &RunMcpCommand},
+      {"calibrate", "stereo calibration from chessboard pairs → OpenCV YAML (K1 D1 K2 D2 R T, rms)",
+       &RunCalibrateCommand},
+      {"rectify", "rectify stereo pairs with a calibration (maps computed once)", &RunRectifyCommand},
+      {"disparity", "dense disparity of a rectified pair → float PFM + colour picture", &RunDisparityCommand},
+      {"points", "world points by class (wall/door/window) from a capture and its labels → points.txt, PLY",
+       &RunPointsCommand},
       {"version", "print the version", &RunVersionCommand},
   };
   return kCommands;

@@ -51,6 +51,10 @@ CLI::App* AddDatasetSynthSubcommand(CLI::App& dataset_app);
 int RunEvalCommand(int argc, char** argv);
 int RunPlanCommand(int argc, char** argv);
 int RunMcpCommand(int argc, char** argv);
+int RunCalibrateCommand(int argc, char** argv);
+int RunRectifyCommand(int argc, char** argv);
+int RunDisparityCommand(int argc, char** argv);
+int RunPointsCommand(int argc, char** argv);
 int RunVersionCommand(int argc, char** argv);
 
 }  // namespace asbuilt::cli

@@ -10,6 +10,7 @@
 #include "asbuilt/cli/command.h"
 #include "asbuilt/formats/capture.h"
 #include "asbuilt/formats/plan_file.h"
+#include "asbuilt/stereo/rectify.h"
 #include "asbuilt/scene/scene_json.h"
 #include "asbuilt/util/json_reader.h"
 
@@ -29,6 +30,8 @@ const FileKind kFileKinds[] = {
     {"capture", [](const nlohmann::json& d) { return d.contains("frames") && d.contains("camera"); },
      &CheckCaptureFile},
     {"plan", [](const nlohmann::json& d) { return d.contains("walls"); }, &CheckPlanFile},
+    // OpenCV YAML, not JSON: only with --kind calibration.
+    {"calibration", [](const nlohmann::json&) { return false; }, &CheckCalibrationFile},
     {"scene", [](const nlohmann::json& d) { return d.contains("rooms") && !d.contains("walls"); },
      &CheckSceneFile},
 };
