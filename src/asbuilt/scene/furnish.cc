@@ -140,6 +140,22 @@ std::vector<Vec2> RigPositions(const Scene& scene) {
   return out;
 }
 
+// A free spot: inside the room, clear of keep-clear zones, rigs and other pieces.
+bool SpotIsClear(const Scene& scene, const Room& room, const Box2& box, const std::vector<Box2>& zones,
+                 const std::vector<Vec2>& rigs, const PlaceFurnitureOptions& options) {
+  if (!InsideRoom(room, box)) return false;
+  for (const Box2& z : zones) {
+    if (Overlap(box, z, 0.0)) return false;
+  }
+  for (const Vec2& r : rigs) {
+    if (box.DistanceTo(r) <= options.rig_clearance_m) return false;
+  }
+  for (const Furniture& f : scene.furniture) {
+    if (Overlap(box, FootprintOf(f), options.piece_gap_m)) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 std::uint64_t SceneRng::Next() {
@@ -223,12 +239,7 @@ std::vector<std::string> PlaceFurniture(Scene& scene, int room_index, const std:
         box.centre = Vec2(rng.Uniform(lo.x(), hi.x()), rng.Uniform(lo.y(), hi.y()));
         box.angle = base_angle + 0.5 * kPi * rng.UniformInt(0, 3);
       }
-      if (!InsideRoom(room, box)) continue;
-      bool clear = true;
-      for (const Box2& z : zones) clear = clear && !Overlap(box, z, 0.0);
-      for (const Vec2& r : rigs) clear = clear && box.DistanceTo(r) > options.rig_clearance_m;
-      for (const Furniture& f : scene.furniture) clear = clear && !Overlap(box, FootprintOf(f), options.piece_gap_m);
-      if (!clear) continue;
+      if (!SpotIsClear(scene, room, box, zones, rigs, options)) continue;
       double yaw_deg = RadToDeg(box.angle);
       yaw_deg = std::remainder(yaw_deg, 360.0);
       scene.furniture.push_back({.name = piece.name,
@@ -242,6 +253,60 @@ std::vector<std::string> PlaceFurniture(Scene& scene, int room_index, const std:
     if (!placed) not_placed.push_back(piece.name);
   }
   return not_placed;
+}
+
+int PlaceInRows(Scene& scene, int room_index, const FurnitureSpec& piece, int count, double aisle_m,
+                const PlaceFurnitureOptions& options) {
+  options.Check();
+  CheckArgument(room_index >= 0 && room_index < static_cast<int>(scene.rooms.size()),
+                fmt::format("PlaceInRows: room {} out of range", room_index));
+  CheckArgument(aisle_m >= 0, fmt::format("PlaceInRows: aisle_m = {}, must be >= 0", aisle_m));
+  const Room& room = scene.rooms[room_index];
+  // Grid in wall 0's frame: u along wall 0, v into the room.
+  const Vec2 origin = WallStart(room, 0);
+  const Vec2 u = (WallEnd(room, 0) - origin).normalized();
+  const Vec2 v(-u.y(), u.x());
+  double u_lo = 1e18, u_hi = -1e18, v_lo = 1e18, v_hi = -1e18;
+  for (const Vec2& p : room.polygon) {
+    u_lo = std::min(u_lo, (p - origin).dot(u));
+    u_hi = std::max(u_hi, (p - origin).dot(u));
+    v_lo = std::min(v_lo, (p - origin).dot(v));
+    v_hi = std::max(v_hi, (p - origin).dot(v));
+  }
+  const std::vector<Box2> zones = KeepClearZones(room, piece.size_m.z(), options.door_clearance_m);
+  const std::vector<Vec2> rigs = RigPositions(scene);
+  // Try the grid at a few offsets (the rig may sit in a row or an aisle)
+  // and keep the one that seats the most.
+  std::vector<Box2> best;
+  for (double shift_u : {0.0, 0.5}) {
+    for (double shift_v : {0.0, 0.5}) {
+      const double pitch_u = piece.size_m.x() + aisle_m, pitch_v = piece.size_m.y() + aisle_m + 0.3;
+      const int cols = std::max(0, static_cast<int>((u_hi - u_lo - 1.0) / pitch_u));
+      const int rows = std::max(0, static_cast<int>((v_hi - v_lo - 1.0) / pitch_v));
+      const double u0 = 0.5 * (u_lo + u_hi) - 0.5 * (cols - 1) * pitch_u + shift_u * pitch_u;
+      const double v0 = 0.5 * (v_lo + v_hi) - 0.5 * (rows - 1) * pitch_v + shift_v * pitch_v;
+      std::vector<Box2> boxes;
+      for (int r = -1; r <= rows && static_cast<int>(boxes.size()) < count; ++r) {
+        for (int c = -1; c <= cols && static_cast<int>(boxes.size()) < count; ++c) {
+          Box2 box{origin + u * (u0 + c * pitch_u) + v * (v0 + r * pitch_v), 0.5 * piece.size_m.head<2>(),
+                   std::atan2(u.y(), u.x())};
+          if (SpotIsClear(scene, room, box, zones, rigs, options)) boxes.push_back(box);
+        }
+      }
+      if (boxes.size() > best.size()) best = boxes;
+    }
+  }
+  int placed = 0;
+  for (const Box2& box : best) {
+    scene.furniture.push_back({.name = piece.name,
+                               .centre_m = box.centre,
+                               .yaw_deg = std::remainder(RadToDeg(box.angle), 360.0),
+                               .size_m = piece.size_m,
+                               .elevation_m = 0.0,
+                               .material = piece.material});
+    ++placed;
+  }
+  return count - placed;
 }
 
 void AddCeilingLights(Scene& scene, int room_index, int count, double intensity) {

@@ -59,6 +59,12 @@ struct PlaceFurnitureOptions {
 std::vector<std::string> PlaceFurniture(Scene& scene, int room, const std::vector<FurnitureSpec>& pieces,
                                         std::uint64_t seed, const PlaceFurnitureOptions& options = {});
 
+// Places up to `count` copies of `piece` free-standing in rows (classroom
+// desks): a grid aligned with wall 0, `aisle_m` between pieces, subject to
+// the same clearances. Returns how many did not fit.
+int PlaceInRows(Scene& scene, int room, const FurnitureSpec& piece, int count, double aisle_m = 0.6,
+                const PlaceFurnitureOptions& options = {});
+
 // Adds `count` ceiling area lights (count 0: one per ~8 m² of floor) on a
 // grid inside the room, just under the ceiling.
 void AddCeilingLights(Scene& scene, int room, int count = 0, double intensity = 1.0);

@@ -70,6 +70,21 @@ TEST(PlaceFurniture, ReportsPiecesThatDoNotFit) {
   EXPECT_EQ(s.furniture.size() + left.size(), 40u);
 }
 
+TEST(PlaceInRows, LaysOutAGridClearOfTheDoorAndRig) {
+  Scene s = RoomWithDoor();
+  s.rooms[0].polygon = {{0, 0}, {7, 0}, {7, 9}, {0, 9}};
+  s.turn->position_m = Vec3(3.5, 4.5, 1.5);
+  int left = PlaceInRows(s, 0, *FurnitureByName("desk"), 12);
+  EXPECT_EQ(left, 0);
+  ASSERT_EQ(s.furniture.size(), 12u);
+  for (const Furniture& f : s.furniture) {
+    EXPECT_NEAR(f.yaw_deg, 0.0, 1e-12);
+    EXPECT_GT((f.centre_m - Vec2(3.5, 4.5)).norm(), 0.6);
+  }
+  EXPECT_THAT(ValidateScene(s), ::testing::IsEmpty());
+  EXPECT_GT(PlaceInRows(s, 0, *FurnitureByName("desk"), 100), 0);  // Reports what did not fit.
+}
+
 TEST(AddCeilingLights, SpreadsLightsUnderTheCeiling) {
   Scene s = RoomWithDoor();
   AddCeilingLights(s, 0, 4);

@@ -1547,8 +1547,26 @@ SceneTextResult SceneFromText(std::string_view text, const SceneTextOptions& opt
     for (const auto& [word, count] : kind->furniture) {
       auto spec = FurnitureByName(word);
       if (!spec) continue;
-      if (word == "desk" && kind->free_standing_desks) spec->against_wall = false;
       for (int i = 0; i < count; ++i) pieces.push_back(*spec);
+    }
+  }
+  // Classroom-like rooms: desks in rows, the rest against the walls.
+  if (kind->free_standing_desks) {
+    int desks = 0;
+    std::optional<FurnitureSpec> desk;
+    std::vector<FurnitureSpec> others;
+    for (const FurnitureSpec& p : pieces) {
+      if (p.name == "desk") {
+        ++desks;
+        desk = p;
+      } else {
+        others.push_back(p);
+      }
+    }
+    if (desk) {
+      int left = PlaceInRows(scene, 0, *desk, desks);
+      if (left > 0) notes.push_back(fmt::format("no space for {} of the {} desks", left, desks));
+      pieces = others;
     }
   }
   if (!pieces.empty()) {
