@@ -18,7 +18,7 @@ std::span<const Command> Commands() {
        &RunRenderCommand},
       {"plan", "floor plan from labelled points: walls, openings, dimensions → JSON, SVG, DXF, PDF, PNG",
        &RunPlanCommand},
-      {"eval", "score results against the truth (eval plan: a floor plan vs truth.json)", &RunEvalCommand},
+      {"eval", "score results against the truth (eval plan: a floor plan vs truth.json; eval seg: a segmenter)", &RunEvalCommand},
       {"mcp", "MCP server on stdio: scene-building and rendering tools for LLM agents (Claude Desktop)",
        &RunMcpCommand},
       {"calibrate", "stereo calibration from chessboard pairs → OpenCV YAML (K1 D1 K2 D2 R T, rms)",
@@ -27,6 +27,11 @@ std::span<const Command> Commands() {
       {"disparity", "dense disparity of a rectified pair → float PFM + colour picture", &RunDisparityCommand},
       {"points", "world points by class (wall/door/window) from a capture and its labels → points.txt, PLY",
        &RunPointsCommand},
+      {"train", "train the SegFormer segmenter (walls, doors, windows): checkpoints, resume, logs, plot",
+       &RunTrainCommand},
+      {"segment", "label images with a trained segmenter → label PNGs (+ colour overlays)", &RunSegmentCommand},
+      {"experiment", "segmentation experiments: real/synthetic ratios (the paper's table + plot), toy rooms",
+       &RunExperimentCommand},
       {"version", "print the version", &RunVersionCommand},
   };
   return kCommands;

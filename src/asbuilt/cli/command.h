@@ -55,6 +55,9 @@ int RunCalibrateCommand(int argc, char** argv);
 int RunRectifyCommand(int argc, char** argv);
 int RunDisparityCommand(int argc, char** argv);
 int RunPointsCommand(int argc, char** argv);
+int RunTrainCommand(int argc, char** argv);
+int RunSegmentCommand(int argc, char** argv);
+int RunExperimentCommand(int argc, char** argv);
 int RunVersionCommand(int argc, char** argv);
 
 }  // namespace asbuilt::cli

@@ -1,6 +1,7 @@
 // `asbuilt eval <what> …` — scores results against the truth. Each kind of
 // evaluation is one CLI11 subcommand:
 //   eval plan PLAN TRUTH [--json FILE]   floor plan vs truth.json (plan/score.h)
+//   eval seg --model M (--manifest F | --images D [--labels D])   segmenter (seg/evaluate.h)
 
 #include <string>
 
@@ -9,6 +10,9 @@
 #include "asbuilt/cli/command.h"
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/plan/score.h"
+#include "asbuilt/seg/evaluate.h"
+#include "asbuilt/seg/seg_data.h"
+#include "asbuilt/util/progress.h"
 #include "asbuilt/util/file.h"
 
 namespace asbuilt::cli {
@@ -35,7 +39,50 @@ int RunEvalCommand(int argc, char** argv) {
   plan_cmd->add_option("--opening-max-centre-distance-m", score_options.opening_max_centre_distance_m,
                        "max distance between matched opening centres")->capture_default_str();
 
+  // eval seg
+  CLI::App* seg_cmd = app.add_subcommand(
+      "seg",
+      "score a segmenter on labelled images: per-class IoU, F-score, precision, recall, their means\n"
+      "(mIoU, mFscore, mPrecision, mRecall) and the confusion matrix (mmseg IoUMetric definitions)");
+  std::string seg_model, seg_manifest, seg_images, seg_labels, seg_json, seg_md, seg_split = "test";
+  EvaluateOptions seg_options;
+  SegmentOptions seg_segment;
+  seg_cmd->add_option("--model", seg_model, "checkpoint")->required();
+  seg_cmd->add_option("--manifest", seg_manifest, "dataset manifest (see --split)");
+  seg_cmd->add_option("--split", seg_split, "manifest list to score: test, val or train")->capture_default_str();
+  seg_cmd->add_option("--images", seg_images, "image folder (or a dataset folder without --labels)");
+  seg_cmd->add_option("--labels", seg_labels, "label folder");
+  seg_cmd->add_option("--label-map", seg_options.label_map, "label ids: asbuilt, ade20k, nyu40")->capture_default_str();
+  seg_cmd->add_option("--max-images", seg_options.max_images, "score at most N images (0 = all)");
+  seg_cmd->add_option("--mode", seg_segment.mode, "whole or slide")->capture_default_str();
+  seg_cmd->add_option("--json", seg_json, "also write the metrics as JSON to FILE");
+  seg_cmd->add_option("--markdown", seg_md, "also write the Markdown table to FILE");
+
   Parse(app, argc, argv);
+
+  if (seg_cmd->parsed()) {
+    if (seg_manifest.empty() == seg_images.empty()) {
+      throw CLI::ValidationError("eval seg", "give --manifest or --images (one of them)");
+    }
+    std::vector<SegSample> samples;
+    if (!seg_manifest.empty()) {
+      SegDataSplit split = SplitFromManifest(seg_manifest);
+      if (seg_split == "test") samples = split.test;
+      else if (seg_split == "val") samples = split.val;
+      else if (seg_split == "train") samples = split.train;
+      else throw CLI::ValidationError("--split", "must be test, val or train, got '" + seg_split + "'");
+    } else {
+      samples = SplitFromFolders(seg_images, seg_labels, 0.0).train;
+    }
+    auto segmenter = LoadSegmenter(seg_model, seg_segment);
+    ProgressPrinter printer;
+    SegmentationMetrics m = EvaluateSegmentation(*segmenter, samples, seg_options, printer.Callback());
+    printer.Finish();
+    if (!seg_json.empty()) WriteFileAtomic(seg_json, m.ToJson().dump(2) + "\n");
+    if (!seg_md.empty()) WriteFileAtomic(seg_md, m.ToMarkdown());
+    fmt::print("{}\n{}\n", m.ToMarkdown(), m.BriefReport());
+    return 0;
+  }
 
   if (plan_cmd->parsed()) {
     Plan predicted = ReadPlan(plan_path);
