@@ -3,10 +3,12 @@
 // the 1-pixel boundary band, for the nominal colours vs calibrated centroids
 // (by masks and by k-means), a threshold sweep, and conversion throughput.
 //
-// ID maps: exact labels painted in the nominal colours with lighting drift
-// (labels/idmap_synth.h), on (a) the exact labels of the Blender rooms in
-// shared data and (b) procedural room labels; and, when present, the
-// renderer's own ID maps (a folder with idmap/ + labels/ given as argv[2]).
+// ID maps: (a) asbuilt's renderer (render/dataset_synth.h: random rooms,
+// ID-map drift RenderOptions.id_drift at its default and stronger); (b) exact
+// labels painted in the nominal colours with lighting drift and anti-aliased
+// edges (labels/idmap_synth.h), on the Blender rooms' exact labels (shared
+// data) and on procedural room labels; (c) optionally a folder given as
+// argv[2] with idmaps/ (or idmap/) + labels/.
 
 #include <chrono>
 #include <thread>
@@ -21,6 +23,8 @@
 #include "asbuilt/labels/convert.h"
 #include "asbuilt/labels/idmap_synth.h"
 #include "asbuilt/labels/label_io.h"
+#include "asbuilt/render/dataset_synth.h"
+#include "asbuilt/render/renderer.h"
 #include "bench/bench_util.h"
 
 namespace asbuilt {
@@ -50,6 +54,19 @@ void Split(const Set& all, Set& train, Set& test) {
 
 std::string Pct(double v) { return fmt::format("{:.2f} %", 100 * v); }
 
+// The ID maps and exact labels of a dataset folder (idmaps/ or idmap/ + labels/).
+Set ReadFolder(const std::string& name, const fs::path& dir) {
+  Set s{name, {}, {}};
+  fs::path idmaps = fs::exists(dir / "idmaps") ? dir / "idmaps" : dir / "idmap";
+  for (const fs::path& p : ListImageFiles(idmaps)) {
+    fs::path l = dir / "labels" / (p.stem().string() + ".png");
+    if (!fs::exists(l)) continue;
+    s.idmaps.push_back(ReadColourImage(p));
+    s.labels.push_back(ReadLabelImage(l));
+  }
+  return s;
+}
+
 }  // namespace
 }  // namespace asbuilt
 
@@ -70,6 +87,22 @@ int main(int argc, char** argv) {
   };
 
   std::vector<Set> sets;
+  // (a) The renderer's own ID maps.
+  const fs::path tmp = fs::temp_directory_path() / "asbuilt_bench_labels";
+  fs::remove_all(tmp);
+  for (double id_drift : {RenderOptions{}.id_drift, 0.5, 1.0}) {
+    DatasetSynthOptions o{.count = 24, .seed = 11};
+    o.render.id_drift = id_drift;
+    o.render.samples_per_pixel = 1;
+    fs::path dir = tmp / fmt::format("render_{}", id_drift);
+    DatasetSynthSummary r = SynthesizeDataset(dir, o);
+    std::fprintf(stderr, "labels bench: %s\n", r.BriefReport().c_str());
+    Set s = ReadFolder(fmt::format("asbuilt renderer {}x{}, id_drift {}{}", o.width_px, o.height_px, id_drift,
+                                   id_drift == RenderOptions{}.id_drift ? " (default)" : ""),
+                       dir);
+    if (!s.idmaps.empty()) sets.push_back(std::move(s));
+  }
+  // (b) Painted drift.
   for (const Drift& d : drifts) {
     if (fs::exists(rooms)) {
       Set s{fmt::format("Blender-room labels, {} drift", d.name), {}, {}};
@@ -93,15 +126,8 @@ int main(int argc, char** argv) {
     }
     sets.push_back(std::move(p));
   }
-  if (argc > 2) {  // Renderer ID maps: DIR/idmap/*.png + DIR/labels/*.png.
-    fs::path dir = argv[2];
-    Set s{fmt::format("renderer ID maps ({})", dir.filename().string()), {}, {}};
-    for (const fs::path& p : ListImageFiles(dir / "idmap")) {
-      fs::path l = dir / "labels" / (p.stem().string() + ".png");
-      if (!fs::exists(l)) continue;
-      s.idmaps.push_back(ReadColourImage(p));
-      s.labels.push_back(ReadLabelImage(l));
-    }
+  if (argc > 2) {  // (c) A folder of ID maps with exact labels.
+    Set s = ReadFolder(fmt::format("ID maps of {}", fs::path(argv[2]).filename().string()), argv[2]);
     if (!s.idmaps.empty()) sets.push_back(std::move(s));
   }
 
@@ -152,24 +178,35 @@ int main(int argc, char** argv) {
   }
   md += sweep;
 
+  // The nominal colours must be the renderer's.
+  bool same = true;
+  for (int id = 0; id < 4; ++id) {
+    for (int c = 0; c < 3; ++c) same = same && Palette::Nominal().colours[id].rgb[c] == kIdMapColors[id][c];
+  }
+  md += fmt::format("\nNominal palette equals the renderer's kIdMapColors: {}.\n", same ? "yes" : "NO — fix labels/palette.cc");
+
   // Throughput: batch conversion of 640x480 PNG files (decode + convert +
   // encode + atomic write), and the in-memory conversion alone.
-  const fs::path tmp = fs::temp_directory_path() / "asbuilt_bench_labels";
-  fs::remove_all(tmp);
   std::vector<fs::path> files;
-  const Set& first = sets[sets.size() > 1 ? 1 : 0];
-  for (int rep = 0; rep < 4; ++rep) {
-    for (std::size_t i = 0; i < first.idmaps.size(); ++i) {
-      files.push_back(tmp / "idmap" / fmt::format("{:03d}.png", files.size()));
-      WriteImageAtomic(files.back(), first.idmaps[i]);
+  const Set* first = &sets.front();
+  for (const Set& s : sets) {
+    if (s.name.rfind("procedural", 0) == 0) {
+      first = &s;
+      break;
     }
   }
-  Palette p = CalibrateWithMasks({}, first.idmaps, first.labels).palette;
+  for (int rep = 0; rep < 4; ++rep) {
+    for (std::size_t i = 0; i < first->idmaps.size(); ++i) {
+      files.push_back(tmp / "idmap" / fmt::format("{:03d}.png", files.size()));
+      WriteImageAtomic(files.back(), first->idmaps[i]);
+    }
+  }
+  Palette p = CalibrateWithMasks({}, first->idmaps, first->labels).palette;
   double mem_s = bench::MedianSeconds(5, [&] {
-    for (const cv::Mat& m : first.idmaps) ConvertIdMap(m, p, kThreshold);
+    for (const cv::Mat& m : first->idmaps) ConvertIdMap(m, p, kThreshold);
   });
   double mpx = 0;
-  for (const cv::Mat& m : first.idmaps) mpx += m.total() / 1e6;
+  for (const cv::Mat& m : first->idmaps) mpx += m.total() / 1e6;
   ConvertSummary one, all;
   double one_s = bench::MedianSeconds(3, [&] { one = ConvertIdMapFiles({.num_threads = 1}, p, files, tmp / "out1"); });
   double all_s = bench::MedianSeconds(3, [&] { all = ConvertIdMapFiles({}, p, files, tmp / "outN"); });

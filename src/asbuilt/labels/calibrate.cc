@@ -53,7 +53,7 @@ cv::Mat InteriorMask(const cv::Mat& labels, int margin_px) {
   return lo == hi;
 }
 
-MaskSums SumInsideMasks(const CalibrateOptions& options, const cv::Mat& idmap, const cv::Mat& mask) {
+MaskSums SumInsideMasks(const PaletteCalibrateOptions& options, const cv::Mat& idmap, const cv::Mat& mask) {
   const Palette& nominal = options.nominal;
   MaskSums sums(nominal.colours.size());
   // Palette index of each label id (first colour with that id).
@@ -107,7 +107,7 @@ void SuggestThreshold(Palette& palette, const std::vector<double>& quantiles) {
 }
 
 // Turns the sums into a palette; a colour with no pixels stays nominal.
-void FinishMaskPalette(const CalibrateOptions& options, const MaskSums& sums, CalibrateSummary& summary) {
+void FinishMaskPalette(const PaletteCalibrateOptions& options, const MaskSums& sums, CalibrateSummary& summary) {
   summary.palette.method = "masks";
   summary.palette.colours = options.nominal.colours;
   std::vector<double> quantiles;
@@ -166,7 +166,7 @@ std::vector<Sample> SamplePixels(const cv::Mat& idmap, std::int64_t max_samples,
 }
 
 // Lloyd iterations seeded at the nominal colours, with a capture radius.
-void Cluster(const CalibrateOptions& options, const std::vector<Sample>& samples, CalibrateSummary& summary) {
+void Cluster(const PaletteCalibrateOptions& options, const std::vector<Sample>& samples, CalibrateSummary& summary) {
   const std::size_t k = options.nominal.colours.size();
   std::vector<std::array<double, 3>> centre(k);  // BGR.
   for (std::size_t i = 0; i < k; ++i) {
@@ -252,17 +252,17 @@ void LogWarnings(const CalibrateSummary& summary) {
 
 }  // namespace
 
-void CalibrateOptions::Check() const {
-  CheckArgument(!nominal.colours.empty(), "CalibrateOptions.nominal has no colours");
+void PaletteCalibrateOptions::Check() const {
+  CheckArgument(!nominal.colours.empty(), "PaletteCalibrateOptions.nominal has no colours");
   CheckArgument(edge_margin_px >= 0 && edge_margin_px <= 16,
-                fmt::format("CalibrateOptions.edge_margin_px = {}, must be in 0..16", edge_margin_px));
+                fmt::format("PaletteCalibrateOptions.edge_margin_px = {}, must be in 0..16", edge_margin_px));
   CheckArgument(kmeans_iterations >= 1,
-                fmt::format("CalibrateOptions.kmeans_iterations = {}, must be >= 1", kmeans_iterations));
+                fmt::format("PaletteCalibrateOptions.kmeans_iterations = {}, must be >= 1", kmeans_iterations));
   CheckArgument(std::isfinite(kmeans_radius) && kmeans_radius > 0,
-                fmt::format("CalibrateOptions.kmeans_radius = {}, must be > 0", kmeans_radius));
+                fmt::format("PaletteCalibrateOptions.kmeans_radius = {}, must be > 0", kmeans_radius));
   CheckArgument(max_sample_pixels >= 1000,
-                fmt::format("CalibrateOptions.max_sample_pixels = {}, must be >= 1000", max_sample_pixels));
-  CheckArgument(num_threads >= 0, fmt::format("CalibrateOptions.num_threads = {}, must be >= 0", num_threads));
+                fmt::format("PaletteCalibrateOptions.max_sample_pixels = {}, must be >= 1000", max_sample_pixels));
+  CheckArgument(num_threads >= 0, fmt::format("PaletteCalibrateOptions.num_threads = {}, must be >= 0", num_threads));
 }
 
 std::string CalibrateSummary::BriefReport() const {
@@ -277,7 +277,7 @@ std::string CalibrateSummary::BriefReport() const {
   return out;
 }
 
-CalibrateSummary CalibrateWithMasks(const CalibrateOptions& options, const std::vector<cv::Mat>& idmaps,
+CalibrateSummary CalibrateWithMasks(const PaletteCalibrateOptions& options, const std::vector<cv::Mat>& idmaps,
                                     const std::vector<cv::Mat>& masks) {
   options.Check();
   CheckArgument(idmaps.size() == masks.size(), "CalibrateWithMasks: one mask per ID map expected");
@@ -295,7 +295,7 @@ CalibrateSummary CalibrateWithMasks(const CalibrateOptions& options, const std::
   return summary;
 }
 
-CalibrateSummary CalibrateByClustering(const CalibrateOptions& options, const std::vector<cv::Mat>& idmaps) {
+CalibrateSummary CalibrateByClustering(const PaletteCalibrateOptions& options, const std::vector<cv::Mat>& idmaps) {
   options.Check();
   const auto start = Clock::now();
   std::vector<Sample> samples;
@@ -313,7 +313,7 @@ CalibrateSummary CalibrateByClustering(const CalibrateOptions& options, const st
   return summary;
 }
 
-CalibrateSummary CalibrateFiles(const CalibrateOptions& options, const std::vector<fs::path>& idmaps,
+CalibrateSummary CalibrateFiles(const PaletteCalibrateOptions& options, const std::vector<fs::path>& idmaps,
                                 const std::vector<fs::path>& masks, const ProgressCallback& progress) {
   options.Check();
   const bool with_masks = !masks.empty();

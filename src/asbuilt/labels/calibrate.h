@@ -24,7 +24,7 @@
 
 namespace asbuilt {
 
-struct CalibrateOptions {
+struct PaletteCalibrateOptions {
   // Nominal annotation colours: which classes to calibrate, and the k-means
   // seeds. A class with no pixels keeps its nominal colour (with a warning).
   Palette nominal = Palette::Nominal();
@@ -57,14 +57,14 @@ struct CalibrateSummary {
 
 // In-memory forms (ID maps CV_8UC3 BGR, masks CV_8UC1 label ids of the same
 // size; throws InvalidArgument on a mismatch).
-CalibrateSummary CalibrateWithMasks(const CalibrateOptions& options, const std::vector<cv::Mat>& idmaps,
+CalibrateSummary CalibrateWithMasks(const PaletteCalibrateOptions& options, const std::vector<cv::Mat>& idmaps,
                                     const std::vector<cv::Mat>& masks);
-CalibrateSummary CalibrateByClustering(const CalibrateOptions& options, const std::vector<cv::Mat>& idmaps);
+CalibrateSummary CalibrateByClustering(const PaletteCalibrateOptions& options, const std::vector<cv::Mat>& idmaps);
 
 // File forms: `masks` empty → clustering, else masks[i] is the label map of
 // idmaps[i]. An unreadable file or a size mismatch is recorded in `failed`
 // and skipped; throws InputError if nothing could be read.
-CalibrateSummary CalibrateFiles(const CalibrateOptions& options,
+CalibrateSummary CalibrateFiles(const PaletteCalibrateOptions& options,
                                 const std::vector<std::filesystem::path>& idmaps,
                                 const std::vector<std::filesystem::path>& masks,
                                 const ProgressCallback& progress = {});

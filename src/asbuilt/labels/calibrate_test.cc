@@ -148,9 +148,9 @@ TEST(CalibrateFiles, ReadsFoldersAndSkipsBadFiles) {
   EXPECT_THROW(CalibrateFiles({}, {dir / "nope.png"}, {}), InputError);
 }
 
-TEST(CalibrateOptions, DefaultsAreValid) {
-  EXPECT_NO_THROW(CalibrateOptions{}.Check());
-  EXPECT_THROW(CalibrateOptions{.kmeans_radius = 0}.Check(), InvalidArgument);
+TEST(PaletteCalibrateOptions, DefaultsAreValid) {
+  EXPECT_NO_THROW(PaletteCalibrateOptions{}.Check());
+  EXPECT_THROW(PaletteCalibrateOptions{.kmeans_radius = 0}.Check(), InvalidArgument);
 }
 
 }  // namespace

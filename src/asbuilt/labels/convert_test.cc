@@ -24,9 +24,9 @@ cv::Vec3b Bgr(int r, int g, int b) { return cv::Vec3b(b, g, r); }
 
 TEST(ConvertIdMap, NearestColourWinsAndFarPixelsBecomeBackground) {
   cv::Mat idmap(1, 5, CV_8UC3);
-  idmap.at<cv::Vec3b>(0, 0) = Bgr(200, 70, 50);   // Near wall (220,60,60): d ≈ 24.5.
-  idmap.at<cv::Vec3b>(0, 1) = Bgr(60, 180, 70);   // Near door.
-  idmap.at<cv::Vec3b>(0, 2) = Bgr(70, 95, 200);   // Near window.
+  idmap.at<cv::Vec3b>(0, 0) = Bgr(180, 50, 30);   // Near wall (200,40,40): d ≈ 24.5.
+  idmap.at<cv::Vec3b>(0, 1) = Bgr(40, 160, 70);   // Near door.
+  idmap.at<cv::Vec3b>(0, 2) = Bgr(50, 85, 170);   // Near window.
   idmap.at<cv::Vec3b>(0, 3) = Bgr(10, 5, 5);      // Near background.
   idmap.at<cv::Vec3b>(0, 4) = Bgr(200, 200, 200); // Far from everything.
   std::int64_t beyond = -1;
@@ -53,7 +53,7 @@ TEST(ConvertIdMapFiles, ConvertsABatchKeepingNamesAndReportsBadFiles) {
   std::vector<fs::path> inputs;
   for (int i = 0; i < 6; ++i) {
     cv::Mat idmap(20, 30, CV_8UC3, cv::Scalar(0, 0, 0));
-    idmap(cv::Rect(0, 0, 10 + i, 20)).setTo(cv::Scalar(60, 60, 220));  // Wall, BGR.
+    idmap(cv::Rect(0, 0, 10 + i, 20)).setTo(cv::Scalar(40, 40, 200));  // Wall, BGR.
     fs::path p = dir / "idmap" / fmt::format("{:03d}.png", i);
     cv::imwrite(p.string(), idmap);
     inputs.push_back(p);

@@ -63,22 +63,6 @@ cv::Mat ReadColourImage(const fs::path& path) {
   return bgr;
 }
 
-void WriteImageAtomic(const fs::path& path, const cv::Mat& image) {
-  CheckArgument(!image.empty() && image.depth() == CV_8U && (image.channels() == 1 || image.channels() == 3),
-                "WriteImageAtomic: expected a non-empty 8-bit image with 1 or 3 channels");
-  std::error_code ec;
-  if (path.has_parent_path()) fs::create_directories(path.parent_path(), ec);
-  AtomicFile file(path);
-  bool ok = false;
-  try {
-    ok = cv::imwrite(file.temp_path().string(), image);
-  } catch (const cv::Exception& e) {
-    throw Error(fmt::format("{}: cannot write image: {}", path.string(), e.what()));
-  }
-  if (!ok) throw Error(fmt::format("{}: cannot write image", path.string()));
-  file.Commit();
-}
-
 void WriteLabelImage(const fs::path& path, const cv::Mat& labels) {
   CheckArgument(labels.type() == CV_8UC1, "WriteLabelImage: labels must be CV_8UC1");
   WriteImageAtomic(path, labels);

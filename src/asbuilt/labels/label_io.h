@@ -8,6 +8,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "asbuilt/imageio/image_io.h"
+
 namespace asbuilt {
 
 // A label map as stored: CV_8UC1. Throws InputError naming the file if it
@@ -23,10 +25,6 @@ cv::Mat ReadColourImage(const std::filesystem::path& path);
 // Writes a CV_8UC1 map as PNG, atomically; creates parent folders. Throws
 // InvalidArgument for another type, Error if writing fails.
 void WriteLabelImage(const std::filesystem::path& path, const cv::Mat& labels);
-
-// Writes any 8-bit image (1 or 3 channels) atomically, format from the
-// extension.
-void WriteImageAtomic(const std::filesystem::path& path, const cv::Mat& image);
 
 }  // namespace asbuilt
 

@@ -80,7 +80,9 @@ std::string PaletteColour::ToString() const {
 Palette Palette::Nominal() {
   Palette p;
   p.method = "nominal";
-  p.colours = {{0, {0, 0, 0}, 0}, {1, {220, 60, 60}, 0}, {2, {60, 200, 60}, 0}, {3, {60, 90, 230}, 0}};
+  // Keep equal to render/renderer.h kIdMapColors (labels may not include
+  // render: same layer); bench/labels checks the two agree.
+  p.colours = {{0, {0, 0, 0}, 0}, {1, {200, 40, 40}, 0}, {2, {40, 180, 60}, 0}, {3, {40, 80, 200}, 0}};
   return p;
 }
 

@@ -54,8 +54,9 @@ struct Palette {
   // its centroid. Used by `labels convert` when no --threshold is given.
   std::optional<double> threshold;
 
-  // The nominal annotation colours of asbuilt's renderer (render/, docs/render.md):
-  // background (0,0,0), wall (220,60,60), door (60,200,60), window (60,90,230).
+  // The nominal annotation colours of asbuilt's renderer (render/renderer.h
+  // kIdMapColors): background (0,0,0), wall (200,40,40), door (40,180,60),
+  // window (40,80,200).
   static Palette Nominal();
 
   std::string ToString() const;  // "Palette(masks: background rgb(…), wall rgb(…), …)"

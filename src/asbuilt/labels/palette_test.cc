@@ -19,9 +19,9 @@ fs::path TestDir() {
 
 TEST(Palette, NominalPrintsItself) {
   EXPECT_EQ(Palette::Nominal().ToString(),
-            "Palette(nominal: background rgb(0.0, 0.0, 0.0), wall rgb(220.0, 60.0, 60.0), "
-            "door rgb(60.0, 200.0, 60.0), window rgb(60.0, 90.0, 230.0))");
-  EXPECT_EQ(Palette::Nominal().colours[1].ToString(), "wall (1): rgb(220.0, 60.0, 60.0)");
+            "Palette(nominal: background rgb(0.0, 0.0, 0.0), wall rgb(200.0, 40.0, 40.0), "
+            "door rgb(40.0, 180.0, 60.0), window rgb(40.0, 80.0, 200.0))");
+  EXPECT_EQ(Palette::Nominal().colours[1].ToString(), "wall (1): rgb(200.0, 40.0, 40.0)");
 }
 
 TEST(Palette, RoundTrips) {
