@@ -5,6 +5,7 @@
 // Writes bench/results/stereo.md.
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -190,10 +191,13 @@ int main(int argc, char** argv) {
   using namespace asbuilt;
   const std::string out_path = bench::ResultsPath(argc, argv, "stereo");
   std::string md = "## Stereo\n\n";
-  md += fmt::format("{} OpenCV threads. Disparity on real pairs with ground truth: bad-1 / bad-2 = % of evaluated "
+  double load[3] = {0, 0, 0};
+  ::getloadavg(load, 3);
+  md += fmt::format("{} OpenCV threads, load average {:.1f} at start (other jobs inflate the ms columns; "
+                    "each row's methods ran back to back). Disparity on real pairs with ground truth: bad-1 / bad-2 = % of evaluated "
                     "pixels off by more than 1 / 2 px, pixels without output counted bad; avgerr = mean |error| "
                     "over pixels with output (px); ms = median of 3 runs per pair. Same run, same machine.\n\n",
-                    cv::getNumThreads());
+                    cv::getNumThreads(), load[0]);
   md += "| pair | region | method | bad-1 % | bad-2 % | avgerr px | holes % | ms |\n|---|---|---|---|---|---|---|---|\n";
   struct Method {
     std::string name;

@@ -224,8 +224,11 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
         const Vec2 px(u, v);
         const auto m = match_guided(px);
         if (!m) continue;
+        // The region's own disparity over a window wider than the matcher's
+        // foreground fattening: an edge of a nearer object (an open door
+        // leaf) must not lend its disparity to the wall behind it.
         const double own = ClassDisparity(result.disparity.disparity_px, frame.labels_left, px, lab[u],
-                                          options.match.patch_radius_px);
+                                          2 * options.match.patch_radius_px);
         if (std::isfinite(own) && std::abs(own - m->disparity_px) > options.corner_region_tolerance_px) continue;
         if (!RightLabelAgrees(frame.labels_right, Vec2(u - m->disparity_px, v + m->row_offset_px), lab[u],
                               options.right_label_radius_px)) {

@@ -194,7 +194,8 @@ TEST(ComputeFramePoints, WallPointsLieOnTruthWallPlanes) {
     EXPECT_LE(Percentile(dense, 0.5), 0.03);
     EXPECT_LE(Percentile(dense, 0.9), 0.10);
     if (edge.size() >= 20) {
-      EXPECT_LE(Percentile(edge, 0.5), 0.05);  // p90 reaches 0.8 m on p02 (see docs/stereo.md).
+      EXPECT_LE(Percentile(edge, 0.5), 0.03);
+      EXPECT_LE(Percentile(edge, 0.9), 0.10);
     }
   }
 }
