@@ -1,4 +1,4 @@
-#include "asbuilt/render/image_io.h"
+#include "asbuilt/imageio/image_io.h"
 
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>

@@ -1,5 +1,5 @@
-#ifndef ASBUILT_RENDER_IMAGE_IO_H_
-#define ASBUILT_RENDER_IMAGE_IO_H_
+#ifndef ASBUILT_IMAGEIO_IMAGE_IO_H_
+#define ASBUILT_IMAGEIO_IMAGE_IO_H_
 
 // Image files written atomically (temp file + rename), so a killed run never
 // leaves a broken image under its final name.
@@ -16,4 +16,4 @@ void WriteImageAtomic(const std::filesystem::path& path, const cv::Mat& image);
 
 }  // namespace asbuilt
 
-#endif  // ASBUILT_RENDER_IMAGE_IO_H_
+#endif  // ASBUILT_IMAGEIO_IMAGE_IO_H_

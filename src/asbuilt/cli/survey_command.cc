@@ -1,0 +1,57 @@
+// `asbuilt survey capture.json -o out/` — the main job: a stereo capture in,
+// a dimensioned floor plan and a report out (pipeline/survey.h).
+
+#include <string>
+
+#include <fmt/format.h>
+
+#include "asbuilt/cli/command.h"
+#include "asbuilt/pipeline/survey.h"
+#include "asbuilt/util/progress.h"
+
+namespace asbuilt::cli {
+
+int RunSurveyCommand(int argc, char** argv) {
+  CLI::App app(
+      "Survey a room: segment both views of every stereo frame, match and triangulate wall, door\n"
+      "and window points, fit the floor plan and write plan.json/.svg/.dxf/.pdf/.png, points.txt,\n"
+      "points.ply and report.html. A capture with `rectified: false` is rectified first with its\n"
+      "calibration. Scores against --truth, or truth.json beside the capture when present.\n"
+      "A synthetic capture's own labels are never used unless --labels or --capture-labels says so.",
+      "asbuilt survey");
+  AddCommonFlags(app);
+  std::string capture, out_dir, model, labels_dir, truth;
+  SurveyOptions options;
+  bool no_report = false;
+  app.add_option("capture", capture, "capture.json")->required();
+  app.add_option("-o,--out", out_dir, "output folder")->required();
+  app.add_option("--model", model, "segmentation model (default: the shipped model)");
+  app.add_option("--labels", labels_dir, "use these label images (NNN.png per frame) instead of segmenting");
+  app.add_flag("--capture-labels", options.use_capture_labels,
+               "use the capture's own exact labels (synthetic captures; the method's upper bound)");
+  app.add_option("--truth", truth, "truth plan to score against (default: truth.json beside the capture)");
+  app.add_option("--epsilon-m", options.plan.epsilon_m, "wall collinearity tolerance ε (m)")->capture_default_str();
+  app.add_option("--dense-stride", options.points.dense_stride_px, "keep every n-th dense pixel")->capture_default_str();
+  app.add_option("--report-frames", options.report_frames, "frames pictured in the report (0 = all)")
+      ->capture_default_str();
+  app.add_flag("--no-report", no_report, "skip report.html");
+  Parse(app, argc, argv);
+  if (!model.empty()) options.model_path = model;
+  if (!labels_dir.empty()) options.labels_dir = labels_dir;
+  if (!truth.empty()) options.truth_path = truth;
+  options.write_report = !no_report;
+  options.Check();
+
+  ProgressPrinter printer;
+  SurveyResult result = RunSurvey(capture, out_dir, options, printer.Callback());
+  printer.Finish();
+  for (const StageTiming& s : result.summary.stages) {
+    fmt::print(stderr, "  {:<18} {:7.2f} s\n", s.stage, s.seconds);
+  }
+  for (const std::string& n : result.summary.notes) fmt::print(stderr, "note: {}\n", n);
+  if (result.summary.score) fmt::print("{}", result.summary.score->Table());
+  fmt::print("{}\n", result.summary.BriefReport());
+  return 0;
+}
+
+}  // namespace asbuilt::cli

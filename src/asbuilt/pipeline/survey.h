@@ -1,0 +1,91 @@
+#ifndef ASBUILT_PIPELINE_SURVEY_H_
+#define ASBUILT_PIPELINE_SURVEY_H_
+
+// `asbuilt survey`: a stereo capture in, a dimensioned floor plan and a
+// report out. Stages: (rectify) → segment both views → disparity → corners,
+// edges and dense points → world points → plan → drawings → report, and a
+// score when a truth plan is given or lies beside the capture.
+//
+// A synthetic capture's per-frame `labels`/`depth` and its truth.json are
+// ground truth for scoring only: they are read as input only when asked
+// (labels_dir, use_capture_labels), so a score measures what a user with a
+// real camera would get.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "asbuilt/formats/plan_file.h"
+#include "asbuilt/plan/reconstruct.h"
+#include "asbuilt/plan/score.h"
+#include "asbuilt/stereo/frame_points.h"
+#include "asbuilt/util/progress.h"
+
+namespace asbuilt {
+
+struct SurveyOptions {
+  // Segmentation model; empty: DefaultModelPath().
+  std::filesystem::path model_path;
+  // Use these label images (NNN.png per frame index; right view labels in
+  // DIR/right/ when present) instead of segmenting.
+  std::optional<std::filesystem::path> labels_dir;
+  // Use the capture's own per-frame `labels` (exact labels of a synthetic
+  // capture) instead of segmenting: the upper bound of the method.
+  bool use_capture_labels = false;
+  // Truth plan to score against; empty: truth.json beside capture.json when
+  // it exists.
+  std::optional<std::filesystem::path> truth_path;
+  FramePointsOptions points;
+  PlanOptions plan;
+  bool write_report = true;
+  // Frames shown in the report (thumbnails, overlays, disparity); the rest
+  // are summarised in the table. 0 = all.
+  int report_frames = 12;
+
+  void Check() const;
+};
+
+struct StageTiming {
+  std::string stage;
+  double seconds = 0.0;
+};
+
+struct SurveySummary {
+  std::string labels_source;  // "segmenter models/…", "labels DIR", "capture labels".
+  int frames = 0;
+  int points = 0;
+  std::vector<FrameCues> frame_cues;
+  PlanSummary plan;
+  std::optional<PlanScore> score;
+  std::vector<StageTiming> stages;
+  double seconds = 0.0;
+  std::filesystem::path out_dir;
+  std::vector<std::string> notes;  // What could not be measured, and why.
+
+  // "12 frames, 41000 points → 4 walls, 3 openings, 16.18 m²; walls 4/4,
+  // length err median 0.8 % max 1.9 %; 9.1 s → out/report.html".
+  std::string BriefReport() const;
+};
+
+struct SurveyResult {
+  Plan plan;
+  SurveySummary summary;
+};
+
+// Runs the whole survey and writes into `out_dir`: plan.json, plan.svg,
+// plan.dxf, plan.pdf, plan.png, points.txt, points.ply, score.json (with a
+// truth), summary.json and report.html. Every file is written atomically.
+// Throws InputError for bad captures, images or models (naming the file).
+SurveyResult RunSurvey(const std::filesystem::path& capture_json,
+                       const std::filesystem::path& out_dir, const SurveyOptions& options = {},
+                       const ProgressCallback& progress = {});
+
+// The shipped segmentation model: $ASBUILT_MODEL if set, else the first of
+// <exe>/../models/, <exe>/../share/asbuilt/models/ and the source tree's
+// models/ that holds it.
+std::filesystem::path DefaultModelPath();
+
+}  // namespace asbuilt
+
+#endif  // ASBUILT_PIPELINE_SURVEY_H_

@@ -1,0 +1,54 @@
+#include "asbuilt/pipeline/survey.h"
+
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "asbuilt/util/file.h"
+
+namespace asbuilt {
+namespace {
+namespace fs = std::filesystem;
+
+fs::path Room(const char* name) { return fs::path(ASBUILT_SHARED_DATA_DIR) / "blender-rooms-public" / name; }
+
+// The method's upper bound on Blender-rendered rooms: exact labels in, plan
+// out, scored against the truth beside the capture.
+TEST(RunSurvey, ExactLabelsOnBlenderRectangleMeetTargets) {
+  fs::path capture = Room("p01_rect_1door_2win") / "capture.json";
+  ASSERT_TRUE(fs::exists(capture)) << capture;
+  fs::path out = fs::temp_directory_path() / "asbuilt_survey_p01";
+  fs::remove_all(out);
+  SurveyResult r = RunSurvey(capture, out, {.use_capture_labels = true, .report_frames = 2});
+  ASSERT_TRUE(r.summary.score.has_value());
+  const PlanScore& s = *r.summary.score;
+  EXPECT_EQ(s.walls.matched, s.walls.truth) << s.Table();
+  EXPECT_LE(s.wall_length.Median().value_or(1), 0.02) << s.Table();
+  EXPECT_LE(s.wall_length.Max().value_or(1), 0.05) << s.Table();
+  EXPECT_EQ(s.doors.matched, s.doors.truth) << s.Table();
+  EXPECT_LE(s.door_width.Median().value_or(1), 0.03) << s.Table();
+  EXPECT_LE(s.area_relative_error.value_or(1), 0.02) << s.Table();
+  for (const char* f : {"plan.json", "points.txt", "points.ply", "score.json", "summary.json", "report.html"}) {
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  }
+  std::string html = ReadFile(out / "report.html");
+  EXPECT_NE(html.find("Accuracy against the truth plan"), std::string::npos);
+  EXPECT_NE(html.find("exact labels"), std::string::npos);
+}
+
+TEST(RunSurvey, MissingLabelDirectoryNamesTheFile) {
+  fs::path capture = Room("p01_rect_1door_2win") / "capture.json";
+  fs::path out = fs::temp_directory_path() / "asbuilt_survey_missing";
+  fs::remove_all(out);
+  try {
+    RunSurvey(capture, out, {.labels_dir = fs::path("/nonexistent/labels")});
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/labels"), std::string::npos) << e.what();
+  }
+  // Nothing half-written.
+  EXPECT_FALSE(fs::exists(out / "plan.json"));
+}
+
+}  // namespace
+}  // namespace asbuilt
