@@ -36,6 +36,16 @@ Vec2 Extent(const Scene& s) {
   return hi - lo;
 }
 
+struct SceneRngForTest {
+  std::uint64_t state;
+  std::uint64_t Next() {  // SplitMix64.
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+};
+
 SceneTextResult Parse(const std::string& text) {
   SCOPED_TRACE(text);
   SceneTextResult r = SceneFromText(text);
@@ -266,6 +276,34 @@ TEST(SceneFromText, IsDeterministicPerSeed) {
   Scene b = SceneFromText("a 6 by 8 m classroom", {.seed = 5}).scene;
   ASSERT_EQ(a.furniture.size(), b.furniture.size());
   for (std::size_t i = 0; i < a.furniture.size(); ++i) EXPECT_EQ(a.furniture[i].centre_m, b.furniture[i].centre_m);
+}
+
+// Property: any jumble of the vocabulary gives a valid scene or a clear
+// InputError — never a crash, another exception or an invalid scene.
+TEST(SceneFromText, SurvivesRandomJumblesOfItsVocabulary) {
+  const std::vector<std::string> words = {
+      "a", "two", "3", "0.9", "1.5", "12", "-", "m", "cm", "ft", "by", "x", "×", "door", "doors", "window",
+      "windows", "french", "double", "north", "south-east", "east", "west", "wall", "walls", "each", "corner",
+      "end", "near", "the", "from", "centred", "left", "hinged", "open", "sill", "of", "high", "wide", "long",
+      "ceiling", "height", "l-shaped", "cut-out", "rotated", "degrees", "square", "metres", "classroom",
+      "bedroom", "living", "room", "with", "and", ",", ".", "desks", "bed", "lights", "camera", "every",
+      "views", "baseline", "white", "wooden", "floor", "empty", "night", "giraffe", "m²", "area"};
+  SceneRngForTest rng{12345};
+  int valid = 0, rejected = 0;
+  for (int i = 0; i < 400; ++i) {
+    std::string text;
+    int n = 3 + static_cast<int>(rng.Next() % 14);
+    for (int k = 0; k < n; ++k) text += words[rng.Next() % words.size()] + " ";
+    try {
+      SceneTextResult r = SceneFromText(text);
+      EXPECT_THAT(ValidateScene(r.scene), IsEmpty()) << text;
+      ++valid;
+    } catch (const InputError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("text")) << text;
+      ++rejected;
+    }
+  }
+  EXPECT_GT(valid, 100);
 }
 
 TEST(SceneTextOptions, DefaultsAreValidAndBadOnesThrow) {
