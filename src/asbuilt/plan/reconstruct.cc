@@ -544,13 +544,19 @@ void PlanOptions::Check() const {
 }
 
 std::string PlanSummary::BriefReport() const {
+  std::vector<double> sorted;
+  for (double d : dominant_directions_deg) {
+    d = std::fmod(std::fmod(d, 180.0) + 180.0, 180.0);
+    sorted.push_back(d >= 179.95 ? 0.0 : d);
+  }
+  std::sort(sorted.begin(), sorted.end());
   std::string dirs;
-  for (double d : dominant_directions_deg) dirs += fmt::format("{}{:.1f}°", dirs.empty() ? "" : "/", d);
+  for (double d : sorted) dirs += fmt::format("{}{:.1f}°", dirs.empty() ? "" : "/", d);
   return fmt::format(
       "{} walls ({} inferred), {} openings, {}, {}, {}directions {}, {} of {} wall points on walls, rms {}, "
       "{:.3f} s",
       walls, inferred_walls, openings, closed ? "closed" : "NOT closed",
-      area_m2 >= 0 ? fmt::format("{:.2f} m²", area_m2) : std::string("no area"), manhattan ? "Manhattan " : "",
+      area_m2 >= 0 ? fmt::format("{:.2f} m²", area_m2) : std::string("no area"), manhattan ? "Manhattan frame, " : "",
       dirs.empty() ? "none" : dirs, wall_inliers, wall_points,
       rms_residual_m >= 0 ? fmt::format("{:.3f} m", rms_residual_m) : std::string("n/a"), seconds);
 }
