@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build test demo bench clean
+.PHONY: all deps build test demo bench fuzz asan clean
 
 all: build
 
@@ -26,6 +26,18 @@ demo: build
 bench: build
 	bash scripts/install-deps.sh --bench
 	bash bench/run.sh $(BUILD)
+
+# Each libFuzzer harness for FUZZ_SECONDS (default 20; nightly: make fuzz FUZZ_SECONDS=3600).
+fuzz: deps
+	bash scripts/fuzz.sh $(or $(FUZZ_SECONDS),20)
+
+# The library and tests built with AddressSanitizer + UBSan (without the
+# LibTorch segmenter: Debian's prebuilt LibTorch is not instrumented).
+asan: deps
+	cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DASBUILT_SANITIZE=ON \
+	  -DASBUILT_WITH_TORCH=OFF -DASBUILT_BUILD_BENCH=OFF
+	cmake --build build-asan -j $(JOBS)
+	ASAN_OPTIONS=detect_leaks=0 ctest --test-dir build-asan --output-on-failure -j $(JOBS) -E 'seg/|sdk_client'
 
 clean:
 	rm -rf $(BUILD)
