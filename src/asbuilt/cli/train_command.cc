@@ -67,6 +67,7 @@ int RunTrainCommand(int argc, char** argv) {
   app.add_option("--seed", o.seed, "seed for split, order, augmentation, init")->capture_default_str();
   app.add_option("--init", init, "initial weights (an asbuilt checkpoint; mismatched tensors skipped)");
   app.add_flag("--no-resume", no_resume, "start afresh even if OUT/last.pt exists");
+  app.add_option("--stop-after", o.stop_after_epoch, "end this run after epoch N (schedule still spans --epochs)");
   app.add_option("--threads", o.threads, "LibTorch threads (0 = every core)")->capture_default_str();
   Parse(app, argc, argv);
 

@@ -146,6 +146,8 @@ void TrainOptions::Check() const {
                 fmt::format("TrainOptions.drop_path_rate = {}, must be in [0, 1)", drop_path_rate));
   CheckArgument(val_max_images >= 0, fmt::format("TrainOptions.val_max_images = {}, must be >= 0", val_max_images));
   CheckArgument(threads >= 0, fmt::format("TrainOptions.threads = {}, must be >= 0", threads));
+  CheckArgument(stop_after_epoch >= 0,
+                fmt::format("TrainOptions.stop_after_epoch = {}, must be >= 0", stop_after_epoch));
   augment.Check();
 }
 
@@ -179,6 +181,7 @@ nlohmann::json TrainOptions::ToJson() const {
           {"seed", seed},
           {"init", init.string()},
           {"resume", resume},
+          {"stop_after_epoch", stop_after_epoch},
           {"threads", threads}};
 }
 
@@ -311,7 +314,9 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
 
   std::vector<size_t> perm;
   std::int64_t perm_pass = -1;
-  for (int epoch = start_epoch + 1; epoch <= options.epochs; ++epoch) {
+  const int last_epoch =
+      options.stop_after_epoch > 0 ? std::min(options.epochs, options.stop_after_epoch) : options.epochs;
+  for (int epoch = start_epoch + 1; epoch <= last_epoch; ++epoch) {
     model->train();
     double loss_sum = 0;
     int loss_count = 0;

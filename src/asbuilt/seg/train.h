@@ -52,6 +52,8 @@ struct TrainOptions {
   std::filesystem::path init;   // Load these weights first (non-strict: a
                                 // different head or missing tensors are skipped).
   bool resume = true;           // Continue from out_dir/last.pt if present.
+  int stop_after_epoch = 0;     // End this run after that epoch (0 = run to
+                                // `epochs`); the schedule still spans `epochs`.
   int threads = 0;              // LibTorch intra-op threads; 0 = every core.
 
   void Check() const;

@@ -96,6 +96,12 @@ TEST(TrainSegmenter, ResumesAfterTheLastCheckpoint) {
   EXPECT_EQ(resumed.epochs_done, 4);
   ASSERT_EQ(resumed.history.size(), 4u);
   EXPECT_EQ(resumed.history[1].train_loss, first.history[1].train_loss);
+  // --stop-after ends early without changing the schedule length.
+  TrainOptions o3 = TinyOptions(ToySet() / "run_stop_after");
+  o3.epochs = 3;
+  o3.steps_per_epoch = 2;
+  o3.stop_after_epoch = 1;
+  EXPECT_EQ(TrainSegmenter(o3).epochs_done, 1);
   // A different architecture in the same folder is refused.
   o.arch = "b0";
   EXPECT_THROW(TrainSegmenter(o), InvalidArgument);
