@@ -11,6 +11,7 @@
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -195,6 +196,14 @@ int main(int argc, char** argv) {
       "{:.1f} MiB after view 10, {:.1f} MiB after view {} ({:+.1f} %); current RSS {:.1f} → {:.1f} MiB.\n",
       memory_views, synth_seconds, peak10, peak_end, memory_views, 100.0 * (peak_end - peak10) / std::max(peak10, 1e-9),
       rss10, rss_end);
+  // Context: other work on the machine slows everything by the same factor.
+  std::ifstream loadavg("/proc/loadavg");
+  double load1 = 0;
+  loadavg >> load1;
+  rusage usage{};
+  ::getrusage(RUSAGE_SELF, &usage);
+  md += fmt::format("\nLoad average at the end: {:.1f} on {} hardware threads; this process's own CPU time: {:.0f} s.\n",
+                    load1, std::thread::hardware_concurrency(), usage.ru_utime.tv_sec + usage.ru_stime.tv_sec);
   bench::WriteSection(out_path, md);
   return 0;
 }
