@@ -203,7 +203,7 @@ int main(int argc, char** argv) {
   rusage usage{};
   ::getrusage(RUSAGE_SELF, &usage);
   md += fmt::format("\nLoad average at the end: {:.1f} on {} hardware threads; this process's own CPU time: {:.0f} s.\n",
-                    load1, std::thread::hardware_concurrency(), usage.ru_utime.tv_sec + usage.ru_stime.tv_sec);
+                    load1, std::thread::hardware_concurrency(), static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec));
   bench::WriteSection(out_path, md);
   return 0;
 }
