@@ -1,5 +1,7 @@
 // `asbuilt scene …` end to end through the real binary.
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <string>
 
@@ -18,7 +20,7 @@ using testing_util::RunAsbuilt;
 using testing_util::RunResult;
 
 fs::path TempDir(const std::string& name) {
-  fs::path dir = fs::temp_directory_path() / ("asbuilt_cli_scene_" + name);
+  fs::path dir = fs::temp_directory_path() / ("asbuilt_cli_scene_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -1,5 +1,7 @@
 #include "asbuilt/scene/blender_export.h"
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 
@@ -62,7 +64,7 @@ TEST(BlenderScript, BuildsTheSceneInsideBlender) {
     GTEST_SKIP() << "blender is not on PATH (Debian package `blender`, in install-deps --bench); "
                     "the script text is checked by the other tests";
   }
-  fs::path dir = fs::temp_directory_path() / "asbuilt_blender_test";
+  fs::path dir = fs::temp_directory_path() / ("asbuilt_blender_test_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   Scene scene = Classroom();

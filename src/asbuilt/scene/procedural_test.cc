@@ -1,5 +1,7 @@
 #include "asbuilt/scene/procedural.h"
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <set>
 
@@ -81,7 +83,7 @@ TEST(RandomScene, CoversTheVarietyTheDatasetNeeds) {
 }
 
 TEST(WriteRandomScenes, WritesOneValidFilePerSeed) {
-  fs::path dir = fs::temp_directory_path() / "asbuilt_random_scenes";
+  fs::path dir = fs::temp_directory_path() / ("asbuilt_random_scenes_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   int calls = 0;
   RandomScenesSummary s = WriteRandomScenes({}, 10, 5, dir, [&](const ProgressUpdate&) { ++calls; });

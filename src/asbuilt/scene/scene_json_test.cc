@@ -1,5 +1,7 @@
 #include "asbuilt/scene/scene_json.h"
 
+#include <unistd.h>
+
 #include <filesystem>
 
 #include <gmock/gmock.h>
@@ -59,7 +61,7 @@ Scene EverythingSet() {
 TEST(SceneJson, RoundTripsExactly) {
   Scene s = EverythingSet();
   ASSERT_THAT(ValidateScene(s), ::testing::IsEmpty());
-  fs::path p = fs::temp_directory_path() / "asbuilt_scene_roundtrip.json";
+  fs::path p = fs::temp_directory_path() / ("asbuilt_scene_roundtrip_" + std::to_string(::getpid()) + ".json");
   WriteScene(s, p);
   Scene back = ReadScene(p);
   EXPECT_EQ(SceneToJson(back), SceneToJson(s));
@@ -67,7 +69,7 @@ TEST(SceneJson, RoundTripsExactly) {
   EXPECT_EQ(back.rooms[0].openings[1].offset_m, 1.0 / 3.0);
   EXPECT_EQ(back.rig.fy, 251.5);
   // Second generation is byte-identical.
-  fs::path p2 = fs::temp_directory_path() / "asbuilt_scene_roundtrip2.json";
+  fs::path p2 = fs::temp_directory_path() / ("asbuilt_scene_roundtrip2_" + std::to_string(::getpid()) + ".json");
   WriteScene(back, p2);
   EXPECT_EQ(ReadFile(p), ReadFile(p2));
 }
@@ -131,7 +133,7 @@ TEST(SceneJson, SemanticErrorsComeAfterTypesAreRight) {
 }
 
 TEST(SceneJson, CheckSceneFileReportsBrokenJsonAndUnknownKeys) {
-  fs::path p = fs::temp_directory_path() / "asbuilt_scene_broken.json";
+  fs::path p = fs::temp_directory_path() / ("asbuilt_scene_broken_" + std::to_string(::getpid()) + ".json");
   WriteFileAtomic(p, "{\"version\": 1, \"rooms\": [");
   FileReport r = CheckSceneFile(p);
   ASSERT_EQ(r.errors.size(), 1u);
