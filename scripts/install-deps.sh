@@ -15,7 +15,7 @@ packages=(
   libopencv-dev libopencv-contrib-dev
   libtorch-dev libopenblas0-openmp
   libembree-dev libtbb-dev
-  libcairo2-dev libcpp-httplib-dev
+  libcairo2-dev libcpp-httplib-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev
   python3 python3-ezdxf librsvg2-bin

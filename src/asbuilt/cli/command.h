@@ -58,6 +58,8 @@ int RunPointsCommand(int argc, char** argv);
 int RunTrainCommand(int argc, char** argv);
 int RunSegmentCommand(int argc, char** argv);
 int RunExperimentCommand(int argc, char** argv);
+int RunLabelsCommand(int argc, char** argv);
+int RunDatasetCommand(int argc, char** argv);
 int RunVersionCommand(int argc, char** argv);
 
 }  // namespace asbuilt::cli

@@ -8,9 +8,11 @@
 #include <fmt/format.h>
 
 #include "asbuilt/cli/command.h"
+#include "asbuilt/dataset/manifest.h"
 #include "asbuilt/formats/capture.h"
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/stereo/rectify.h"
+#include "asbuilt/labels/palette.h"
 #include "asbuilt/scene/scene_json.h"
 #include "asbuilt/util/json_reader.h"
 
@@ -34,6 +36,9 @@ const FileKind kFileKinds[] = {
     {"calibration", [](const nlohmann::json&) { return false; }, &CheckCalibrationFile},
     {"scene", [](const nlohmann::json& d) { return d.contains("rooms") && !d.contains("walls"); },
      &CheckSceneFile},
+    {"manifest", [](const nlohmann::json& d) { return d.contains("train") && d.contains("config"); },
+     &CheckManifestFile},
+    {"palette", [](const nlohmann::json& d) { return d.contains("colours"); }, &CheckPaletteFile},
 };
 
 std::string KindNames() {

@@ -161,11 +161,16 @@ MixSummary BuildMix(const MixOptions& options, const MixSources& sources, const 
     files[e.label] = p.label;
     return e;
   };
-  for (auto [pool, count, source] : {std::tuple{&real, n_real, PairSource::kReal},
-                                     std::tuple{&synthetic, n_synth, PairSource::kSynthetic}}) {
-    const std::int64_t n_val = static_cast<std::int64_t>(std::llround(count * (1.0 - options.split)));
+  // Val: round(total · (1 − split)) pairs, shared between the sources in
+  // proportion (so small mixes still get a val pair).
+  const std::int64_t n_val = static_cast<std::int64_t>(std::llround(total * (1.0 - options.split)));
+  const std::int64_t n_val_real =
+      std::min(n_real, static_cast<std::int64_t>(std::llround(static_cast<double>(n_val) * n_real / total)));
+  const std::int64_t n_val_synth = std::min(n_synth, n_val - n_val_real);
+  for (auto [pool, count, count_val, source] : {std::tuple{&real, n_real, n_val_real, PairSource::kReal},
+                                                std::tuple{&synthetic, n_synth, n_val_synth, PairSource::kSynthetic}}) {
     for (std::int64_t i = 0; i < count; ++i) {
-      (i < n_val ? m.val : m.train).push_back(entry((*pool)[i], source));
+      (i < count_val ? m.val : m.train).push_back(entry((*pool)[i], source));
     }
   }
   Shuffle(m.train, options.seed ^ kOrderStream);

@@ -38,7 +38,8 @@ struct MixOptions {
   std::string config = "RS5050";
   // Train + val pairs; 0 = as many as the sources allow at the ratio.
   std::int64_t total = 0;
-  // Fraction of the mix in train (the rest is val); 0.9 = the paper's 9:1.
+  // Fraction of the mix in train (the rest is val, shared between real and
+  // synthetic in the mix's ratio); 0.9 = the paper's 9:1.
   double split = 0.9;
   // Fraction of the real pairs held out as the test list (ignored when an
   // explicit test set is given). Rounded up, so a real set of any size gives

@@ -1,0 +1,88 @@
+// `asbuilt dataset <synth|mix|check>` — training sets: rendered synthetic
+// items (synth: dataset_synth_command.cc), real/synthetic mixes with a
+// held-out real test list, and validation of (image, label) pairs
+// (dataset/, docs/dataset.md).
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "asbuilt/cli/command.h"
+#include "asbuilt/dataset/check.h"
+#include "asbuilt/dataset/mix.h"
+#include "asbuilt/util/progress.h"
+
+namespace asbuilt::cli {
+
+int RunDatasetCommand(int argc, char** argv) {
+  CLI::App app(
+      "Training sets (docs/dataset.md).\n"
+      "  mix    real + synthetic pairs at a ratio (R100, S100, RS5050, RS8020, RS2080, RSxxyy) → manifest.json\n"
+      "  check  validate every (image, label) pair of a dataset folder or manifest; class histograms\n"
+      "  synth  random rooms rendered as labelled training items (images/ labels/ idmaps/ depth/ meta/)",
+      "asbuilt dataset");
+  AddCommonFlags(app);
+  app.require_subcommand(1);
+
+  // mix
+  CLI::App* mix = app.add_subcommand("mix", "real + synthetic → manifest.json (train / val / held-out real test)");
+  std::string mix_real, mix_synth, mix_test, mix_out;
+  MixOptions mix_options;
+  bool no_checksums = false;
+  mix->add_option("--real", mix_real, "real dataset folder (images/ + labels/, at any depth)");
+  mix->add_option("--synthetic", mix_synth, "synthetic dataset folder (left/ + labels/ captures, or images/ + labels/)");
+  mix->add_option("--test", mix_test, "explicit real test folder (default: hold out --test-fraction of --real)");
+  mix->add_option("--config", mix_options.config, "R100, S100, RS5050, RS8020, RS2080 or any RSxxyy")
+      ->capture_default_str();
+  mix->add_option("--total", mix_options.total, "train + val pairs (0 = as many as the ratio allows)")
+      ->capture_default_str();
+  mix->add_option("--split", mix_options.split, "train fraction (the rest is val; 0.9 = the paper's 9:1)")
+      ->capture_default_str();
+  mix->add_option("--test-fraction", mix_options.test_fraction, "fraction of real pairs held out for test")
+      ->capture_default_str();
+  mix->add_option("--seed", mix_options.seed, "selection and order seed")->capture_default_str();
+  mix->add_flag("--no-checksums", no_checksums, "do not record SHA-256 of the files (faster)");
+  mix->add_option("--threads", mix_options.num_threads, "worker threads (0 = all cores)")->capture_default_str();
+  mix->add_option("-o,--output", mix_out, "manifest file to write")->required();
+
+  // check
+  CLI::App* check = app.add_subcommand("check", "validate pairs, print class histograms");
+  std::string check_path;
+  DatasetCheckOptions check_options;
+  check->add_option("path", check_path, "dataset folder or manifest.json")->required();
+  check->add_option("--threads", check_options.num_threads, "worker threads (0 = all cores)")->capture_default_str();
+
+  // synth (render/): runs from its callback during Parse.
+  CLI::App* synth = AddDatasetSynthSubcommand(app);
+
+  Parse(app, argc, argv);
+  if (synth->parsed()) return 0;
+
+  if (mix->parsed()) {
+    mix_options.checksums = !no_checksums;
+    mix_options.Check();
+    if (mix_real.empty() && mix_synth.empty()) {
+      throw CLI::ValidationError("--real/--synthetic", "give at least one of --real and --synthetic");
+    }
+    ProgressPrinter printer;
+    MixSummary summary = MixDataset(mix_options, mix_real, mix_synth, mix_test, mix_out, printer.Callback());
+    printer.Finish();
+    fmt::print("{}\nwrote {}\n", summary.BriefReport(), mix_out);
+    return 0;
+  }
+  if (check->parsed()) {
+    check_options.Check();
+    ProgressPrinter printer;
+    DatasetCheckSummary summary = CheckDataset(check_options, check_path, printer.Callback());
+    printer.Finish();
+    for (const Problem& p : summary.problems) fmt::print(stderr, "{}\n", p.ToString());
+    fmt::print("{}\n", summary.BriefReport());
+    fmt::print("{}", summary.HistogramTable());
+    return summary.ok() ? 0 : 1;
+  }
+  return 2;
+}
+
+}  // namespace asbuilt::cli
