@@ -98,6 +98,8 @@ void FramePointsOptions::Check() const {
   CheckArgument(min_depth_m > 0 && max_depth_m > min_depth_m,
                 fmt::format("FramePointsOptions.min_depth_m = {}, max_depth_m = {}: need 0 < min < max",
                             min_depth_m, max_depth_m));
+  CheckArgument(window_band_px > 0,
+                fmt::format("FramePointsOptions.window_band_px = {}, must be > 0", window_band_px));
   CheckArgument(right_label_radius_px >= 0,
                 fmt::format("FramePointsOptions.right_label_radius_px = {}, must be >= 0", right_label_radius_px));
 }
@@ -200,7 +202,7 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
       cv::Mat opening = (frame.labels_left == 2) | (frame.labels_left == 3);
       cv::distanceTransform(opening, band_distance, cv::DIST_L2, 3);
     }
-    const float opening_band_px = 14.0f;
+    const float opening_band_px = static_cast<float>(options.window_band_px);
     for (int v = h + 2; v < gray_left.rows - h - 2; v += options.edge_row_step_px) {
       const float* g = gx.ptr<float>(v);
       const unsigned char* lab = frame.labels_left.ptr<unsigned char>(v);
@@ -264,6 +266,13 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
       if (!enabled[c]) continue;
       cv::Mat mask = frame.labels_left == c;
       if (options.dense_inset_px > 0) cv::erode(mask, mask, kernel);
+      if (c == 3) {
+        // Windows: only the frame and casing band along the region border;
+        // the glass shows the outside.
+        cv::Mat distance;
+        cv::distanceTransform(frame.labels_left == c, distance, cv::DIST_L2, 3);
+        mask &= distance <= options.window_band_px;
+      }
       for (int v = 0; v < mask.rows; v += options.dense_stride_px) {
         const unsigned char* m = mask.ptr<unsigned char>(v);
         const unsigned char* ok = result.disparity.valid.ptr<unsigned char>(v);

@@ -49,11 +49,13 @@ struct FramePointsOptions {
   bool use_corners = true;
   bool use_edges = true;
   bool use_dense = true;
-  // Classes that give dense points. Window regions are off by default: the
-  // glass shows the outside, whose disparity is not the window's.
+  // Classes that give dense points. Window regions give them only in a band
+  // along their border (frame, casing): the glass shows the outside.
   bool dense_wall = true;
   bool dense_door = true;
-  bool dense_window = false;
+  bool dense_window = true;
+  // Width (px) of that band; door/window edge points use the same band.
+  double window_band_px = 14.0;
   // Keep every n-th dense pixel in x and y (1 = all); fewer points, same fit.
   int dense_stride_px = 3;
   // Dense points only this far (px) inside their class region, so a
