@@ -14,6 +14,7 @@
 #include <spdlog/spdlog.h>
 
 #include "asbuilt/pipeline/report.h"
+#include "asbuilt/plan/drawing.h"
 #include "asbuilt/seg/segmenter.h"
 #include "asbuilt/stereo/rectify.h"
 #include "asbuilt/util/error.h"
@@ -321,6 +322,10 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   WritePoints(points, out_dir / "points.txt");
   WritePointsPly(points, out_dir / "points.ply");
   std::string plan_svg;
+  if (!result.plan.walls.empty()) {
+    WritePlanFiles(result.plan, out_dir);  // plan.json again (same), .svg, .dxf, .pdf, .png
+    plan_svg = ReadFile(out_dir / "plan.svg");
+  }
   if (summary.score) WriteFileAtomic(out_dir / "score.json", PlanScoreToJson(*summary.score).dump(2) + "\n");
   add_stage("write outputs", Since(t));
 
