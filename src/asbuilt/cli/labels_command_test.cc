@@ -49,11 +49,11 @@ TEST(LabelsCommand, ImportsAde20kAndNyuSamples) {
 }
 
 TEST(LabelsCommand, BadInputInABatchIsNamedAndTheRestConverted) {
+  if (!fs::exists(kData / "nyuv2_sample")) GTEST_SKIP() << "shared data not present";
   fs::path dir = TestDir();
   RunResult imp = RunAsbuilt("labels import --format nyuv2 " +
                              (kData / "nyuv2_sample/semantic40_ids.png").string() + " " + (dir / "missing.png").string() +
                              " -o " + (dir / "out").string());
-  if (!fs::exists(kData / "nyuv2_sample")) GTEST_SKIP() << "shared data not present";
   EXPECT_EQ(imp.exit_code, 1) << imp.out;
   EXPECT_NE(imp.out.find((dir / "missing.png").string() + ": cannot read"), std::string::npos) << imp.out;
   EXPECT_TRUE(fs::exists(dir / "out/semantic40_ids.png"));
