@@ -43,21 +43,23 @@ void Parse(CLI::App& app, int argc, char** argv);
 
 // One declaration per command.
 int RunHelpCommand(int argc, char** argv);
+int RunSurveyCommand(int argc, char** argv);
+int RunDemoCommand(int argc, char** argv);
 int RunValidateCommand(int argc, char** argv);
+int RunEvalCommand(int argc, char** argv);
+int RunPlanCommand(int argc, char** argv);
 int RunSceneCommand(int argc, char** argv);
 int RunRenderCommand(int argc, char** argv);
 // `dataset synth` (dataset_synth_command.cc): adds the subcommand, whose callback runs it.
 CLI::App* AddDatasetSynthSubcommand(CLI::App& dataset_app);
-int RunEvalCommand(int argc, char** argv);
-int RunPlanCommand(int argc, char** argv);
-int RunMcpCommand(int argc, char** argv);
+int RunTrainCommand(int argc, char** argv);
+int RunSegmentCommand(int argc, char** argv);
+int RunExperimentCommand(int argc, char** argv);
 int RunCalibrateCommand(int argc, char** argv);
 int RunRectifyCommand(int argc, char** argv);
 int RunDisparityCommand(int argc, char** argv);
 int RunPointsCommand(int argc, char** argv);
-int RunTrainCommand(int argc, char** argv);
-int RunSegmentCommand(int argc, char** argv);
-int RunExperimentCommand(int argc, char** argv);
+int RunMcpCommand(int argc, char** argv);
 int RunLabelsCommand(int argc, char** argv);
 int RunDatasetCommand(int argc, char** argv);
 int RunVersionCommand(int argc, char** argv);

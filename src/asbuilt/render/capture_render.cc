@@ -7,7 +7,7 @@
 
 #include "asbuilt/formats/capture.h"
 #include "asbuilt/formats/plan_file.h"
-#include "asbuilt/render/image_io.h"
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {

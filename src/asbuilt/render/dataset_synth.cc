@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "asbuilt/render/image_io.h"
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/scene/furnish.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
