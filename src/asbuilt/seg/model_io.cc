@@ -73,7 +73,9 @@ torch::serialize::InputArchive OpenArchive(const fs::path& path) {
   try {
     archive.load_from(path.string());
   } catch (const std::exception& e) {
-    throw InputError(path.string(), "", fmt::format("not a LibTorch archive ({})", std::string(e.what()).substr(0, 200)));
+    std::string why = e.what();
+    why = why.substr(0, why.find('\n'));  // LibTorch appends a backtrace.
+    throw InputError(path.string(), "", fmt::format("not a LibTorch archive ({})", why));
   }
   return archive;
 }
