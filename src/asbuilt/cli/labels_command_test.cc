@@ -22,13 +22,7 @@ using testing_util::RunResult;
 
 const fs::path kData = ASBUILT_SHARED_DATA_DIR;
 
-fs::path TestDir() {
-  fs::path dir = fs::temp_directory_path() /
-                 ("asbuilt_cli_labels_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path TestDir() { return testing_util::FreshTestDir("asbuilt_cli_labels_"); }
 
 TEST(LabelsCommand, ImportsAde20kAndNyuSamples) {
   fs::path ade = kData / "ade20k_sceneparsing_samples/annotations";
