@@ -26,6 +26,7 @@ TEST(RunSurvey, ExactLabelsOnBlenderRectangleMeetTargets) {
   EXPECT_LE(s.wall_length.Median().value_or(1), 0.02) << s.Table();
   EXPECT_LE(s.wall_length.Max().value_or(1), 0.05) << s.Table();
   EXPECT_EQ(s.doors.matched, s.doors.truth) << s.Table();
+  EXPECT_EQ(s.windows.matched, s.windows.truth) << s.Table();
   EXPECT_LE(s.door_width.Median().value_or(1), 0.03) << s.Table();
   EXPECT_LE(s.area_relative_error.value_or(1), 0.02) << s.Table();
   for (const char* f : {"plan.json", "plan.svg", "plan.dxf", "plan.pdf", "plan.png", "points.txt", "points.ply", "score.json", "summary.json", "report.html"}) {
