@@ -1,5 +1,7 @@
 #include "asbuilt/dataset/mix.h"
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <set>
 
@@ -65,8 +67,13 @@ TEST(MixConfig, RejectsBadNames) {
 
 class MixTest : public ::testing::Test {
  protected:
+  // One folder per process: ctest runs each test in its own process, in
+  // parallel, and a shared fixed name would be rebuilt under a sibling's feet.
+  static fs::path Sources() {
+    return fs::temp_directory_path() / ("asbuilt_mix_sources_" + std::to_string(::getpid()));
+  }
   static void SetUpTestSuite() {
-    fs::path dir = fs::temp_directory_path() / "asbuilt_mix_sources";
+    fs::path dir = Sources();
     fs::remove_all(dir);
     MakeDataset(dir / "real", 120, 1);
     MakeDataset(dir / "synth", 400, 2);
@@ -78,7 +85,7 @@ class MixTest : public ::testing::Test {
   MixSummary Mix(const MixOptions& o) {
     return MixDataset(o, sources_ / "real", sources_ / "synth", {}, dir_ / "out/manifest.json");
   }
-  const fs::path sources_ = fs::temp_directory_path() / "asbuilt_mix_sources";
+  const fs::path sources_ = Sources();
   fs::path dir_;
 };
 
