@@ -2,9 +2,6 @@
 // -o calibration.yml` — stereo calibration from chessboard pairs
 // (stereo/calibrate.h).
 
-#include <glob.h>
-
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -18,30 +15,6 @@
 #include "asbuilt/util/progress.h"
 
 namespace asbuilt::cli {
-namespace {
-
-// Each argument is a file or a glob pattern (quoted so the shell leaves it);
-// the result is sorted by name so left/right pair up by position.
-std::vector<std::filesystem::path> ExpandImages(const std::vector<std::string>& args, const std::string& flag) {
-  std::vector<std::filesystem::path> out;
-  for (const std::string& a : args) {
-    if (a.find_first_of("*?[") == std::string::npos) {
-      out.emplace_back(a);
-      continue;
-    }
-    glob_t g{};
-    const int rc = ::glob(a.c_str(), 0, nullptr, &g);
-    if (rc == 0) {
-      for (std::size_t i = 0; i < g.gl_pathc; ++i) out.emplace_back(g.gl_pathv[i]);
-    }
-    ::globfree(&g);
-    if (rc != 0) throw CLI::ValidationError(flag, fmt::format("no files match '{}'", a));
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
-}  // namespace
 
 int RunCalibrateCommand(int argc, char** argv) {
   CLI::App app(
@@ -67,7 +40,7 @@ int RunCalibrateCommand(int argc, char** argv) {
   if (std::sscanf(board.c_str(), "%dx%d", &options.board_cols, &options.board_rows) != 2) {
     throw CLI::ValidationError("--board", fmt::format("'{}' is not COLSxROWS (e.g. 9x6)", board));
   }
-  const auto left = ExpandImages(left_args, "--left"), right = ExpandImages(right_args, "--right");
+  const auto left = ExpandFileArgs(left_args, "--left"), right = ExpandFileArgs(right_args, "--right");
   if (left.size() != right.size()) {
     throw CLI::ValidationError("--right", fmt::format("{} left images but {} right images", left.size(), right.size()));
   }

@@ -1,6 +1,11 @@
 #include "asbuilt/cli/command.h"
 
+#include <glob.h>
+
+#include <algorithm>
 #include <cstdio>
+
+#include <fmt/format.h>
 
 #include "asbuilt/util/log.h"
 
@@ -57,6 +62,26 @@ void AddCommonFlags(CLI::App& app) {
                         "only print errors");
   app.add_flag_callback("-v,--verbose", [] { ConfigureLogging(Verbosity::kVerbose); },
                         "print debug messages");
+}
+
+std::vector<std::filesystem::path> ExpandFileArgs(const std::vector<std::string>& args,
+                                                  const std::string& flag) {
+  std::vector<std::filesystem::path> out;
+  for (const std::string& a : args) {
+    if (a.find_first_of("*?[") == std::string::npos) {
+      out.emplace_back(a);
+      continue;
+    }
+    glob_t g{};
+    const int rc = ::glob(a.c_str(), 0, nullptr, &g);
+    if (rc == 0) {
+      for (std::size_t i = 0; i < g.gl_pathc; ++i) out.emplace_back(g.gl_pathv[i]);
+    }
+    ::globfree(&g);
+    if (rc != 0) throw CLI::ValidationError(flag, fmt::format("no files match '{}'", a));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 void Parse(CLI::App& app, int argc, char** argv) {

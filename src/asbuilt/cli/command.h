@@ -9,7 +9,10 @@
 // its own file, declare it below and add one row to Commands() in
 // command.cc. Errors are thrown (STYLE.md 7); main() maps them to exit codes.
 
+#include <filesystem>
 #include <span>
+#include <string>
+#include <vector>
 #include <string_view>
 
 #include <CLI/CLI.hpp>
@@ -40,6 +43,12 @@ struct HelpPrinted {};
 // on bad flags throws CLI::ParseError, which main() turns into a usage
 // error (exit 2).
 void Parse(CLI::App& app, int argc, char** argv);
+
+// Expands file arguments: each is a path or a glob pattern (quoted so the
+// shell leaves it). Sorted by name, so left/right lists pair up by position.
+// Throws CLI::ValidationError naming `flag` when a pattern matches nothing.
+std::vector<std::filesystem::path> ExpandFileArgs(const std::vector<std::string>& args,
+                                                  const std::string& flag);
 
 // One declaration per command.
 int RunHelpCommand(int argc, char** argv);

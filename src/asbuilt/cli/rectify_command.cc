@@ -1,9 +1,6 @@
 // `asbuilt rectify --calibration calibration.yml --left L.png --right R.png
 // -o DIR` — rectifies stereo pairs with maps computed once (stereo/rectify.h).
 
-#include <glob.h>
-
-#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -12,40 +9,13 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "asbuilt/cli/command.h"
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/stereo/rectify.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
 
 namespace asbuilt::cli {
-namespace {
 namespace fs = std::filesystem;
-
-std::vector<fs::path> Expand(const std::vector<std::string>& args, const std::string& flag) {
-  std::vector<fs::path> out;
-  for (const std::string& a : args) {
-    if (a.find_first_of("*?[") == std::string::npos) {
-      out.emplace_back(a);
-      continue;
-    }
-    glob_t g{};
-    const int rc = ::glob(a.c_str(), 0, nullptr, &g);
-    if (rc == 0) {
-      for (std::size_t i = 0; i < g.gl_pathc; ++i) out.emplace_back(g.gl_pathv[i]);
-    }
-    ::globfree(&g);
-    if (rc != 0) throw CLI::ValidationError(flag, fmt::format("no files match '{}'", a));
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
-void WriteImage(const cv::Mat& image, const fs::path& path) {
-  AtomicFile out(path);
-  if (!cv::imwrite(out.temp_path().string(), image)) throw Error(fmt::format("{}: cannot write", path.string()));
-  out.Commit();
-}
-
-}  // namespace
 
 int RunRectifyCommand(int argc, char** argv) {
   CLI::App app(
@@ -62,7 +32,7 @@ int RunRectifyCommand(int argc, char** argv) {
   app.add_option("-o,--out", out_dir, "output folder")->required();
   app.add_option("--alpha", options.alpha, "0 crops to valid pixels, 1 keeps all")->capture_default_str();
   Parse(app, argc, argv);
-  const auto left = Expand(left_args, "--left"), right = Expand(right_args, "--right");
+  const auto left = ExpandFileArgs(left_args, "--left"), right = ExpandFileArgs(right_args, "--right");
   if (left.size() != right.size()) {
     throw CLI::ValidationError("--right", fmt::format("{} left images but {} right images", left.size(), right.size()));
   }
@@ -73,7 +43,7 @@ int RunRectifyCommand(int argc, char** argv) {
                                   std::tuple{StereoEye::kRight, right[i], "right"}}) {
       cv::Mat image = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
       if (image.empty()) throw InputError(path.string(), "", "cannot read the image");
-      WriteImage(RectifyImage(rectifier, eye, image), fs::path(out_dir) / sub / path.filename());
+      WriteImageAtomic(fs::path(out_dir) / sub / path.filename(), RectifyImage(rectifier, eye, image));
     }
   }
   const PinholeCamera& c = rectifier.camera;

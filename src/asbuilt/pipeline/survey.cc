@@ -51,23 +51,6 @@ cv::Mat ReadColourImage(const fs::path& path) {
   return image;
 }
 
-// Segmentation overlay: wall blue, door orange, window cyan (BGR).
-cv::Mat Overlay(const cv::Mat& bgr, const cv::Mat& labels) {
-  if (bgr.empty() || labels.empty() || labels.size() != bgr.size()) return bgr;
-  static const cv::Vec3b kColour[4] = {{0, 0, 0}, {200, 120, 40}, {40, 140, 240}, {230, 220, 40}};
-  cv::Mat out = bgr.clone();
-  for (int y = 0; y < out.rows; ++y) {
-    const uchar* l = labels.ptr<uchar>(y);
-    cv::Vec3b* o = out.ptr<cv::Vec3b>(y);
-    for (int x = 0; x < out.cols; ++x) {
-      if (l[x] == 0 || l[x] > 3) continue;
-      const cv::Vec3b& c = kColour[l[x]];
-      for (int k = 0; k < 3; ++k) o[x][k] = static_cast<uchar>((o[x][k] + c[k]) / 2);
-    }
-  }
-  return out;
-}
-
 // Top-down picture of the class points, the measured walls, the truth plan
 // (dashed) and the rig positions.
 std::string PointsPlotPng(const std::vector<ClassPoint>& points, const Plan& plan,
@@ -258,8 +241,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
     segmented.clear();
     t = Clock::now();
     StereoFrame stereo = LoadStereoFrame(capture, frame, labels, rectifier ? &*rectifier : nullptr);
-    double load_seconds = Since(t) - (stage_seconds.count("segment") ? 0.0 : 0.0);
-    add_stage("load + rectify", load_seconds);
+    add_stage("load + rectify", Since(t));  // Segmenting inside it is moved out below.
     t = Clock::now();
     FramePointsResult r = ComputeFramePoints(stereo, options.points);
     double frame_seconds = Since(t);
@@ -273,7 +255,11 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
       t = Clock::now();
       ReportFrame rf{.index = frame.index, .yaw_deg = frame.yaw_deg};
       rf.left_jpeg = EncodeJpeg(stereo.left);
-      rf.overlay_jpeg = EncodeJpeg(Overlay(stereo.left, stereo.labels_left));
+      cv::Mat left_bgr = stereo.left;
+      if (left_bgr.channels() == 1) cv::cvtColor(stereo.left, left_bgr, cv::COLOR_GRAY2BGR);
+      if (stereo.labels_left.size() == left_bgr.size()) {
+        rf.overlay_jpeg = EncodeJpeg(LabelOverlay(left_bgr, stereo.labels_left));
+      }
       if (!r.disparity.disparity_px.empty()) rf.disparity_jpeg = EncodeJpeg(ColorizeDisparity(r.disparity.disparity_px));
       rf.cues = r.cues.BriefReport();
       report_frames.push_back(std::move(rf));
