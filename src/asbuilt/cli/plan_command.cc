@@ -72,7 +72,7 @@ int RunPlanCommand(int argc, char** argv) {
   } else {
     points = ReadPoints(input);
   }
-  PlanResult result = ReconstructPlan(points, options);
+  PlanResult result = ReconstructPlan(points, options, input);
   WritePlanFiles(result.plan, out_dir, drawing);
   fmt::print("{}: {}\n", out_dir, result.summary.BriefReport());
   return 0;

@@ -583,7 +583,8 @@ std::vector<std::pair<double, double>> WallPiecesBetweenOpenings(const Plan& pla
   return pieces;
 }
 
-PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOptions& options) {
+PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOptions& options,
+                           const std::string& points_source) {
   options.Check();
   const auto start_time = std::chrono::steady_clock::now();
   const PlanOptions& o = options;
@@ -607,8 +608,9 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
   }
   s.wall_points = static_cast<int>(walls_pts.size());
   if (s.wall_points < 2 * o.min_wall_points) {
-    throw Error(fmt::format("plan: {} wall points, need at least {} (2 × PlanOptions.min_wall_points)",
-                            s.wall_points, 2 * o.min_wall_points));
+    throw Error(fmt::format("{}: {} wall points, need at least {} (2 × PlanOptions.min_wall_points){}",
+                            points_source.empty() ? "plan" : points_source, s.wall_points, 2 * o.min_wall_points,
+                            s.wall_points == 0 ? ": no wall was labelled, or no wall pixel had a valid disparity" : ""));
   }
 
   // 2. Lines.
@@ -633,9 +635,9 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
   MergeCollinear(walls_pts, lines, o);
   for (const Direction& d : dirs) s.dominant_directions_deg.push_back(RadToDeg(d.theta));
   if (lines.size() < 2) {
-    throw Error(fmt::format("plan: found {} wall line(s) in {} wall points; need at least 2 "
+    throw Error(fmt::format("{}: found {} wall line(s) in {} wall points; need at least 2 "
                             "(try a larger --epsilon-m or fewer --min-wall-points)",
-                            lines.size(), s.wall_points));
+                            points_source.empty() ? "plan" : points_source, lines.size(), s.wall_points));
   }
 
   // 4. Order around the viewpoint and close the room.

@@ -97,8 +97,11 @@ struct PlanResult {
 };
 
 // Throws InvalidArgument on bad options, and Error when fewer than two wall
-// lines can be found (too few or too scattered wall points).
-PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOptions& options = {});
+// lines can be found (too few or too scattered wall points); that error
+// starts with `points_source` (the point file or capture the points came
+// from) when given, so the user learns which input is at fault.
+PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOptions& options = {},
+                           const std::string& points_source = "");
 
 // Pieces of wall `wall` left after cutting out its openings (interval
 // trimming), as [t0, t1] distances from the wall's start, in order.
