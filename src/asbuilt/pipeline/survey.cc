@@ -192,7 +192,14 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   }
   std::optional<StereoRectifier> rectifier;
   if (!capture.rectified) {
-    StereoCalibration calibration = LoadCalibration(capture.Resolve(*capture.calibration));
+    const fs::path calibration_path = capture.Resolve(*capture.calibration);
+    StereoCalibration calibration = LoadCalibration(calibration_path);
+    if (calibration.image_size != cv::Size(capture.camera.width, capture.camera.height)) {
+      throw InputError(calibration_path.string(), "image_width",
+                       fmt::format("calibration is for {}x{} images, the capture's camera is {}x{}",
+                                   calibration.image_size.width, calibration.image_size.height,
+                                   capture.camera.width, capture.camera.height));
+    }
     rectifier = MakeStereoRectifier(calibration, {});
   }
   add_stage("read capture", Since(t));
@@ -282,7 +289,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   PlanOptions plan_options = options.plan;
   if (!plan_options.viewpoint_m && total > 0) plan_options.viewpoint_m = rig_sum / total;
   try {
-    PlanResult plan = ReconstructPlan(points, plan_options);
+    PlanResult plan = ReconstructPlan(points, plan_options, capture_json.string());
     result.plan = std::move(plan.plan);
     summary.plan = plan.summary;
     if (!plan.summary.closed && !result.plan.walls.empty()) {
