@@ -10,6 +10,7 @@
 #include "asbuilt/formats/capture.h"
 #include "asbuilt/formats/points_file.h"
 #include "asbuilt/stereo/frame_points.h"
+#include "asbuilt/util/error.h"
 #include "asbuilt/util/progress.h"
 
 namespace asbuilt::cli {
@@ -53,6 +54,10 @@ int RunPointsCommand(int argc, char** argv) {
   const CapturePointsResult result = ComputeCapturePoints(capture, labels, options, printer.Callback());
   printer.Finish();
   for (const FrameCues& f : result.frames) fmt::print(stderr, "  {}\n", f.BriefReport());
+  if (result.points.empty()) {
+    throw InputError(capture_path, "", "no point could be triangulated in any frame (no labelled wall, door or "
+                                       "window with a valid disparity): check the labels and the stereo pair");
+  }
   const std::filesystem::path out(out_dir);
   WritePoints(result.points, out / "points.txt");
   WritePointsPly(result.points, out / "points.ply");
