@@ -339,13 +339,13 @@ StereoFrame LoadStereoFrame(const Capture& capture, const CaptureFrame& frame, c
   out.labels_right = labels(frame, StereoEye::kRight);
   for (const cv::Mat* l : {&out.labels_left, &out.labels_right}) {
     if (!l->empty() && l->size() != out.left.size()) {
-      throw InputError(frame.left, "labels",
+      throw InputError(capture.Resolve(frame.left).string(), "labels",
                        fmt::format("frame {}: labels are {}x{}, images {}x{}", frame.index, l->cols, l->rows,
                                    out.left.cols, out.left.rows));
     }
   }
   if (out.labels_left.empty()) {
-    throw InputError(frame.left, "labels", fmt::format("frame {}: no left labels", frame.index));
+    throw InputError(capture.Resolve(frame.left).string(), "labels", fmt::format("frame {}: no left labels", frame.index));
   }
   out.camera = capture.camera.Pinhole();
   out.baseline_m = capture.camera.baseline_m;
