@@ -37,12 +37,24 @@ int RunRectifyCommand(int argc, char** argv) {
     throw CLI::ValidationError("--right", fmt::format("{} left images but {} right images", left.size(), right.size()));
   }
   options.Check();
-  const StereoRectifier rectifier = MakeStereoRectifier(LoadCalibration(calibration), options);
+  const StereoCalibration calib = LoadCalibration(calibration);
+  const StereoRectifier rectifier = MakeStereoRectifier(calib, options);
+  // Both images of a pair are read and checked before either is written, so
+  // a bad pair leaves no half of itself behind.
+  auto read = [&](const fs::path& path) {
+    cv::Mat image = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+    if (image.empty()) throw InputError(path.string(), "", "cannot read the image");
+    if (image.size() != calib.image_size) {
+      throw InputError(path.string(), "",
+                       fmt::format("image is {}x{}, but the calibration {} is for {}x{}", image.cols, image.rows,
+                                   calibration, calib.image_size.width, calib.image_size.height));
+    }
+    return image;
+  };
   for (std::size_t i = 0; i < left.size(); ++i) {
-    for (auto [eye, path, sub] : {std::tuple{StereoEye::kLeft, left[i], "left"},
-                                  std::tuple{StereoEye::kRight, right[i], "right"}}) {
-      cv::Mat image = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
-      if (image.empty()) throw InputError(path.string(), "", "cannot read the image");
+    const cv::Mat images[2] = {read(left[i]), read(right[i])};
+    for (auto [eye, path, sub, image] : {std::tuple{StereoEye::kLeft, left[i], "left", images[0]},
+                                         std::tuple{StereoEye::kRight, right[i], "right", images[1]}}) {
       WriteImageAtomic(fs::path(out_dir) / sub / path.filename(), RectifyImage(rectifier, eye, image));
     }
   }
