@@ -67,6 +67,7 @@ int RunSegmentCommand(int argc, char** argv) {
         if (e.is_regular_file() && IsImageFile(e.path())) found.push_back(e.path());
       }
       std::sort(found.begin(), found.end());
+      if (found.empty()) throw InputError(in, "", "no images in this folder (PNG, JPEG, …)");
       files.insert(files.end(), found.begin(), found.end());
     } else if (fs::is_regular_file(in)) {
       files.push_back(in);
