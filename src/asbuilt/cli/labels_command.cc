@@ -30,7 +30,9 @@ std::vector<fs::path> ExpandInputs(const std::vector<std::string>& inputs, ListF
   for (const std::string& in : inputs) {
     std::error_code ec;
     if (fs::is_directory(in, ec)) {
-      for (fs::path& p : list(fs::path(in))) out.push_back(std::move(p));
+      std::vector<fs::path> found = list(fs::path(in));
+      if (found.empty()) throw InputError(in, "", "no input files in this folder");
+      for (fs::path& p : found) out.push_back(std::move(p));
     } else {
       out.emplace_back(in);  // A missing file is reported by the batch, by name.
     }
