@@ -48,7 +48,8 @@ CLI::App* AddDatasetSynthSubcommand(CLI::App& dataset_app) {
         std::sscanf(flags->shard.c_str(), "%d/%d", &o.shard_index, &o.shard_count) != 2) {
       throw CLI::ValidationError("--shard", fmt::format("'{}' is not i/N (e.g. 0/4)", flags->shard));
     }
-    if (!flags->size.empty() && std::sscanf(flags->size.c_str(), "%dx%d", &o.width_px, &o.height_px) != 2) {
+    if (!flags->size.empty() && (std::sscanf(flags->size.c_str(), "%dx%d", &o.width_px, &o.height_px) != 2 ||
+                                 o.width_px <= 0 || o.height_px <= 0)) {
       throw CLI::ValidationError("--size", fmt::format("'{}' is not WxH (e.g. 320x240)", flags->size));
     }
     o.resume = !flags->no_resume;
