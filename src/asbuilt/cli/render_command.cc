@@ -45,7 +45,8 @@ int RunRenderCommand(int argc, char** argv) {
   Parse(app, argc, argv);
 
   if (!size.empty()) {
-    if (std::sscanf(size.c_str(), "%dx%d", &options.width_px, &options.height_px) != 2) {
+    if (std::sscanf(size.c_str(), "%dx%d", &options.width_px, &options.height_px) != 2 || options.width_px <= 0 ||
+        options.height_px <= 0) {
       throw CLI::ValidationError("--size", fmt::format("'{}' is not WxH (e.g. 640x480)", size));
     }
   }
