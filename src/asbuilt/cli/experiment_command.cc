@@ -47,7 +47,7 @@ int RunExperimentCommand(int argc, char** argv) {
   int count = 100;
   ToyRoomOptions t;
   toy->add_option("-o,--out", toy_out, "output folder")->required();
-  toy->add_option("--count", count, "views")->capture_default_str();
+  toy->add_option("--count", count, "views")->capture_default_str()->check(CLI::PositiveNumber);
   toy->add_option("--seed", t.seed, "seed")->capture_default_str();
   toy->add_option("--width", t.width_px, "width, px")->capture_default_str();
   toy->add_option("--height", t.height_px, "height, px")->capture_default_str();
