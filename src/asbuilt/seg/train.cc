@@ -282,7 +282,6 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
                       {"val_pairs", split.val.size()},
                       {"steps_per_epoch", steps_per_epoch},
                       {"total_steps", total_steps}};
-  WriteFileAtomic(out / "options.json", resolved.dump(2) + "\n");
 
   auto make_meta = [&](int epoch) {
     nlohmann::json meta;
@@ -393,6 +392,9 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
       summary.best_miou = rec.val_miou;
       summary.best_epoch = epoch;
     }
+    // This run's options.json goes with its first checkpoint, so a run that
+    // fails on its first batch (a corrupt image) leaves no file behind.
+    if (epoch == start_epoch + 1) WriteFileAtomic(out / "options.json", resolved.dump(2) + "\n");
     // Checkpoints: best first, then last (the resume point) — both atomic.
     if (best || split.val.empty()) SaveCheckpoint(best_path, model, nullptr, make_meta(epoch));
     SaveCheckpoint(last_path, model, &optimizer, make_meta(epoch));
