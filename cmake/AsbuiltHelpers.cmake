@@ -8,6 +8,12 @@ function(asbuilt_apply_common target)
     target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer)
     target_link_options(${target} PRIVATE -fsanitize=address,undefined)
   endif()
+  if(ASBUILT_FUZZ)
+    # Coverage feedback from the libraries too, not only the harness file:
+    # without it libFuzzer is blind inside the parsers it is meant to explore.
+    target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
 endfunction()
 
 # asbuilt_library(NAME <module> SRCS <files> [DEPS <targets>] [PRIVATE_DEPS <targets>])
