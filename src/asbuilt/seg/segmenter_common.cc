@@ -1,6 +1,7 @@
 // Parts of segmenter.h that need no LibTorch (built with and without it).
 #include <fmt/format.h>
 
+#include "asbuilt/seg/model_file.h"
 #include "asbuilt/seg/segmenter.h"
 #include "asbuilt/util/error.h"
 
@@ -47,6 +48,12 @@ SegmenterInfo ReadSegmenterInfo(const std::filesystem::path& path) {
   throw Error(path.string() + ": this asbuilt was built without LibTorch (ASBUILT_WITH_TORCH=OFF)");
 }
 bool SegmenterAvailable() { return false; }
+SegmenterInfo ExportModel(const std::filesystem::path& checkpoint, const std::filesystem::path&) {
+  throw Error(checkpoint.string() + ": this asbuilt was built without LibTorch (ASBUILT_WITH_TORCH=OFF)");
+}
+SegmenterInfo ImportModel(const std::filesystem::path& in, const std::filesystem::path&) {
+  throw Error(in.string() + ": this asbuilt was built without LibTorch (ASBUILT_WITH_TORCH=OFF)");
+}
 #endif
 
 }  // namespace asbuilt

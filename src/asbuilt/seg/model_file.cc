@@ -1,0 +1,121 @@
+#include "asbuilt/seg/model_file.h"
+
+#include <cstring>
+#include <set>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "asbuilt/formats/safetensors.h"
+#include "asbuilt/seg/model_io.h"
+#include "asbuilt/util/error.h"
+
+namespace asbuilt {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kMetaKey = "asbuilt_meta";
+
+SafeTensor ToSafeTensor(const torch::Tensor& value) {
+  torch::Tensor t = value.detach().to(torch::kCPU).contiguous();
+  SafeTensor out;
+  if (t.scalar_type() == torch::kFloat32) {
+    out.dtype = "F32";
+  } else if (t.scalar_type() == torch::kInt64) {
+    out.dtype = "I64";
+  } else {
+    t = t.to(torch::kFloat32);
+    out.dtype = "F32";
+  }
+  out.shape.assign(t.sizes().begin(), t.sizes().end());
+  out.data.resize(static_cast<size_t>(t.numel()) * t.element_size());
+  if (!out.data.empty()) std::memcpy(out.data.data(), t.data_ptr(), out.data.size());
+  return out;
+}
+
+// A view of the tensor's bytes as a LibTorch tensor of its dtype (copied).
+torch::Tensor FromSafeTensor(const SafeTensor& t, const std::string& file, const std::string& name) {
+  torch::ScalarType type;
+  if (t.dtype == "F32") {
+    type = torch::kFloat32;
+  } else if (t.dtype == "F16") {
+    type = torch::kFloat16;
+  } else if (t.dtype == "BF16") {
+    type = torch::kBFloat16;
+  } else if (t.dtype == "I64") {
+    type = torch::kInt64;
+  } else {
+    throw InputError(file, name + ".dtype", fmt::format("{} cannot hold SegFormer weights (F32, F16, BF16, I64)", t.dtype));
+  }
+  torch::Tensor out = torch::empty(t.shape, torch::TensorOptions().dtype(type));
+  if (!t.data.empty()) std::memcpy(out.data_ptr(), t.data.data(), t.data.size());
+  return out;
+}
+
+}  // namespace
+
+SegmenterInfo ExportModel(const fs::path& checkpoint, const fs::path& out_safetensors) {
+  nlohmann::json meta = ReadCheckpointMeta(checkpoint);
+  SegmenterInfo info = InfoFromMeta(meta, checkpoint.string());
+  Segformer model(info.config);
+  LoadWeights(checkpoint, model, nullptr, /*strict=*/true);
+  SafeTensorsFile file;
+  for (const auto& p : model->named_parameters()) file.tensors[p.key()] = ToSafeTensor(p.value());
+  for (const auto& b : model->named_buffers()) file.tensors[b.key()] = ToSafeTensor(b.value());
+  file.metadata[kMetaKey] = meta.dump();
+  WriteSafeTensors(out_safetensors, file);
+  return info;
+}
+
+SegmenterInfo ImportModel(const fs::path& in, const fs::path& out_checkpoint) {
+  const std::string file = in.string();
+  SafeTensorsFile st = ReadSafeTensors(in);
+  auto m = st.metadata.find(kMetaKey);
+  if (m == st.metadata.end()) {
+    throw InputError(file, std::string("__metadata__.") + kMetaKey,
+                     "missing: the checkpoint metadata JSON (format, config, scale, crop) is needed "
+                     "(tools/pytorch/asbuilt_segformer.py writes it)");
+  }
+  nlohmann::json meta = nlohmann::json::parse(m->second, nullptr, /*allow_exceptions=*/false);
+  if (meta.is_discarded() || !meta.is_object()) {
+    throw InputError(file, std::string("__metadata__.") + kMetaKey, "not a JSON object");
+  }
+  if (meta.value("format", "") != kCheckpointFormat) {
+    throw InputError(file, std::string("__metadata__.") + kMetaKey + ".format",
+                     fmt::format("expected \"{}\", got {}", kCheckpointFormat,
+                                 meta.contains("format") ? meta["format"].dump() : "nothing"));
+  }
+  SegformerConfig config = ConfigFromMeta(meta, file);
+  Segformer model(config);
+  meta["parameters"] = CountParameters(*model);
+  SegmenterInfo info = InfoFromMeta(meta, file);
+
+  std::set<std::string> used;
+  torch::NoGradGuard no_grad;
+  auto load = [&](const std::string& name, torch::Tensor& target) {
+    auto it = st.tensors.find(name);
+    if (it == st.tensors.end()) throw InputError(file, name, "missing: the model's config needs this tensor");
+    torch::Tensor t = FromSafeTensor(it->second, file, name);
+    if (t.sizes() != target.sizes()) {
+      throw InputError(file, name + ".shape", fmt::format("{} does not match the model's {}",
+                                                         fmt::join(t.sizes(), "x"), fmt::join(target.sizes(), "x")));
+    }
+    if (target.is_floating_point() != t.is_floating_point()) {
+      throw InputError(file, name + ".dtype", fmt::format("{} does not suit this tensor", it->second.dtype));
+    }
+    if (t.is_floating_point() && !torch::isfinite(t).all().item<bool>()) {
+      throw InputError(file, name, "holds NaN or infinite values");
+    }
+    target.copy_(t);
+    used.insert(name);
+  };
+  for (auto& p : model->named_parameters()) load(p.key(), p.value());
+  for (auto& b : model->named_buffers()) load(b.key(), b.value());
+  for (const auto& [name, t] : st.tensors) {
+    if (!used.count(name)) throw InputError(file, name, "not a tensor of the configured model (wrong config?)");
+  }
+  SaveCheckpoint(out_checkpoint, model, nullptr, meta);
+  return info;
+}
+
+}  // namespace asbuilt

@@ -1,0 +1,37 @@
+#ifndef ASBUILT_SEG_MODEL_FILE_H_
+#define ASBUILT_SEG_MODEL_FILE_H_
+
+// Moving SegFormer weights between asbuilt checkpoints and safetensors
+// files, so PyTorch users can train, inspect or fine-tune asbuilt's model in
+// Python (tools/pytorch/asbuilt_segformer.py is the same network with the
+// same tensor names) and bring the result back. Does not include LibTorch.
+//
+//   asbuilt model export models/segformer_tiny_asbuilt.pt -o tiny.safetensors
+//   asbuilt model import trained.safetensors -o models/mine.pt
+//
+// The safetensors file holds every parameter and buffer under its asbuilt
+// name ("encoder.block0_0.attn.q.weight", "decoder.fuse.1.running_mean", …)
+// and, in "__metadata__", "asbuilt_meta": the checkpoint metadata JSON
+// (format, config, scale, crop, history…) — see seg/model_io.h.
+
+#include <filesystem>
+
+#include "asbuilt/seg/segmenter.h"
+
+namespace asbuilt {
+
+// Writes a checkpoint's weights and metadata (no optimizer state) as
+// safetensors, atomically. Throws InputError naming the checkpoint.
+SegmenterInfo ExportModel(const std::filesystem::path& checkpoint, const std::filesystem::path& out_safetensors);
+
+// Reads a safetensors file written by ExportModel or the Python twin and
+// writes an asbuilt checkpoint, atomically. Strict: every tensor of the
+// configured model must be present with its shape (F32, or F16/BF16
+// converted), and no other tensor may be; the metadata must name the format
+// and a valid config and scale. Throws InputError naming the file and the
+// tensor or metadata field.
+SegmenterInfo ImportModel(const std::filesystem::path& safetensors, const std::filesystem::path& out_checkpoint);
+
+}  // namespace asbuilt
+
+#endif  // ASBUILT_SEG_MODEL_FILE_H_
