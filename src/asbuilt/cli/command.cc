@@ -45,6 +45,7 @@ std::span<const Command> Commands() {
       {"segment", "label images with a trained segmenter → label PNGs (+ colour overlays)", &RunSegmentCommand},
       {"experiment", "segmentation experiments: real/synthetic ratios (the paper's table + plot), toy rooms",
        &RunExperimentCommand},
+      {"model", "segmenter model files: info, export to / import from PyTorch (safetensors)", &RunModelCommand},
       {"version", "print the version", &RunVersionCommand},
   };
   return kCommands;

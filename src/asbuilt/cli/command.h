@@ -63,6 +63,7 @@ int RunRenderCommand(int argc, char** argv);
 CLI::App* AddDatasetSynthSubcommand(CLI::App& dataset_app);
 int RunTrainCommand(int argc, char** argv);
 int RunSegmentCommand(int argc, char** argv);
+int RunModelCommand(int argc, char** argv);
 int RunExperimentCommand(int argc, char** argv);
 int RunCalibrateCommand(int argc, char** argv);
 int RunRectifyCommand(int argc, char** argv);
