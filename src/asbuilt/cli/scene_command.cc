@@ -9,7 +9,9 @@
 #include <spdlog/spdlog.h>
 
 #include "asbuilt/cli/command.h"
+#include "asbuilt/cli/field_flags.h"
 #include "asbuilt/formats/plan_file.h"
+#include "asbuilt/mcp/option_fields.h"
 #include "asbuilt/scene/blender_export.h"
 #include "asbuilt/scene/llm.h"
 #include "asbuilt/scene/procedural.h"
@@ -37,17 +39,12 @@ int RunSceneCommand(int argc, char** argv) {
   // text
   CLI::App* text_cmd = app.add_subcommand("text", "description → scene.json");
   std::string text, text_out;
-  SceneTextOptions text_options;
   LlmOptions llm_options;
   std::string llm_url;
   text_cmd->add_option("description", text, "the room in words, e.g. \"a 6 by 8 m classroom, 3 m high, ...\"")
       ->required();
   text_cmd->add_option("-o,--output", text_out, "scene file to write")->required();
-  text_cmd->add_option("--seed", text_options.seed, "furniture placement seed")->capture_default_str();
-  text_cmd->add_option("--rig-height", text_options.rig_height_m, "default rig height, m")->capture_default_str();
-  text_cmd->add_option("--step", text_options.turn_step_deg, "default turn step, degrees")->capture_default_str();
-  text_cmd->add_flag("!--no-furniture", text_options.furnish, "do not add the room kind's usual furniture");
-  text_cmd->add_flag("!--no-default-door", text_options.add_door_if_none, "do not add a door when none is named");
+  FieldFlags text_flags(*text_cmd, mcp::SceneTextOptionFields());  // = MCP scene_from_text.
   text_cmd->add_option("--llm", llm_url,
                        "OpenAI-compatible base URL (e.g. http://localhost:8080/v1); key from ASBUILT_LLM_API_KEY");
   text_cmd->add_option("--llm-model", llm_options.model, "model name sent to the endpoint")->capture_default_str();
@@ -57,22 +54,13 @@ int RunSceneCommand(int argc, char** argv) {
 
   // random
   CLI::App* random_cmd = app.add_subcommand("random", "procedural rooms → DIR/scene_NNNN.json");
-  RandomSceneOptions random_options;
-  std::uint64_t seed = 0;
   int count = 1;
   std::string random_out;
-  random_cmd->add_option("--seed", seed, "first seed; scene i uses seed + i")->capture_default_str();
-  random_cmd->add_option("--count", count, "number of scenes")->capture_default_str()->check(CLI::PositiveNumber);
+  random_cmd->add_option("--count", count, "number of scenes; scene i uses seed + i")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   random_cmd->add_option("-o,--output", random_out, "output folder")->required();
-  random_cmd->add_option("--min-side", random_options.min_side_m, "smallest room side, m")->capture_default_str();
-  random_cmd->add_option("--max-side", random_options.max_side_m, "largest room side, m")->capture_default_str();
-  random_cmd->add_option("--l-shape-probability", random_options.l_shape_probability, "share of L-shaped rooms")
-      ->capture_default_str();
-  random_cmd->add_option("--rotated-probability", random_options.rotated_probability, "share of rotated rooms")
-      ->capture_default_str();
-  random_cmd->add_option("--max-openings", random_options.max_openings, "most doors + windows per room")
-      ->capture_default_str();
-  random_cmd->add_option("--step", random_options.turn_step_deg, "rig turn step, degrees")->capture_default_str();
+  FieldFlags random_flags(*random_cmd, mcp::RandomSceneOptionFields());  // = MCP random_scene.
 
   // truth / describe / export-blender / schema
   CLI::App* truth_cmd = app.add_subcommand("truth", "scene.json → truth.json (exact floor plan)");
@@ -105,7 +93,7 @@ int RunSceneCommand(int argc, char** argv) {
       result.scene = SceneFromLlm(text, llm_options, &summary);
       spdlog::info("{}", summary.BriefReport());
     } else {
-      result = SceneFromText(text, text_options);
+      result = SceneFromText(text, mcp::SceneTextOptionsFromArgs(text_flags.Args()));
       for (const std::string& a : result.assumptions) spdlog::info("assumed: {}", a);
     }
     WriteScene(result.scene, text_out);
@@ -113,9 +101,11 @@ int RunSceneCommand(int argc, char** argv) {
     return 0;
   }
   if (random_cmd->parsed()) {
+    mcp::ToolArgs args = random_flags.Args();
     ProgressPrinter printer;
     RandomScenesSummary summary =
-        WriteRandomScenes(random_options, seed, count, random_out,
+        WriteRandomScenes(mcp::RandomSceneOptionsFromArgs(args),
+                          static_cast<std::uint64_t>(args.Integer("seed")), count, random_out,
                           StderrIsTerminal() ? printer.Callback() : ProgressCallback{});
     printer.Finish();
     fmt::print("{}\n", summary.BriefReport());

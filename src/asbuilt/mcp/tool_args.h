@@ -60,6 +60,10 @@ struct ToolField {
   std::size_t max_length = 0;
   // Shown in the schema as "default" (and used by ToolArgs when absent).
   nlohmann::json default_value = nullptr;
+  // Where a CLI command shares the list (cli/field_flags.h): the flag is
+  // always --name-with-dashes (and --no-name for a kBool); these are extra
+  // CLI11 names kept for short or older spellings ("--spp", "!--no-indirect").
+  std::string_view cli_names;
 };
 
 // The JSON Schema (draft 2020-12 subset) of a tool's `arguments` object:

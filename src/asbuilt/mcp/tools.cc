@@ -15,9 +15,11 @@
 
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/mcp/jsonrpc.h"
+#include "asbuilt/mcp/option_fields.h"
 #include "asbuilt/mcp/plan_preview.h"
 #include "asbuilt/render/capture_render.h"
 #include "asbuilt/render/renderer.h"
+#include "asbuilt/scene/procedural.h"
 #include "asbuilt/scene/scene_json.h"
 #include "asbuilt/scene/scene_text.h"
 #include "asbuilt/util/base64.h"
@@ -108,6 +110,12 @@ int WallFacing(const Room& room, std::string_view side) {
         side, DescribeWalls(room)));
   }
   return best;
+}
+
+// A tool's own fields followed by a shared Options field list.
+std::vector<ToolField> Concat(std::vector<ToolField> own, std::vector<ToolField> shared) {
+  own.insert(own.end(), shared.begin(), shared.end());
+  return own;
 }
 
 // Tool fields shared by add_door and add_window.
@@ -474,17 +482,21 @@ SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
            "door on the east wall and two 1.5 m windows on the north wall\". The reply says which "
            "words were not used. At most {} characters.",
            L.max_text_chars),
-       .fields = {{.name = "text", .type = ArgType::kString,
-                   .description = "The description.", .required = true,
-                   .max_length = L.max_text_chars},
-                  {.name = "furnish", .type = ArgType::kBool,
-                   .description = "Add the room kind's usual furniture when the text names none.",
-                   .default_value = true},
-                  {.name = "seed", .type = ArgType::kInteger,
-                   .description = "Seed for furniture placement (same text + seed → same scene).",
-                   .minimum = 0.0, .maximum = 4294967295.0, .default_value = 0}},
+       .fields = Concat({{.name = "text", .type = ArgType::kString,
+                          .description = "The description.", .required = true,
+                          .max_length = L.max_text_chars}},
+                        SceneTextOptionFields()),
        .destructive = true};
   Register(s, &SceneTools::SceneFromText);
+
+  s = {.name = "random_scene", .title = "Random scene",
+       .description = "Replace the current scene with a procedural room (the generator of "
+                      "`asbuilt scene random`): rectangular, L-shaped or rotated, 1-4 doors and "
+                      "windows, furniture, random materials and lights, a turn-in-place rig. "
+                      "Deterministic per seed.",
+       .fields = RandomSceneOptionFields(),
+       .destructive = true};
+  Register(s, &SceneTools::RandomSceneTool);
 
   s = {.name = "describe_scene", .title = "Describe scene",
        .description = "Plain-language summary of the current scene (rooms, walls with numbers "
@@ -534,16 +546,13 @@ SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
            "progress notifications when the request has a progressToken. The folder appears "
            "only when complete. At most {} views.",
            L.max_views),
-       .fields = {
-           {.name = "output", .type = ArgType::kString,
-            .description = "Folder to create, relative to the workspace (e.g. \"captures/a\").",
-            .required = true, .max_length = 512},
-           {.name = "overwrite", .type = ArgType::kBool,
-            .description = "Replace the folder if it exists.", .default_value = false},
-           {.name = "samples_per_pixel", .type = ArgType::kInteger,
-            .description = "Path-tracing samples per pixel (quality vs time).", .minimum = 1.0,
-            .maximum = 256.0, .default_value = 4},
-       }};
+       .fields = Concat(
+           {{.name = "output", .type = ArgType::kString,
+             .description = "Folder to create, relative to the workspace (e.g. \"captures/a\").",
+             .required = true, .max_length = 512},
+            {.name = "overwrite", .type = ArgType::kBool,
+             .description = "Replace the folder if it exists.", .default_value = false}},
+           CaptureRenderOptionFields(&L))};
   Register(s, &SceneTools::RenderCapture);
 
   s = {.name = "export_plan", .title = "Export plan",
@@ -1080,10 +1089,8 @@ ToolResult SceneTools::RemoveItem(const ToolArgs& a, const ToolCallContext&) {
 }
 
 ToolResult SceneTools::SceneFromText(const ToolArgs& a, const ToolCallContext&) {
-  SceneTextOptions options;
-  options.furnish = a.Bool("furnish");
-  options.seed = static_cast<std::uint64_t>(a.Integer("seed"));
-  SceneTextResult result = ::asbuilt::SceneFromText(a.String("text"), options);
+  SceneTextResult result =
+      ::asbuilt::SceneFromText(a.String("text"), SceneTextOptionsFromArgs(a));
   CheckSceneLimits(result.scene);
   scene_ = std::move(result.scene);
   std::string out = fmt::format("New scene from the text: {}", DescribeScene(scene_));
@@ -1095,6 +1102,17 @@ ToolResult SceneTools::SceneFromText(const ToolArgs& a, const ToolCallContext&) 
     out += fmt::format("\nWords not understood (not used): {}. Adjust the scene with the other "
                        "tools if they mattered.",
                        fmt::join(result.unused_words, ", "));
+  }
+  return ToolResult::Text(out);
+}
+
+ToolResult SceneTools::RandomSceneTool(const ToolArgs& a, const ToolCallContext&) {
+  Scene next = RandomScene(RandomSceneOptionsFromArgs(a), static_cast<std::uint64_t>(a.Integer("seed")));
+  CheckSceneLimits(next);
+  scene_ = std::move(next);
+  std::string out = fmt::format("New random scene: {}", DescribeScene(scene_));
+  for (std::size_t r = 0; r < scene_.rooms.size(); ++r) {
+    out += fmt::format("\nRoom {} walls:\n{}", r, DescribeWalls(scene_.rooms[r]));
   }
   return ToolResult::Text(out);
 }
@@ -1175,9 +1193,7 @@ ToolResult SceneTools::RenderCapture(const ToolArgs& a, const ToolCallContext& c
   if (CountViews(scene_) == 0) {
     throw InvalidArgument("the scene has no views to render: call place_rig first");
   }
-  CaptureRenderOptions options;
-  options.render.samples_per_pixel = static_cast<int>(a.Integer("samples_per_pixel"));
-  options.render.seed = scene_.seed;
+  CaptureRenderOptions options = CaptureRenderOptionsFromArgs(a);
   options.resume = false;
   options.Check();
 

@@ -124,6 +124,7 @@ class SceneTools {
   ToolResult PlaceRig(const ToolArgs& a, const ToolCallContext&);
   ToolResult RemoveItem(const ToolArgs& a, const ToolCallContext&);
   ToolResult SceneFromText(const ToolArgs& a, const ToolCallContext&);
+  ToolResult RandomSceneTool(const ToolArgs& a, const ToolCallContext&);
   ToolResult Describe(const ToolArgs& a, const ToolCallContext&);
   ToolResult Validate(const ToolArgs& a, const ToolCallContext&);
   ToolResult GetScene(const ToolArgs& a, const ToolCallContext&);

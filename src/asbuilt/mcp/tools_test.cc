@@ -307,6 +307,19 @@ TEST_F(ToolsTest, SceneFromTextBuildsTheExampleRoom) {
               HasSubstr("at most 4000 characters"));
 }
 
+TEST_F(ToolsTest, RandomSceneIsDeterministicPerSeedAndChecksItsOptions) {
+  Ok("random_scene", {{"seed", 7}});
+  std::string first = SceneToJson(tools_->scene()).dump();
+  Ok("random_scene", {{"seed", 8}});
+  EXPECT_NE(SceneToJson(tools_->scene()).dump(), first);
+  Ok("random_scene", {{"seed", 7}});
+  EXPECT_EQ(SceneToJson(tools_->scene()).dump(), first);
+  EXPECT_THAT(Fails("random_scene", {{"max_openings", 40}}),
+              HasSubstr("arguments.max_openings: must be"));
+  EXPECT_THAT(Fails("random_scene", {{"min_side_m", 8.0}, {"max_side_m", 3.0}}),
+              HasSubstr("max_side_m"));
+}
+
 TEST_F(ToolsTest, RemoveItem) {
   Classroom();
   Ok("remove_item", {{"what", "opening"}, {"index", 0}});
