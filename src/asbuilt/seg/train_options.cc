@@ -1,0 +1,94 @@
+// Parts of train.h that need no LibTorch: options, records, the summary.
+// They live in the host's seg library; TrainSegmenter itself is in the
+// LibTorch plugin (torch_plugin.h).
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "asbuilt/seg/segformer_config.h"
+#include "asbuilt/seg/train.h"
+#include "asbuilt/util/error.h"
+
+namespace asbuilt {
+namespace {
+
+nlohmann::json Num(double x) { return std::isnan(x) ? nlohmann::json(nullptr) : nlohmann::json(x); }
+
+}  // namespace
+
+void TrainOptions::Check() const {
+  CheckArgument(!out_dir.empty(), "TrainOptions.out_dir is empty: give an output folder (-o)");
+  CheckArgument(!manifest.empty() || !images_dir.empty(),
+                "TrainOptions: give a manifest (--manifest) or an image folder (--images [--labels])");
+  CheckArgument(manifest.empty() || images_dir.empty(), "TrainOptions: give --manifest or --images, not both");
+  SegformerConfigFor(arch, num_classes);  // Throws for an unknown arch.
+  CheckArgument(epochs > 0, fmt::format("TrainOptions.epochs = {}, must be > 0", epochs));
+  CheckArgument(steps_per_epoch >= 0, fmt::format("TrainOptions.steps_per_epoch = {}, must be >= 0", steps_per_epoch));
+  CheckArgument(batch_size > 0, fmt::format("TrainOptions.batch_size = {}, must be > 0", batch_size));
+  CheckArgument(lr > 0, fmt::format("TrainOptions.lr = {}, must be > 0", lr));
+  CheckArgument(weight_decay >= 0, fmt::format("TrainOptions.weight_decay = {}, must be >= 0", weight_decay));
+  CheckArgument(head_lr_mult > 0, fmt::format("TrainOptions.head_lr_mult = {}, must be > 0", head_lr_mult));
+  CheckArgument(warmup_steps >= 0, fmt::format("TrainOptions.warmup_steps = {}, must be >= 0", warmup_steps));
+  CheckArgument(poly_power >= 0, fmt::format("TrainOptions.poly_power = {}, must be >= 0", poly_power));
+  CheckArgument(drop_path_rate >= 0 && drop_path_rate < 1,
+                fmt::format("TrainOptions.drop_path_rate = {}, must be in [0, 1)", drop_path_rate));
+  CheckArgument(val_max_images >= 0, fmt::format("TrainOptions.val_max_images = {}, must be >= 0", val_max_images));
+  CheckArgument(threads >= 0, fmt::format("TrainOptions.threads = {}, must be >= 0", threads));
+  CheckArgument(stop_after_epoch >= 0,
+                fmt::format("TrainOptions.stop_after_epoch = {}, must be >= 0", stop_after_epoch));
+  augment.Check();
+}
+
+nlohmann::json TrainOptions::ToJson() const {
+  return {{"manifest", manifest.string()},
+          {"images_dir", images_dir.string()},
+          {"labels_dir", labels_dir.string()},
+          {"val_fraction", val_fraction},
+          {"out_dir", out_dir.string()},
+          {"arch", arch},
+          {"num_classes", num_classes},
+          {"epochs", epochs},
+          {"steps_per_epoch", steps_per_epoch},
+          {"batch_size", batch_size},
+          {"lr", lr},
+          {"weight_decay", weight_decay},
+          {"head_lr_mult", head_lr_mult},
+          {"warmup_steps", warmup_steps},
+          {"warmup_ratio", warmup_ratio},
+          {"poly_power", poly_power},
+          {"drop_path_rate", drop_path_rate},
+          {"augment",
+           {{"scale", {augment.scale_width_px, augment.scale_height_px}},
+            {"ratio_range", {augment.ratio_min, augment.ratio_max}},
+            {"crop", {augment.crop_width_px, augment.crop_height_px}},
+            {"cat_max_ratio", augment.cat_max_ratio},
+            {"flip", augment.flip},
+            {"photometric", augment.photometric},
+            {"blur_noise", augment.blur_noise}}},
+          {"val_max_images", val_max_images},
+          {"seed", seed},
+          {"init", init.string()},
+          {"resume", resume},
+          {"stop_after_epoch", stop_after_epoch},
+          {"threads", threads}};
+}
+
+nlohmann::json EpochRecord::ToJson() const {
+  return {{"epoch", epoch},          {"step", step},
+          {"lr", lr},                {"train_loss", Num(train_loss)},
+          {"val_mIoU", Num(val_miou)}, {"val_mFscore", Num(val_mfscore)},
+          {"val_mPrecision", Num(val_mprecision)}, {"val_mRecall", Num(val_mrecall)},
+          {"val_aAcc", Num(val_aacc)}, {"wall_s", wall_s}};
+}
+
+std::string TrainSummary::BriefReport() const {
+  return fmt::format("{} epoch{} ({} steps, {} train / {} val pairs{}), loss {:.4f} → {:.4f}, best val mIoU {} "
+                     "(epoch {}), {:.0f} s{} → {}",
+                     epochs_done, epochs_done == 1 ? "" : "s", steps, train_pairs, val_pairs,
+                     resumed_from_epoch > 0 ? fmt::format(", resumed after epoch {}", resumed_from_epoch) : "",
+                     first_loss, last_loss, std::isnan(best_miou) ? "n/a" : fmt::format("{:.4f}", best_miou),
+                     best_epoch, wall_s, stopped ? " (stopped)" : "", out_dir.string());
+}
+
+}  // namespace asbuilt
