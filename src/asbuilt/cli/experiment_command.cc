@@ -2,6 +2,7 @@
 // (seg/experiment.h); `asbuilt experiment toy-rooms …` — a quick labelled set
 // from seg/'s toy-room ray caster (tests, smoke runs, bootstrapping).
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,22 @@
 #include "asbuilt/util/progress.h"
 
 namespace asbuilt::cli {
+namespace {
+
+// "256x192" → (256, 192); empty leaves the defaults. Throws
+// CLI::ValidationError naming the flag (same syntax as `asbuilt train`).
+void ParseSize(const std::string& text, const std::string& flag, int& w, int& h) {
+  if (text.empty()) return;
+  int a = 0, b = 0;
+  char x = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d", &a, &x, &b) != 3 || (x != 'x' && x != 'X') || a <= 0 || b <= 0) {
+    throw CLI::ValidationError(flag, fmt::format("expected WIDTHxHEIGHT (e.g. 256x192), got '{}'", text));
+  }
+  w = a;
+  h = b;
+}
+
+}  // namespace
 
 int RunExperimentCommand(int argc, char** argv) {
   CLI::App app("Segmentation experiments.", "asbuilt experiment");
@@ -25,10 +42,15 @@ int RunExperimentCommand(int argc, char** argv) {
       "train and evaluate one segmenter per real/synthetic mix (R100, S100, RS5050, RS8020, …) on the same\n"
       "held-out real test set; writes OUT/results.md (the paper's table), results.json and plot.png");
   RatioExperimentOptions r;
-  std::string real, synthetic, real_test, out, configs = "R100,S100,RS5050,RS8020";
+  std::string real, synthetic, real_test, out, configs = "R100,S100,RS5050,RS8020", scale, crop;
+  std::vector<std::string> extra_tests;
+  bool no_photometric = false, no_blur_noise = false;
   ratios->add_option("--real", real, "dataset folder of real annotated photos");
   ratios->add_option("--synthetic", synthetic, "dataset folder of synthetic views");
   ratios->add_option("--real-test", real_test, "explicit real test folder (default: hold out 10 % of --real)");
+  ratios->add_option("--extra-test", extra_tests,
+                     "further labelled dataset folder every config is also scored on (repeatable), e.g. real\n"
+                     "photos when --real is a stand-in from another domain");
   ratios->add_option("--configs", configs, "comma-separated mixes")->capture_default_str();
   ratios->add_option("--total", r.total, "train + val pairs per config (0 = as many as allowed)")
       ->capture_default_str();
@@ -40,6 +62,14 @@ int RunExperimentCommand(int argc, char** argv) {
   ratios->add_option("--lr", r.train.lr, "AdamW learning rate")->capture_default_str();
   ratios->add_option("--weight-decay", r.train.weight_decay, "AdamW weight decay")->capture_default_str();
   ratios->add_option("--init", r.train.init, "initial weights for every config");
+  ratios->add_option("--warmup", r.train.warmup_steps, "linear warm-up steps")->capture_default_str();
+  ratios->add_option("--scale", scale, "base scale WxH images are fitted to (default 256x192)");
+  ratios->add_option("--crop", crop, "training crop WxH (default 192x192)");
+  ratios->add_flag("--no-photometric", no_photometric, "no photometric distortion");
+  ratios->add_flag("--no-blur-noise", no_blur_noise, "no blur / noise augmentation");
+  ratios->add_option("--val-max", r.train.val_max_images, "validate on at most N images (0 = all)")
+      ->capture_default_str();
+  ratios->add_option("--threads", r.train.threads, "LibTorch threads (0 = every core)")->capture_default_str();
   ratios->add_option("--seed", r.seed, "mix and training seed")->capture_default_str();
 
   CLI::App* toy = app.add_subcommand("toy-rooms", "write N labelled toy-room views: OUT/images, OUT/labels");
@@ -61,6 +91,11 @@ int RunExperimentCommand(int argc, char** argv) {
     r.real_dir = real;
     r.synthetic_dir = synthetic;
     r.real_test_dir = real_test;
+    for (const std::string& e : extra_tests) r.extra_test_dirs.emplace_back(e);
+    ParseSize(scale, "--scale", r.train.augment.scale_width_px, r.train.augment.scale_height_px);
+    ParseSize(crop, "--crop", r.train.augment.crop_width_px, r.train.augment.crop_height_px);
+    r.train.augment.photometric = !no_photometric;
+    r.train.augment.blur_noise = !no_blur_noise;
     r.out_dir = out;
     r.train.seed = r.seed;
     r.configs.clear();

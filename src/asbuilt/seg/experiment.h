@@ -8,8 +8,10 @@
 // Does not include LibTorch.
 //
 // OUT_DIR/<CONFIG>/manifest.json, OUT_DIR/<CONFIG>/run/ (train.h layout),
-// OUT_DIR/<CONFIG>/test_metrics.json, OUT_DIR/results.md, results.json,
-// plot.png. Re-running resumes: finished trainings are not repeated.
+// OUT_DIR/<CONFIG>/test_metrics.json, OUT_DIR/results.md (the table),
+// results.json ({"rows": [{"config", "mIoU", "mFscore", "mPrecision",
+// "mRecall", …}], "extra": […], "options": …}), plot.png (grouped bars).
+// Re-running resumes: finished trainings are not repeated.
 
 #include <cstdint>
 #include <filesystem>
@@ -27,6 +29,10 @@ struct RatioExperimentOptions {
   std::filesystem::path real_dir;       // Dataset folder of real pairs.
   std::filesystem::path synthetic_dir;  // Dataset folder of synthetic pairs.
   std::filesystem::path real_test_dir;  // Optional explicit real test set.
+  // Further labelled dataset folders (asbuilt label ids) every config's best
+  // checkpoint is also scored on, reported in a second table: e.g. the few
+  // real photos there are when --real is a stand-in from another domain.
+  std::vector<std::filesystem::path> extra_test_dirs;
   std::vector<std::string> configs = {"R100", "S100", "RS5050", "RS8020"};
   std::int64_t total = 0;  // Train + val pairs per config; 0 = as many as the ratio allows.
   std::filesystem::path out_dir;  // Required.
@@ -40,13 +46,22 @@ struct RatioExperimentOptions {
 struct RatioExperimentRow {
   std::string config;
   int train_pairs = 0, val_pairs = 0, test_pairs = 0;
+  int real_train_val = 0, synthetic_train_val = 0;  // Pairs of each source in train + val.
   SegmentationMetrics test;  // On the real test set, best checkpoint.
+  double best_val_miou = 0;  // NaN without a val set.
+  int best_epoch = 0;
+  double train_wall_s = 0;   // Training time of this config (across resumes).
+  // One per RatioExperimentOptions::extra_test_dirs, same order.
+  std::vector<SegmentationMetrics> extra;
 };
 
 struct RatioExperimentSummary {
   std::vector<RatioExperimentRow> rows;
+  std::vector<std::string> extra_names;  // Folder names of the extra test sets.
   double wall_s = 0;
-  std::string ToMarkdown() const;  // The paper's table.
+  // The paper's table (config, pairs, mIoU, mFscore, mPrecision, mRecall),
+  // then one table per extra test set.
+  std::string ToMarkdown() const;
   std::string BriefReport() const;
 };
 
