@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 
@@ -116,6 +117,20 @@ std::string PointsPlotPng(const std::vector<ClassPoint>& points, const Plan& pla
   std::vector<uchar> bytes;
   cv::imencode(".png", img, bytes);
   return std::string(bytes.begin(), bytes.end());
+}
+
+// Degrees of the full turn about the rig that at least one frame's horizontal
+// field of view covers (1° bins).
+double YawCoverageDeg(const Capture& capture, const PinholeCamera& camera) {
+  const double half_fov_deg = RadToDeg(std::atan2(0.5 * camera.width_px, camera.fx));
+  std::vector<bool> seen(360, false);
+  for (const CaptureFrame& f : capture.frames) {
+    for (int d = static_cast<int>(std::floor(f.yaw_deg - half_fov_deg));
+         d < static_cast<int>(std::ceil(f.yaw_deg + half_fov_deg)); ++d) {
+      seen[((d % 360) + 360) % 360] = true;
+    }
+  }
+  return static_cast<double>(std::count(seen.begin(), seen.end(), true));
 }
 
 fs::path ExecutableDir() {
@@ -301,6 +316,18 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
     summary.notes.push_back(fmt::format("no plan: {}", e.what()));
   }
   if (result.plan.walls.empty()) summary.notes.push_back("no walls could be measured from this capture");
+  // Views that do not go round the room cannot close it (a real capture of
+  // one direction, e.g. EuRoC): say what the closed polygon rests on.
+  if (const double coverage_deg = YawCoverageDeg(capture, rectifier ? rectifier->camera : capture.camera.Pinhole());
+      coverage_deg < 359.5 && !result.plan.walls.empty()) {
+    std::string note = fmt::format("the views cover {:.0f}° of the turn around the rig: walls outside them are not measured",
+                                   coverage_deg);
+    if (summary.plan.closed) {
+      note += fmt::format("; the room polygon closes through {} inferred wall(s), so its area ({:.2f} m²) is not a measurement",
+                          summary.plan.inferred_walls, summary.plan.area_m2);
+    }
+    summary.notes.push_back(note);
+  }
   add_stage("plan", Since(t));
 
   // Score.
