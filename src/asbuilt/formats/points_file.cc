@@ -27,6 +27,7 @@ const char* PointSourceName(PointSource s) {
     case PointSource::kDense: return "dense";
     case PointSource::kEdge: return "edge";
     case PointSource::kOther: return "other";
+    case PointSource::kBoundary: return "boundary";
   }
   return "other";
 }
@@ -96,8 +97,9 @@ std::vector<ClassPoint> ParsePoints(std::string_view text_view, const std::strin
       else if (s == "dense") p.source = PointSource::kDense;
       else if (s == "edge") p.source = PointSource::kEdge;
       else if (s == "other") p.source = PointSource::kOther;
+      else if (s == "boundary") p.source = PointSource::kBoundary;
       else {
-        fail(fmt::format("unknown source \"{}\" (corner, dense, edge, other)", s));
+        fail(fmt::format("unknown source \"{}\" (corner, dense, edge, boundary, other)", s));
         continue;
       }
     }

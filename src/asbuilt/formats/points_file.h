@@ -33,7 +33,9 @@ enum class LabelClass : std::uint8_t { kBackground = 0, kWall = 1, kDoor = 2, kW
 inline constexpr std::uint8_t kIgnoreLabel = 255;
 const char* LabelClassName(LabelClass c);  // "background", "wall", "door", "window"
 
-enum class PointSource : std::uint8_t { kCorner, kDense, kEdge, kOther };
+// kBoundary: a door/window label edge (wall on the other side) placed on the
+// wall's surface — it fixes an opening's width, not the wall's position.
+enum class PointSource : std::uint8_t { kCorner, kDense, kEdge, kOther, kBoundary };
 const char* PointSourceName(PointSource s);
 
 struct ClassPoint {

@@ -15,10 +15,12 @@ TEST(PointsFile, RoundTripsToFiveDecimals) {
   fs::path p = fs::temp_directory_path() / "asbuilt_points_roundtrip.txt";
   std::vector<ClassPoint> points = {
       {LabelClass::kWall, Vec3(1.234567, -2.5, 1.5), 0.004, PointSource::kCorner, 3},
-      {LabelClass::kWindow, Vec3(0, 4, 2.1), 0.0, PointSource::kDense, 0}};
+      {LabelClass::kWindow, Vec3(0, 4, 2.1), 0.0, PointSource::kDense, 0},
+      {LabelClass::kDoor, Vec3(1, 2, 1.0), 0.03, PointSource::kBoundary, 5}};
   WritePoints(points, p);
   std::vector<ClassPoint> back = ReadPoints(p);
-  ASSERT_EQ(back.size(), 2u);
+  ASSERT_EQ(back.size(), 3u);
+  EXPECT_EQ(back[2].source, PointSource::kBoundary);
   EXPECT_EQ(back[0].label, LabelClass::kWall);
   EXPECT_NEAR(back[0].position_m.x(), 1.23457, 1e-9);
   EXPECT_EQ(back[0].source, PointSource::kCorner);

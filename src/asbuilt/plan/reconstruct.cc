@@ -136,6 +136,47 @@ std::pair<double, double> BinnedExtent(const std::vector<double>& ts, double rel
   return {a, b};
 }
 
+// An opening's two edges along its wall, with their variances.
+struct EdgePair {
+  double a = 0, b = 0;
+  double var_a = 0, var_b = 0;
+  bool from_boundary_a = false, from_boundary_b = false;
+};
+
+// Edges of one opening from its label-edge (boundary) positions, sorted,
+// given the extent [a, b] of all its points: boundary positions in the lower
+// half of [a, b] belong to edge a, those in the upper half to edge b. An edge
+// with at least `min_boundary_points` becomes the median of its positions,
+// with a variance from their spread (MAD); the other edge keeps the extent's.
+EdgePair BoundaryEdges(const std::vector<double>& ts, double a, double b, double extent_var,
+                       const PlanOptions& o) {
+  EdgePair out{a, b, extent_var, extent_var, false, false};
+  const double mid = 0.5 * (a + b);
+  const std::vector<double> lo(ts.begin(), std::lower_bound(ts.begin(), ts.end(), mid));
+  const std::vector<double> hi(std::lower_bound(ts.begin(), ts.end(), mid), ts.end());
+  auto median_var = [](const std::vector<double>& v) {
+    const double m = Quantile(v, 0.5);
+    std::vector<double> dev;
+    for (double x : v) dev.push_back(std::abs(x - m));
+    std::sort(dev.begin(), dev.end());
+    const double sigma = 1.4826 * Quantile(dev, 0.5);
+    // The median of n points: about 1.25 σ/√n; label edges of one frame's
+    // neighbouring rows are correlated, so count at most 50 as independent;
+    // the edge itself is only known to half a pixel (about 2 mm at 3 m).
+    const double n = std::min<double>(v.size(), 50.0);
+    return std::pair{m, 1.57 * sigma * sigma / n + 0.002 * 0.002};
+  };
+  if (static_cast<int>(lo.size()) >= o.min_boundary_points) {
+    std::tie(out.a, out.var_a) = median_var(lo);
+    out.from_boundary_a = true;
+  }
+  if (static_cast<int>(hi.size()) >= o.min_boundary_points) {
+    std::tie(out.b, out.var_b) = median_var(hi);
+    out.from_boundary_b = true;
+  }
+  return out;
+}
+
 struct Pt {
   Vec2 p;
   double z;
@@ -530,9 +571,12 @@ void PlanOptions::Check() const {
   non_negative(window_casing_m, "window_casing_m");
   non_negative(casing_sigma_m, "casing_sigma_m");
   positive(opening_band_m, "opening_band_m");
+  positive(opening_front_m, "opening_front_m");
   positive(opening_gap_m, "opening_gap_m");
   CheckArgument(min_opening_points >= 2,
                 fmt::format("PlanOptions.min_opening_points = {}, must be >= 2", min_opening_points));
+  CheckArgument(min_boundary_points >= 1,
+                fmt::format("PlanOptions.min_boundary_points = {}, must be >= 1", min_boundary_points));
   positive(min_opening_width_m, "min_opening_width_m");
   CheckArgument(edge_level > 0 && edge_level < 1,
                 fmt::format("PlanOptions.edge_level = {}, must be in (0, 1)", edge_level));
@@ -863,6 +907,7 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
     double t;
     double z;
     double sigma;
+    bool boundary;  // A label edge on the wall surface (PointSource::kBoundary).
   };
   std::vector<std::vector<OpeningPoint>> per_wall_kind(2 * n);
   for (const ClassPoint* p : opening_pts) {
@@ -879,8 +924,11 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
       double r = inward.dot(xy - w.start);  // > 0: in the room.
       // In front of the face only casings and sill boards (a few cm) belong
       // to the opening; farther in are open leaves and clutter.
-      double front = std::min(o.opening_band_m, std::max(0.03, o.inlier_sigmas * sigma));
-      if (r > front || r < -o.opening_band_m) continue;
+      // Not widened for noisy points: a casing point scattered farther in
+      // is not needed (its ray lands where the ones behind the face do),
+      // while an open leaf's points near its hinge, sent along their rays,
+      // would widen the door by tens of centimetres.
+      if (r > o.opening_front_m || r < -o.opening_band_m) continue;
       double t = d.dot(xy - w.start);
       // Noisy points (error mostly along the viewing ray) are projected
       // along the ray, which cancels that error. Precise points on or in front
@@ -888,7 +936,8 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
       // which is exact for them, while precise points behind the face (glass,
       // jamb linings, a recessed leaf) go along the ray to where the opening
       // cuts the face.
-      bool along_ray = o.viewpoint_m && (sigma > 0.01 || r < -0.01);
+      const bool boundary = p->source == PointSource::kBoundary;
+      bool along_ray = o.viewpoint_m && (boundary || sigma > 0.01 || r < -0.01);
       if (along_ray) {
         Vec2 ray = xy - view;
         double den = inward.dot(ray);
@@ -906,7 +955,7 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
     }
     if (best < 0) continue;
     int slot = 2 * best + (p->label == LabelClass::kWindow ? 1 : 0);
-    per_wall_kind[slot].push_back({best_t, p->position_m.z(), sigma});
+    per_wall_kind[slot].push_back({best_t, p->position_m.z(), sigma, p->source == PointSource::kBoundary});
   }
   for (int slot = 0; slot < 2 * n; ++slot) {
     std::vector<OpeningPoint>& v = per_wall_kind[slot];
@@ -924,16 +973,27 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
       std::vector<OpeningPoint> group(v.begin() + begin, v.begin() + i);
       begin = i;
       if (static_cast<int>(group.size()) < o.min_opening_points) continue;
-      std::vector<double> ts, zs;
+      std::vector<double> ts, zs, boundary_ts;
       double sum_var = 0;
       for (const OpeningPoint& g : group) {
         ts.push_back(g.t);
         zs.push_back(g.z);
         sum_var += g.sigma * g.sigma;
+        if (g.boundary) boundary_ts.push_back(g.t);
       }
       std::sort(ts.begin(), ts.end());
       std::sort(zs.begin(), zs.end());
-      auto [a, b] = BinnedExtent(ts, o.edge_level, o.opening_gap_m);
+      const auto [extent_a, extent_b] = BinnedExtent(ts, o.edge_level, o.opening_gap_m);
+      // Edge uncertainty of the extent: the points' σ averaged over the few
+      // that fix an edge, plus sampling spacing.
+      const double n_edge = std::max(1.0, 0.02 * group.size());
+      const double mean_var = sum_var / group.size();
+      const double spacing = (extent_b - extent_a) / group.size();
+      const double extent_var = mean_var / n_edge + spacing * spacing;
+      // Label edges on the wall surface fix an edge better than the extent
+      // of the opening's points (recessed glass, jambs, depth noise).
+      const EdgePair edges = BoundaryEdges(boundary_ts, extent_a, extent_b, extent_var, o);
+      const double a = edges.a, b = edges.b;
       double t0 = std::clamp(a + casing, 0.0, len), t1 = std::clamp(b - casing, 0.0, len);
       if (t1 - t0 < o.min_opening_width_m) continue;
       auto [z0, z1] = BinnedExtent(zs, o.edge_level, o.opening_gap_m);
@@ -950,13 +1010,9 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
         op.sill = std::max(0.0, z0 + casing);
         op.height = z1 - casing - *op.sill;
       }
-      // Edge uncertainty: the points' σ averaged over the few that fix an
-      // edge, plus sampling spacing, plus the casing-width uncertainty.
-      double n_edge = std::max(1.0, 0.02 * group.size());
-      double mean_var = sum_var / group.size();
-      double spacing = (b - a) / group.size();
-      double edge_var = mean_var / n_edge + spacing * spacing + o.casing_sigma_m * o.casing_sigma_m;
-      op.width_sigma_m = std::sqrt(2 * edge_var);
+      // ±: each edge's variance plus the casing-width uncertainty.
+      const double casing_var = o.casing_sigma_m * o.casing_sigma_m;
+      op.width_sigma_m = std::sqrt(edges.var_a + edges.var_b + 2 * casing_var);
       double zspacing = (z1 - z0) / group.size();
       double zedge_var = mean_var / n_edge + zspacing * zspacing + o.casing_sigma_m * o.casing_sigma_m;
       op.height_sigma_m = std::sqrt((door ? 1 : 2) * zedge_var);

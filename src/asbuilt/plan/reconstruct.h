@@ -57,11 +57,13 @@ struct PlanOptions {
   double door_casing_m = 0.07;        // Door labels extend this far beyond the clear opening (casing).
   double window_casing_m = 0.05;      // Window labels extend this far beyond the clear opening.
   double casing_sigma_m = 0.01;       // Uncertainty of the casing widths (enters the ± of openings).
-  double opening_band_m = 0.3;        // Door/window points within this of a wall's line belong to it.
+  double opening_band_m = 0.3;        // Door/window points within this behind a wall's line belong to it…
+  double opening_front_m = 0.03;      // …and within this in front: casings (not sill boards, not open leaves).
   double opening_gap_m = 0.25;        // Openings on one wall are split at gaps longer than this.
   int min_opening_points = 12;        // Fewer points: not an opening.
   double min_opening_width_m = 0.25;  // Narrower clear openings are dropped.
   double edge_level = 0.01;           // Opening extent: 2 cm bins with at least this fraction of a full bin.
+  int min_boundary_points = 4;        // Label-edge points needed per side to measure a width from them.
   int max_independent_points = 400;   // Dense points are correlated: cap the points a ± assumes.
   std::optional<Vec3> viewpoint_m;    // Capture centre (rig position), if known; improves openings.
   std::uint64_t seed = 1;             // RANSAC sampling.

@@ -196,6 +196,84 @@ TEST(ReconstructPlan, UsesTheBlenderTruthPlansAsTruth) {
   }
 }
 
+// Label-edge (boundary) points of every opening of `plan`: on the wall face
+// at the label's edges (the casing's outer edges), every 5 cm in height, each
+// moved along its viewing ray by up to ±`depth_error_m` (what stereo depth
+// error does), as ComputeFramePoints makes them.
+std::vector<ClassPoint> BoundaryPoints(const Plan& plan, const Vec3& view, double depth_error_m) {
+  std::vector<ClassPoint> out;
+  int k = 0;
+  for (const PlanOpening& o : plan.openings) {
+    const bool door = o.kind == OpeningKind::kDoor;
+    const double casing = door ? 0.07 : 0.05;
+    const Vec2 along = (o.end - o.start).normalized();
+    const double sill = o.sill.value_or(0.0), top = sill + o.height.value_or(2.0);
+    for (const Vec2& edge : {Vec2(o.start - casing * along), Vec2(o.end + casing * along)}) {
+      for (double z = sill + 0.05; z < top; z += 0.05, ++k) {
+        const Vec3 on_face(edge.x(), edge.y(), z);
+        const double error = depth_error_m * ((k % 7) / 3.0 - 1.0);  // −1 … +1 of the bound.
+        const Vec3 p = on_face + error * (on_face - view).normalized();
+        out.push_back({door ? LabelClass::kDoor : LabelClass::kWindow, p, 0.03, PointSource::kBoundary, 0});
+      }
+    }
+  }
+  return out;
+}
+
+TEST(ReconstructPlan, OpeningWidthsComeFromLabelEdgesOnTheWall) {
+  const Plan truth = Rectangle();
+  SampleOptions sample{.outlier_fraction = 0};
+  std::vector<ClassPoint> points = SamplePointsFromPlan(truth, sample, 4);
+  const Vec3 view = SampleViewpoint(truth, sample);
+  // Stray opening points 12 cm beyond each label edge on the face (frames
+  // and casings seen past the edge, depth noise): they stretch the extent.
+  for (const PlanOpening& o : truth.openings) {
+    const bool door = o.kind == OpeningKind::kDoor;
+    const Vec2 along = (o.end - o.start).normalized();
+    const double casing = door ? 0.07 : 0.05;
+    for (double z = 1.0; z < 1.5; z += 0.02) {
+      for (const Vec2& xy : {Vec2(o.start - (casing + 0.12) * along), Vec2(o.end + (casing + 0.12) * along)}) {
+        points.push_back({door ? LabelClass::kDoor : LabelClass::kWindow, Vec3(xy.x(), xy.y(), z), 0.005,
+                          PointSource::kDense, 0});
+      }
+    }
+  }
+  const PlanOptions options{.viewpoint_m = view};
+  const PlanScore without = ScorePlan(ReconstructPlan(points, options).plan, truth);
+  const std::vector<ClassPoint> edges = BoundaryPoints(truth, view, 0.08);
+  points.insert(points.end(), edges.begin(), edges.end());
+  const PlanResult r = ReconstructPlan(points, options);
+  const PlanScore with = ScorePlan(r.plan, truth);
+  EXPECT_EQ(with.doors.matched + with.windows.matched, 3) << with.Table();
+  EXPECT_GT(without.opening_width.Median().value_or(0), 0.1) << without.Table();
+  EXPECT_LE(with.opening_width.Max().value_or(1), 0.005) << with.Table();
+  for (const PlanOpening& o : r.plan.openings) EXPECT_LT(o.width_sigma_m.value_or(1), 0.03);
+}
+
+TEST(ReconstructPlan, AnOpenLeafDoesNotWidenTheDoor) {
+  const Plan truth = Rectangle();
+  SampleOptions sample{.outlier_fraction = 0};
+  std::vector<ClassPoint> points = SamplePointsFromPlan(truth, sample, 5);
+  const Vec3 view = SampleViewpoint(truth, sample);
+  const double before = ScorePlan(ReconstructPlan(points, {.viewpoint_m = view}).plan, truth).door_width.Max().value();
+  // The leaf, 0.9 m wide, hinged at the door's start and swung 70° into the
+  // room; noisy points (σ 10 cm, as stereo gives them at 3 m).
+  const PlanOpening& door = truth.openings[0];
+  const PlanWall& wall = truth.walls[door.wall];
+  const Vec2 along = (wall.end - wall.start).normalized(), inward(-along.y(), along.x());
+  const Vec2 leaf = std::cos(DegToRad(70.0)) * along + std::sin(DegToRad(70.0)) * inward;
+  for (double s = 0.02; s < 0.9; s += 0.01) {
+    for (double z = 0.1; z < 2.0; z += 0.1) {
+      const Vec2 xy = door.start + s * leaf;
+      points.push_back({LabelClass::kDoor, Vec3(xy.x(), xy.y(), z), 0.1, PointSource::kDense, 0});
+    }
+  }
+  const PlanScore s = ScorePlan(ReconstructPlan(points, {.viewpoint_m = view}).plan, truth);
+  EXPECT_EQ(s.doors.matched, 1) << s.Table();
+  EXPECT_EQ(s.doors.predicted, 1) << s.Table();
+  EXPECT_LE(s.door_width.Max().value_or(1), before + 0.02) << s.Table();
+}
+
 TEST(ReconstructPlan, KeepsNonManhattanWallsAtTheirAngle) {
   Plan truth = Trapezoid();
   PlanResult r = ReconstructPlan(SamplePointsFromPlan(truth, {}, 3), {.seed = 3});

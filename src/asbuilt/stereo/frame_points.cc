@@ -61,6 +61,25 @@ bool RightLabelAgrees(const cv::Mat& labels_right, const Vec2& right_px, unsigne
   return false;
 }
 
+// Whether the label edge between columns u_wall (wall) and u_open (class c)
+// of row v continues straight up and down for `rows` rows: each of those rows
+// has the same wall → c transition within one pixel of it.
+bool VerticalEdge(const cv::Mat& labels, int v, int u_wall, int u_open, unsigned char c, int rows) {
+  for (int y = v - rows; y <= v + rows; ++y) {
+    if (y == v) continue;
+    if (y < 0 || y >= labels.rows) return false;
+    const unsigned char* l = labels.ptr<unsigned char>(y);
+    bool found = false;
+    for (int shift = -1; shift <= 1 && !found; ++shift) {
+      const int w = u_wall + shift, o = u_open + shift;
+      if (std::min(w, o) < 0 || std::max(w, o) >= labels.cols) continue;
+      found = l[w] == 1 && l[o] == c;
+    }
+    if (!found) return false;
+  }
+  return true;
+}
+
 cv::Mat ToGray8(const cv::Mat& image) {
   if (image.channels() == 1) return image;
   cv::Mat gray;
@@ -91,6 +110,15 @@ void FramePointsOptions::Check() const {
                 fmt::format("FramePointsOptions.edge_row_step_px = {}, must be >= 1", edge_row_step_px));
   CheckArgument(edge_min_gradient > 0,
                 fmt::format("FramePointsOptions.edge_min_gradient = {}, must be > 0", edge_min_gradient));
+  CheckArgument(boundary_row_step_px >= 1,
+                fmt::format("FramePointsOptions.boundary_row_step_px = {}, must be >= 1", boundary_row_step_px));
+  CheckArgument(boundary_wall_gap_px >= 0 && boundary_wall_span_px >= 1 && boundary_inside_px >= 1,
+                fmt::format("FramePointsOptions.boundary_wall_gap_px = {}, boundary_wall_span_px = {}, "
+                            "boundary_inside_px = {}: need gap >= 0, span >= 1, inside >= 1",
+                            boundary_wall_gap_px, boundary_wall_span_px, boundary_inside_px));
+  CheckArgument(boundary_tolerance_px > 0 && boundary_sigma_px > 0,
+                fmt::format("FramePointsOptions.boundary_tolerance_px = {}, boundary_sigma_px = {}: must be > 0",
+                            boundary_tolerance_px, boundary_sigma_px));
   CheckArgument(guide_radius_px >= 1,
                 fmt::format("FramePointsOptions.guide_radius_px = {}, must be >= 1", guide_radius_px));
   CheckArgument(corner_sigma_px > 0 && edge_sigma_px > 0 && dense_sigma_px > 0,
@@ -112,13 +140,15 @@ std::string FrameCues::CarriedBy() const {
   add(corners_matched > 0, "corner");
   add(edge_points > 0, "edge");
   add(dense_points > 0, "dense");
+  add(boundary_points > 0, "boundary");
   return out.empty() ? "none" : out;
 }
 
 std::string FrameCues::BriefReport() const {
-  return fmt::format("frame {}: corners {}/{}, edges {}/{}, dense {} ({:.0f}% of labelled px consistent) — {}, {:.0f} ms",
-                     index, corners_matched, corners_found, edge_points, edge_candidates, dense_points,
-                     100.0 * dense_valid_fraction, CarriedBy(), 1000.0 * seconds);
+  return fmt::format(
+      "frame {}: corners {}/{}, edges {}/{}, dense {} ({:.0f}% of labelled px consistent), boundary {} — {}, {:.0f} ms",
+      index, corners_matched, corners_found, edge_points, edge_candidates, dense_points, 100.0 * dense_valid_fraction,
+      boundary_points, CarriedBy(), 1000.0 * seconds);
 }
 
 FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePointsOptions& options) {
@@ -238,6 +268,79 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
         }
         if (add_point(lab[u], px, m->disparity_px, options.edge_sigma_px, PointSource::kEdge)) {
           ++result.cues.edge_points;
+        }
+      }
+    }
+  }
+
+  // Boundaries: where a door/window label meets the wall along a row, the
+  // label edge lies halfway between the two pixel centres; it is placed at
+  // the wall's depth there, so the opening's edge is measured on the wall
+  // surface (the plan then slides it along its viewing ray onto the fitted
+  // wall). Casings protrude only 1.5 cm, so near the edge the opening's own
+  // depth is the wall's; where it is not, the edge is an occlusion.
+  if (options.use_boundaries) {
+    const cv::Mat& labels = frame.labels_left;
+    const cv::Mat& valid = result.disparity.valid;
+    const int rows = labels.rows, cols = labels.cols;
+    // Median valid disparity of `label` pixels in rows v ± 2, at columns
+    // u0 + dir·k for k in [from, to]; NaN if fewer than 3.
+    auto side_disparity = [&](int v, int u0, int dir, int from, int to, unsigned char label) {
+      std::vector<float> vals;
+      for (int y = std::max(0, v - 2); y <= std::min(rows - 1, v + 2); ++y) {
+        const unsigned char* l = labels.ptr<unsigned char>(y);
+        const unsigned char* ok = valid.ptr<unsigned char>(y);
+        const float* d = disparity.ptr<float>(y);
+        for (int k = from; k <= to; ++k) {
+          const int x = u0 + dir * k;
+          if (x < 0 || x >= cols) break;
+          if (l[x] == label && ok[x] && std::isfinite(d[x])) vals.push_back(d[x]);
+        }
+      }
+      if (vals.size() < 3) return static_cast<double>(NAN);
+      std::nth_element(vals.begin(), vals.begin() + vals.size() / 2, vals.end());
+      return static_cast<double>(vals[vals.size() / 2]);
+    };
+    auto run_of = [&](const unsigned char* row, int u0, int dir, unsigned char label, int n) {
+      for (int k = 0; k < n; ++k) {
+        const int x = u0 + dir * k;
+        if (x < 0 || x >= cols || row[x] != label) return false;
+      }
+      return true;
+    };
+    for (int v = 2; v < rows - 2; v += options.boundary_row_step_px) {
+      const unsigned char* lab = labels.ptr<unsigned char>(v);
+      for (int u = 1; u < cols; ++u) {
+        const unsigned char a = lab[u - 1], b = lab[u];
+        unsigned char c = 0;
+        int u_wall = 0, u_open = 0, to_wall = 0;
+        if (a == 1 && (b == 2 || b == 3)) {
+          c = b, u_wall = u - 1, u_open = u, to_wall = -1;
+        } else if (b == 1 && (a == 2 || a == 3)) {
+          c = a, u_wall = u, u_open = u - 1, to_wall = 1;
+        } else {
+          continue;
+        }
+        // Both sides a few pixels wide (no label slivers).
+        if (!run_of(lab, u_wall, to_wall, 1, 3) || !run_of(lab, u_open, -to_wall, c, 3)) continue;
+        // Only the sides of an opening: the cameras are level, so its
+        // vertical edges are image columns; a row also crosses the slanted
+        // top and bottom edges of an obliquely seen opening.
+        if (!VerticalEdge(labels, v, u_wall, u_open, c, options.boundary_vertical_rows)) continue;
+        const double d_wall = side_disparity(v, u_wall, to_wall, options.boundary_wall_gap_px,
+                                             options.boundary_wall_gap_px + options.boundary_wall_span_px, 1);
+        if (!std::isfinite(d_wall)) continue;
+        const double d_in = side_disparity(v, u_open, -to_wall, 0, options.boundary_inside_px - 1, c);
+        if (!std::isfinite(d_in) ||
+            std::abs(d_in - d_wall) > std::max(options.boundary_tolerance_px, 0.08 * d_wall)) {
+          continue;
+        }
+        const Vec2 px(u - 0.5, v);
+        if (!RightLabelAgrees(frame.labels_right, Vec2(px.x() - d_wall, v), c, options.right_label_radius_px)) {
+          continue;
+        }
+        if (add_point(c, px, d_wall, options.boundary_sigma_px, PointSource::kBoundary)) {
+          ++result.cues.boundary_points;
         }
       }
     }
@@ -366,17 +469,18 @@ StereoFrame LoadStereoFrame(const Capture& capture, const CaptureFrame& frame, c
 }
 
 std::string CapturePointsResult::BriefReport() const {
-  int by_class[4] = {0, 0, 0, 0}, by_source[4] = {0, 0, 0, 0};
+  int by_class[4] = {0, 0, 0, 0}, by_source[5] = {0, 0, 0, 0, 0};
   for (const ClassPoint& p : points) {
     ++by_class[static_cast<int>(p.label) & 3];
-    ++by_source[static_cast<int>(p.source) & 3];
+    ++by_source[std::min(4, static_cast<int>(p.source))];
   }
   int carried = 0;
   for (const FrameCues& f : frames) carried += f.CarriedBy() != "none";
   return fmt::format(
-      "{} frames ({} with points), {} points (wall {}, door {}, window {}; corner {}, edge {}, dense {}), {:.1f} s",
+      "{} frames ({} with points), {} points (wall {}, door {}, window {}; corner {}, edge {}, dense {}, boundary {}), "
+      "{:.1f} s",
       frames.size(), carried, points.size(), by_class[1], by_class[2], by_class[3], by_source[0], by_source[2],
-      by_source[1], seconds);
+      by_source[1], by_source[4], seconds);
 }
 
 CapturePointsResult ComputeCapturePoints(const Capture& capture, const LabelProvider& labels,

@@ -72,6 +72,30 @@ struct FramePointsOptions {
   // nearby differs by more than this (occlusion corners: furniture in front
   // of a wall takes the corner's match).
   double corner_region_tolerance_px = 1.5;
+  // Opening boundaries: on every n-th row, where a door/window label meets a
+  // wall label, one point at the label edge (sub-pixel: halfway between the
+  // two pixel centres) with the depth of the wall beside it — so an
+  // opening's width is measured on the wall's surface, not from the
+  // recessed or protruding depths inside the opening (glass, jambs, an open
+  // leaf). Skipped where the opening's own depth just inside the edge is not
+  // the wall's: the edge is then an occlusion (an open leaf in front of the
+  // wall, a wall corner in front of a window), not the opening's border.
+  bool use_boundaries = true;
+  int boundary_row_step_px = 2;
+  // Only vertical edges (the opening's sides): the same transition within
+  // ±1 px on this many rows above and below.
+  int boundary_vertical_rows = 3;
+  // The wall's disparity: median over wall pixels from boundary_wall_gap_px
+  // to boundary_wall_gap_px + boundary_wall_span_px beyond the edge (rows
+  // ±2); the gap keeps the matcher's foreground fattening out.
+  int boundary_wall_gap_px = 3;
+  int boundary_wall_span_px = 10;
+  // The opening's own disparity: its pixels 1…boundary_inside_px inside the
+  // edge (casing). It must agree with the wall's within max(this, 8 % of
+  // the wall's disparity).
+  int boundary_inside_px = 5;
+  double boundary_tolerance_px = 1.0;
+  double boundary_sigma_px = 0.3;  // 1σ of the wall disparity at the edge.
   // 1σ disparity errors used for the point uncertainty.
   double corner_sigma_px = 0.25;
   double edge_sigma_px = 0.3;
@@ -101,6 +125,7 @@ struct FrameCues {
   int edge_candidates = 0;
   int edge_points = 0;
   int dense_points = 0;
+  int boundary_points = 0;  // Door/window label edges on the wall.
   double dense_valid_fraction = NAN;  // Of labelled wall/door/window pixels.
   double seconds = 0.0;
 
@@ -141,7 +166,7 @@ struct CapturePointsResult {
   double seconds = 0.0;
 
   // "12 frames, 45123 points (wall 40000, door 3000, window 2123; corner 150,
-  // edge 3000, dense 41973), 3.2 s".
+  // edge 3000, dense 41773, boundary 200), 3.2 s".
   std::string BriefReport() const;
 };
 

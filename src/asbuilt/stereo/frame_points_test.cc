@@ -200,6 +200,45 @@ TEST(ComputeFramePoints, WallPointsLieOnTruthWallPlanes) {
   }
 }
 
+// Opening label edges land on the wall at the casing's outer edge — also
+// beside p02's open door leaf, whose silhouette against the wall is an
+// occlusion and must give no boundary points.
+TEST(ComputeFramePoints, BoundaryPointsLieOnTheOpeningsLabelEdges) {
+  std::vector<double> error_m;
+  for (const std::string room : {"p01_rect_1door_2win", "p02_L_shape"}) {
+    RoomFrames r = LoadRoom(room, {0, 1, 2, 7, 8, 9, 11});
+    const Plan truth = ReadPlan(RoomDir(room) / "truth.json");
+    for (const StereoFrame& f : r.frames) {
+      const Vec3 centre = WorldFromCamera(f.pose, f.baseline_m, StereoEye::kLeft).translation();
+      for (const ClassPoint& p : ComputeFramePoints(f, {}).points) {
+        if (p.source != PointSource::kBoundary) continue;
+        // Slide along the viewing ray onto the nearest opening's wall face;
+        // distance along the wall to the nearer label edge.
+        double best = 1e9;
+        for (const PlanOpening& o : truth.openings) {
+          if ((o.kind == OpeningKind::kDoor) != (p.label == LabelClass::kDoor)) continue;
+          const PlanWall& w = truth.walls[o.wall];
+          const Vec2 along = (w.end - w.start).normalized(), inward(-along.y(), along.x());
+          const Vec2 c = centre.head<2>(), ray = p.position_m.head<2>() - c;
+          const double den = inward.dot(ray);
+          if (std::abs(den) < 1e-9) continue;
+          const Vec2 hit = c + (inward.dot(w.start - c) / den) * ray;
+          const double casing = o.kind == OpeningKind::kDoor ? 0.07 : 0.05;
+          const double t = along.dot(hit - w.start), t0 = along.dot(o.start - w.start) - casing,
+                       t1 = along.dot(o.end - w.start) + casing;
+          best = std::min({best, std::abs(t - t0), std::abs(t - t1)});
+        }
+        error_m.push_back(best);
+      }
+    }
+  }
+  std::printf("boundary points %zu: distance to the label edge median %.4f p90 %.4f max %.4f m\n", error_m.size(),
+              Percentile(error_m, 0.5), Percentile(error_m, 0.9), Percentile(error_m, 1.0));
+  ASSERT_GE(error_m.size(), 300u);
+  EXPECT_LE(Percentile(error_m, 0.5), 0.01);
+  EXPECT_LE(Percentile(error_m, 0.9), 0.03);
+}
+
 TEST(LabelsFromDirectory, MissingFileNamesTheFile) {
   const LabelProvider labels = LabelsFromDirectory("/nonexistent-labels");
   CaptureFrame frame;
