@@ -112,6 +112,7 @@ Runs Time(const Mode& mode, int repeats, const fs::path& out_dir) {
     const double cpu0 = CpuSeconds();
     const auto start = std::chrono::steady_clock::now();
     SurveyResult r = RunSurvey(mode.capture, out_dir, mode.options);
+    r.summary.out_dir.clear();  // The brief without the temporary folder.
     runs.wall_s.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     runs.cpu_s.push_back(CpuSeconds() - cpu0);
     std::map<std::string, double> stages;
