@@ -2,7 +2,7 @@
 // -o calibration.yml` — stereo calibration from chessboard pairs
 // (stereo/calibrate.h), or `asbuilt calibrate --from-euroc cam0/sensor.yaml
 // cam1/sensor.yaml -o calibration.yml` — a rig calibrated elsewhere, imported
-// from EuRoC/Kalibr sensor files (stereo/euroc_calibration.h).
+// from EuRoC sensor.yaml files (stereo/euroc_calibration.h).
 
 #include <cstdio>
 #include <filesystem>
@@ -34,7 +34,7 @@ int RunCalibrateCommand(int argc, char** argv) {
   auto* left_opt = app.add_option("--left", left_args, "left images (files or a quoted glob such as 'L*.jpg')");
   auto* right_opt = app.add_option("--right", right_args, "right images, paired with --left by sorted name");
   auto* euroc_opt = app.add_option("--from-euroc", euroc,
-                                   "convert EuRoC/Kalibr sensor.yaml files instead: LEFT (cam0) then RIGHT (cam1)")
+                                   "convert EuRoC sensor.yaml files instead: LEFT (cam0) then RIGHT (cam1)")
                         ->expected(2)
                         ->check(CLI::ExistingFile);
   euroc_opt->excludes(left_opt)->excludes(right_opt);

@@ -2,8 +2,8 @@
 #define ASBUILT_STEREO_EUROC_CALIBRATION_H_
 
 // Imports a stereo calibration written in the EuRoC MAV dataset's per-camera
-// `sensor.yaml` form (Burri et al., IJRR 2016; also what Kalibr exports for
-// EuRoC-style datasets) as asbuilt's StereoCalibration, so a real rig
+// `sensor.yaml` form (Burri et al., IJRR 2016; Kalibr's camchain.yaml is a
+// different layout, not read here) as asbuilt's StereoCalibration, so a real rig
 // calibrated elsewhere can be surveyed without a chessboard session:
 //
 //   intrinsics: [fu, fv, cu, cv]              → K
