@@ -1,8 +1,12 @@
 #!/usr/bin/env python3
 """The same SegFormer as src/asbuilt/seg/segformer.cc, in Python PyTorch, timed
-the same way as bench_seg (called by it; prints one JSON object).
+the same way as bench_seg.
 
-usage: segformer_bench.py ARCH THREADS REPEATS
+usage: segformer_bench.py ARCH THREADS REPEATS   one-shot: medians as one JSON object
+       segformer_bench.py ARCH THREADS serve     bench_seg's peer: reads one command per
+           line on stdin (infer | train SIDE | rss | quit), runs it once and answers one
+           JSON line ({"s": seconds} or {"peak_rss_mib": …}), so bench_seg can interleave
+           C++ and Python measurements (ABBA…) on a loaded machine.
 """
 import json
 import math
@@ -135,35 +139,79 @@ def median(fn, repeats):
     return t[len(t) // 2]
 
 
+class Workload:
+    """The three measured operations, exactly as bench_seg.cc runs them."""
+
+    def __init__(self, arch):
+        torch.manual_seed(0)
+        self.model = Segformer(arch)
+        self.x = torch.randn(1, 3, 480, 640)
+        self.opt = None
+        self.batches = {}
+
+    def infer(self):
+        self.model.eval()
+        with torch.no_grad():
+            F.interpolate(self.model(self.x), size=(480, 640), mode="bilinear", align_corners=False).argmax(1)
+
+    def train(self, side):
+        self.model.train()
+        if self.opt is None:
+            self.opt = torch.optim.AdamW(self.model.parameters(), lr=1e-4, weight_decay=1e-3)
+        if side not in self.batches:
+            self.batches[side] = (torch.randn(2, 3, side, side), torch.randint(0, 4, (2, side, side)))
+        xb, yb = self.batches[side]
+        logits = F.interpolate(self.model(xb), size=(side, side), mode="bilinear", align_corners=False)
+        loss = F.cross_entropy(logits, yb, ignore_index=255)
+        self.opt.zero_grad()
+        loss.backward()
+        self.opt.step()
+
+
+def peak_rss_mib():
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+
+
+def serve(work):
+    print(json.dumps({"ready": True, "parameters": sum(p.numel() for p in work.model.parameters()),
+                      "torch": torch.__version__, "threads": torch.get_num_threads()}), flush=True)
+    for line in sys.stdin:
+        cmd = line.split()
+        if not cmd or cmd[0] == "quit":
+            break
+        if cmd[0] == "rss":
+            print(json.dumps({"peak_rss_mib": peak_rss_mib()}), flush=True)
+            continue
+        faults = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+        start = time.perf_counter()
+        if cmd[0] == "infer":
+            work.infer()
+        elif cmd[0] == "train":
+            work.train(int(cmd[1]))
+        else:
+            print(json.dumps({"error": f"unknown command {cmd[0]}"}), flush=True)
+            continue
+        seconds = time.perf_counter() - start
+        print(json.dumps({"s": seconds, "minflt": resource.getrusage(resource.RUSAGE_SELF).ru_minflt - faults}),
+              flush=True)
+
+
 def main():
-    arch, threads, repeats = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+    arch, threads = sys.argv[1], int(sys.argv[2])
     torch.set_num_threads(threads)
-    torch.manual_seed(0)
-    model = Segformer(arch)
-    params = sum(p.numel() for p in model.parameters())
+    work = Workload(arch)
+    if sys.argv[3] == "serve":
+        serve(work)
+        return
+    repeats = int(sys.argv[3])
+    params = sum(p.numel() for p in work.model.parameters())
     out = {"arch": arch, "threads": threads, "parameters": params, "torch": torch.__version__}
-    model.eval()
-    x = torch.randn(1, 3, 480, 640)
-    with torch.no_grad():
-        model(x)
-        out["infer_640x480_s"] = median(lambda: F.interpolate(model(x), size=(480, 640), mode="bilinear",
-                                                              align_corners=False).argmax(1), repeats)
-    model.train()
-    opt = torch.optim.AdamW(model.parameters(), lr=1e-4, weight_decay=1e-3)
+    work.infer()
+    out["infer_640x480_s"] = median(work.infer, repeats)
     for side in (256, 512):
-        xb = torch.randn(2, 3, side, side)
-        yb = torch.randint(0, 4, (2, side, side))
-
-        def step():
-            logits = F.interpolate(model(xb), size=(side, side), mode="bilinear", align_corners=False)
-            loss = F.cross_entropy(logits, yb, ignore_index=255)
-            opt.zero_grad()
-            loss.backward()
-            opt.step()
-
-        step()
-        out[f"train_{side}_images_per_s"] = 2 / median(step, repeats)
-    out["peak_rss_mib"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+        work.train(side)
+        out[f"train_{side}_images_per_s"] = 2 / median(lambda: work.train(side), repeats)
+    out["peak_rss_mib"] = peak_rss_mib()
     print(json.dumps(out))
 
 
