@@ -48,7 +48,7 @@ void WritePlot(const fs::path& path, const std::vector<RatioExperimentRow>& rows
     cv::putText(img, rows[i].config, {L + static_cast<int>(i * group_w + group_w / 2 - 25), H - B + 20},
                 cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   }
-  cv::putText(img, "score on the real test set (higher is better)", {L, H - 15}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
+  cv::putText(img, "score on the test set (higher is better)", {L, H - 15}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
               cv::Scalar(80, 80, 80), 1, cv::LINE_AA);
   for (int k = 0; k < 4; ++k) {
     cv::rectangle(img, {L + 10 + k * 150, 10}, {L + 22 + k * 150, 22}, colours[k], cv::FILLED);
