@@ -1,49 +1,73 @@
 #!/usr/bin/env bash
-# Reproduces models/segformer_tiny_asbuilt.pt (see models/MODEL_CARD.md) with
-# the asbuilt CLI only: toy-room pre-training, then two fine-tuning stages on
-# views from asbuilt's own renderer (`dataset synth`), then the model card's
-# evaluations. The shipped run was cut short by the CPU budget of its
-# session; --stop-after and the item cut below replay exactly those cuts
-# (same schedules, same data).
+# Reproduces models/segformer_b0_asbuilt.pt (models/MODEL_CARD.md): data from
+# asbuilt's own generators, three training stages with
+# tools/pytorch/train_gpu.py (the Python twin of asbuilt's SegFormer; needs a
+# PyTorch with CUDA — one GPU, ~20 min of training in all), then
+# `asbuilt model import` and the model card's evaluations with asbuilt.
 #
 #   scripts/train-shipped-model.sh [BUILD_DIR] [WORK_DIR]
 #
-# Defaults: BUILD_DIR=build, WORK_DIR=runs/shipped. Resumable: re-running
-# skips finished views and continues training from the last checkpoint.
-# On a shared/loaded machine OMP_WAIT_POLICY=passive matters (docs/seg.md).
+# Defaults: BUILD_DIR=build, WORK_DIR=runs/b0. PYTHON (default python3) must
+# import torch and cv2. The shipped run moved data to a GPU machine in
+# pieces of ≤ 64 MiB, hence the item ranges per stage below and the JPEG
+# packing (quality 92); stage inits also travelled as float16 copies, which
+# this script skips (a difference far below run-to-run noise).
+# Without a GPU the same script runs on the CPU, at about 3 images/s: days.
+# The CPU-only route is scripts/train-cpu-model.sh (a smaller, weaker model).
 set -euo pipefail
 BUILD=${1:-build}
-WORK=${2:-runs/shipped}
+WORK=${2:-runs/b0}
 ASBUILT="$BUILD/asbuilt"
+PYTHON=${PYTHON:-python3}
 SHARED=${ASBUILT_SHARED_DATA:-../shared/data}
-export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
+HERE=$(cd "$(dirname "$0")/.." && pwd)
+TRAIN="$PYTHON $HERE/tools/pytorch/train_gpu.py"
+PACK="$PYTHON $HERE/tools/pytorch/pack_dataset.py"
 mkdir -p "$WORK"
 
-# 1. Data. Toy rooms (seg/toy_rooms.h) for pre-training; renderer views for
-#    fine-tuning (the first 434 items of an 800-item run were used) and a
-#    held-out renderer test set with another seed.
-"$ASBUILT" experiment toy-rooms -o "$WORK/toy" --count 4000 --seed 1 --width 256 --height 192
-"$ASBUILT" dataset synth -o "$WORK/synth/a" --count 800 --seed 4242
-for d in images labels idmaps depth meta; do
-  find "$WORK/synth/a/$d" -name '000[4-7][0-9][0-9].*' | awk -F/ '{n=$NF; sub(/\..*/,"",n); if (n+0 >= 434) print}' | xargs -r rm -f
-done
-"$ASBUILT" dataset synth -o "$WORK/synth/b" --count 400 --seed 5151
-"$ASBUILT" dataset synth -o "$WORK/synth_test" --count 200 --seed 777
+# 1. Data: renderer views (4 per room), toy rooms, a validation set (model
+#    selection) and a held-out test set (never seen in training or selection).
+"$ASBUILT" dataset synth -o "$WORK/raw/A" --count 3000 --seed 9001 --items-per-scene 4
+"$ASBUILT" dataset synth -o "$WORK/raw/B" --count 4000 --seed 9002 --items-per-scene 4
+"$ASBUILT" dataset synth -o "$WORK/raw/val" --count 200 --seed 31337 --items-per-scene 4
+"$ASBUILT" dataset synth -o "$WORK/raw/test" --count 200 --seed 777
+"$ASBUILT" experiment toy-rooms -o "$WORK/raw/toy" --count 450 --seed 11 --width 320 --height 240
 
-COMMON=(--arch tiny --scale 192x144 --crop 128x128)
-# 2. Pre-train on toy rooms: an 8-epoch schedule, stopped after epoch 2.
-"$ASBUILT" train --images "$WORK/toy" -o "$WORK/pretrain" "${COMMON[@]}" --epochs 8 --steps-per-epoch 400 \
-  --lr 1e-3 --warmup 200 --val-max 100 --seed 1 --stop-after 2
-# 3. Fine-tune on the first renderer set: a 6-epoch schedule, stopped after epoch 3.
-"$ASBUILT" train --images "$WORK/synth/a" -o "$WORK/ft1" "${COMMON[@]}" --init "$WORK/pretrain/last.pt" \
-  --epochs 6 --steps-per-epoch 200 --lr 6e-4 --warmup 50 --val-max 40 --seed 2 --stop-after 3
-# 4. Fine-tune on both renderer sets to the end of a 9-epoch schedule.
-"$ASBUILT" train --images "$WORK/synth" -o "$WORK/ft2" "${COMMON[@]}" --init "$WORK/ft1/last.pt" \
-  --epochs 9 --steps-per-epoch 200 --lr 4e-4 --warmup 20 --val-max 50 --seed 3
+# Item ranges as the shipped run used them: NAME SOURCE FIRST COUNT.
+slice() {
+  local name=$1 src=$2 first=$3 count=$4 tmp="$WORK/slices/$1"
+  [ -d "$WORK/packed/$name" ] && return
+  mkdir -p "$tmp/images" "$tmp/labels"
+  for f in $(ls "$WORK/raw/$src/images" | sed -n "$((first + 1)),$((first + count))p"); do
+    ln -sf "$(realpath "$WORK/raw/$src/images/$f")" "$tmp/images/$f"
+    ln -sf "$(realpath "$WORK/raw/$src/labels/$f")" "$tmp/labels/$f"
+  done
+  $PACK "$tmp" "$WORK/packed/$name"
+}
+slice A_all A 0 3000
+slice toy toy 0 450
+slice val val 0 200
+slice A_1 A 0 1500
+slice B_1 B 0 1460
+slice A_2 A 1500 400
+slice B_2 B 1460 2540
 
-# 5. The model card's evaluations.
-M="$WORK/ft2/best.pt"
-"$ASBUILT" eval seg --model "$M" --images "$WORK/synth_test" --json "$WORK/eval_synth_test.json"
+COMMON=(--val "$WORK/packed/val" --arch b0 --scale 320x240 --crop 256x256 --batch 32 --eval-every 1000)
+P="$WORK/packed"
+# 2. From scratch (the shipped run's time budget resolved to 5036 steps).
+[ -f "$WORK/s1/best.safetensors" ] || $TRAIN "${COMMON[@]}" --data "$P/A_all" "$P/toy" -o "$WORK/s1" \
+  --steps 5036 --lr 8e-4 --warmup 1000 --seed 0
+# 3. Fine-tune on new rooms.
+[ -f "$WORK/s2/best.safetensors" ] || $TRAIN "${COMMON[@]}" --data "$P/A_1" "$P/B_1" -o "$WORK/s2" \
+  --init "$WORK/s1/best.safetensors" --steps 8500 --lr 4e-4 --warmup 300 --seed 2
+# 4. Fine-tune on more new rooms.
+[ -f "$WORK/s3/best.safetensors" ] || $TRAIN "${COMMON[@]}" --data "$P/A_2" "$P/B_2" -o "$WORK/s3" \
+  --init "$WORK/s2/best.safetensors" --steps 8000 --lr 2.5e-4 --warmup 300 --seed 3
+
+# 5. Into asbuilt, and the model card's evaluations (asbuilt's own metrics).
+M="$WORK/segformer_b0_asbuilt.pt"
+"$ASBUILT" model import "$WORK/s3/best.safetensors" -o "$M"
+"$ASBUILT" eval seg --model "$M" --images "$WORK/raw/test" --json "$WORK/eval_synth_test.json"
 "$ASBUILT" eval seg --model "$M" --images "$SHARED/blender-rooms-public" --json "$WORK/eval_blender.json"
 mkdir -p "$WORK/ade_indoor/images" "$WORK/ade_indoor/labels" "$WORK/nyu/images" "$WORK/nyu/labels"
 ADE="$SHARED/ade20k_sceneparsing_samples"

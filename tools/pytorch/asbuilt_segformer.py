@@ -3,7 +3,7 @@
 Same modules, same parameter and buffer names, same numerics, so weights move
 between the two through safetensors files:
 
-    asbuilt model export models/segformer_tiny_asbuilt.pt -o tiny.safetensors
+    asbuilt model export models/segformer_b0_asbuilt.pt -o tiny.safetensors
     model, meta = load_safetensors_model("tiny.safetensors")      # here
     save_safetensors_model("mine.safetensors", model, meta)       # here
     asbuilt model import mine.safetensors -o mine.pt

@@ -380,10 +380,10 @@ std::vector<Case> Cases() {
       {"TrainCorruptInit", {{"img/a.png", "<rgb 32x24 9"}, {"lab/a.png", "<png 32x24 1"}, {"img/b.png", "<rgb 32x24 9"}, {"lab/b.png", "<png 32x24 1"}, {"init.pt", "<garbage"}},
        "train --images {d}/img --labels {d}/lab -o {d}/out --arch tiny --epochs 1 --init {d}/init.pt", 1, {"{d}/init.pt"}},
       {"SegmentCorruptModel", {{"a.png", "<rgb 32x24 9"}, {"m.pt", "<garbage"}}, "segment --model {d}/m.pt {d}/a.png -o {d}/out", 1, {"{d}/m.pt"}},
-      {"SegmentTruncatedModel", {{"a.png", "<rgb 32x24 9"}, {"m.pt", "<trunc {src}/models/segformer_tiny_asbuilt.pt 5000"}},
+      {"SegmentTruncatedModel", {{"a.png", "<rgb 32x24 9"}, {"m.pt", "<trunc {src}/models/segformer_b0_asbuilt.pt 5000"}},
        "segment --model {d}/m.pt {d}/a.png -o {d}/out", 1, {"{d}/m.pt"}},
-      {"SegmentCorruptImage", {{"a.png", "<garbage"}}, "segment --model {src}/models/segformer_tiny_asbuilt.pt {d}/a.png -o {d}/out", 1, {"{d}/a.png"}},
-      {"SegmentEmptyFolder", {{"imgs", "<dir"}}, "segment --model {src}/models/segformer_tiny_asbuilt.pt {d}/imgs -o {d}/out", 1, {"{d}/imgs"}},
+      {"SegmentCorruptImage", {{"a.png", "<garbage"}}, "segment --model {src}/models/segformer_b0_asbuilt.pt {d}/a.png -o {d}/out", 1, {"{d}/a.png"}},
+      {"SegmentEmptyFolder", {{"imgs", "<dir"}}, "segment --model {src}/models/segformer_b0_asbuilt.pt {d}/imgs -o {d}/out", 1, {"{d}/imgs"}},
       {"EvalSegMissingModel", {{"img/a.png", "<rgb 32x24 9"}, {"lab/a.png", "<png 32x24 1"}}, "eval seg --model {d}/nope.pt --images {d}/img --labels {d}/lab", 1, {"{d}/nope.pt"}},
       {"ExperimentRatiosEmptyFolders", {{"real", "<dir"}, {"syn", "<dir"}}, "experiment ratios --real {d}/real --synthetic {d}/syn -o {d}/out --arch tiny --epochs 1", 1, {"{d}/real"}},
   };

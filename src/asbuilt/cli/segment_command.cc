@@ -47,7 +47,7 @@ int RunSegmentCommand(int argc, char** argv) {
   bool overlay = false;
   SegmentOptions o;
   std::string scale;
-  app.add_option("--model", model, "checkpoint (e.g. models/segformer_tiny_asbuilt.pt)")->required();
+  app.add_option("--model", model, "checkpoint (e.g. models/segformer_b0_asbuilt.pt)")->required();
   app.add_option("images", inputs, "image files or folders")->required();
   app.add_option("-o,--out", out, "output folder")->required();
   app.add_flag("--overlay", overlay, "also write colour overlays");

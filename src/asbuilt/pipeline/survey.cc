@@ -150,7 +150,7 @@ void SurveyOptions::Check() const {
 }
 
 fs::path DefaultModelPath() {
-  constexpr char kName[] = "segformer_tiny_asbuilt.pt";
+  constexpr char kName[] = "segformer_b0_asbuilt.pt";
   if (const char* env = std::getenv("ASBUILT_MODEL"); env != nullptr && *env != '\0') return env;
   fs::path exe_dir = ExecutableDir();
   std::vector<fs::path> candidates = {exe_dir / ".." / "models" / kName,

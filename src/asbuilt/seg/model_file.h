@@ -6,7 +6,7 @@
 // Python (tools/pytorch/asbuilt_segformer.py is the same network with the
 // same tensor names) and bring the result back. Does not include LibTorch.
 //
-//   asbuilt model export models/segformer_tiny_asbuilt.pt -o tiny.safetensors
+//   asbuilt model export models/segformer_b0_asbuilt.pt -o tiny.safetensors
 //   asbuilt model import trained.safetensors -o models/mine.pt
 //
 // The safetensors file holds every parameter and buffer under its asbuilt

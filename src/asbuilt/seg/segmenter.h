@@ -4,7 +4,7 @@
 // Inference with a trained SegFormer: the public face of seg/ for the rest
 // of asbuilt (survey, pipeline, MCP). Does not include LibTorch.
 //
-//   auto seg = LoadSegmenter("models/segformer_tiny_asbuilt.pt");
+//   auto seg = LoadSegmenter("models/segformer_b0_asbuilt.pt");
 //   cv::Mat labels = seg->Segment(bgr);   // CV_8U, 0 bg, 1 wall, 2 door, 3 window
 
 #include <filesystem>
