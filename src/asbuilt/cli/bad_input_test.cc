@@ -225,7 +225,7 @@ std::vector<Case> Cases() {
       {"HelpUnknownCommand", {}, "help frobnicate", 2, {"frobnicate"}},
       {"SurveyNoOutput", {}, "survey {d}/capture.json", 2, {"--out"}},
       {"RenderZeroSize", {}, "render {src}/examples/classroom.json -o {d}/out --size 0x0", 2, {"--size"}},
-      {"RenderZeroSpp", {}, "render {src}/examples/classroom.json -o {d}/out --spp 0", 2, {"samples_per_pixel"}},
+      {"RenderZeroSpp", {}, "render {src}/examples/classroom.json -o {d}/out --spp 0", 2, {"samples-per-pixel"}},
       {"RenderNegativeViews", {}, "render {src}/examples/classroom.json -o {d}/out --views -3", 2, {"views"}},
       {"DisparityBadRange", kPair, "disparity {d}/l.png {d}/r.png -o {d}/out/d.pfm --num-disparities 15", 2, {"16"}},
       {"CalibrateBadBoard", kPair, "calibrate --left {d}/l.png --right {d}/r.png --board 0x0 -o {d}/out/c.yml", 2, {"board"}},

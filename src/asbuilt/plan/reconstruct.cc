@@ -652,6 +652,7 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
   }
   s.wall_points = static_cast<int>(walls_pts.size());
   if (s.wall_points < 2 * o.min_wall_points) {
+    // Nothing to measure at all: survey fails on this (exit 1, no outputs).
     throw Error(fmt::format("{}: {} wall points, need at least {} (2 × PlanOptions.min_wall_points){}",
                             points_source.empty() ? "plan" : points_source, s.wall_points, 2 * o.min_wall_points,
                             s.wall_points == 0 ? ": no wall was labelled, or no wall pixel had a valid disparity" : ""));
@@ -679,9 +680,12 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
   MergeCollinear(walls_pts, lines, o);
   for (const Direction& d : dirs) s.dominant_directions_deg.push_back(RadToDeg(d.theta));
   if (lines.size() < 2) {
-    throw Error(fmt::format("{}: found {} wall line(s) in {} wall points; need at least 2 "
-                            "(try a larger --epsilon-m or fewer --min-wall-points)",
-                            points_source.empty() ? "plan" : points_source, lines.size(), s.wall_points));
+    // The points do not support a plan: an input problem (exit 1), and one
+    // that survey reports as a note while still writing points and report.
+    throw InputError(points_source.empty() ? "plan" : points_source, "",
+                     fmt::format("found {} wall line(s) in {} wall points; need at least 2 "
+                                 "(try a larger --epsilon-m or fewer --min-wall-points)",
+                                 lines.size(), s.wall_points));
   }
 
   // 4. Order around the viewpoint and close the room.
