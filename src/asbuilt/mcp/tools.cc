@@ -858,6 +858,9 @@ ToolResult SceneTools::AddOpenings(const ToolArgs& a, OpeningKind kind) {
     }
     target.openings.push_back(o);
   }
+  // `room` refers into scene_, which Commit replaces: name the wall first
+  // (ASan found the use after free).
+  const std::string facing = WallCompassName(room, wall);
   Commit(std::move(next), fmt::format("the {}", noun));
   std::vector<std::string> placed;
   for (double off : offsets) {
@@ -866,7 +869,7 @@ ToolResult SceneTools::AddOpenings(const ToolArgs& a, OpeningKind kind) {
   return ToolResult::Text(fmt::format(
       "Added {} {}{} to room {} wall {} (faces {}, {:.2f} m long) at {} along the wall; {:.2f} m "
       "wide, {:.2f} m high{}.",
-      count, noun, count == 1 ? "" : "s", r, wall, WallCompassName(room, wall), length,
+      count, noun, count == 1 ? "" : "s", r, wall, facing, length,
       fmt::join(placed, ", "), width, height,
       kind == OpeningKind::kWindow ? fmt::format(", sill {:.2f} m", sill) : ""));
 }
