@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include "asbuilt/mcp/jsonrpc.h"
 #include "asbuilt/mcp/server.h"
 #include "asbuilt/util/log.h"
 
@@ -20,6 +21,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return s;
   }();
   std::string_view text(reinterpret_cast<const char*>(data), size);
-  for (const nlohmann::json& m : server->HandleText(text)) (void)m.dump();
+  // Serialised as the server writes them (invalid UTF-8 from the client is
+  // replaced, not thrown on: a plain dump() here was the harness's own crash).
+  for (const nlohmann::json& m : server->HandleText(text)) (void)asbuilt::mcp::SerializeMessage(m);
   return 0;
 }

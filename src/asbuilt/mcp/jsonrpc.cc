@@ -124,7 +124,7 @@ void JsonRpcDispatcher::AddNotification(std::string name, NotificationHandler ha
 nlohmann::json JsonRpcDispatcher::Error(const nlohmann::json& id, JsonRpcCode code,
                                         std::string_view message, nlohmann::json data) {
   ++counts_.errors;
-  spdlog::debug("mcp: error {} for id {}: {}", static_cast<int>(code), id.dump(), message);
+  spdlog::debug("mcp: error {} for id {}: {}", static_cast<int>(code), SerializeMessage(id), message);
   return MakeErrorReply(id, code, message, std::move(data));
 }
 
@@ -208,7 +208,7 @@ std::optional<nlohmann::json> JsonRpcDispatcher::HandleSingle(
   if (method_it == message.end()) {
     if (message.contains("result") || message.contains("error")) {
       // A response from the client; this server sends no requests.
-      spdlog::debug("mcp: ignoring a response from the client (id {})", reply_id.dump());
+      spdlog::debug("mcp: ignoring a response from the client (id {})", SerializeMessage(reply_id));
       return std::nullopt;
     }
     return Error(reply_id, JsonRpcCode::kInvalidRequest,

@@ -84,6 +84,17 @@ TEST(JsonRpcDispatcher, NotJsonIsAParseError) {
   }
 }
 
+// Found by fuzz_mcp: a member name with invalid UTF-8 ("jso\xf5rpc") makes an
+// invalid-request reply; the reply must still serialise (bytes replaced).
+TEST(JsonRpcDispatcher, InvalidUtf8InTheRequestStillGivesAWritableReply) {
+  auto rpc = EchoDispatcher();
+  auto reply = rpc.HandleLine(Line("{\"jso\xf5rpc\":\"2.0\",\"id\":1,\"method\":\"too/slilst\"}"));
+  ASSERT_TRUE(reply);
+  std::string text;
+  EXPECT_NO_THROW(text = SerializeMessage(*reply));
+  EXPECT_FALSE(text.empty());
+}
+
 TEST(JsonRpcDispatcher, MalformedRequestsAreInvalidRequests) {
   auto rpc = EchoDispatcher();
   for (const char* bad : {
