@@ -426,6 +426,9 @@ int Parser::FindOpeningNoun(const Clause& c) const {
   return -1;
 }
 
+// Larger numbers before a noun are not read as counts (and are reported as unused).
+constexpr double kMaxCount = 1000;
+
 std::optional<int> Parser::CountBefore(int i, const Clause& c) {
   // The nearest unused count word, at most three unused tokens before i
   // (sizes already read in between are skipped: "two 1.2 by 1.5 m windows").
@@ -434,7 +437,10 @@ std::optional<int> Parser::CountBefore(int i, const Clause& c) {
     if (t_[k].used) continue;
     ++unused_seen;
     const std::string& w = t_[k].text;
-    if (t_[k].number && *t_[k].number >= 0 && *t_[k].number == std::floor(*t_[k].number) &&
+    // A count is a small whole number (5.6e45 is not one: casting it to int
+    // was undefined behaviour, found by fuzz_scene_text under UBSan).
+    if (t_[k].number && *t_[k].number >= 0 && *t_[k].number <= kMaxCount &&
+        *t_[k].number == std::floor(*t_[k].number) &&
         !(Free(k + 1, c) && UnitFactor(t_[k + 1].text))) {
       t_[k].used = true;
       return static_cast<int>(*t_[k].number);

@@ -245,6 +245,15 @@ TEST(SceneFromText, ReportsWordsItCannotUse) {
   EXPECT_THAT(door.unused_words, ElementsAre("sliding"));
 }
 
+// Found by fuzz_scene_text: a huge number before a noun was cast to int
+// (undefined behaviour). It is not a count; the text still parses or fails
+// with a clear error, never UB.
+TEST(SceneFromText, AHugeNumberIsNotACount) {
+  const std::string text = "a 6 by 8 m classroom with 55555555555555555555555555555555555555555555555 windows";
+  SceneTextResult r = SceneFromText(text);
+  EXPECT_THAT(r.unused_words, ::testing::Contains("55555555555555555555555555555555555555555555555"));
+}
+
 TEST(SceneFromText, ListsItsAssumptions) {
   SceneTextResult r = SceneFromText("a bedroom");
   EXPECT_THAT(r.assumptions, ::testing::Contains("no size given: bedroom default 3.50 × 4.00 m"));
