@@ -72,17 +72,8 @@ struct Outcome {
 };
 
 Outcome RunWithTimeout(const std::string& args) {
-  std::string cmd = "timeout -s KILL " + std::to_string(kTimeoutS) + " " + std::string(ASBUILT_CLI) + " " +
-                    args + " 2>&1 </dev/null";
-  Outcome r;
-  std::FILE* p = ::popen(cmd.c_str(), "r");
-  if (p == nullptr) return r;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  int status = ::pclose(p);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return r;
+  testing_util::RunResult run = testing_util::RunAsbuilt(args, kTimeoutS);
+  return {.status = run.exit_code, .out = std::move(run.out)};
 }
 
 cv::Mat Filled(const std::string& size, const std::string& value, int type) {

@@ -19,9 +19,12 @@ struct RunResult {
   std::string out;  // stdout and stderr together.
 };
 
-// Runs `asbuilt <args>` through the shell (quote arguments yourself).
-inline RunResult RunAsbuilt(const std::string& args) {
-  std::string cmd = std::string(ASBUILT_CLI) + " " + args + " 2>&1 </dev/null";
+// Runs `asbuilt <args>` through the shell (quote arguments yourself). With
+// timeout_s > 0 the run is killed after that long (exit_code 137). A run
+// ended by signal n gives exit_code 128 + n, as the shell reports it.
+inline RunResult RunAsbuilt(const std::string& args, int timeout_s = 0) {
+  std::string cmd = (timeout_s > 0 ? "timeout -s KILL " + std::to_string(timeout_s) + " " : std::string()) +
+                    std::string(ASBUILT_CLI) + " " + args + " 2>&1 </dev/null";
   RunResult r;
   std::FILE* p = ::popen(cmd.c_str(), "r");
   if (p == nullptr) return r;
@@ -29,7 +32,7 @@ inline RunResult RunAsbuilt(const std::string& args) {
   std::size_t n;
   while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
   int status = ::pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return r;
 }
 
