@@ -17,7 +17,6 @@ set -euo pipefail
 BUILD=${1:-build}
 WORK=${2:-runs/cpu-model}
 ASBUILT="$BUILD/asbuilt"
-SHARED=${ASBUILT_SHARED_DATA:-../shared/data}
 export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
 mkdir -p "$WORK"
 
@@ -45,16 +44,4 @@ COMMON=(--arch tiny --scale 192x144 --crop 128x128)
 
 # 5. The model card's evaluations.
 M="$WORK/ft2/best.pt"
-"$ASBUILT" eval seg --model "$M" --images "$WORK/synth_test" --json "$WORK/eval_synth_test.json"
-"$ASBUILT" eval seg --model "$M" --images "$SHARED/blender-rooms-public" --json "$WORK/eval_blender.json"
-mkdir -p "$WORK/ade_indoor/images" "$WORK/ade_indoor/labels" "$WORK/nyu/images" "$WORK/nyu/labels"
-ADE="$SHARED/ade20k_sceneparsing_samples"
-cp "$ADE/images/ADE_val_00001519.png" "$WORK/ade_indoor/images/"
-cp "$ADE/annotations/ADE_val_00001519.png" "$WORK/ade_indoor/labels/"
-cp "$SHARED/nyuv2_sample/image.png" "$WORK/nyu/images/frame.png"
-cp "$SHARED/nyuv2_sample/semantic40_ids.png" "$WORK/nyu/labels/frame.png"
-"$ASBUILT" eval seg --model "$M" --images "$WORK/ade_indoor/images" --labels "$WORK/ade_indoor/labels" \
-  --label-map ade20k --json "$WORK/eval_ade20k_indoor.json"
-"$ASBUILT" eval seg --model "$M" --images "$WORK/nyu/images" --labels "$WORK/nyu/labels" \
-  --label-map nyu40 --json "$WORK/eval_nyuv2.json"
-echo "model: $M"
+"$(dirname "$0")/eval-model.sh" "$ASBUILT" "$M" "$WORK/synth_test" "$WORK"

@@ -19,7 +19,6 @@ BUILD=${1:-build}
 WORK=${2:-runs/b0}
 ASBUILT="$BUILD/asbuilt"
 PYTHON=${PYTHON:-python3}
-SHARED=${ASBUILT_SHARED_DATA:-../shared/data}
 HERE=$(cd "$(dirname "$0")/.." && pwd)
 TRAIN="$PYTHON $HERE/tools/pytorch/train_gpu.py"
 PACK="$PYTHON $HERE/tools/pytorch/pack_dataset.py"
@@ -67,16 +66,4 @@ P="$WORK/packed"
 # 5. Into asbuilt, and the model card's evaluations (asbuilt's own metrics).
 M="$WORK/segformer_b0_asbuilt.pt"
 "$ASBUILT" model import "$WORK/s3/best.safetensors" -o "$M"
-"$ASBUILT" eval seg --model "$M" --images "$WORK/raw/test" --json "$WORK/eval_synth_test.json"
-"$ASBUILT" eval seg --model "$M" --images "$SHARED/blender-rooms-public" --json "$WORK/eval_blender.json"
-mkdir -p "$WORK/ade_indoor/images" "$WORK/ade_indoor/labels" "$WORK/nyu/images" "$WORK/nyu/labels"
-ADE="$SHARED/ade20k_sceneparsing_samples"
-cp "$ADE/images/ADE_val_00001519.png" "$WORK/ade_indoor/images/"
-cp "$ADE/annotations/ADE_val_00001519.png" "$WORK/ade_indoor/labels/"
-cp "$SHARED/nyuv2_sample/image.png" "$WORK/nyu/images/frame.png"
-cp "$SHARED/nyuv2_sample/semantic40_ids.png" "$WORK/nyu/labels/frame.png"
-"$ASBUILT" eval seg --model "$M" --images "$WORK/ade_indoor/images" --labels "$WORK/ade_indoor/labels" \
-  --label-map ade20k --json "$WORK/eval_ade20k_indoor.json"
-"$ASBUILT" eval seg --model "$M" --images "$WORK/nyu/images" --labels "$WORK/nyu/labels" \
-  --label-map nyu40 --json "$WORK/eval_nyuv2.json"
-echo "model: $M"
+"$(dirname "$0")/eval-model.sh" "$ASBUILT" "$M" "$WORK/raw/test" "$WORK"
