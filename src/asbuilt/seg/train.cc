@@ -160,6 +160,11 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
 
   const fs::path out = options.out_dir;
   fs::create_directories(out);
+  // A run killed mid-write (SIGKILL, power loss) leaves a temp file beside the
+  // intact checkpoint it was replacing; clear those before resuming.
+  if (int stale = RemoveDeadAtomicTemps(out); stale > 0) {
+    spdlog::info("train: removed {} temp file(s) left by a killed run in {}", stale, out.string());
+  }
   const fs::path last_path = out / "last.pt", best_path = out / "best.pt";
 
   TrainSummary summary;

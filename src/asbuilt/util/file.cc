@@ -1,10 +1,12 @@
 #include "asbuilt/util/file.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <system_error>
@@ -81,6 +83,24 @@ void AtomicFile::Commit() {
 bool IsAtomicTempName(const fs::path& path) {
   std::string name = path.filename().string();
   return name.size() > 1 && name[0] == '.' && name.find(".tmp-") != std::string::npos;
+}
+
+int RemoveDeadAtomicTemps(const fs::path& dir) {
+  int removed = 0;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (!IsAtomicTempName(entry.path())) continue;
+    // ".stem.tmp-<pid>-<counter>.ext": the writer's pid follows the last ".tmp-".
+    const std::size_t at = name.rfind(".tmp-") + 5;
+    char* end = nullptr;
+    const long pid = std::strtol(name.c_str() + at, &end, 10);
+    if (end == name.c_str() + at || *end != '-' || pid <= 0) continue;
+    if (pid == ::getpid() || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+    std::error_code rm_ec;
+    if (fs::remove(entry.path(), rm_ec)) ++removed;
+  }
+  return removed;
 }
 
 void WriteFileAtomic(const fs::path& path, std::string_view contents) {

@@ -46,6 +46,12 @@ class AtomicFile {
 // that scan folders (resume, dataset check) skip and clean these.
 bool IsAtomicTempName(const std::filesystem::path& path);
 
+// Removes AtomicFile temp files directly in `dir` whose writer process is gone
+// (the pid in the name is not alive): what a SIGKILL or power loss in the
+// middle of a write leaves behind. The final files they were meant to replace
+// are untouched. Returns how many were removed; a missing dir removes none.
+int RemoveDeadAtomicTemps(const std::filesystem::path& dir);
+
 }  // namespace asbuilt
 
 #endif  // ASBUILT_UTIL_FILE_H_

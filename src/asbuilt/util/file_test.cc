@@ -1,6 +1,10 @@
 #include "asbuilt/util/file.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <filesystem>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -47,6 +51,26 @@ TEST(AtomicFile, CommitWithoutDataThrows) {
   AtomicFile f(dir / "x.png");
   EXPECT_THROW(f.Commit(), Error);
   EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+TEST(RemoveDeadAtomicTemps, RemovesOnlyTempsOfProcessesThatAreGone) {
+  fs::path dir = TempDir("dead_temps");
+  // A pid that is certainly gone: a child that has exited and been reaped.
+  pid_t dead = ::fork();
+  if (dead == 0) ::_exit(0);
+  ASSERT_GT(dead, 0);
+  ::waitpid(dead, nullptr, 0);
+  const std::string dead_name = ".last.tmp-" + std::to_string(dead) + "-0.pt";
+  const std::string live_name = ".last.tmp-" + std::to_string(::getppid()) + "-3.pt";  // A live writer.
+  for (const std::string& name : {dead_name, live_name, std::string("last.pt"), std::string(".hidden")}) {
+    WriteFileAtomic(dir / name, "x");
+  }
+  EXPECT_EQ(RemoveDeadAtomicTemps(dir), 1);
+  EXPECT_FALSE(fs::exists(dir / dead_name));
+  EXPECT_TRUE(fs::exists(dir / live_name));
+  EXPECT_TRUE(fs::exists(dir / "last.pt"));
+  EXPECT_TRUE(fs::exists(dir / ".hidden"));
+  EXPECT_EQ(RemoveDeadAtomicTemps(dir / "missing"), 0);
 }
 
 TEST(ReadFile, MissingFileNamesTheFile) {
