@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <cairo-pdf.h>
 #include <cairo.h>
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "asbuilt/plan/dxf.h"
 #include "asbuilt/plan/reconstruct.h"
@@ -60,13 +62,23 @@ struct Sheet {
   std::vector<SheetLine> lines;
   std::vector<SheetArc> arcs;
   std::vector<SheetText> texts;
-  Vec2 lo = Vec2::Constant(1e300), hi = Vec2::Constant(-1e300);
+  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity());
+  Vec2 hi = Vec2::Constant(-std::numeric_limits<double>::infinity());
+  double scale = 50.0;  // Drawn at 1:scale.
 
   void Grow(const Vec2& p) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
+  bool Empty() const { return !(lo.x() <= hi.x() && lo.y() <= hi.y()); }
+  double Width() const { return hi.x() - lo.x(); }
+  double Height() const { return hi.y() - lo.y(); }
 };
+
+// A mitre farther from the wall corner than this many wall thicknesses (two
+// walls folding back on each other) is drawn as a bevel instead; 4 is SVG's
+// default stroke-miterlimit, i.e. corners sharper than about 29°.
+constexpr double kMitreLimit = 4.0;
 
 Vec2 Perp(const Vec2& d) { return Vec2(-d.y(), d.x()); }
 double WrapPositive(double a) {
@@ -74,6 +86,79 @@ double WrapPositive(double a) {
   return a < 0 ? a + 2 * kPi : a;
 }
 double Cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Whether `p` lies inside `polygon` (even-odd rule).
+bool Inside(const std::vector<Vec2>& polygon, const Vec2& p) {
+  bool inside = false;
+  for (size_t k = 0, m = polygon.size() - 1; k < polygon.size(); m = k++) {
+    const Vec2& a = polygon[k];
+    const Vec2& b = polygon[m];
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y())) {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
+
+// Largest length of the 1-2-5 series (…, 0.5, 1, 2, 5, 10, …) not above x > 0.
+double RoundDown125(double x) {
+  const double decade = std::pow(10.0, std::floor(std::log10(x)));
+  for (double m : {5.0, 2.0, 1.0}) {
+    if (m * decade <= x * (1 + 1e-9)) return m * decade;
+  }
+  return decade;
+}
+
+// The next scale denominator of the 1-2-5 series above `scale` > 0
+// (50 → 100 → 200 → 500 → 1000 …).
+double NextCoarserScale(double scale) {
+  const double base = std::pow(10.0, std::floor(std::log10(scale)) - 1);
+  for (double decade : {1.0, 10.0, 100.0}) {
+    for (double m : {1.0, 2.0, 5.0}) {
+      if (m * decade * base > scale * (1 + 1e-9)) return m * decade * base;
+    }
+  }
+  return 1000 * base;
+}
+
+// A scale denominator as written in "1:N": 50, 200, 1000000.
+std::string ScaleText(double scale) {
+  return scale == std::round(scale) && scale < 1e15 ? fmt::format("{:.0f}", scale) : fmt::format("{:g}", scale);
+}
+
+std::string FormatPoint(const Vec2& p) { return fmt::format("({}, {})", p.x(), p.y()); }
+
+// Throws Error naming `name` unless every coordinate the drawing uses is
+// finite and every opening's wall exists.
+void CheckDrawable(const Plan& plan, const std::string& name) {
+  auto fail = [&](const std::string& problem) {
+    throw Error(fmt::format("{}: cannot draw the plan: {}", name, problem));
+  };
+  auto finite = [](const Vec2& p) { return std::isfinite(p.x()) && std::isfinite(p.y()); };
+  for (size_t i = 0; i < plan.walls.size(); ++i) {
+    const PlanWall& w = plan.walls[i];
+    if (!finite(w.start)) fail(fmt::format("walls[{}].start = {} is not finite", i, FormatPoint(w.start)));
+    if (!finite(w.end)) fail(fmt::format("walls[{}].end = {} is not finite", i, FormatPoint(w.end)));
+    if (w.thickness && !std::isfinite(*w.thickness)) {
+      fail(fmt::format("walls[{}].thickness = {} is not finite", i, *w.thickness));
+    }
+  }
+  for (size_t i = 0; i < plan.openings.size(); ++i) {
+    const PlanOpening& op = plan.openings[i];
+    if (op.wall < 0 || op.wall >= static_cast<int>(plan.walls.size())) {
+      fail(fmt::format("openings[{}].wall = {} is not a wall (the plan has {})", i, op.wall, plan.walls.size()));
+    }
+    if (!finite(op.start)) fail(fmt::format("openings[{}].start = {} is not finite", i, FormatPoint(op.start)));
+    if (!finite(op.end)) fail(fmt::format("openings[{}].end = {} is not finite", i, FormatPoint(op.end)));
+  }
+  for (size_t i = 0; i < plan.rooms.size(); ++i) {
+    for (size_t k = 0; k < plan.rooms[i].polygon.size(); ++k) {
+      const Vec2& p = plan.rooms[i].polygon[k];
+      if (!finite(p)) fail(fmt::format("rooms[{}].polygon[{}] = {} is not finite", i, k, FormatPoint(p)));
+    }
+  }
+}
 
 // Text angle that reads left-to-right or bottom-to-top.
 double Readable(double angle) {
@@ -84,9 +169,12 @@ double Readable(double angle) {
 
 // A dimension from a to b, its line offset by `offset` along `out` (unit),
 // extension lines from the measured points, 45° ticks, text above the line.
+// `paper`: how many times the annotation is larger in the world than at
+// options.scale (scale / options.scale), so that it keeps its paper size.
 void AddDimension(Sheet& sheet, const Vec2& a, const Vec2& b, const Vec2& out, double offset,
-                  const std::string& text, const DrawingOptions& o) {
-  const double gap = 0.05, overshoot = 0.08, tick = 0.07;
+                  const std::string& text, double paper, const DrawingOptions& o) {
+  const double gap = 0.05 * paper, overshoot = 0.08 * paper, tick = 0.07 * paper;
+  const double text_height_m = o.text_height_m * paper;
   Vec2 da = a + offset * out, db = b + offset * out;
   Vec2 dir = (db - da).normalized();
   sheet.lines.push_back({a + gap * out, da + overshoot * out, 0.13, kDim});
@@ -97,25 +185,39 @@ void AddDimension(Sheet& sheet, const Vec2& a, const Vec2& b, const Vec2& out, d
   sheet.lines.push_back({db - slash, db + slash, 0.35, kDim});
   double angle = Readable(std::atan2(dir.y(), dir.x()));
   Vec2 up = Perp(Vec2(std::cos(angle), std::sin(angle)));
-  sheet.texts.push_back({0.5 * (da + db) + 0.04 * up, angle, o.text_height_m, 0.5, text, false, kDim});
-  sheet.Grow(da + (overshoot + o.text_height_m + 0.05) * out);
-  sheet.Grow(db + (overshoot + o.text_height_m + 0.05) * out);
+  sheet.texts.push_back({0.5 * (da + db) + 0.04 * paper * up, angle, text_height_m, 0.5, text, false, kDim});
+  sheet.Grow(da + (overshoot + text_height_m + 0.05 * paper) * out);
+  sheet.Grow(db + (overshoot + text_height_m + 0.05 * paper) * out);
 }
 
 double Thickness(const PlanWall& w, const DrawingOptions& o) { return w.thickness.value_or(o.nominal_thickness_m); }
 
-Sheet LayOut(const Plan& plan, const DrawingOptions& o) {
+// The sheet for a drawing at 1:scale. Walls and openings are drawn to their
+// world size; the annotation (text, dimension spacing and ticks, scale bar,
+// title block, margin) is sized for paper at options.scale and grows by
+// scale / options.scale, so it keeps that paper size. The plan must have
+// passed CheckDrawable.
+Sheet LayOut(const Plan& plan, const DrawingOptions& o, double scale) {
   Sheet sheet;
+  sheet.scale = scale;
+  const double paper = scale / o.scale;
+  const double text_height_m = o.text_height_m * paper;
   const int n = static_cast<int>(plan.walls.size());
   for (const PlanWall& w : plan.walls) {
     sheet.Grow(w.start);
     sheet.Grow(w.end);
   }
-  // Outer corners: miter of neighbouring walls' outer faces when the walls
-  // join (wall i ends where wall i+1 starts), else a square end.
+  for (const PlanRoom& room : plan.rooms) {
+    for (const Vec2& p : room.polygon) sheet.Grow(p);
+  }
+  if (sheet.Empty()) sheet.Grow(Vec2::Zero());  // Nothing to draw: the title block alone.
+  // Outer corners: mitre of neighbouring walls' outer faces when the walls
+  // join (wall i ends where wall i+1 starts), else a square end; a bevel
+  // where the mitre would reach beyond kMitreLimit thicknesses.
   auto outward = [&](int i) -> Vec2 { return -Perp((plan.walls[i].end - plan.walls[i].start).normalized()); };
   auto joined = [&](int i, int j) { return (plan.walls[i].end - plan.walls[j].start).norm() < 1e-6; };
   std::vector<Vec2> outer_start(n), outer_end(n);
+  std::vector<bool> bevel_after(n, false);  // Bevel between wall i and wall i+1.
   for (int i = 0; i < n; ++i) {
     const PlanWall& w = plan.walls[i];
     outer_start[i] = w.start + Thickness(w, o) * outward(i);
@@ -126,10 +228,17 @@ Sheet LayOut(const Plan& plan, const DrawingOptions& o) {
     if (!joined(i, j)) continue;
     Vec2 da = plan.walls[i].end - plan.walls[i].start, db = plan.walls[j].end - plan.walls[j].start;
     double den = Cross(da, db);
-    if (std::abs(den) < 1e-9) continue;
-    double s = Cross(outer_start[j] - outer_start[i], db) / den;
-    Vec2 x = outer_start[i] + s * da;
-    outer_end[i] = outer_start[j] = x;
+    if (den != 0) {
+      double s = Cross(outer_start[j] - outer_start[i], db) / den;
+      Vec2 x = outer_start[i] + s * da;
+      double th = std::max(std::abs(Thickness(plan.walls[i], o)), std::abs(Thickness(plan.walls[j], o)));
+      if ((x - plan.walls[i].end).norm() <= kMitreLimit * th) {  // False for NaN too.
+        outer_end[i] = outer_start[j] = x;
+        continue;
+      }
+    }
+    // Collinear and going on: the square ends already meet. Folding back: bevel.
+    if (da.dot(db) < 0) bevel_after[i] = true;
   }
 
   // Walls, cut at openings.
@@ -153,6 +262,13 @@ Sheet LayOut(const Plan& plan, const DrawingOptions& o) {
       sheet.Grow(o0);
       sheet.Grow(o1);
     }
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!bevel_after[i]) continue;
+    const Vec2& a = outer_end[i];
+    const Vec2& b = outer_start[(i + 1) % n];
+    sheet.polygons.push_back({{plan.walls[i].end, a, b}, kWall, kWall, 0.1});
+    sheet.lines.push_back({a, b, 0.5, kBlack});
   }
 
   // Openings.
@@ -200,7 +316,7 @@ Sheet LayOut(const Plan& plan, const DrawingOptions& o) {
       marks.push_back({std::min(a, b), &op});
       marks.push_back({std::max(a, b), nullptr});
     }
-    double overall_offset = th + 0.45;
+    double overall_offset = th + 0.45 * paper;
     if (!marks.empty()) {
       std::sort(marks.begin(), marks.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
       std::vector<double> ts = {0.0};
@@ -216,11 +332,11 @@ Sheet LayOut(const Plan& plan, const DrawingOptions& o) {
         if (seg < 0.005) continue;
         const PlanOpening* op = k > 0 ? span_opening[k - 1] : nullptr;
         std::string text = DimensionText(seg, op ? op->width_sigma_m : std::nullopt, o);
-        AddDimension(sheet, w.start + ts[k] * d, w.start + ts[k + 1] * d, out, th + 0.4, text, o);
+        AddDimension(sheet, w.start + ts[k] * d, w.start + ts[k + 1] * d, out, th + 0.4 * paper, text, paper, o);
       }
-      overall_offset = th + 0.85;
+      overall_offset = th + 0.85 * paper;
     }
-    AddDimension(sheet, w.start, w.end, out, overall_offset, DimensionText(len, w.length_sigma_m, o), o);
+    AddDimension(sheet, w.start, w.end, out, overall_offset, DimensionText(len, w.length_sigma_m, o), paper, o);
   }
 
   // Overall dimensions of rooms that are not rectangles, in the frame of the
@@ -241,7 +357,7 @@ Sheet LayOut(const Plan& plan, const DrawingOptions& o) {
     }
     double max_th = 0;
     for (const PlanWall& w : plan.walls) max_th = std::max(max_th, Thickness(w, o));
-    double off = max_th + 1.3;
+    double off = max_th + 1.3 * paper;
     // Only where no single wall already gives the overall size.
     auto covered = [&](double size) {
       for (const PlanWall& w : plan.walls) {
@@ -250,57 +366,131 @@ Sheet LayOut(const Plan& plan, const DrawingOptions& o) {
       return false;
     };
     if (!covered(u1 - u0)) {
-      AddDimension(sheet, u0 * u + v0 * v, u1 * u + v0 * v, -v, off, DimensionText(u1 - u0, std::nullopt, o), o);
+      AddDimension(sheet, u0 * u + v0 * v, u1 * u + v0 * v, -v, off, DimensionText(u1 - u0, std::nullopt, o), paper,
+                   o);
     }
     if (!covered(v1 - v0)) {
-      AddDimension(sheet, u0 * u + v1 * v, u0 * u + v0 * v, -u, off, DimensionText(v1 - v0, std::nullopt, o), o);
+      AddDimension(sheet, u0 * u + v1 * v, u0 * u + v0 * v, -u, off, DimensionText(v1 - v0, std::nullopt, o), paper,
+                   o);
     }
   }
 
   // Room area at the polygon's centroid (or the mean of its corners when the
-  // centroid falls outside, as in some L shapes).
+  // centroid falls outside, as in some L shapes, or the polygon has no area).
   for (const PlanRoom& room : plan.rooms) {
     if (room.polygon.size() < 3) continue;
-    Vec2 c = Vec2::Zero();
+    Vec2 c = Vec2::Zero(), mean = Vec2::Zero();
     double a = 0;
     for (size_t k = 0; k < room.polygon.size(); ++k) {
       const Vec2& p = room.polygon[k];
       const Vec2& q = room.polygon[(k + 1) % room.polygon.size()];
       a += Cross(p, q);
       c += Cross(p, q) * (p + q);
+      mean += p;
     }
+    mean /= static_cast<double>(room.polygon.size());
     c /= 3 * a;
+    if (!std::isfinite(c.x()) || !std::isfinite(c.y()) || !Inside(room.polygon, c)) c = mean;
     std::string area = fmt::format("{:.2f} m²", room.area_m2);
     if (o.show_uncertainty && room.area_sigma_m2 && *room.area_sigma_m2 >= 0.005) {
       area = fmt::format("{:.2f} ± {:.2f} m²", room.area_m2, *room.area_sigma_m2);
     }
-    sheet.texts.push_back({c + Vec2(0, 0.05), 0, 1.4 * o.text_height_m, 0.5, "ROOM", true, kBlack});
-    sheet.texts.push_back({c - Vec2(0, 0.22), 0, 1.2 * o.text_height_m, 0.5, area, false, kBlack});
+    sheet.texts.push_back({c + Vec2(0, 0.05 * paper), 0, 1.4 * text_height_m, 0.5, "ROOM", true, kBlack});
+    sheet.texts.push_back({c - Vec2(0, 0.22 * paper), 0, 1.2 * text_height_m, 0.5, area, false, kBlack});
   }
 
-  // Scale bar (2 m, alternating 0.5 m blocks) and title under the plan.
-  Vec2 base(sheet.lo.x(), sheet.lo.y() - 0.45);
+  // Scale bar (four alternating blocks of a round length, 0.5 m at
+  // options.scale) and title block under the plan, stating the scale drawn at.
+  const double block = RoundDown125(0.5 * paper);
+  Vec2 base(sheet.lo.x(), sheet.lo.y() - 0.45 * paper);
   for (int k = 0; k < 4; ++k) {
-    Vec2 p = base + Vec2(0.5 * k, 0);
-    sheet.polygons.push_back({{p, p + Vec2(0.5, 0), p + Vec2(0.5, 0.08), p + Vec2(0, 0.08)},
+    Vec2 p = base + Vec2(block * k, 0);
+    sheet.polygons.push_back({{p, p + Vec2(block, 0), p + Vec2(block, 0.08 * paper), p + Vec2(0, 0.08 * paper)},
                               k % 2 ? kWhite : kBlack, kBlack, 0.18});
   }
   for (int m = 0; m <= 2; ++m) {
-    sheet.texts.push_back({base + Vec2(m, 0.14), 0, 0.8 * o.text_height_m, 0.5, fmt::format("{} m", m), false, kBlack});
+    sheet.texts.push_back({base + Vec2(2 * block * m, 0.14 * paper), 0, 0.8 * text_height_m, 0.5,
+                           fmt::format("{:g} m", 2 * block * m), false, kBlack});
   }
-  std::string note = fmt::format("dimensions in mm, inner faces; 1:{:g}", o.scale);
+  std::string note = fmt::format("dimensions in mm, inner faces; 1:{}", ScaleText(scale));
+  if (scale != o.scale) note += fmt::format(" (reduced from 1:{} to fit)", ScaleText(o.scale));
+  const Vec2 title_at = base + Vec2(4 * block + 0.3 * paper, 0.0);
+  // Text width estimate: 0.6 em per character (UTF-8 bytes overcount).
+  auto text_width = [&](const std::string& text, double height) { return 0.6 * 1.35 * height * text.size(); };
+  double title_width = text_width(note, 0.8 * text_height_m);
   if (!o.title.empty()) {
-    sheet.texts.push_back({base + Vec2(2.3, 0.0), 0, 1.2 * o.text_height_m, 0, o.title, true, kBlack});
-    sheet.texts.push_back({base + Vec2(2.3, -0.2), 0, 0.8 * o.text_height_m, 0, note, false, kBlack});
+    sheet.texts.push_back({title_at, 0, 1.2 * text_height_m, 0, o.title, true, kBlack});
+    sheet.texts.push_back({title_at - Vec2(0, 0.2 * paper), 0, 0.8 * text_height_m, 0, note, false, kBlack});
+    title_width = std::max(title_width, text_width(o.title, 1.2 * text_height_m));
   } else {
-    sheet.texts.push_back({base + Vec2(2.3, 0.0), 0, 0.8 * o.text_height_m, 0, note, false, kBlack});
+    sheet.texts.push_back({title_at, 0, 0.8 * text_height_m, 0, note, false, kBlack});
   }
-  sheet.Grow(base - Vec2(0, 0.35));
-  sheet.Grow(base + Vec2(6.5, 0));
+  sheet.Grow(base - Vec2(0, 0.35 * paper));
+  sheet.Grow(base + Vec2(std::max(6.5 * paper, title_at.x() - base.x() + title_width), 0));
   // Margin.
-  sheet.lo -= Vec2(0.3, 0.3);
-  sheet.hi += Vec2(0.3, 0.3);
+  sheet.lo -= Vec2(0.3, 0.3) * paper;
+  sheet.hi += Vec2(0.3, 0.3) * paper;
   return sheet;
+}
+
+// The sheet at the first scale of options.scale, then the 1-2-5 series, at
+// which `size(sheet)` (its longest side in the limit's unit) is within
+// `limit`. Where the annotation alone exceeds the limit no scale fits; the
+// sheet returned then is the coarsest tried (its size still above `limit`).
+// Throws Error naming `name` if the sheet's extent overflows.
+template <typename Size>
+Sheet FitSheet(const Plan& plan, const DrawingOptions& o, double limit, const Size& size, const std::string& name) {
+  double scale = o.scale;
+  Sheet sheet = LayOut(plan, o, scale);
+  double now = size(sheet);
+  while (std::isfinite(now) && now > limit) {
+    // The plan shrinks as 1/scale on paper, the annotation not at all, so
+    // at least scale · now / limit is needed.
+    double next = NextCoarserScale(scale);
+    while (next < scale * now / limit) next = NextCoarserScale(next);
+    Sheet coarser = LayOut(plan, o, next);
+    double then = size(coarser);
+    if (!(then < 0.99 * now)) break;  // Only the annotation is left.
+    scale = next;
+    sheet = std::move(coarser);
+    now = then;
+  }
+  if (!std::isfinite(now)) {
+    throw Error(fmt::format("{}: cannot draw the plan: its extent ({} x {} m) is not finite", name, sheet.Width(),
+                            sheet.Height()));
+  }
+  return sheet;
+}
+
+// Longest side of the SVG/PDF page, paper mm.
+double PageSideMm(const Sheet& sheet) { return std::max(sheet.Width(), sheet.Height()) * 1000.0 / sheet.scale; }
+
+// PNG pixels per world metre at the sheet's scale (the paper resolution of
+// png_px_per_m at options.scale kept).
+double PngPxPerM(const Sheet& sheet, const DrawingOptions& o) { return o.png_px_per_m * o.scale / sheet.scale; }
+
+// Logs that `path` is drawn at a coarser scale than asked for, if it is.
+void WarnIfReduced(const Sheet& sheet, const DrawingOptions& o, const fs::path& path, const std::string& limit) {
+  if (sheet.scale == o.scale) return;
+  spdlog::warn("{}: at 1:{} the drawing would exceed {}; drawn at 1:{} (the sheet is {:.0f} x {:.0f} m)",
+               path.string(), ScaleText(o.scale), limit, ScaleText(sheet.scale), sheet.Width(), sheet.Height());
+}
+
+Sheet PageSheet(const Plan& plan, const DrawingOptions& o, const std::string& name) {
+  CheckDrawable(plan, name);
+  Sheet sheet = FitSheet(plan, o, o.max_page_side_mm, PageSideMm, name);
+  if (PageSideMm(sheet) > o.max_page_side_mm) {
+    throw Error(fmt::format("{}: cannot draw the plan: its annotation alone needs {:.0f} mm, more than "
+                            "DrawingOptions.max_page_side_mm = {}",
+                            name, PageSideMm(sheet), o.max_page_side_mm));
+  }
+  return sheet;
+}
+
+Sheet PngSheet(const Plan& plan, const DrawingOptions& o, const std::string& name) {
+  CheckDrawable(plan, name);
+  auto side_px = [&](const Sheet& sheet) { return std::max(sheet.Width(), sheet.Height()) * PngPxPerM(sheet, o); };
+  return FitSheet(plan, o, o.max_png_side_px, side_px, name);
 }
 
 // ---- SVG ------------------------------------------------------------------
@@ -393,12 +583,17 @@ void CheckCairo(cairo_status_t status, const fs::path& path) {
 void DrawingOptions::Check() const {
   CheckArgument(nominal_thickness_m > 0,
                 fmt::format("DrawingOptions.nominal_thickness_m = {}, must be > 0", nominal_thickness_m));
-  CheckArgument(scale > 0, fmt::format("DrawingOptions.scale = {}, must be > 0", scale));
+  CheckArgument(std::isfinite(scale) && scale > 0,
+                fmt::format("DrawingOptions.scale = {}, must be finite and > 0", scale));
   CheckArgument(png_px_per_m > 0 && png_px_per_m <= 2000,
                 fmt::format("DrawingOptions.png_px_per_m = {}, must be in (0, 2000]", png_px_per_m));
   CheckArgument(text_height_m > 0, fmt::format("DrawingOptions.text_height_m = {}, must be > 0", text_height_m));
   CheckArgument(significant_sigma_m >= 0,
                 fmt::format("DrawingOptions.significant_sigma_m = {}, must be >= 0", significant_sigma_m));
+  CheckArgument(max_page_side_mm > 0 && max_page_side_mm <= 5080,
+                fmt::format("DrawingOptions.max_page_side_mm = {}, must be in (0, 5080]", max_page_side_mm));
+  CheckArgument(max_png_side_px >= 16 && max_png_side_px <= 32767,
+                fmt::format("DrawingOptions.max_png_side_px = {}, must be in [16, 32767]", max_png_side_px));
 }
 
 std::string DimensionText(double length_m, std::optional<double> sigma_m, const DrawingOptions& options) {
@@ -409,12 +604,13 @@ std::string DimensionText(double length_m, std::optional<double> sigma_m, const 
   return text;
 }
 
-std::string PlanToSvg(const Plan& plan, const DrawingOptions& options) {
-  options.Check();
-  Sheet sheet = LayOut(plan, options);
-  const double w = sheet.hi.x() - sheet.lo.x(), h = sheet.hi.y() - sheet.lo.y();
+namespace {
+
+// The SVG document of a sheet.
+std::string SvgDocument(const Sheet& sheet) {
+  const double w = sheet.Width(), h = sheet.Height();
   // Paper millimetres → world metres at this scale.
-  const double mm = options.scale / 1000.0;
+  const double mm = sheet.scale / 1000.0;
   auto X = [&](const Vec2& p) { return p.x() - sheet.lo.x(); };
   auto Y = [&](const Vec2& p) { return sheet.hi.y() - p.y(); };
   std::string s;
@@ -466,20 +662,40 @@ std::string PlanToSvg(const Plan& plan, const DrawingOptions& options) {
   return s;
 }
 
+}  // namespace
+
+std::string PlanToSvg(const Plan& plan, const DrawingOptions& options) {
+  options.Check();
+  return SvgDocument(PageSheet(plan, options, "plan"));
+}
+
+double PlanPageScale(const Plan& plan, const DrawingOptions& options) {
+  options.Check();
+  return PageSheet(plan, options, "plan").scale;
+}
+
+double PlanPngScale(const Plan& plan, const DrawingOptions& options) {
+  options.Check();
+  return PngSheet(plan, options, "plan").scale;
+}
+
 void WritePlanSvg(const Plan& plan, const fs::path& path, const DrawingOptions& options) {
-  WriteFileAtomic(path, PlanToSvg(plan, options));
+  options.Check();
+  Sheet sheet = PageSheet(plan, options, path.string());
+  WarnIfReduced(sheet, options, path, fmt::format("{} mm", options.max_page_side_mm));
+  WriteFileAtomic(path, SvgDocument(sheet));
 }
 
 void WritePlanPdf(const Plan& plan, const fs::path& path, const DrawingOptions& options) {
   options.Check();
-  Sheet sheet = LayOut(plan, options);
+  Sheet sheet = PageSheet(plan, options, path.string());
+  WarnIfReduced(sheet, options, path, fmt::format("{} mm", options.max_page_side_mm));
   // Points per world metre at the paper scale (1 pt = 1/72 in).
-  const double unit = 1000.0 / options.scale / 25.4 * 72.0;
+  const double unit = 1000.0 / sheet.scale / 25.4 * 72.0;
   const double mm = 72.0 / 25.4;
   AtomicFile file(path);
   cairo_surface_t* surface =
-      cairo_pdf_surface_create(file.temp_path().c_str(), (sheet.hi.x() - sheet.lo.x()) * unit,
-                               (sheet.hi.y() - sheet.lo.y()) * unit);
+      cairo_pdf_surface_create(file.temp_path().c_str(), sheet.Width() * unit, sheet.Height() * unit);
   cairo_t* cr = cairo_create(surface);
   DrawCairo(cr, sheet, unit, mm);
   cairo_show_page(cr);
@@ -494,12 +710,17 @@ void WritePlanPdf(const Plan& plan, const fs::path& path, const DrawingOptions& 
 
 void WritePlanPng(const Plan& plan, const fs::path& path, const DrawingOptions& options) {
   options.Check();
-  Sheet sheet = LayOut(plan, options);
-  const double unit = options.png_px_per_m;
+  Sheet sheet = PngSheet(plan, options, path.string());
+  WarnIfReduced(sheet, options, path, fmt::format("{} px", options.max_png_side_px));
+  double unit = PngPxPerM(sheet, options);
+  // Where the annotation alone is larger than the cap, a lower resolution.
+  unit = std::min(unit, options.max_png_side_px / std::max(sheet.Width(), sheet.Height()));
   // Line widths: paper mm at the drawing scale, but at least ~1 px.
-  const double mm = std::max(unit * options.scale / 1000.0, 1.0);
-  int width = static_cast<int>(std::ceil((sheet.hi.x() - sheet.lo.x()) * unit));
-  int height = static_cast<int>(std::ceil((sheet.hi.y() - sheet.lo.y()) * unit));
+  const double mm = std::max(unit * sheet.scale / 1000.0, 1.0);
+  auto pixels = [&](double extent_m) {
+    return std::clamp(static_cast<int>(std::ceil(extent_m * unit - 1e-6)), 1, options.max_png_side_px);
+  };
+  const int width = pixels(sheet.Width()), height = pixels(sheet.Height());
   AtomicFile file(path);
   cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
   cairo_t* cr = cairo_create(surface);

@@ -13,8 +13,17 @@
 // SVG is written as text; PDF and PNG through cairo; DXF by asbuilt's own
 // writer (dxf.h). Every file is written atomically: on failure nothing
 // appears under the final name.
+//
+// Any plan with finite coordinates can be drawn, however large or bad: when
+// the sheet would not fit the page (SVG, PDF) or image (PNG) limit at
+// `DrawingOptions.scale`, it is drawn at the first coarser scale of the
+// 1-2-5 series (1:100, 1:200, 1:500, …) that fits, with text, dimension
+// offsets, the scale bar and the margin kept at their paper size; the title
+// block states the scale actually used. Sharp wall corners whose mitre
+// would reach far beyond the wall are bevelled.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "asbuilt/formats/plan_file.h"
@@ -23,22 +32,40 @@ namespace asbuilt {
 
 struct DrawingOptions {
   double nominal_thickness_m = 0.2;  // Drawn thickness of walls the plan gives none for.
-  double scale = 50.0;               // Paper scale 1:scale for SVG and PDF sizes (1:50 default).
-  double png_px_per_m = 120.0;       // PNG resolution; 120 px/m ≈ 1:50 at 150 dpi.
-  double text_height_m = 0.13;       // Dimension text height in world metres (2.6 mm at 1:50).
+  double scale = 50.0;               // Paper scale 1:scale (unless too large, see above).
+  double png_px_per_m = 120.0;       // PNG resolution at `scale`; 120 px/m ≈ 1:50 at 150 dpi.
+  double text_height_m = 0.13;       // Dimension text height in world metres at `scale` (2.6 mm at 1:50).
   bool show_uncertainty = true;      // Print ±σ next to a dimension…
   double significant_sigma_m = 0.005;  // …when σ is at least this.
   std::string title = "as-built floor plan";  // Title line under the plan; empty: none.
+  // Longest page side for SVG and PDF, paper mm; a larger sheet is drawn at a
+  // coarser scale. cairo's PDF pages are at most 14400 pt = 5080 mm.
+  double max_page_side_mm = 5080.0;
+  // Longest PNG side, px; a larger image is drawn at a coarser scale (and, if
+  // the annotation alone is larger, at a lower resolution). cairo's limit is 32767.
+  int max_png_side_px = 8192;
 
   void Check() const;
 };
 
+// Writers. Throw Error naming `path` when the plan cannot be drawn (a
+// non-finite coordinate, an opening on a wall that does not exist; for SVG
+// and PDF, title block and text larger than max_page_side_mm at any scale)
+// or written. An empty plan gives the scale bar and title block alone.
 void WritePlanSvg(const Plan& plan, const std::filesystem::path& path, const DrawingOptions& options = {});
 void WritePlanPdf(const Plan& plan, const std::filesystem::path& path, const DrawingOptions& options = {});
 void WritePlanPng(const Plan& plan, const std::filesystem::path& path, const DrawingOptions& options = {});
 
-// The SVG document as a string (what WritePlanSvg writes).
+// The SVG document as a string (what WritePlanSvg writes). Throws Error
+// ("plan: …") when the plan cannot be drawn.
 std::string PlanToSvg(const Plan& plan, const DrawingOptions& options = {});
+
+// The scale denominator N (drawing at 1:N) that WritePlanSvg and WritePlanPdf
+// use for `plan`: options.scale when the sheet fits max_page_side_mm, else the
+// first coarser 1-2-5 scale that does.
+double PlanPageScale(const Plan& plan, const DrawingOptions& options = {});
+// Likewise for WritePlanPng and max_png_side_px.
+double PlanPngScale(const Plan& plan, const DrawingOptions& options = {});
 
 // Writes plan.json, plan.svg, plan.dxf, plan.pdf and plan.png into `folder`
 // (created if missing). Throws Error naming the file that failed.
