@@ -28,6 +28,7 @@ const char* PointSourceName(PointSource s) {
     case PointSource::kEdge: return "edge";
     case PointSource::kOther: return "other";
     case PointSource::kBoundary: return "boundary";
+    case PointSource::kContact: return "contact";
   }
   return "other";
 }
@@ -98,8 +99,9 @@ std::vector<ClassPoint> ParsePoints(std::string_view text_view, const std::strin
       else if (s == "edge") p.source = PointSource::kEdge;
       else if (s == "other") p.source = PointSource::kOther;
       else if (s == "boundary") p.source = PointSource::kBoundary;
+      else if (s == "contact") p.source = PointSource::kContact;
       else {
-        fail(fmt::format("unknown source \"{}\" (corner, dense, edge, boundary, other)", s));
+        fail(fmt::format("unknown source \"{}\" (corner, dense, edge, boundary, contact, other)", s));
         continue;
       }
     }

@@ -35,7 +35,11 @@ const char* LabelClassName(LabelClass c);  // "background", "wall", "door", "win
 
 // kBoundary: a door/window label edge (wall on the other side) placed on the
 // wall's surface — it fixes an opening's width, not the wall's position.
-enum class PointSource : std::uint8_t { kCorner, kDense, kEdge, kOther, kBoundary };
+// kContact: where a wall (or door) label meets the floor or the ceiling,
+// placed on that plane along the pixel's ray — the level rig's height is the
+// baseline, ten times the stereo one, so these fix a wall's position even
+// where the wall has no texture for stereo.
+enum class PointSource : std::uint8_t { kCorner, kDense, kEdge, kOther, kBoundary, kContact };
 const char* PointSourceName(PointSource s);
 
 struct ClassPoint {

@@ -257,6 +257,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   std::vector<ClassPoint> points;
   std::vector<ReportFrame> report_frames;
   std::vector<Vec2> rigs;
+  PendingContacts pending_contacts;
   Vec3 rig_sum = Vec3::Zero();
   int done = 0;
   const int total = static_cast<int>(capture.frames.size());
@@ -273,6 +274,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
     add_stage("disparity", r.disparity.seconds);
     add_stage("corners + points", std::max(0.0, frame_seconds - r.disparity.seconds));
     points.insert(points.end(), r.points.begin(), r.points.end());
+    pending_contacts.Append(std::move(r.contacts));
     summary.frame_cues.push_back(r.cues);
     rigs.push_back(frame.position_m.head<2>());
     rig_sum += frame.position_m;
@@ -300,6 +302,23 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
     stage_seconds["load + rectify"] = std::max(0.0, stage_seconds["load + rectify"] - stage_seconds["segment"]);
   }
   ReportProgress(progress, {.stage = "survey", .done = done, .total = total});
+  // Wall–ceiling contacts become points once the ceiling's height is known
+  // from the columns that saw both of a wall's edges (all frames together).
+  {
+    ResolvedContacts contacts = pending_contacts.Resolve(options.points);
+    points.insert(points.end(), contacts.points.begin(), contacts.points.end());
+    spdlog::info("survey: ceiling height {} ({}); {} floor contact(s) rejected as tops of things before a wall",
+                 contacts.ceiling ? fmt::format("{:.3f} ± {:.3f} m", contacts.ceiling->height_m, contacts.ceiling->sigma_m)
+                                  : "not measured",
+                 contacts.how, contacts.floor_rejected);
+    if (contacts.ceiling) {
+      summary.ceiling_height_m = contacts.ceiling->height_m;
+      summary.ceiling_height_sigma_m = contacts.ceiling->sigma_m;
+    } else if (contacts.ceiling_unused > 0) {
+      summary.notes.push_back(fmt::format(
+          "the ceiling's height could not be measured: {} wall–ceiling contacts unused", contacts.ceiling_unused));
+    }
+  }
   summary.points = static_cast<int>(points.size());
 
   // Plan.
@@ -373,6 +392,10 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
                        {"labels_source", summary.labels_source}, {"plan", summary.plan.BriefReport()},
                        {"notes", summary.notes}, {"seconds", summary.seconds}};
   for (const StageTiming& s : summary.stages) js["stages"][s.stage] = s.seconds;
+  if (std::isfinite(summary.ceiling_height_m)) {
+    js["ceiling_height_m"] = summary.ceiling_height_m;
+    js["ceiling_height_sigma_m"] = summary.ceiling_height_sigma_m;
+  }
   if (summary.score) js["score"] = PlanScoreToJson(*summary.score);
   WriteFileAtomic(out_dir / "summary.json", js.dump(2) + "\n");
   return result;

@@ -11,6 +11,7 @@
 // (labels_dir, use_capture_labels), so a score measures what a user with a
 // real camera would get.
 
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -56,6 +57,9 @@ struct SurveySummary {
   int frames = 0;
   int points = 0;
   std::vector<FrameCues> frame_cues;
+  // From the wall–ceiling/floor contacts (NaN: not measured).
+  double ceiling_height_m = NAN;
+  double ceiling_height_sigma_m = NAN;
   PlanSummary plan;
   std::optional<PlanScore> score;
   std::vector<StageTiming> stages;

@@ -1,6 +1,7 @@
 #include "asbuilt/plan/reconstruct.h"
 
 #include <algorithm>
+#include <limits>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -183,7 +184,25 @@ struct Pt {
   double w;      // 1/σ².
   double sigma;
   double thr;    // Inlier band half-width.
+  double vote;   // Support it lends a line: min(1, (vote_sigma/σ)²).
+  bool contact;  // A floor/ceiling contact (PointSource::kContact).
 };
+
+// A line with this many times min_wall_points votes is a wall however sparse
+// it is next to the densest one, and however small a share of all votes (a
+// far wall's contacts against a near wall's dense points).
+constexpr double kStrongLineVotes = 5.0;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Sequential RANSAC stops after this many hypotheses in a row gave no wall:
+// each failure removes a clutter patch (points by a corner, furniture), and a
+// far wall's few precise contacts may come only after several.
+constexpr int kMaxRansacFailures = 12;
+
+double Votes(const std::vector<Pt>& pts, const std::vector<int>& idx) {
+  double v = 0;
+  for (int i : idx) v += pts[i].vote;
+  return v;
+}
 
 // A wall line: direction θ through a weighted centroid c; ρ is the offset
 // along the normal (the centroid carries it). var_* are the fit's variances.
@@ -194,6 +213,7 @@ struct Line {
   double var_rho = 0;
   double t_min = 0, t_max = 0;  // Extent of its points along the direction, from c.
   std::vector<int> members;
+  double votes = 0;  // Σ of the members' votes: the line's support.
   double chi2 = 0;
   double sum_w = 0;
   double z_top = 0;
@@ -264,6 +284,7 @@ Line FitLine(const std::vector<Pt>& pts, std::vector<int> idx, std::optional<dou
   for (int i : idx) zs.push_back(pts[i].z);
   std::sort(zs.begin(), zs.end());
   line.z_top = Quantile(zs, 0.995);
+  line.votes = Votes(pts, idx);
   line.members = std::move(idx);
   return line;
 }
@@ -276,13 +297,26 @@ std::optional<Vec2> Intersect(const Line& a, const Line& b) {
 }
 
 // Sequential RANSAC over the wall points: returns lines with their members.
+// Two passes: the floor/ceiling contacts alone first (precise, few, and on
+// walls only — a far wall's few hundred must not wait for luck among a near
+// wall's hundred thousand dense points), then every point not taken.
 std::vector<Line> FindLines(const std::vector<Pt>& pts, const PlanOptions& o, std::mt19937_64& rng) {
-  std::vector<int> remaining(pts.size());
-  std::iota(remaining.begin(), remaining.end(), 0);
   std::vector<Line> lines;
+  double best_density = 0;  // Votes per metre of the densest wall so far.
+  double total_votes = 0;
+  for (const Pt& p : pts) total_votes += p.vote;
+  std::vector<bool> taken(pts.size(), false);
+  // Without contacts the plain algorithm: counts, no exemptions, 4 failures.
+  const bool contacts = std::any_of(pts.begin(), pts.end(), [](const Pt& p) { return p.contact; });
+  const double strong = contacts ? kStrongLineVotes * o.min_wall_points : kInf;
+  const int max_failures = contacts ? kMaxRansacFailures : 4;
+  for (int pass = 0; pass < 2; ++pass) {
+  std::vector<int> remaining;
+  for (int k = 0; k < static_cast<int>(pts.size()); ++k) {
+    if (!taken[k] && (pass == 1 || pts[k].contact)) remaining.push_back(k);
+  }
   int failures = 0;
-  double best_density = 0;  // Points per metre of the densest wall so far.
-  while (static_cast<int>(remaining.size()) >= o.min_wall_points && lines.size() < 64 && failures < 4) {
+  while (static_cast<int>(remaining.size()) >= o.min_wall_points && lines.size() < 64 && failures < max_failures) {
     // Score hypotheses on a random subset.
     std::vector<int> subset = remaining;
     int m = std::min<int>(subset.size(), o.ransac_subset_points);
@@ -291,8 +325,13 @@ std::vector<Line> FindLines(const std::vector<Pt>& pts, const PlanOptions& o, st
       std::swap(subset[i], subset[pick(rng)]);
     }
     subset.resize(m);
-    std::uniform_int_distribution<int> pick(0, m - 1);
-    int best = 0;
+    // Hypotheses from points drawn by their votes: a few hundred precise
+    // contacts among thousands of noisy dense points still get paired.
+    std::vector<double> subset_votes;
+    subset_votes.reserve(m);
+    for (int k : subset) subset_votes.push_back(pts[k].vote);
+    std::discrete_distribution<int> pick(subset_votes.begin(), subset_votes.end());
+    double best = 0;
     Vec2 best_n = Vec2::UnitY();
     double best_rho = 0;
     for (int it = 0; it < o.ransac_iterations; ++it) {
@@ -302,15 +341,15 @@ std::vector<Line> FindLines(const std::vector<Pt>& pts, const PlanOptions& o, st
       if (d.norm() < 0.1) continue;
       Vec2 n = Vec2(-d.y(), d.x()).normalized();
       double rho = n.dot(a);
-      int count = 0;
-      for (int k : subset) count += std::abs(n.dot(pts[k].p) - rho) < pts[k].thr;
+      double count = 0;
+      for (int k : subset) count += std::abs(n.dot(pts[k].p) - rho) < pts[k].thr ? pts[k].vote : 0.0;
       if (count > best) {
         best = count;
         best_n = n;
         best_rho = rho;
       }
     }
-    double expected = static_cast<double>(best) * remaining.size() / m;
+    double expected = best * remaining.size() / m;
     if (expected < o.min_wall_points) break;
 
     // Inliers among all remaining points, refined twice by least squares.
@@ -322,11 +361,11 @@ std::vector<Line> FindLines(const std::vector<Pt>& pts, const PlanOptions& o, st
       }
     };
     collect(best_n, best_rho);
-    for (int refine = 0; refine < 2 && static_cast<int>(inliers.size()) >= o.min_wall_points; ++refine) {
+    for (int refine = 0; refine < 2 && Votes(pts, inliers) >= o.min_wall_points; ++refine) {
       Line fit = FitLine(pts, inliers, std::nullopt, o.max_independent_points, o.max_gap_m);
       collect(fit.Normal(), fit.Normal().dot(fit.c));
     }
-    if (static_cast<int>(inliers.size()) < o.min_wall_points) {
+    if (Votes(pts, inliers) < o.min_wall_points) {
       ++failures;
       // Drop the hypothesis' points so the next round looks elsewhere.
       std::vector<bool> drop(pts.size(), false);
@@ -347,14 +386,20 @@ std::vector<Line> FindLines(const std::vector<Pt>& pts, const PlanOptions& o, st
     bool accepted = false;
     for (auto [b, e] : DenseRuns(ts, o.max_gap_m)) {
       std::vector<int> run(inliers.begin() + b, inliers.begin() + e);
-      if (static_cast<int>(run.size()) < o.min_wall_points) continue;
+      const double run_votes = Votes(pts, run);
+      if (run_votes < o.min_wall_points) continue;
       Line piece = FitLine(pts, run, std::nullopt, o.max_independent_points, o.max_gap_m);
       if (piece.t_max - piece.t_min < o.min_wall_length_m) continue;
       // Outliers that happen to line up are far sparser than any wall.
-      double density = run.size() / (piece.t_max - piece.t_min);
-      if (density < o.min_relative_density * best_density) continue;
-      if (run.size() < o.min_wall_fraction * pts.size()) continue;
+      // (Density is judged only for weakly supported lines: a near wall's
+      // dense points outnumber a far wall's contacts by 100 per metre.)
+      double density = run_votes / (piece.t_max - piece.t_min);
+      if (density < o.min_relative_density * best_density && run_votes < strong) {
+        continue;
+      }
+      if (run_votes < o.min_wall_fraction * total_votes && run_votes < strong) continue;
       best_density = std::max(best_density, density);
+      for (int k : run) taken[k] = true;
       lines.push_back(std::move(piece));
       accepted = true;
     }
@@ -362,6 +407,7 @@ std::vector<Line> FindLines(const std::vector<Pt>& pts, const PlanOptions& o, st
     std::vector<bool> drop(pts.size(), false);
     for (int k : inliers) drop[k] = true;
     std::erase_if(remaining, [&](int k) { return drop[k]; });
+  }
   }
   return lines;
 }
@@ -391,7 +437,7 @@ void CompetitiveRefit(const std::vector<Pt>& pts, std::vector<Line>& lines, cons
     }
     std::vector<Line> refit;
     for (size_t l = 0; l < lines.size(); ++l) {
-      if (static_cast<int>(members[l].size()) < o.min_wall_points) continue;
+      if (Votes(pts, members[l]) < o.min_wall_points) continue;
       Line fit = FitLine(pts, std::move(members[l]), std::nullopt, o.max_independent_points, o.max_gap_m);
       if (fit.t_max - fit.t_min < o.min_wall_length_m) continue;
       refit.push_back(std::move(fit));
@@ -442,7 +488,7 @@ std::vector<Direction> SnapDirections(const std::vector<Pt>& pts, std::vector<Li
   std::vector<int> order(lines.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(),
-            [&](int a, int b) { return lines[a].members.size() > lines[b].members.size(); });
+            [&](int a, int b) { return lines[a].votes > lines[b].votes; });
   std::vector<std::vector<std::pair<double, double>>> clusters;
   std::vector<double> centre;
   for (int i : order) {
@@ -521,7 +567,7 @@ void MergeCollinear(const std::vector<Pt>& pts, std::vector<Line>& lines, const 
         if (!duplicate && (!Collinear(lines[a], lines[b], o) || gap > o.max_gap_m)) continue;
         std::vector<int> all = lines[a].members;
         all.insert(all.end(), lines[b].members.begin(), lines[b].members.end());
-        bool snapped = lines[a].var_theta > 0 && lines[a].members.size() >= lines[b].members.size();
+        bool snapped = lines[a].var_theta > 0 && lines[a].votes >= lines[b].votes;
         double keep_var = lines[a].var_theta;
         Line fit = FitLine(pts, std::move(all), std::nullopt, o.max_independent_points, o.max_gap_m);
         if (snapped) {
@@ -549,6 +595,8 @@ void PlanOptions::Check() const {
   non_negative(inlier_sigmas, "inlier_sigmas");
   positive(max_inlier_distance_m, "max_inlier_distance_m");
   positive(nominal_sigma_m, "nominal_sigma_m");
+  CheckArgument(vote_sigma_m > 0 && std::isfinite(vote_sigma_m),
+                fmt::format("PlanOptions.vote_sigma_m = {}, must be > 0", vote_sigma_m));
   CheckArgument(min_wall_points >= 3, fmt::format("PlanOptions.min_wall_points = {}, must be >= 3", min_wall_points));
   positive(min_wall_length_m, "min_wall_length_m");
   positive(max_gap_m, "max_gap_m");
@@ -636,7 +684,12 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
   PlanSummary& s = result.summary;
   s.input_points = static_cast<int>(points.size());
 
-  // 1. Planarize.
+  // 1. Planarize. Votes weigh points by precision only when there are
+  // floor/ceiling contacts to protect; otherwise every point counts one.
+  const bool weigh_votes = std::any_of(points.begin(), points.end(), [](const ClassPoint& p) {
+    return p.label == LabelClass::kWall && p.source == PointSource::kContact;
+  });
+  const double strong = weigh_votes ? kStrongLineVotes * o.min_wall_points : kInf;
   std::vector<Pt> walls_pts;
   std::vector<const ClassPoint*> opening_pts;
   for (const ClassPoint& p : points) {
@@ -644,7 +697,9 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
     double sigma = p.sigma_m > 0 ? p.sigma_m : o.nominal_sigma_m;
     if (p.label == LabelClass::kWall) {
       double thr = std::min(o.max_inlier_distance_m, std::max(o.epsilon_m, o.inlier_sigmas * sigma));
-      walls_pts.push_back({p.position_m.head<2>(), p.position_m.z(), 1.0 / (sigma * sigma), sigma, thr});
+      const double vote = weigh_votes ? std::min(1.0, (o.vote_sigma_m / sigma) * (o.vote_sigma_m / sigma)) : 1.0;
+      walls_pts.push_back({p.position_m.head<2>(), p.position_m.z(), 1.0 / (sigma * sigma), sigma, thr, vote,
+                           p.source == PointSource::kContact});
     } else if (p.label == LabelClass::kDoor || p.label == LabelClass::kWindow) {
       opening_pts.push_back(&p);
       (p.label == LabelClass::kDoor ? s.door_points : s.window_points)++;
@@ -667,10 +722,12 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
   MergeCollinear(walls_pts, lines, o);
   {
     double best = 0;
-    for (const Line& l : lines) best = std::max(best, l.members.size() / std::max(0.1, l.t_max - l.t_min));
+    double total_votes = 0;
+    for (const Pt& p : walls_pts) total_votes += p.vote;
+    for (const Line& l : lines) best = std::max(best, l.votes / std::max(0.1, l.t_max - l.t_min));
     std::erase_if(lines, [&](const Line& l) {
-      return l.members.size() / std::max(0.1, l.t_max - l.t_min) < o.min_relative_density * best ||
-             l.members.size() < o.min_wall_fraction * walls_pts.size();
+      return (l.votes / std::max(0.1, l.t_max - l.t_min) < o.min_relative_density * best && l.votes < strong) ||
+             (l.votes < o.min_wall_fraction * total_votes && l.votes < strong);
     });
   }
   LogLines("refit + merge", lines);
@@ -733,7 +790,8 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
                          std::max(ordered[a].span, ordered[b].span) / 2 - d;
         overlap = std::min(overlap, std::min(ordered[a].span, ordered[b].span));
         if (overlap > 0.5 * ordered[a].span &&
-            ordered[a].line.members.size() * 3 < ordered[b].line.members.size()) {
+            ordered[a].line.votes * 3 < ordered[b].line.votes &&
+            ordered[a].line.votes < strong) {
           drop[a] = true;
         }
       }
@@ -757,7 +815,7 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
       if (!Collinear(ring[i], ring[j], o)) continue;
       std::vector<int> all = ring[i].members;
       all.insert(all.end(), ring[j].members.begin(), ring[j].members.end());
-      const Line& big = ring[i].members.size() >= ring[j].members.size() ? ring[i] : ring[j];
+      const Line& big = ring[i].votes >= ring[j].votes ? ring[i] : ring[j];
       Line fit = FitLine(walls_pts, std::move(all), big.theta, o.max_independent_points, o.max_gap_m);
       fit.var_theta = big.var_theta;
       ring[i] = std::move(fit);

@@ -5,7 +5,8 @@
 //
 //  1. Planarize: wall points → (x, y); each point weighted by 1/σ².
 //  2. Lines: sequential RANSAC with a per-point inlier band
-//     max(ε, k·σ) (capped), weighted total least squares on the inliers,
+//     max(ε, k·σ) (capped), hypotheses scored by the inliers' votes (precise
+//     points count more), weighted total least squares on the inliers,
 //     split at gaps along the line; points in no line are outliers.
 //     A final competitive assignment (each point to the line it fits best,
 //     within that line's extent) and refit removes corner bias.
@@ -41,8 +42,15 @@ struct PlanOptions {
   double inlier_sigmas = 3.0;         // A point is also an inlier within this many of its own σ…
   double max_inlier_distance_m = 0.3; // …but never farther than this from the line.
   double nominal_sigma_m = 0.01;      // σ for points whose file gives 0 (paper-style files).
-  int min_wall_points = 30;           // Fewer inliers: not a wall (outliers, clutter)…
-  double min_wall_fraction = 0.005;   // …nor fewer than this fraction of all wall points.
+  // A point's vote (its support for a line) is min(1, (vote_sigma_m/σ)²): a
+  // wall–floor contact 4 m away (σ ≈ 2 cm) counts fully, a dense stereo point
+  // there (σ ≈ 17 cm) about 1/70 — so thousands of noisy disparities on a
+  // textureless wall cannot outvote a few hundred exact contacts. Counts
+  // below (min_wall_points, densities, fractions) are in votes. Without any
+  // contact point every vote is 1 (plain counts).
+  double vote_sigma_m = 0.02;
+  int min_wall_points = 30;           // Fewer votes: not a wall (outliers, clutter)…
+  double min_wall_fraction = 0.005;   // …nor fewer than this fraction of all wall votes.
   double min_wall_length_m = 0.3;     // Shorter point runs are not walls.
   double max_gap_m = 1.0;             // A line's points split into separate walls at longer gaps.
   double min_relative_density = 0.05; // Walls need this fraction of the densest wall's points per metre.

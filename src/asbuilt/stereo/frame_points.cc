@@ -96,7 +96,255 @@ cv::Mat ReadLabelImage(const fs::path& path) {
   return labels;
 }
 
+// Depth σ of a point on a horizontal plane `dh` metres from the camera, at
+// depth z, for a row error σ_v and a camera-height error σ_h.
+double ContactSigma(double z, double dh, double fy, double sigma_v, double sigma_h) {
+  const double from_row = z * z * sigma_v / (fy * dh);
+  const double from_height = z * sigma_h / dh;
+  return std::hypot(from_row, from_height);
+}
+
+// The contact cue (frame_points.h). Per column: the lowest clean
+// wall/door → background transition below the horizon is the floor contact
+// (unless the floor's disparity below it says something nearer stands there);
+// the highest clean background → wall transition above the horizon is the
+// ceiling contact. Label edges lie halfway between pixel centres.
+//
+// `covered` (CV_8U, zeros on entry) marks the pixels of each contacted
+// column's wall run (from the contact along the labelled structure): a level
+// camera sees a vertical wall at one depth down a column, so the contact
+// already places them, exactly; their stereo points add only noise.
+void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& options,
+                      const Eigen::Isometry3d& world_from_cam, FramePointsResult* result, cv::Mat* covered) {
+  const cv::Mat& labels = frame.labels_left;
+  const cv::Mat& disparity = result->disparity.disparity_px;
+  const PinholeCamera& cam = frame.camera;
+  const double h = world_from_cam.translation().z();  // Camera height above the floor (z = 0).
+  if (!(h > 0.05)) return;                             // No usable height: no contacts.
+  const int rows = labels.rows, cols = labels.cols, run = options.contact_min_run_px;
+  const double fxb = cam.fx * frame.baseline_m;
+  auto label_at = [&](int v, int u) { return labels.ptr<unsigned char>(v)[u]; };
+  auto runs = [&](int v0, int dir, int n, auto&& pred, int u) {
+    for (int k = 0; k < n; ++k) {
+      const int v = v0 + dir * k;
+      if (v < 0 || v >= rows || !pred(label_at(v, u))) return false;
+    }
+    return true;
+  };
+  auto is_background = [](unsigned char l) { return l == 0; };
+  const Mat3 rot = world_from_cam.linear();
+  const Vec3 origin = world_from_cam.translation();
+  auto ray = [&](double u, double v) { return Vec3(rot * UnprojectToCamera(cam, Vec2(u, v), 1.0)); };
+  // Marks the structure run from row v0 in direction dir (±1) in columns u…u+step−1.
+  auto cover = [&](int u, int v0, int dir) {
+    for (int v = v0; v >= 0 && v < rows && IsComponent(label_at(v, u)); v += dir) {
+      for (int x = u; x < std::min(cols, u + options.contact_col_step_px); ++x) covered->at<unsigned char>(v, x) = 1;
+    }
+  };
+
+  for (int u = 0; u < cols; u += options.contact_col_step_px) {
+    // Floor: scan up from the bottom for the lowest wall/door → background edge.
+    double floor_row = NAN;
+    unsigned char floor_label = 0;
+    for (int v = rows - 1 - run; v >= run; --v) {
+      if (v + 0.5 <= cam.cy + 1.0) break;  // At or above the horizon: not the floor.
+      const unsigned char a = label_at(v, u);
+      if ((a != 1 && a != 2) || label_at(v + 1, u) != 0) continue;
+      if (!runs(v, -1, run, [a](unsigned char l) { return l == a; }, u) || !runs(v + 1, 1, run, is_background, u)) {
+        continue;
+      }
+      // The floor plane's disparity at row y is fx·B·(y − cy)/(fy·h); something
+      // standing in front of the wall base is nearer than that.
+      std::vector<float> excess;
+      for (int y = v + 2; y <= std::min(rows - 1, v + 10); ++y) {
+        const float* d = disparity.ptr<float>(y);
+        const unsigned char* l = labels.ptr<unsigned char>(y);
+        const double predicted = fxb * (y - cam.cy) / (cam.fy * h);
+        for (int x = std::max(0, u - 2); x <= std::min(cols - 1, u + 2); ++x) {
+          if (l[x] == 0 && std::isfinite(d[x])) excess.push_back(static_cast<float>(d[x] - predicted));
+        }
+      }
+      if (excess.size() >= 5) {
+        std::nth_element(excess.begin(), excess.begin() + excess.size() / 2, excess.end());
+        const double predicted = fxb * (v + 0.5 - cam.cy) / (cam.fy * h);
+        if (excess[excess.size() / 2] > std::max(options.contact_floor_tolerance_px, 0.15 * predicted)) {
+          ++result->cues.floor_rejected;
+          break;  // Occluded base: nothing lower in this column is the wall's.
+        }
+      }
+      floor_row = v + 0.5;
+      floor_label = a;
+      break;
+    }
+    std::optional<ClassPoint> floor_point;
+    if (std::isfinite(floor_row)) {
+      const double z = cam.fy * h / (floor_row - cam.cy);
+      if (z >= options.min_depth_m && z <= options.max_depth_m) {
+        Vec3 p = origin + ray(u, floor_row) * z;
+        p.z() = 0.0;  // On the plane (rounding).
+        floor_point = ClassPoint{static_cast<LabelClass>(floor_label), p,
+                                 ContactSigma(z, h, cam.fy, options.contact_sigma_px, options.camera_height_sigma_m),
+                                 PointSource::kContact, frame.index};
+        ++result->cues.floor_contacts;
+        cover(u, static_cast<int>(floor_row - 0.5), -1);
+      } else {
+        floor_row = NAN;
+      }
+    }
+    // Ceiling: scan down from the top for the highest background → wall edge.
+    double ceiling_row = NAN;
+    for (int v = run; v < rows - run; ++v) {
+      if (v - 0.5 >= cam.cy - 1.0) break;  // At or below the horizon.
+      if (label_at(v, u) != 1 || label_at(v - 1, u) != 0) continue;
+      if (!runs(v - 1, -1, run, is_background, u) || !runs(v, 1, run, [](unsigned char l) { return l == 1; }, u)) {
+        continue;
+      }
+      ceiling_row = v - 0.5;
+      break;
+    }
+    // One structure from ceiling to floor in this column (openings may cut
+    // it): a vertical wall, so both contacts share the depth, and the
+    // ceiling's height follows: H = h + h·(cy − v_c)/(v_f − cy). The floor
+    // contact then waits for H: where they disagree, the "floor contact" was
+    // the top of something standing in front of the wall base.
+    bool paired = false;
+    if (floor_point && std::isfinite(ceiling_row)) {
+      paired = true;
+      for (int v = static_cast<int>(ceiling_row + 0.5); v <= static_cast<int>(floor_row - 0.5) && paired; ++v) {
+        paired = IsComponent(label_at(v, u));
+      }
+    }
+    if (paired) {
+      const double below = floor_row - cam.cy, above = cam.cy - ceiling_row;
+      const double sample = h + h * above / below;
+      const double sigma = options.contact_sigma_px * std::hypot(h / below, h * above / (below * below));
+      result->contacts.paired_floor.push_back({*floor_point, sample, sigma});
+    } else if (floor_point) {
+      result->points.push_back(*floor_point);
+    }
+    if (!std::isfinite(ceiling_row)) continue;
+    // The wall's stereo depth just below the contact gives a rough height
+    // too: the fallback when no column sees both contacts of a wall.
+    {
+      std::vector<float> ds;
+      const int v0 = static_cast<int>(ceiling_row + 0.5);
+      for (int y = v0 + 2; y <= std::min(rows - 1, v0 + 10); ++y) {
+        const float* d = disparity.ptr<float>(y);
+        const unsigned char* l = labels.ptr<unsigned char>(y);
+        for (int x = std::max(0, u - 2); x <= std::min(cols - 1, u + 2); ++x) {
+          if (l[x] == 1 && std::isfinite(d[x]) && d[x] > 0) ds.push_back(d[x]);
+        }
+      }
+      if (ds.size() >= 5) {
+        std::nth_element(ds.begin(), ds.begin() + ds.size() / 2, ds.end());
+        const double z = fxb / ds[ds.size() / 2];
+        result->contacts.stereo_samples_m.push_back(h + z * (cam.cy - ceiling_row) / cam.fy);
+      }
+    }
+    ContactRay r{.label = LabelClass::kWall, .origin_m = origin, .direction = ray(u, ceiling_row),
+                 .fy_px = cam.fy, .frame = frame.index};
+    ++result->cues.ceiling_contacts;
+    cover(u, static_cast<int>(ceiling_row + 0.5), 1);
+    result->contacts.ceiling_rays.push_back(r);
+  }
+}
+
 }  // namespace
+
+std::optional<CeilingHeight> CeilingHeightFromSamples(std::vector<double> samples_m, int min_samples) {
+  std::erase_if(samples_m, [](double x) { return !std::isfinite(x) || x <= 0; });
+  if (static_cast<int>(samples_m.size()) < std::max(1, min_samples)) return std::nullopt;
+  std::sort(samples_m.begin(), samples_m.end());
+  // The densest window of width max(2 cm, 1 %): true samples pile up there;
+  // a cabinet's top taken for the floor gives a spread of larger values.
+  size_t best_lo = 0, best_hi = 0;
+  for (size_t lo = 0, hi = 0; lo < samples_m.size(); ++lo) {
+    const double width = std::max(0.02, 0.01 * samples_m[lo]);
+    while (hi < samples_m.size() && samples_m[hi] <= samples_m[lo] + width) ++hi;
+    if (hi - lo > best_hi - best_lo) best_lo = lo, best_hi = hi;
+  }
+  // A cluster of a handful among many scattered samples is no measurement.
+  if (best_hi - best_lo < std::max<size_t>(static_cast<size_t>(std::max(1, min_samples / 2)), samples_m.size() / 5)) {
+    return std::nullopt;
+  }
+  const double centre = 0.5 * (samples_m[best_lo] + samples_m[best_hi - 1]);
+  const double half = 2 * std::max(0.02, 0.01 * centre);
+  std::vector<double> near;
+  for (double x : samples_m) {
+    if (std::abs(x - centre) <= half) near.push_back(x);
+  }
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  CeilingHeight out;
+  out.height_m = median(near);
+  std::vector<double> dev;
+  for (double x : near) dev.push_back(std::abs(x - out.height_m));
+  // σ of the median: 1.4826·MAD/√n, floored (the samples share a rig height).
+  out.sigma_m = std::max(0.002, 1.4826 * median(dev) / std::sqrt(static_cast<double>(near.size())));
+  out.samples = static_cast<int>(near.size());
+  return out;
+}
+
+void PendingContacts::Append(PendingContacts&& other) {
+  ceiling_rays.insert(ceiling_rays.end(), other.ceiling_rays.begin(), other.ceiling_rays.end());
+  paired_floor.insert(paired_floor.end(), other.paired_floor.begin(), other.paired_floor.end());
+  stereo_samples_m.insert(stereo_samples_m.end(), other.stereo_samples_m.begin(), other.stereo_samples_m.end());
+  other = {};
+}
+
+ResolvedContacts PendingContacts::Resolve(const FramePointsOptions& options) const {
+  ResolvedContacts out;
+  if (options.ceiling_height_m) {
+    out.ceiling = CeilingHeight{.height_m = *options.ceiling_height_m, .sigma_m = 0.0, .samples = 0};
+    out.how = "given";
+  } else {
+    std::vector<double> samples;
+    for (const PairedFloor& f : paired_floor) samples.push_back(f.ceiling_sample_m);
+    if ((out.ceiling = CeilingHeightFromSamples(samples))) {
+      out.how = fmt::format("from {} of {} columns that saw a wall's floor and ceiling edges", out.ceiling->samples,
+                            samples.size());
+    } else if ((out.ceiling = CeilingHeightFromSamples(stereo_samples_m, 200))) {
+      out.how = fmt::format("from the walls' stereo depth under {} ceiling edges (only {} columns saw both edges)",
+                            out.ceiling->samples, samples.size());
+    }
+  }
+  for (const PairedFloor& f : paired_floor) {
+    const bool agrees =
+        !out.ceiling ||
+        std::abs(f.ceiling_sample_m - out.ceiling->height_m) <= std::max(0.03, 3 * f.sample_sigma_m);
+    if (agrees) {
+      out.points.push_back(f.point);
+    } else {
+      ++out.floor_rejected;
+    }
+  }
+  if (out.ceiling) {
+    auto ceiling_points = CeilingContactPoints(ceiling_rays, *out.ceiling, options);
+    out.points.insert(out.points.end(), ceiling_points.begin(), ceiling_points.end());
+  } else {
+    out.ceiling_unused = static_cast<int>(ceiling_rays.size());
+  }
+  return out;
+}
+
+std::vector<ClassPoint> CeilingContactPoints(const std::vector<ContactRay>& rays, const CeilingHeight& ceiling,
+                                             const FramePointsOptions& options) {
+  std::vector<ClassPoint> out;
+  for (const ContactRay& r : rays) {
+    const double dh = ceiling.height_m - r.origin_m.z();
+    if (!(dh > 0.05) || !(r.direction.z() > 1e-9)) continue;
+    const double z = dh / r.direction.z();  // Camera depth: the ray's camera z is 1.
+    if (z < options.min_depth_m || z > options.max_depth_m) continue;
+    Vec3 p = r.origin_m + r.direction * z;
+    p.z() = ceiling.height_m;
+    const double sigma_h = std::hypot(options.camera_height_sigma_m, ceiling.sigma_m);
+    out.push_back({r.label, p, ContactSigma(z, dh, r.fy_px, options.contact_sigma_px, sigma_h),
+                   PointSource::kContact, r.frame});
+  }
+  return out;
+}
 
 void FramePointsOptions::Check() const {
   disparity.Check();
@@ -128,6 +376,15 @@ void FramePointsOptions::Check() const {
                             min_depth_m, max_depth_m));
   CheckArgument(window_band_px > 0,
                 fmt::format("FramePointsOptions.window_band_px = {}, must be > 0", window_band_px));
+  CheckArgument(contact_col_step_px >= 1 && contact_min_run_px >= 1 && contact_sigma_px > 0 &&
+                    camera_height_sigma_m >= 0 && contact_floor_tolerance_px > 0,
+                fmt::format("FramePointsOptions: contact_col_step_px = {}, contact_min_run_px = {}, "
+                            "contact_sigma_px = {}, camera_height_sigma_m = {}, contact_floor_tolerance_px = {}: "
+                            "need step, run >= 1 and sigmas, tolerance > 0",
+                            contact_col_step_px, contact_min_run_px, contact_sigma_px, camera_height_sigma_m,
+                            contact_floor_tolerance_px));
+  CheckArgument(!ceiling_height_m || (std::isfinite(*ceiling_height_m) && *ceiling_height_m > 0),
+                "FramePointsOptions.ceiling_height_m must be > 0");
   CheckArgument(right_label_radius_px >= 0,
                 fmt::format("FramePointsOptions.right_label_radius_px = {}, must be >= 0", right_label_radius_px));
 }
@@ -141,14 +398,16 @@ std::string FrameCues::CarriedBy() const {
   add(edge_points > 0, "edge");
   add(dense_points > 0, "dense");
   add(boundary_points > 0, "boundary");
+  add(floor_contacts + ceiling_contacts > 0, "contact");
   return out.empty() ? "none" : out;
 }
 
 std::string FrameCues::BriefReport() const {
   return fmt::format(
-      "frame {}: corners {}/{}, edges {}/{}, dense {} ({:.0f}% of labelled px consistent), boundary {} — {}, {:.0f} ms",
+      "frame {}: corners {}/{}, edges {}/{}, dense {} ({:.0f}% of labelled px consistent), boundary {}, "
+      "contacts floor {} (+{} occluded) ceiling {} — {}, {:.0f} ms",
       index, corners_matched, corners_found, edge_points, edge_candidates, dense_points, 100.0 * dense_valid_fraction,
-      boundary_points, CarriedBy(), 1000.0 * seconds);
+      boundary_points, floor_contacts, floor_rejected, ceiling_contacts, CarriedBy(), 1000.0 * seconds);
 }
 
 FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePointsOptions& options) {
@@ -196,11 +455,23 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
     return MatchAlongRow(gray_left, gray_right, px, lo, hi, options.match);
   };
 
+  // Contacts first: wall (door) label edges with the floor below the horizon
+  // and with the ceiling above it, cut with those planes (frame_points.h).
+  // Wall pixels of contacted columns give no stereo points below.
+  cv::Mat covered = cv::Mat::zeros(frame.labels_left.size(), CV_8U);
+  if (options.use_contacts) AddContactPoints(frame, options, world_from_cam, &result, &covered);
+  auto explained = [&](const Vec2& px, unsigned char label) {
+    if (label != 1) return false;
+    const int u = static_cast<int>(std::lround(px.x())), v = static_cast<int>(std::lround(px.y()));
+    return u >= 0 && v >= 0 && u < covered.cols && v < covered.rows && covered.at<unsigned char>(v, u) != 0;
+  };
+
   // Corners: contour polygons per class, matched along the row.
   if (options.use_corners) {
     const auto corners = FindClassCorners(frame.labels_left, gray_left8, options.corners);
     result.cues.corners_found = static_cast<int>(corners.size());
     for (const ClassCorner& c : corners) {
+      if (explained(c.pixel, static_cast<unsigned char>(c.label))) continue;
       const auto m = match_guided(c.pixel);
       if (!m) continue;
       const unsigned char label = static_cast<unsigned char>(c.label);
@@ -240,6 +511,7 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
         if (!IsComponent(lab[u]) || g[u] < options.edge_min_gradient || g[u] < g[u - 1] || g[u] <= g[u + 1]) {
           continue;
         }
+        if (explained(Vec2(u, v), lab[u])) continue;
         if (lab[u] != 1 && band_distance.at<float>(v, u) > opening_band_px) continue;
         bool clean = true;
         for (int y = v - 1; y <= v + 1 && clean; ++y) {
@@ -382,6 +654,7 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
         const float* d = disparity.ptr<float>(v);
         for (int u = 0; u < mask.cols; u += options.dense_stride_px) {
           if (!m[u] || !ok[u] || !std::isfinite(d[u])) continue;
+          if (c == 1 && covered.at<unsigned char>(v, u)) continue;
           if (!RightLabelAgrees(frame.labels_right, Vec2(u - d[u], v), static_cast<unsigned char>(c), 0)) continue;
           if (add_point(static_cast<unsigned char>(c), Vec2(u, v), d[u], options.dense_sigma_px,
                         PointSource::kDense)) {
@@ -469,18 +742,19 @@ StereoFrame LoadStereoFrame(const Capture& capture, const CaptureFrame& frame, c
 }
 
 std::string CapturePointsResult::BriefReport() const {
-  int by_class[4] = {0, 0, 0, 0}, by_source[5] = {0, 0, 0, 0, 0};
+  int by_class[4] = {0, 0, 0, 0}, by_source[6] = {0, 0, 0, 0, 0, 0};
   for (const ClassPoint& p : points) {
     ++by_class[static_cast<int>(p.label) & 3];
-    ++by_source[std::min(4, static_cast<int>(p.source))];
+    ++by_source[std::min(5, static_cast<int>(p.source))];
   }
   int carried = 0;
   for (const FrameCues& f : frames) carried += f.CarriedBy() != "none";
   return fmt::format(
-      "{} frames ({} with points), {} points (wall {}, door {}, window {}; corner {}, edge {}, dense {}, boundary {}), "
-      "{:.1f} s",
+      "{} frames ({} with points), {} points (wall {}, door {}, window {}; corner {}, edge {}, dense {}, boundary {}, "
+      "contact {}){}, {:.1f} s",
       frames.size(), carried, points.size(), by_class[1], by_class[2], by_class[3], by_source[0], by_source[2],
-      by_source[1], by_source[4], seconds);
+      by_source[1], by_source[4], by_source[5],
+      ceiling ? fmt::format(", ceiling {:.3f} ± {:.3f} m", ceiling->height_m, ceiling->sigma_m) : "", seconds);
 }
 
 CapturePointsResult ComputeCapturePoints(const Capture& capture, const LabelProvider& labels,
@@ -493,6 +767,7 @@ CapturePointsResult ComputeCapturePoints(const Capture& capture, const LabelProv
     rectifier = MakeStereoRectifier(LoadCalibration(capture.Resolve(*capture.calibration)), {});
   }
   CapturePointsResult result;
+  PendingContacts pending;
   int done = 0;
   for (const CaptureFrame& frame : capture.frames) {
     ReportProgress(progress, {"points", done, static_cast<std::int64_t>(capture.frames.size()), ""});
@@ -500,8 +775,12 @@ CapturePointsResult ComputeCapturePoints(const Capture& capture, const LabelProv
     FramePointsResult r = ComputeFramePoints(stereo, options);
     result.points.insert(result.points.end(), r.points.begin(), r.points.end());
     result.frames.push_back(r.cues);
+    pending.Append(std::move(r.contacts));
     ++done;
   }
+  ResolvedContacts contacts = pending.Resolve(options);
+  result.points.insert(result.points.end(), contacts.points.begin(), contacts.points.end());
+  result.ceiling = contacts.ceiling;
   ReportProgress(progress, {"points", done, static_cast<std::int64_t>(capture.frames.size()), ""});
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

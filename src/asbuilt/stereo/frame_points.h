@@ -9,7 +9,20 @@
 //   edge    image edges inside wall/door/window regions with horizontal
 //           structure (wall–wall corners, frames, casings), matched the same
 //           way — what carries textureless painted walls;
-//   dense   every labelled pixel with a left–right consistent disparity.
+//   dense   every labelled pixel with a left–right consistent disparity;
+//   contact where a wall (or door) label meets the floor below the horizon
+//           or the ceiling above it: the pixel's ray cut with that plane.
+//           The rig is level at a known height (capture.json), so the
+//           floor is a plane at a known distance below the camera — a
+//           "baseline" of ~1.5 m against the stereo pair's 0.12 m: a wall
+//           4 m away is placed to ~1 cm per half pixel, where stereo gives
+//           ~15 cm, and it needs no texture. Floor contacts are checked
+//           against the floor's own disparity where it has any (furniture in
+//           front of a wall base is not a contact); the ceiling's height is
+//           estimated from columns that see both contacts of one wall.
+//           A contacted column's wall pixels give no corner/edge/dense
+//           points: a level camera sees a vertical wall at one depth down a
+//           column, which the contact fixes; stereo there adds only noise.
 // Points get σ from the disparity error: σ_Z = Z²·σ_d/(f·B). Nothing is
 // interpolated where neither image has evidence.
 
@@ -96,6 +109,24 @@ struct FramePointsOptions {
   int boundary_inside_px = 5;
   double boundary_tolerance_px = 1.0;
   double boundary_sigma_px = 0.3;  // 1σ of the wall disparity at the edge.
+  // Contacts: every n-th column; the label must run this many pixels on both
+  // sides of the transition; σ of the label edge's row (px).
+  // Off by default until it is better on every benchmark room (it helps
+  // textureless rooms, costs p02 widths: bench/results/survey.md).
+  bool use_contacts = false;
+  int contact_col_step_px = 2;
+  int contact_min_run_px = 4;
+  double contact_sigma_px = 0.5;
+  // 1σ of the rig height above the floor given in capture.json (enters the
+  // contact points' σ as Z·σ_h/h).
+  double camera_height_sigma_m = 0.005;
+  // A floor contact is rejected when the floor's disparity just below it
+  // exceeds the floor plane's by more than max(this, 15 %): something stands
+  // in front of the wall base there.
+  double contact_floor_tolerance_px = 1.0;
+  // The ceiling's height above the floor when known; otherwise it is
+  // estimated (see CeilingHeightFromSamples) and ceiling contacts wait for it.
+  std::optional<double> ceiling_height_m;
   // 1σ disparity errors used for the point uncertainty.
   double corner_sigma_px = 0.25;
   double edge_sigma_px = 0.3;
@@ -126,6 +157,9 @@ struct FrameCues {
   int edge_points = 0;
   int dense_points = 0;
   int boundary_points = 0;  // Door/window label edges on the wall.
+  int floor_contacts = 0;    // Wall/door–floor contact points.
+  int floor_rejected = 0;    // Candidates whose floor disparity said "occluded".
+  int ceiling_contacts = 0;  // Wall–ceiling contacts (rays until the height is known).
   double dense_valid_fraction = NAN;  // Of labelled wall/door/window pixels.
   double seconds = 0.0;
 
@@ -134,12 +168,68 @@ struct FrameCues {
   std::string BriefReport() const;
 };
 
+// A wall–ceiling contact waiting for the ceiling's height: the pixel's ray
+// from the left camera, scaled so that its camera-frame z is 1.
+struct ContactRay {
+  LabelClass label = LabelClass::kWall;
+  Vec3 origin_m = Vec3::Zero();
+  Vec3 direction = Vec3::Zero();
+  double fy_px = 0.0;  // For σ.
+  int frame = -1;
+};
+
+// The ceiling's height above the floor.
+struct CeilingHeight {
+  double height_m = 0.0;
+  double sigma_m = 0.0;
+  int samples = 0;
+};
+
+struct ResolvedContacts {
+  std::vector<ClassPoint> points;
+  std::optional<CeilingHeight> ceiling;
+  std::string how;            // "given", "from 812 of 950 columns …".
+  int floor_rejected = 0;     // Floor contacts that disagreed with the ceiling.
+  int ceiling_unused = 0;     // Ceiling contacts left unused (no height).
+};
+
+// Contacts that need the whole capture: the ceiling's height comes from all
+// frames together. Collect each frame's with Append, then Resolve once.
+struct PendingContacts {
+  struct PairedFloor {
+    ClassPoint point;            // The floor contact…
+    double ceiling_sample_m;     // …and the ceiling height its column implies,
+    double sample_sigma_m;       // with its σ from the rows.
+  };
+  std::vector<ContactRay> ceiling_rays;
+  std::vector<PairedFloor> paired_floor;
+  // Rougher heights, from the wall's stereo depth just below each ceiling
+  // contact: the fallback when too few columns see both of a wall's edges.
+  std::vector<double> stereo_samples_m;
+
+  void Append(PendingContacts&& other);
+  // The ceiling's height (options.ceiling_height_m when given, else the
+  // densest cluster of the paired samples, else of the stereo ones); the
+  // paired floor contacts that agree with it and the ceiling contacts.
+  ResolvedContacts Resolve(const FramePointsOptions& options) const;
+};
+
 struct FramePointsResult {
   std::vector<ClassPoint> points;  // World frame.
   std::vector<MatchedCorner> corners;
   FrameCues cues;
   DisparityResult disparity;
+  // Contacts that wait for the ceiling's height (PendingContacts).
+  PendingContacts contacts;
 };
+
+// The ceiling's height from samples: the median of their densest cluster
+// (window max(2 cm, 1 %)), σ from its spread (MAD); nullopt with fewer than
+// `min_samples`.
+std::optional<CeilingHeight> CeilingHeightFromSamples(std::vector<double> samples_m, int min_samples = 20);
+// Ceiling contact points from rays once the height is known (source kContact).
+std::vector<ClassPoint> CeilingContactPoints(const std::vector<ContactRay>& rays, const CeilingHeight& ceiling,
+                                             const FramePointsOptions& options);
 
 // Points of one frame. Throws InvalidArgument on inconsistent sizes/types.
 FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePointsOptions& options);
@@ -163,10 +253,11 @@ StereoFrame LoadStereoFrame(const Capture& capture, const CaptureFrame& frame,
 struct CapturePointsResult {
   std::vector<ClassPoint> points;
   std::vector<FrameCues> frames;
+  std::optional<CeilingHeight> ceiling;  // Estimated (or given) ceiling height.
   double seconds = 0.0;
 
   // "12 frames, 45123 points (wall 40000, door 3000, window 2123; corner 150,
-  // edge 3000, dense 41773, boundary 200), 3.2 s".
+  // edge 3000, dense 41773, boundary 200, contact 900), 3.2 s".
   std::string BriefReport() const;
 };
 

@@ -200,6 +200,65 @@ TEST(ComputeFramePoints, WallPointsLieOnTruthWallPlanes) {
   }
 }
 
+// Floor and ceiling contacts (Blender rooms, exact labels): floor contacts and,
+// once the capture's frames give the ceiling height, ceiling contacts lie on
+// the truth walls to about a centimetre — where dense stereo is 10× looser —
+// and the height is the truth room height.
+TEST(ComputeFramePoints, ContactPointsLieOnTruthWallsAndGiveTheCeilingHeight) {
+  FramePointsOptions options;
+  options.use_contacts = true;
+  for (const std::string room : {"p01_rect_1door_2win", "p02_L_shape"}) {
+    RoomFrames r = LoadRoom(room, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11});
+    const Plan truth = ReadPlan(RoomDir(room) / "truth.json");
+    PendingContacts pending;
+    std::vector<double> floor_off;
+    for (const StereoFrame& f : r.frames) {
+      FramePointsResult result = ComputeFramePoints(f, options);
+      for (const ClassPoint& p : result.points) {
+        if (p.source == PointSource::kContact && p.label == LabelClass::kWall) {
+          floor_off.push_back(DistanceToWalls(truth, p.position_m));
+          EXPECT_EQ(p.position_m.z(), 0.0);
+        }
+      }
+      pending.Append(std::move(result.contacts));
+    }
+    const ResolvedContacts resolved = pending.Resolve(options);
+    ASSERT_TRUE(resolved.ceiling.has_value()) << room;
+    const double truth_height = truth.walls.at(0).height.value_or(NAN);
+    std::vector<double> ceiling_off, paired_off;
+    for (const ClassPoint& p : resolved.points) {
+      (p.position_m.z() > 0 ? ceiling_off : paired_off).push_back(DistanceToWalls(truth, p.position_m));
+    }
+    std::printf("%s: ceiling %.4f m (truth %.4f, %s); floor contacts %zu + %zu paired, off-wall median %.4f m; "
+                "ceiling contacts %zu, median %.4f p90 %.4f m; %d rejected\n",
+                room.c_str(), resolved.ceiling->height_m, truth_height, resolved.how.c_str(), floor_off.size(),
+                paired_off.size(), Percentile(paired_off, 0.5), ceiling_off.size(), Percentile(ceiling_off, 0.5),
+                Percentile(ceiling_off, 0.9), resolved.floor_rejected);
+    EXPECT_NEAR(resolved.ceiling->height_m, truth_height, 0.01 * truth_height);
+    ASSERT_GE(paired_off.size(), 200u);
+    ASSERT_GE(ceiling_off.size(), 500u);
+    EXPECT_LE(Percentile(paired_off, 0.5), 0.015);
+    EXPECT_LE(Percentile(ceiling_off, 0.5), 0.02);
+    EXPECT_LE(Percentile(ceiling_off, 0.9), 0.06);
+  }
+}
+
+TEST(CeilingHeightFromSamples, TakesTheDenseClusterNotTheSpreadAbove) {
+  std::vector<double> samples;
+  for (int i = 0; i < 100; ++i) samples.push_back(2.60 + 0.002 * ((i % 7) - 3));  // True: 2.60 ± 6 mm.
+  for (int i = 0; i < 60; ++i) samples.push_back(2.8 + 0.03 * i);                  // Cabinet tops: spread above.
+  auto h = CeilingHeightFromSamples(samples);
+  ASSERT_TRUE(h.has_value());
+  EXPECT_NEAR(h->height_m, 2.60, 0.003);
+  EXPECT_LT(h->sigma_m, 0.01);
+  EXPECT_GE(h->samples, 100);
+  // Too few samples, or no cluster among scattered ones: not measured.
+  EXPECT_FALSE(CeilingHeightFromSamples({2.6, 2.6, 2.6}).has_value());
+  std::vector<double> scattered;
+  for (int i = 0; i < 40; ++i) scattered.push_back(2.0 + 0.1 * i);
+  EXPECT_FALSE(CeilingHeightFromSamples(scattered).has_value());
+}
+
 // Opening label edges land on the wall at the casing's outer edge — also
 // beside p02's open door leaf, whose silhouette against the wall is an
 // occlusion and must give no boundary points.
