@@ -304,7 +304,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   ReportProgress(progress, {.stage = "survey", .done = done, .total = total});
   // Wall–ceiling contacts become points once the ceiling's height is known
   // from the columns that saw both of a wall's edges (all frames together).
-  {
+  if (options.points.use_contacts) {
     ResolvedContacts contacts = pending_contacts.Resolve(options.points);
     points.insert(points.end(), contacts.points.begin(), contacts.points.end());
     spdlog::info("survey: ceiling height {} ({}); {} floor contact(s) rejected as tops of things before a wall",

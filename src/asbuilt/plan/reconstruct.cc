@@ -300,14 +300,13 @@ std::optional<Vec2> Intersect(const Line& a, const Line& b) {
 // Two passes: the floor/ceiling contacts alone first (precise, few, and on
 // walls only — a far wall's few hundred must not wait for luck among a near
 // wall's hundred thousand dense points), then every point not taken.
-std::vector<Line> FindLines(const std::vector<Pt>& pts, const PlanOptions& o, std::mt19937_64& rng) {
+std::vector<Line> FindLines(const std::vector<Pt>& pts, const PlanOptions& o, bool contacts, std::mt19937_64& rng) {
   std::vector<Line> lines;
   double best_density = 0;  // Votes per metre of the densest wall so far.
   double total_votes = 0;
   for (const Pt& p : pts) total_votes += p.vote;
   std::vector<bool> taken(pts.size(), false);
   // Without contacts the plain algorithm: counts, no exemptions, 4 failures.
-  const bool contacts = std::any_of(pts.begin(), pts.end(), [](const Pt& p) { return p.contact; });
   const double strong = contacts ? kStrongLineVotes * o.min_wall_points : kInf;
   const int max_failures = contacts ? kMaxRansacFailures : 4;
   for (int pass = 0; pass < 2; ++pass) {
@@ -715,7 +714,7 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
 
   // 2. Lines.
   std::mt19937_64 rng(o.seed);
-  std::vector<Line> lines = FindLines(walls_pts, o, rng);
+  std::vector<Line> lines = FindLines(walls_pts, o, weigh_votes, rng);
   s.lines_found = static_cast<int>(lines.size());
   LogLines("RANSAC", lines);
   CompetitiveRefit(walls_pts, lines, o);
