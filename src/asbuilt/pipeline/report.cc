@@ -170,6 +170,13 @@ std::string SurveyReportHtml(const SurveyReport& r) {
                         Percent(s.score->wall_length.Median()), Percent(s.score->opening_width.Median()));
   }
   html += fmt::format("</div><p>Labels from: {}.</p>", HtmlEscape(s.labels_source));
+  if (!s.wall_cue.empty()) {
+    html += fmt::format("<p>Walls: {}{}.</p>", HtmlEscape(s.wall_cue),
+                        std::isfinite(s.ceiling_height_m)
+                            ? fmt::format("; ceiling height {:.3f} ± {:.3f} m", s.ceiling_height_m,
+                                          s.ceiling_height_sigma_m)
+                            : "");
+  }
   if (!s.notes.empty()) {
     html += "<ul class=\"notes\">";
     for (const std::string& n : s.notes) html += fmt::format("<li class=\"warn\">{}</li>", HtmlEscape(n));

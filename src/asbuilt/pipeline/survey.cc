@@ -257,7 +257,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   std::vector<ClassPoint> points;
   std::vector<ReportFrame> report_frames;
   std::vector<Vec2> rigs;
-  PendingContacts pending_contacts;
+  CapturePoints gathered(options.points);
   Vec3 rig_sum = Vec3::Zero();
   int done = 0;
   const int total = static_cast<int>(capture.frames.size());
@@ -273,8 +273,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
     double frame_seconds = Since(t);
     add_stage("disparity", r.disparity.seconds);
     add_stage("corners + points", std::max(0.0, frame_seconds - r.disparity.seconds));
-    points.insert(points.end(), r.points.begin(), r.points.end());
-    pending_contacts.Append(std::move(r.contacts));
+    gathered.Add(r);
     summary.frame_cues.push_back(r.cues);
     rigs.push_back(frame.position_m.head<2>());
     rig_sum += frame.position_m;
@@ -302,11 +301,16 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
     stage_seconds["load + rectify"] = std::max(0.0, stage_seconds["load + rectify"] - stage_seconds["segment"]);
   }
   ReportProgress(progress, {.stage = "survey", .done = done, .total = total});
-  // Wall–ceiling contacts become points once the ceiling's height is known
-  // from the columns that saw both of a wall's edges (all frames together).
-  if (options.points.use_contacts) {
-    ResolvedContacts contacts = pending_contacts.Resolve(options.points);
-    points.insert(points.end(), contacts.points.begin(), contacts.points.end());
+  // The wall cue for the whole capture (stereo, or floor/ceiling contacts
+  // where the walls' stereo disagrees with them); wall–ceiling contacts become
+  // points once the ceiling's height is known from the columns that saw both
+  // of a wall's edges (all frames together).
+  CapturePoints::Result gathered_points = gathered.Finish();
+  points = std::move(gathered_points.points);
+  summary.wall_cue = gathered_points.decision;
+  if (!summary.wall_cue.empty()) spdlog::info("survey: {}", summary.wall_cue);
+  if (gathered_points.contacts_used) {
+    const ResolvedContacts& contacts = gathered_points.contacts;
     spdlog::info("survey: ceiling height {} ({}); {} floor contact(s) rejected as tops of things before a wall",
                  contacts.ceiling ? fmt::format("{:.3f} ± {:.3f} m", contacts.ceiling->height_m, contacts.ceiling->sigma_m)
                                   : "not measured",
@@ -391,6 +395,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   nlohmann::json js = {{"brief", summary.BriefReport()}, {"frames", summary.frames}, {"points", summary.points},
                        {"labels_source", summary.labels_source}, {"plan", summary.plan.BriefReport()},
                        {"notes", summary.notes}, {"seconds", summary.seconds}};
+  if (!summary.wall_cue.empty()) js["wall_cue"] = summary.wall_cue;
   for (const StageTiming& s : summary.stages) js["stages"][s.stage] = s.seconds;
   if (std::isfinite(summary.ceiling_height_m)) {
     js["ceiling_height_m"] = summary.ceiling_height_m;

@@ -57,6 +57,8 @@ struct SurveySummary {
   int frames = 0;
   int points = 0;
   std::vector<FrameCues> frame_cues;
+  // Which cue placed the walls, and why (CapturePoints::Result::decision).
+  std::string wall_cue;
   // From the wall–ceiling/floor contacts (NaN: not measured).
   double ceiling_height_m = NAN;
   double ceiling_height_sigma_m = NAN;

@@ -114,8 +114,16 @@ double ContactSigma(double z, double dh, double fy, double sigma_v, double sigma
 // column's wall run (from the contact along the labelled structure): a level
 // camera sees a vertical wall at one depth down a column, so the contact
 // already places them, exactly; their stereo points add only noise.
+// `floor_columns` receives each floor contact's column, row and depth.
+struct FloorColumn {
+  int u = 0;
+  double row = 0.0;
+  double depth_m = 0.0;
+  unsigned char label = 0;
+};
 void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& options,
-                      const Eigen::Isometry3d& world_from_cam, FramePointsResult* result, cv::Mat* covered) {
+                      const Eigen::Isometry3d& world_from_cam, FramePointsResult* result, cv::Mat* covered,
+                      std::vector<FloorColumn>* floor_columns) {
   const cv::Mat& labels = frame.labels_left;
   const cv::Mat& disparity = result->disparity.disparity_px;
   const PinholeCamera& cam = frame.camera;
@@ -186,6 +194,7 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
                                  ContactSigma(z, h, cam.fy, options.contact_sigma_px, options.camera_height_sigma_m),
                                  PointSource::kContact, frame.index};
         ++result->cues.floor_contacts;
+        floor_columns->push_back({u, floor_row, z, floor_label});
         cover(u, static_cast<int>(floor_row - 0.5), -1);
       } else {
         floor_row = NAN;
@@ -249,7 +258,56 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
   }
 }
 
+// The stereo check (FramePointsOptions::contacts): a level camera sees a
+// vertical wall at one depth down each image column, so a wall's valid
+// disparities down a column should agree with their median. Textured walls
+// do (0.90–0.99 of pixels on the benchmark rooms); on plain paint SGBM
+// matches noise and they scatter (0.35–0.49). Counts the wall pixels of
+// columns with at least kMinRun of them, and those within max(tolerance,
+// 3 %) of their column's median (cues.stereo_checked/agreed).
+void CheckWallStereo(const StereoFrame& frame, const FramePointsOptions& options, const DisparityResult& disparity,
+                     FrameCues* cues) {
+  constexpr int kMinRun = 20;
+  const cv::Mat& labels = frame.labels_left;
+  std::vector<float> column;
+  for (int u = 0; u < labels.cols; u += options.contact_col_step_px) {
+    column.clear();
+    for (int v = 0; v < labels.rows; ++v) {
+      const float d = disparity.disparity_px.at<float>(v, u);
+      if (labels.at<unsigned char>(v, u) == 1 && disparity.valid.at<unsigned char>(v, u) && std::isfinite(d)) {
+        column.push_back(d);
+      }
+    }
+    if (column.size() < kMinRun) continue;
+    std::vector<float> sorted = column;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    const double tolerance = std::max(options.stereo_check_tolerance_px, 0.03 * median);
+    cues->stereo_checked += static_cast<int>(column.size());
+    for (float d : column) cues->stereo_agreed += std::abs(d - median) <= tolerance;
+  }
+}
+
 }  // namespace
+
+const char* ContactUseName(ContactUse use) {
+  switch (use) {
+    case ContactUse::kOff:
+      return "off";
+    case ContactUse::kWhereStereoFails:
+      return "auto";
+    case ContactUse::kAlways:
+      return "always";
+  }
+  return "?";
+}
+
+ContactUse ParseContactUse(const std::string& name) {
+  for (ContactUse use : {ContactUse::kOff, ContactUse::kWhereStereoFails, ContactUse::kAlways}) {
+    if (name == ContactUseName(use)) return use;
+  }
+  throw InvalidArgument(fmt::format("contacts = \"{}\": must be off, auto or always", name));
+}
 
 std::optional<CeilingHeight> CeilingHeightFromSamples(std::vector<double> samples_m, int min_samples) {
   std::erase_if(samples_m, [](double x) { return !std::isfinite(x) || x <= 0; });
@@ -383,6 +441,13 @@ void FramePointsOptions::Check() const {
                             "need step, run >= 1 and sigmas, tolerance > 0",
                             contact_col_step_px, contact_min_run_px, contact_sigma_px, camera_height_sigma_m,
                             contact_floor_tolerance_px));
+  CheckArgument(stereo_check_tolerance_px > 0 && stereo_check_min_agree >= 0 && stereo_check_min_agree <= 1 &&
+                    stereo_check_min_pixels >= 0 && stereo_check_min_contacts >= 0,
+                fmt::format("FramePointsOptions: stereo_check_tolerance_px = {}, stereo_check_min_agree = {}, "
+                            "stereo_check_min_pixels = {}, stereo_check_min_contacts = {}: need tolerance > 0, "
+                            "agree in [0, 1], counts >= 0",
+                            stereo_check_tolerance_px, stereo_check_min_agree, stereo_check_min_pixels,
+                            stereo_check_min_contacts));
   CheckArgument(!ceiling_height_m || (std::isfinite(*ceiling_height_m) && *ceiling_height_m > 0),
                 "FramePointsOptions.ceiling_height_m must be > 0");
   CheckArgument(right_label_radius_px >= 0,
@@ -405,32 +470,32 @@ std::string FrameCues::CarriedBy() const {
 std::string FrameCues::BriefReport() const {
   return fmt::format(
       "frame {}: corners {}/{}, edges {}/{}, dense {} ({:.0f}% of labelled px consistent), boundary {}, "
-      "contacts floor {} (+{} occluded) ceiling {} — {}, {:.0f} ms",
+      "contacts floor {} (+{} occluded) ceiling {}{} — {}, {:.0f} ms",
       index, corners_matched, corners_found, edge_points, edge_candidates, dense_points, 100.0 * dense_valid_fraction,
-      boundary_points, floor_contacts, floor_rejected, ceiling_contacts, CarriedBy(), 1000.0 * seconds);
+      boundary_points, floor_contacts, floor_rejected, ceiling_contacts,
+      stereo_checked == 0 ? ""
+                          : fmt::format(", wall stereo consistent down its columns at {}/{} px ({:.0f} %)",
+                                        stereo_agreed, stereo_checked, 100.0 * stereo_agreed / stereo_checked),
+      CarriedBy(), 1000.0 * seconds);
 }
 
-FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePointsOptions& options) {
-  options.Check();
-  frame.camera.Check();
-  CheckArgument(!frame.left.empty() && frame.left.size() == frame.right.size() &&
-                    frame.left.type() == frame.right.type(),
-                "ComputeFramePoints: left and right images must be non-empty, same size and type");
-  CheckArgument(frame.labels_left.type() == CV_8UC1 && frame.labels_left.size() == frame.left.size(),
-                fmt::format("ComputeFramePoints: frame {}: left labels must be CV_8UC1 of the image size", frame.index));
-  CheckArgument(frame.labels_right.empty() ||
-                    (frame.labels_right.type() == CV_8UC1 && frame.labels_right.size() == frame.left.size()),
-                fmt::format("ComputeFramePoints: frame {}: right labels must be CV_8UC1 of the image size", frame.index));
-  CheckArgument(frame.baseline_m > 0, "ComputeFramePoints: baseline_m must be > 0");
-  const auto start = std::chrono::steady_clock::now();
+namespace {
 
+// One pass over a frame. `contacts`: add contact points (and run the stereo
+// check); `wall_stereo`: wall pixels give corner/edge/dense points (outside
+// contacted columns) and boundary points take the wall's stereo depth —
+// without it they take the contacts'. `disparity`: reuse this one.
+FramePointsResult FramePointsPass(const StereoFrame& frame, const FramePointsOptions& options, bool contacts,
+                                  bool wall_stereo, const DisparityResult* disparity_given) {
+  const auto start = std::chrono::steady_clock::now();
   FramePointsResult result;
   result.cues.index = frame.index;
   const cv::Mat gray_left8 = ToGray8(frame.left), gray_right8 = ToGray8(frame.right);
   cv::Mat gray_left, gray_right;
   gray_left8.convertTo(gray_left, CV_32F);
   gray_right8.convertTo(gray_right, CV_32F);
-  result.disparity = ComputeDisparity(frame.left, frame.right, options.disparity);
+  result.disparity =
+      disparity_given ? *disparity_given : ComputeDisparity(frame.left, frame.right, options.disparity);
   const cv::Mat& disparity = result.disparity.disparity_px;
   const double full_min = result.disparity.min_disparity_px;
   const double full_max = full_min + result.disparity.num_disparities_px - 1;
@@ -459,9 +524,22 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
   // and with the ceiling above it, cut with those planes (frame_points.h).
   // Wall pixels of contacted columns give no stereo points below.
   cv::Mat covered = cv::Mat::zeros(frame.labels_left.size(), CV_8U);
-  if (options.use_contacts) AddContactPoints(frame, options, world_from_cam, &result, &covered);
+  // Per column, the wall's disparity from its floor contact (NaN: none) —
+  // what boundary points use when the wall's stereo is not kept.
+  std::vector<float> contact_disparity(frame.labels_left.cols, NAN);
+  if (contacts) {
+    std::vector<FloorColumn> floor_columns;
+    AddContactPoints(frame, options, world_from_cam, &result, &covered, &floor_columns);
+    if (!wall_stereo) CheckWallStereo(frame, options, result.disparity, &result.cues);
+    for (const FloorColumn& c : floor_columns) {
+      for (int x = c.u; x < std::min(frame.labels_left.cols, c.u + options.contact_col_step_px); ++x) {
+        contact_disparity[x] = static_cast<float>(fx * frame.baseline_m / c.depth_m);
+      }
+    }
+  }
   auto explained = [&](const Vec2& px, unsigned char label) {
     if (label != 1) return false;
+    if (!wall_stereo) return true;
     const int u = static_cast<int>(std::lround(px.x())), v = static_cast<int>(std::lround(px.y()));
     return u >= 0 && v >= 0 && u < covered.cols && v < covered.rows && covered.at<unsigned char>(v, u) != 0;
   };
@@ -573,6 +651,19 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
       std::nth_element(vals.begin(), vals.begin() + vals.size() / 2, vals.end());
       return static_cast<double>(vals[vals.size() / 2]);
     };
+    // The contact disparity of the wall beside the edge: the median over the
+    // contacted columns u0 + dir·k, k in [0, to]; NaN if none.
+    auto contact_side = [&](int u0, int dir, int to) {
+      std::vector<float> vals;
+      for (int k = 0; k <= to; ++k) {
+        const int x = u0 + dir * k;
+        if (x < 0 || x >= cols) break;
+        if (std::isfinite(contact_disparity[x])) vals.push_back(contact_disparity[x]);
+      }
+      if (vals.empty()) return static_cast<double>(NAN);
+      std::nth_element(vals.begin(), vals.begin() + vals.size() / 2, vals.end());
+      return static_cast<double>(vals[vals.size() / 2]);
+    };
     auto run_of = [&](const unsigned char* row, int u0, int dir, unsigned char label, int n) {
       for (int k = 0; k < n; ++k) {
         const int x = u0 + dir * k;
@@ -599,13 +690,18 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
         // vertical edges are image columns; a row also crosses the slanted
         // top and bottom edges of an obliquely seen opening.
         if (!VerticalEdge(labels, v, u_wall, u_open, c, options.boundary_vertical_rows)) continue;
-        const double d_wall = side_disparity(v, u_wall, to_wall, options.boundary_wall_gap_px,
-                                             options.boundary_wall_gap_px + options.boundary_wall_span_px, 1);
+        const double d_wall =
+            wall_stereo ? side_disparity(v, u_wall, to_wall, options.boundary_wall_gap_px,
+                                         options.boundary_wall_gap_px + options.boundary_wall_span_px, 1)
+                        : contact_side(u_wall, to_wall, options.boundary_wall_gap_px + options.boundary_wall_span_px);
         if (!std::isfinite(d_wall)) continue;
-        const double d_in = side_disparity(v, u_open, -to_wall, 0, options.boundary_inside_px - 1, c);
-        if (!std::isfinite(d_in) ||
-            std::abs(d_in - d_wall) > std::max(options.boundary_tolerance_px, 0.08 * d_wall)) {
-          continue;
+        // (Without the wall's stereo, the opening's own is no better: no check.)
+        if (wall_stereo) {
+          const double d_in = side_disparity(v, u_open, -to_wall, 0, options.boundary_inside_px - 1, c);
+          if (!std::isfinite(d_in) ||
+              std::abs(d_in - d_wall) > std::max(options.boundary_tolerance_px, 0.08 * d_wall)) {
+            continue;
+          }
         }
         const Vec2 px(u - 0.5, v);
         if (!RightLabelAgrees(frame.labels_right, Vec2(px.x() - d_wall, v), c, options.right_label_radius_px)) {
@@ -654,7 +750,7 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
         const float* d = disparity.ptr<float>(v);
         for (int u = 0; u < mask.cols; u += options.dense_stride_px) {
           if (!m[u] || !ok[u] || !std::isfinite(d[u])) continue;
-          if (c == 1 && covered.at<unsigned char>(v, u)) continue;
+          if (c == 1 && (!wall_stereo || covered.at<unsigned char>(v, u))) continue;
           if (!RightLabelAgrees(frame.labels_right, Vec2(u - d[u], v), static_cast<unsigned char>(c), 0)) continue;
           if (add_point(static_cast<unsigned char>(c), Vec2(u, v), d[u], options.dense_sigma_px,
                         PointSource::kDense)) {
@@ -665,6 +761,44 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
     }
   }
   result.cues.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace
+
+FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePointsOptions& options) {
+  options.Check();
+  frame.camera.Check();
+  CheckArgument(!frame.left.empty() && frame.left.size() == frame.right.size() &&
+                    frame.left.type() == frame.right.type(),
+                "ComputeFramePoints: left and right images must be non-empty, same size and type");
+  CheckArgument(frame.labels_left.type() == CV_8UC1 && frame.labels_left.size() == frame.left.size(),
+                fmt::format("ComputeFramePoints: frame {}: left labels must be CV_8UC1 of the image size", frame.index));
+  CheckArgument(frame.labels_right.empty() ||
+                    (frame.labels_right.type() == CV_8UC1 && frame.labels_right.size() == frame.left.size()),
+                fmt::format("ComputeFramePoints: frame {}: right labels must be CV_8UC1 of the image size", frame.index));
+  CheckArgument(frame.baseline_m > 0, "ComputeFramePoints: baseline_m must be > 0");
+  switch (options.contacts) {
+    case ContactUse::kOff:
+      return FramePointsPass(frame, options, /*contacts=*/false, /*wall_stereo=*/true, nullptr);
+    case ContactUse::kAlways:
+      return FramePointsPass(frame, options, /*contacts=*/true, /*wall_stereo=*/true, nullptr);
+    case ContactUse::kWhereStereoFails:
+      break;
+  }
+  // Both alternatives; the capture decides between them (CapturePoints).
+  FramePointsResult with_contacts = FramePointsPass(frame, options, /*contacts=*/true, /*wall_stereo=*/false, nullptr);
+  FramePointsResult result =
+      FramePointsPass(frame, options, /*contacts=*/false, /*wall_stereo=*/true, &with_contacts.disparity);
+  result.contact_points = std::move(with_contacts.points);
+  result.contacts = std::move(with_contacts.contacts);
+  const FrameCues& c = with_contacts.cues;
+  result.cues.floor_contacts = c.floor_contacts;
+  result.cues.floor_rejected = c.floor_rejected;
+  result.cues.ceiling_contacts = c.ceiling_contacts;
+  result.cues.stereo_checked = c.stereo_checked;
+  result.cues.stereo_agreed = c.stereo_agreed;
+  result.cues.seconds += c.seconds;
   return result;
 }
 
@@ -757,6 +891,63 @@ std::string CapturePointsResult::BriefReport() const {
       ceiling ? fmt::format(", ceiling {:.3f} ± {:.3f} m", ceiling->height_m, ceiling->sigma_m) : "", seconds);
 }
 
+void CapturePoints::Add(FramePointsResult& r) {
+  stereo_points_.insert(stereo_points_.end(), r.points.begin(), r.points.end());
+  contact_points_.insert(contact_points_.end(), r.contact_points.begin(), r.contact_points.end());
+  pending_.Append(std::move(r.contacts));
+  stereo_checked_ += r.cues.stereo_checked;
+  stereo_agreed_ += r.cues.stereo_agreed;
+}
+
+CapturePoints::Result CapturePoints::Finish() {
+  Result out{.stereo_checked = stereo_checked_, .stereo_agreed = stereo_agreed_};
+  switch (options_.contacts) {
+    case ContactUse::kOff:
+      out.points = std::move(stereo_points_);
+      return out;
+    case ContactUse::kAlways:
+      out.points = std::move(stereo_points_);
+      out.contacts_used = true;
+      out.decision = "contacts with every frame's stereo (--contacts always)";
+      break;
+    case ContactUse::kWhereStereoFails: {
+      const double agree = stereo_checked_ > 0 ? static_cast<double>(stereo_agreed_) / stereo_checked_ : NAN;
+      std::size_t contacts = pending_.paired_floor.size() + pending_.ceiling_rays.size();
+      for (const ClassPoint& p : contact_points_) contacts += p.source == PointSource::kContact;
+      const bool stereo_fails =
+          stereo_checked_ >= options_.stereo_check_min_pixels && agree < options_.stereo_check_min_agree;
+      if (stereo_fails && contacts < static_cast<std::size_t>(options_.stereo_check_min_contacts)) {
+        out.points = std::move(stereo_points_);
+        out.decision = fmt::format(
+            "walls placed by stereo, though it was consistent at only {:.0f} % of {} wall pixels: only {} "
+            "floor/ceiling contacts to replace it (is the rig level, are wall bases in view?)",
+            100 * agree, stereo_checked_, contacts);
+      } else if (stereo_fails) {
+        out.points = std::move(contact_points_);
+        out.contacts_used = true;
+        out.decision = fmt::format(
+            "walls placed by their floor/ceiling contacts: their stereo was consistent at only {:.0f} % of {} wall "
+            "pixels (plain walls; {:.0f} % needed to keep it)",
+            100 * agree, stereo_checked_, 100 * options_.stereo_check_min_agree);
+      } else {
+        out.points = std::move(stereo_points_);
+        out.decision = stereo_checked_ >= options_.stereo_check_min_pixels
+                           ? fmt::format("walls placed by stereo: it was consistent at {:.0f} % of {} wall pixels",
+                                         100 * agree, stereo_checked_)
+                           : fmt::format("walls placed by stereo: only {} wall pixels could be checked",
+                                         stereo_checked_);
+      }
+      break;
+    }
+  }
+  if (out.contacts_used) {
+    out.contacts = pending_.Resolve(options_);
+    out.points.insert(out.points.end(), out.contacts.points.begin(), out.contacts.points.end());
+    out.contacts.points.clear();
+  }
+  return out;
+}
+
 CapturePointsResult ComputeCapturePoints(const Capture& capture, const LabelProvider& labels,
                                          const FramePointsOptions& options, const ProgressCallback& progress) {
   options.Check();
@@ -767,20 +958,20 @@ CapturePointsResult ComputeCapturePoints(const Capture& capture, const LabelProv
     rectifier = MakeStereoRectifier(LoadCalibration(capture.Resolve(*capture.calibration)), {});
   }
   CapturePointsResult result;
-  PendingContacts pending;
+  CapturePoints gathered(options);
   int done = 0;
   for (const CaptureFrame& frame : capture.frames) {
     ReportProgress(progress, {"points", done, static_cast<std::int64_t>(capture.frames.size()), ""});
     const StereoFrame stereo = LoadStereoFrame(capture, frame, labels, rectifier ? &*rectifier : nullptr);
     FramePointsResult r = ComputeFramePoints(stereo, options);
-    result.points.insert(result.points.end(), r.points.begin(), r.points.end());
+    gathered.Add(r);
     result.frames.push_back(r.cues);
-    pending.Append(std::move(r.contacts));
     ++done;
   }
-  ResolvedContacts contacts = pending.Resolve(options);
-  result.points.insert(result.points.end(), contacts.points.begin(), contacts.points.end());
-  result.ceiling = contacts.ceiling;
+  CapturePoints::Result finished = gathered.Finish();
+  result.points = std::move(finished.points);
+  result.ceiling = finished.contacts.ceiling;
+  result.wall_cue = finished.decision;
   ReportProgress(progress, {"points", done, static_cast<std::int64_t>(capture.frames.size()), ""});
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -20,9 +20,12 @@
 //           against the floor's own disparity where it has any (furniture in
 //           front of a wall base is not a contact); the ceiling's height is
 //           estimated from columns that see both contacts of one wall.
-//           A contacted column's wall pixels give no corner/edge/dense
-//           points: a level camera sees a vertical wall at one depth down a
-//           column, which the contact fixes; stereo there adds only noise.
+//           A level camera sees a vertical wall at one depth down a column.
+//           So the contact fixes the whole column (its wall pixels give no
+//           stereo points), and the wall's stereo can be checked without
+//           truth: it should agree down each column. By default
+//           (ContactUse::kWhereStereoFails) the capture uses contacts only
+//           where that check fails (plain paint), and stereo elsewhere.
 // Points get σ from the disparity error: σ_Z = Z²·σ_d/(f·B). Nothing is
 // interpolated where neither image has evidence.
 
@@ -54,6 +57,12 @@ struct StereoFrame {
   RigPose pose;
   int index = -1;
 };
+
+// When walls are placed from their floor/ceiling label edges (FramePointsOptions::contacts).
+enum class ContactUse { kOff, kWhereStereoFails, kAlways };
+// "off", "auto", "always"; parse throws InvalidArgument on anything else.
+const char* ContactUseName(ContactUse use);
+ContactUse ParseContactUse(const std::string& name);
 
 struct FramePointsOptions {
   DisparityOptions disparity = {.num_disparities_px = 80, .block_size_px = 5};
@@ -111,9 +120,15 @@ struct FramePointsOptions {
   double boundary_sigma_px = 0.3;  // 1σ of the wall disparity at the edge.
   // Contacts: every n-th column; the label must run this many pixels on both
   // sides of the transition; σ of the label edge's row (px).
-  // Off by default until it is better on every benchmark room (it helps
-  // textureless rooms, costs p02 widths: bench/results/survey.md).
-  bool use_contacts = false;
+  //   kOff               no contact points;
+  //   kWhereStereoFails  (default) the capture's wall stereo is checked
+  //                      first (stereo_check_* below): where it holds
+  //                      (textured walls) the points are exactly kOff's;
+  //                      where it fails (plain paint: SGBM matches noise),
+  //                      wall stereo points are dropped and the contacts
+  //                      place the walls (CapturePoints decides);
+  //   kAlways            contacts in every frame, beside the stereo points.
+  ContactUse contacts = ContactUse::kWhereStereoFails;
   int contact_col_step_px = 2;
   int contact_min_run_px = 4;
   double contact_sigma_px = 0.5;
@@ -124,6 +139,19 @@ struct FramePointsOptions {
   // exceeds the floor plane's by more than max(this, 15 %): something stands
   // in front of the wall base there.
   double contact_floor_tolerance_px = 1.0;
+  // The stereo check (kWhereStereoFails): a level camera sees a vertical
+  // wall at one depth down each image column, so a wall's valid disparities
+  // down a column should lie within max(this, 3 %) of their median. The
+  // capture's wall stereo is kept when at least stereo_check_min_agree of
+  // its wall pixels do, or when fewer than stereo_check_min_pixels could be
+  // compared (no evidence against it). Measured (bench/results/survey.md):
+  // textured walls 0.90–0.99 of pixels per capture, plain paint 0.35–0.49.
+  double stereo_check_tolerance_px = 0.5;
+  double stereo_check_min_agree = 0.7;
+  int stereo_check_min_pixels = 2000;
+  // …and the contacts replace it only when the capture has this many (a
+  // tilted hand-held camera, or wall bases out of view, give none).
+  int stereo_check_min_contacts = 100;
   // The ceiling's height above the floor when known; otherwise it is
   // estimated (see CeilingHeightFromSamples) and ceiling contacts wait for it.
   std::optional<double> ceiling_height_m;
@@ -160,6 +188,10 @@ struct FrameCues {
   int floor_contacts = 0;    // Wall/door–floor contact points.
   int floor_rejected = 0;    // Candidates whose floor disparity said "occluded".
   int ceiling_contacts = 0;  // Wall–ceiling contacts (rays until the height is known).
+  // The stereo check (FramePointsOptions::contacts): wall pixels compared
+  // with their column's median disparity, and how many agreed.
+  int stereo_checked = 0;
+  int stereo_agreed = 0;
   double dense_valid_fraction = NAN;  // Of labelled wall/door/window pixels.
   double seconds = 0.0;
 
@@ -221,6 +253,37 @@ struct FramePointsResult {
   DisparityResult disparity;
   // Contacts that wait for the ceiling's height (PendingContacts).
   PendingContacts contacts;
+  // ContactUse::kWhereStereoFails: `points` are the stereo alternative (as
+  // with kOff); these the contact one (contacts, no wall stereo points,
+  // boundaries at the contacts' depth). CapturePoints chooses.
+  std::vector<ClassPoint> contact_points;
+};
+
+// Gathers a capture's frames and, with ContactUse::kWhereStereoFails, picks
+// the wall cue for the whole capture: the contact alternative when the
+// frames' wall stereo, pooled, disagrees with their floor contacts (a room's
+// walls share their paint; pooling outvotes a frame whose "floor contacts"
+// are the tops of things in front of a wall), the stereo one otherwise.
+class CapturePoints {
+ public:
+  explicit CapturePoints(const FramePointsOptions& options) : options_(options) {}
+  // Takes the frame's points and contacts (the rest of `r` is left).
+  void Add(FramePointsResult& r);
+
+  struct Result {
+    std::vector<ClassPoint> points;
+    bool contacts_used = false;  // Contact points are among `points`.
+    std::string decision;        // Why, in a sentence (empty with kOff).
+    int stereo_checked = 0, stereo_agreed = 0;
+    ResolvedContacts contacts;   // Ceiling height and its provenance (points moved out).
+  };
+  Result Finish();
+
+ private:
+  FramePointsOptions options_;
+  std::vector<ClassPoint> stereo_points_, contact_points_;
+  PendingContacts pending_;
+  int stereo_checked_ = 0, stereo_agreed_ = 0;
 };
 
 // The ceiling's height from samples: the median of their densest cluster
@@ -254,6 +317,7 @@ struct CapturePointsResult {
   std::vector<ClassPoint> points;
   std::vector<FrameCues> frames;
   std::optional<CeilingHeight> ceiling;  // Estimated (or given) ceiling height.
+  std::string wall_cue;                  // CapturePoints::Result::decision.
   double seconds = 0.0;
 
   // "12 frames, 45123 points (wall 40000, door 3000, window 2123; corner 150,

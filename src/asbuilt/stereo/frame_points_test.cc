@@ -206,7 +206,7 @@ TEST(ComputeFramePoints, WallPointsLieOnTruthWallPlanes) {
 // and the height is the truth room height.
 TEST(ComputeFramePoints, ContactPointsLieOnTruthWallsAndGiveTheCeilingHeight) {
   FramePointsOptions options;
-  options.use_contacts = true;
+  options.contacts = ContactUse::kAlways;
   for (const std::string room : {"p01_rect_1door_2win", "p02_L_shape"}) {
     RoomFrames r = LoadRoom(room, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11});
     const Plan truth = ReadPlan(RoomDir(room) / "truth.json");
@@ -241,6 +241,40 @@ TEST(ComputeFramePoints, ContactPointsLieOnTruthWallsAndGiveTheCeilingHeight) {
     EXPECT_LE(Percentile(ceiling_off, 0.5), 0.02);
     EXPECT_LE(Percentile(ceiling_off, 0.9), 0.06);
   }
+}
+
+// The Blender rooms' walls carry texture: their stereo holds down each
+// column (the check measures 0.98–0.99 there), so the default contact use
+// keeps it and gives exactly the points of ContactUse::kOff.
+TEST(CapturePoints, KeepsWallStereoWhereItHoldsAndThenGivesTheStereoPoints) {
+  RoomFrames r = LoadRoom("p01_rect_1door_2win", {0, 3, 6, 9});
+  FramePointsOptions automatic, off;
+  ASSERT_EQ(automatic.contacts, ContactUse::kWhereStereoFails);
+  off.contacts = ContactUse::kOff;
+  CapturePoints gathered(automatic);
+  std::size_t off_points = 0, contact_points = 0;
+  for (const StereoFrame& f : r.frames) {
+    FramePointsResult a = ComputeFramePoints(f, automatic);
+    const FramePointsResult o = ComputeFramePoints(f, off);
+    ASSERT_GT(a.cues.stereo_checked, 1000) << f.index;
+    EXPECT_GE(static_cast<double>(a.cues.stereo_agreed) / a.cues.stereo_checked, 0.9) << a.cues.BriefReport();
+    EXPECT_EQ(a.points.size(), o.points.size()) << f.index;
+    contact_points += a.contact_points.size();
+    off_points += o.points.size();
+    gathered.Add(a);
+  }
+  EXPECT_GT(contact_points, 100u) << "the contact alternative is computed too";
+  CapturePoints::Result result = gathered.Finish();
+  EXPECT_FALSE(result.contacts_used) << result.decision;
+  EXPECT_EQ(result.points.size(), off_points);
+  EXPECT_NE(result.decision.find("walls placed by stereo"), std::string::npos) << result.decision;
+}
+
+TEST(ContactUse, NamesRoundTripAndBadNamesAreRefused) {
+  for (ContactUse use : {ContactUse::kOff, ContactUse::kWhereStereoFails, ContactUse::kAlways}) {
+    EXPECT_EQ(ParseContactUse(ContactUseName(use)), use);
+  }
+  EXPECT_THROW(ParseContactUse("sometimes"), InvalidArgument);
 }
 
 TEST(CeilingHeightFromSamples, TakesTheDenseClusterNotTheSpreadAbove) {
