@@ -65,6 +65,15 @@ void AddCommonFlags(CLI::App& app) {
                         "print debug messages");
 }
 
+void AddContactsOption(CLI::App& app, ContactUse* use) {
+  app.add_option_function<std::string>(
+         "--contacts", [use](const std::string& name) { *use = ParseContactUse(name); },
+         "walls placed from their floor/ceiling label edges (level rig at the capture's height): auto = only "
+         "where the walls' stereo fails its check (plain walls), always, off")
+      ->check(CLI::IsMember({"auto", "always", "off"}))
+      ->default_str(ContactUseName(*use));
+}
+
 std::vector<std::filesystem::path> ExpandFileArgs(const std::vector<std::string>& args,
                                                   const std::string& flag) {
   std::vector<std::filesystem::path> out;

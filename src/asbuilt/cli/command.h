@@ -17,6 +17,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "asbuilt/stereo/frame_points.h"
+
 namespace asbuilt::cli {
 
 // argv[0] is the command name ("validate"), the rest its arguments.
@@ -35,6 +37,10 @@ const Command* FindCommand(std::string_view name);
 // A CLI11 app for a command, with the common flags (--quiet, --verbose)
 // already added and wired to the logger.
 void AddCommonFlags(CLI::App& app);
+
+// --contacts auto|always|off (FramePointsOptions::contacts), shared by
+// survey and points.
+void AddContactsOption(CLI::App& app, ContactUse* use);
 
 // Thrown by Parse() after it printed the help text (main() exits 0).
 struct HelpPrinted {};

@@ -5,6 +5,7 @@
 #include <string>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "asbuilt/cli/command.h"
 #include "asbuilt/formats/capture.h"
@@ -19,7 +20,8 @@ int RunPointsCommand(int argc, char** argv) {
   CLI::App app(
       "Triangulate wall/door/window points from a stereo capture and left-view labels\n"
       "(DIR/NNN.png per frame index; DIR/right/NNN.png used when present). Cues: matched\n"
-      "contour corners, edges inside components, dense consistent disparity. Writes\n"
+      "contour corners, edges inside components, dense consistent disparity, opening\n"
+      "boundaries, and floor/ceiling contacts where the walls' stereo fails (--contacts). Writes\n"
       "OUT/points.txt (class x y z sigma_m source frame) and OUT/points.ply.",
       "asbuilt points");
   AddCommonFlags(app);
@@ -39,6 +41,7 @@ int RunPointsCommand(int argc, char** argv) {
   app.add_flag("--no-corners", no_corners, "skip contour corners");
   app.add_flag("--no-edges", no_edges, "skip edge points");
   app.add_flag("--no-dense", no_dense, "skip dense points");
+  AddContactsOption(app, &options.contacts);
   Parse(app, argc, argv);
   if (labels_dir.empty() == !use_capture_labels) {
     throw CLI::ValidationError("--labels", "give exactly one of --labels DIR or --use-capture-labels");
@@ -54,6 +57,7 @@ int RunPointsCommand(int argc, char** argv) {
   const CapturePointsResult result = ComputeCapturePoints(capture, labels, options, printer.Callback());
   printer.Finish();
   for (const FrameCues& f : result.frames) fmt::print(stderr, "  {}\n", f.BriefReport());
+  if (!result.wall_cue.empty()) spdlog::info("points: {}", result.wall_cue);
   if (result.points.empty()) {
     throw InputError(capture_path, "", "no point could be triangulated in any frame (no labelled wall, door or "
                                        "window with a valid disparity): check the labels and the stereo pair");

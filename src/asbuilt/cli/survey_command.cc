@@ -32,17 +32,11 @@ int RunSurveyCommand(int argc, char** argv) {
   app.add_option("--truth", truth, "truth plan to score against (default: truth.json beside the capture)");
   app.add_option("--epsilon-m", options.plan.epsilon_m, "wall collinearity tolerance ε (m)")->capture_default_str();
   app.add_option("--dense-stride", options.points.dense_stride_px, "keep every n-th dense pixel")->capture_default_str();
-  std::string contacts = ContactUseName(options.points.contacts);
-  app.add_option("--contacts", contacts,
-                 "walls placed from their floor/ceiling label edges (level rig at the capture's height): auto = "
-                 "only in frames whose wall stereo disagrees with them (plain walls), always, off")
-      ->check(CLI::IsMember({"auto", "always", "off"}))
-      ->capture_default_str();
+  AddContactsOption(app, &options.points.contacts);
   app.add_option("--report-frames", options.report_frames, "frames pictured in the report (0 = all)")
       ->capture_default_str();
   app.add_flag("--no-report", no_report, "skip report.html");
   Parse(app, argc, argv);
-  options.points.contacts = ParseContactUse(contacts);
   if (!model.empty()) options.model_path = model;
   if (!labels_dir.empty()) options.labels_dir = labels_dir;
   if (!truth.empty()) options.truth_path = truth;

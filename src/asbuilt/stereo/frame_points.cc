@@ -457,7 +457,9 @@ void FramePointsOptions::Check() const {
 std::string FrameCues::CarriedBy() const {
   std::string out;
   auto add = [&](bool on, const char* name) {
-    if (on) out += (out.empty() ? "" : "+") + std::string(name);
+    if (!on) return;
+    if (!out.empty()) out += '+';
+    out += name;
   };
   add(corners_matched > 0, "corner");
   add(edge_points > 0, "edge");
