@@ -3,10 +3,12 @@
 #include <cmath>
 #include <filesystem>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "asbuilt/render/capture_render.h"
 #include "asbuilt/scene/procedural.h"
+#include "asbuilt/seg/segmenter.h"
 #include "asbuilt/util/file.h"
 
 namespace asbuilt {
@@ -60,8 +62,33 @@ TEST(RunSurvey, ExactLabelsOnBlenderLShapeMeasureOpeningWidths) {
   EXPECT_LE(s.window_width.Max().value_or(1), 0.02) << s.Table();
   EXPECT_LE(s.opening_width.Median().value_or(1), 0.02) << s.Table();
   // The hinge side of the open door is hidden by its leaf (no label edge on
-  // the wall there): 7 % today, was 63 %.
-  EXPECT_LE(s.door_width.Max().value_or(1), 0.10) << s.Table();
+  // the wall there); its width comes from the leaf: 4.3 % today, 7.0 % from
+  // the points' extent, 63 % before the boundary points.
+  EXPECT_LE(s.door_width.Max().value_or(1), 0.06) << s.Table();
+  EXPECT_EQ(r.summary.plan.door_leaves, 1);
+}
+
+// Issue 9's accuracy targets on the Blender rooms with the shipped segmenter,
+// as a user with a real camera would run it (no labels given): wall length
+// error median ≤ 2 %, max ≤ 5 %; opening width median ≤ 3 %; every wall and
+// opening found.
+TEST(RunSurvey, ShippedModelOnBlenderRoomsMeetsTheTargets) {
+  if (!SegmenterAvailable() || !fs::exists(DefaultModelPath())) {
+    GTEST_SKIP() << "no LibTorch in this build, or no shipped model";
+  }
+  for (const char* room : {"p01_rect_1door_2win", "p02_L_shape"}) {
+    const fs::path out = fs::temp_directory_path() / fmt::format("asbuilt_survey_model_{}", room);
+    fs::remove_all(out);
+    SurveyResult r = RunSurvey(Room(room) / "capture.json", out, {.write_report = false, .report_frames = 1});
+    ASSERT_TRUE(r.summary.score.has_value()) << room;
+    const PlanScore& s = *r.summary.score;
+    EXPECT_EQ(s.walls.matched, s.walls.truth) << room << "\n" << s.Table();
+    EXPECT_LE(s.wall_length.Median().value_or(1), 0.02) << room << "\n" << s.Table();
+    EXPECT_LE(s.wall_length.Max().value_or(1), 0.05) << room << "\n" << s.Table();
+    EXPECT_EQ(s.doors.matched + s.windows.matched, s.doors.truth + s.windows.truth) << room << "\n" << s.Table();
+    EXPECT_LE(s.opening_width.Median().value_or(1), 0.03) << room << "\n" << s.Table();
+    fs::remove_all(out);
+  }
 }
 
 // asbuilt's own random rooms have plain painted walls: SGBM matches render

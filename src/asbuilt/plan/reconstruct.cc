@@ -6,6 +6,8 @@
 #include <cmath>
 #include <functional>
 #include <numeric>
+#include <unordered_map>
+#include <numbers>
 #include <random>
 
 #include <Eigen/Eigenvalues>
@@ -176,6 +178,106 @@ EdgePair BoundaryEdges(const std::vector<double>& ts, double a, double b, double
     out.from_boundary_b = true;
   }
   return out;
+}
+
+// An open door leaf in plan: door points in front of the wall along one
+// line that meets the wall inside one of `hinge_windows` (t ranges along the
+// wall) at 15°–165° and does not run along a viewing ray (depth noise smears
+// a patch of points along its rays); RANSAC with a 2 cm band, then a total
+// least squares refit. `width` is the leaf's extent from the wall to its
+// free end (99th percentile). nullopt when no such line is seen whole.
+struct Leaf {
+  double t_hinge = 0;
+  double width = 0;
+  int points = 0;
+  std::vector<Vec2> inliers;
+
+  // The leaf's reach from a hinge known on the wall (98th percentile).
+  double WidthFrom(const Vec2& hinge) const {
+    std::vector<double> r;
+    for (const Vec2& p : inliers) r.push_back((p - hinge).norm());
+    std::sort(r.begin(), r.end());
+    return Quantile(r, 0.98);
+  }
+};
+std::optional<Leaf> FindLeaf(std::vector<Vec2> pts, const Vec2& wall_start, const Vec2& wall_dir,
+                             const std::vector<std::pair<double, double>>& hinge_windows,
+                             const std::optional<Vec2>& viewpoint, bool front_only, const PlanOptions& o) {
+  // front_only: a leaf hides what lies behind it from the rig: keep, per 0.5° of
+  // bearing from the viewpoint, the door points within 6 cm of the nearest
+  // tenth (what a glass leaf lets the cameras see lies behind it; the tenth,
+  // not the nearest, because stereo depth scatters by centimetres).
+  if (front_only && viewpoint && !pts.empty()) {
+    constexpr double kBinRad = 0.5 * std::numbers::pi / 180.0;
+    std::unordered_map<long, std::vector<double>> ranges;
+    auto bin = [&](const Vec2& p) {
+      return static_cast<long>(std::floor(std::atan2(p.y() - viewpoint->y(), p.x() - viewpoint->x()) / kBinRad));
+    };
+    for (const Vec2& p : pts) ranges[bin(p)].push_back((p - *viewpoint).norm());
+    std::unordered_map<long, double> front;
+    for (auto& [b, r] : ranges) {
+      std::sort(r.begin(), r.end());
+      front[b] = Quantile(r, 0.1);
+    }
+    std::erase_if(pts, [&](const Vec2& p) { return (p - *viewpoint).norm() > front[bin(p)] + 0.06; });
+  }
+  if (static_cast<int>(pts.size()) < o.leaf_min_points) return std::nullopt;
+  constexpr double kBand = 0.02;
+  const double min_sin = std::sin(DegToRad(15.0)), min_ray_sin = std::sin(DegToRad(10.0));
+  const Vec2 n_wall(-wall_dir.y(), wall_dir.x());
+  // Where the line through p along d meets the wall, as t; NaN if it may not
+  // be a leaf.
+  auto hinge_t = [&](const Vec2& p, const Vec2& d) {
+    if (std::abs(d.x() * wall_dir.y() - d.y() * wall_dir.x()) < min_sin) return static_cast<double>(NAN);
+    if (viewpoint) {
+      const Vec2 ray = (p - *viewpoint).normalized();
+      if (std::abs(d.x() * ray.y() - d.y() * ray.x()) < min_ray_sin) return static_cast<double>(NAN);
+    }
+    const Vec2 h = p - n_wall.dot(p - wall_start) / n_wall.dot(d) * d;
+    const double t = wall_dir.dot(h - wall_start);
+    for (const auto& [lo, hi] : hinge_windows) {
+      if (t >= lo && t <= hi) return t;
+    }
+    return static_cast<double>(NAN);
+  };
+  std::mt19937_64 rng(o.seed + 17);
+  std::uniform_int_distribution<std::size_t> pick(0, pts.size() - 1);
+  std::vector<int> best;
+  for (int it = 0; it < 500; ++it) {
+    const Vec2 p = pts[pick(rng)], q = pts[pick(rng)];
+    if ((q - p).norm() < 0.2) continue;
+    const Vec2 d = (q - p).normalized(), n(-d.y(), d.x());
+    if (!std::isfinite(hinge_t(p, d))) continue;
+    std::vector<int> in;
+    for (int i = 0; i < static_cast<int>(pts.size()); ++i) {
+      if (std::abs(n.dot(pts[i] - p)) <= kBand) in.push_back(i);
+    }
+    if (in.size() > best.size()) best = std::move(in);
+  }
+  if (static_cast<int>(best.size()) < o.leaf_min_points) return std::nullopt;
+  Vec2 c = Vec2::Zero();
+  for (int i : best) c += pts[i];
+  c /= best.size();
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (int i : best) cov += (pts[i] - c) * (pts[i] - c).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+  const Vec2 d = eig.eigenvectors().col(1);
+  Leaf leaf;
+  leaf.t_hinge = hinge_t(c, d);
+  if (!std::isfinite(leaf.t_hinge)) return std::nullopt;
+  const Vec2 hinge = wall_start + leaf.t_hinge * wall_dir;
+  std::vector<double> from_hinge;
+  for (int i : best) from_hinge.push_back(std::abs(d.dot(pts[i] - hinge)));
+  std::sort(from_hinge.begin(), from_hinge.end());
+  leaf.width = Quantile(from_hinge, 0.98);
+  leaf.points = static_cast<int>(best.size());
+  for (int i : best) leaf.inliers.push_back(pts[i]);
+  const double span = Quantile(from_hinge, 0.98) - Quantile(from_hinge, 0.01);
+  spdlog::debug("plan: open leaf: {} of {} points, hinge at t = {:.3f}, width {:.3f} m, {:.3f} m of it seen",
+                best.size(), pts.size(), leaf.t_hinge, leaf.width, span);
+  // The free end must be seen, and most of the leaf with it.
+  if (span < 0.5 * leaf.width) return std::nullopt;
+  return leaf;
 }
 
 struct Pt {
@@ -644,9 +746,11 @@ std::string PlanSummary::BriefReport() const {
   std::string dirs;
   for (double d : sorted) dirs += fmt::format("{}{:.1f}°", dirs.empty() ? "" : "/", d);
   return fmt::format(
-      "{} walls ({} inferred), {} openings, {}, {}, {}directions {}, {} of {} wall points on walls, rms {}, "
+      "{} walls ({} inferred), {} openings{}, {}, {}, {}directions {}, {} of {} wall points on walls, rms {}, "
       "{:.3f} s",
-      walls, inferred_walls, openings, closed ? "closed" : "NOT closed",
+      walls, inferred_walls, openings,
+      door_leaves > 0 ? fmt::format(" ({} door width(s) from an open leaf)", door_leaves) : std::string(),
+      closed ? "closed" : "NOT closed",
       area_m2 >= 0 ? fmt::format("{:.2f} m²", area_m2) : std::string("no area"), manhattan ? "Manhattan frame, " : "",
       dirs.empty() ? "none" : dirs, wall_inliers, wall_points,
       rms_residual_m >= 0 ? fmt::format("{:.3f} m", rms_residual_m) : std::string("n/a"), seconds);
@@ -971,6 +1075,23 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
     bool boundary;  // A label edge on the wall surface (PointSource::kBoundary).
   };
   std::vector<std::vector<OpeningPoint>> per_wall_kind(2 * n);
+  // Door points standing in front of each wall: open leaves (FindLeaf).
+  std::vector<std::vector<Vec2>> leaf_pts(n);
+  for (const ClassPoint* p : opening_pts) {
+    if (p->label != LabelClass::kDoor) continue;
+    const Vec2 xy = p->position_m.head<2>();
+    for (int i = 0; i < n; ++i) {
+      const PlanWall& w = plan.walls[i];
+      const double len = w.Length();
+      if (len < 1e-9) continue;
+      const Vec2 d = (w.end - w.start) / len;
+      const double r = Vec2(-d.y(), d.x()).dot(xy - w.start), t = d.dot(xy - w.start);
+      if (r > o.opening_front_m && r <= o.leaf_max_distance_m && t > -o.leaf_max_distance_m &&
+          t < len + o.leaf_max_distance_m) {
+        leaf_pts[i].push_back(xy);
+      }
+    }
+  }
   for (const ClassPoint* p : opening_pts) {
     Vec2 xy = p->position_m.head<2>();
     double sigma = p->sigma_m > 0 ? p->sigma_m : o.nominal_sigma_m;
@@ -1053,7 +1174,63 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
       const double extent_var = mean_var / n_edge + spacing * spacing;
       // Label edges on the wall surface fix an edge better than the extent
       // of the opening's points (recessed glass, jambs, depth noise).
-      const EdgePair edges = BoundaryEdges(boundary_ts, extent_a, extent_b, extent_var, o);
+      EdgePair edges = BoundaryEdges(boundary_ts, extent_a, extent_b, extent_var, o);
+      // One edge seen on the wall, the other not: an open leaf hides it —
+      // the hinge side behind the leaf near its hinge, or the free side
+      // behind the leaf's free end. A leaf is as wide as its clear opening,
+      // so the unseen edge lies one leaf width from the seen one; the leaf
+      // must meet the wall at one of the two.
+      spdlog::debug("plan: wall {} {} group: extent [{:.3f}, {:.3f}], edges [{:.3f}{}, {:.3f}{}], {} boundary points",
+                    wi, door ? "door" : "window", extent_a, extent_b, edges.a, edges.from_boundary_a ? " (label edge)" : "",
+                    edges.b, edges.from_boundary_b ? " (label edge)" : "", boundary_ts.size());
+      if (door && edges.from_boundary_a != edges.from_boundary_b) {
+        std::vector<Vec2> near;
+        for (const Vec2& q : leaf_pts[wi]) {
+          const double t = d.dot(q - w.start);
+          if (t > extent_a - o.leaf_max_distance_m && t < extent_b + o.leaf_max_distance_m) near.push_back(q);
+        }
+        // The hinge is at the seen edge, or on the unseen side: beyond where
+        // the points stop (the leaf hides the jamb), or a little inside (the
+        // leaf, seen past the jamb, lends the wall door points).
+        constexpr double kHingeTolerance = 0.15, kInside = 0.3;
+        const bool unseen_b = edges.from_boundary_a;
+        const double clear_seen = unseen_b ? edges.a + casing : edges.b - casing;
+        const double extent_unseen = unseen_b ? extent_b - casing : extent_a + casing;
+        const double beyond = o.leaf_max_distance_m;
+        const std::vector<std::pair<double, double>> windows = {
+            {clear_seen - kHingeTolerance, clear_seen + kHingeTolerance},
+            unseen_b ? std::pair{extent_unseen - kInside, extent_unseen + beyond}
+                     : std::pair{extent_unseen - beyond, extent_unseen + kInside}};
+        // All of the door's points first; then, if that gave no leaf that
+        // fits the opening, only the front ones (a glass leaf shows what is
+        // behind it).
+        const std::optional<Vec2> view =
+            o.viewpoint_m ? std::optional<Vec2>(o.viewpoint_m->head<2>()) : std::nullopt;
+        for (const bool front_only : {false, true}) {
+          const std::optional<Leaf> leaf = FindLeaf(near, w.start, d, windows, view, front_only, o);
+          if (!leaf) continue;
+          // Hinged at the seen edge: that point is known better than where
+          // the fitted line meets the wall.
+          const bool hinge_seen = std::abs(leaf->t_hinge - clear_seen) < kHingeTolerance;
+          const double width = hinge_seen ? leaf->WidthFrom(w.start + clear_seen * d) : leaf->width;
+          const double clear_unseen = unseen_b ? clear_seen + width : clear_seen - width;
+          if (width <= o.min_opening_width_m ||
+              (!hinge_seen && std::abs(leaf->t_hinge - clear_unseen) >= kHingeTolerance)) {
+            continue;
+          }
+          const double var = (unseen_b ? edges.var_a : edges.var_b) + 0.01 * 0.01;
+          if (unseen_b) {
+            edges.b = clear_unseen + casing, edges.var_b = var;
+          } else {
+            edges.a = clear_unseen - casing, edges.var_a = var;
+          }
+          ++s.door_leaves;
+          spdlog::debug("plan: wall {} door: width {:.3f} m from an open leaf ({} points{}, hinge at t = {:.3f}{})", wi,
+                        width, leaf->points, front_only ? ", front ones" : "", leaf->t_hinge,
+                        hinge_seen ? ", the seen edge" : "");
+          break;
+        }
+      }
       const double a = edges.a, b = edges.b;
       double t0 = std::clamp(a + casing, 0.0, len), t1 = std::clamp(b - casing, 0.0, len);
       if (t1 - t0 < o.min_opening_width_m) continue;

@@ -72,6 +72,12 @@ struct PlanOptions {
   double min_opening_width_m = 0.25;  // Narrower clear openings are dropped.
   double edge_level = 0.01;           // Opening extent: 2 cm bins with at least this fraction of a full bin.
   int min_boundary_points = 4;        // Label-edge points needed per side to measure a width from them.
+  // An open door's leaf hides its hinge-side edge from a rig in the room;
+  // its width then comes from the leaf (door points standing up to
+  // leaf_max_distance_m in front of the wall, along one line: a leaf is as
+  // wide as its clear opening), measured from the edge that is seen.
+  double leaf_max_distance_m = 1.5;
+  int leaf_min_points = 20;
   int max_independent_points = 400;   // Dense points are correlated: cap the points a ± assumes.
   std::optional<Vec3> viewpoint_m;    // Capture centre (rig position), if known; improves openings.
   std::uint64_t seed = 1;             // RANSAC sampling.
@@ -90,6 +96,7 @@ struct PlanSummary {
   int walls = 0;
   int inferred_walls = 0;      // Connecting walls with no points of their own.
   int openings = 0;
+  int door_leaves = 0;         // Door widths taken from an open leaf (hinge side hidden).
   bool closed = false;         // Walls form a closed room polygon.
   bool manhattan = false;      // A Manhattan frame was found and used.
   std::vector<double> dominant_directions_deg;  // In [0, 180).

@@ -274,6 +274,45 @@ TEST(ReconstructPlan, AnOpenLeafDoesNotWidenTheDoor) {
   EXPECT_LE(s.door_width.Max().value_or(1), before + 0.02) << s.Table();
 }
 
+// An open leaf hides its hinge-side jamb from the rig: no label edge is seen
+// there and the door's points stop short. A leaf is as wide as its clear
+// opening, so the width is the leaf's, measured from the edge that is seen.
+TEST(ReconstructPlan, AnOpenLeafHidingTheHingeSideGivesTheDoorItsWidth) {
+  const Plan truth = Rectangle();
+  const PlanOpening& door = truth.openings[0];
+  const PlanWall& wall = truth.walls[door.wall];
+  const Vec2 along = (wall.end - wall.start).normalized(), inward(-along.y(), along.x());
+  SampleOptions sample{.outlier_fraction = 0};
+  const Vec3 view = SampleViewpoint(truth, sample);
+  std::vector<ClassPoint> points = SamplePointsFromPlan(truth, sample, 6);
+  // Hidden by the leaf: the door's points within 35 cm of the hinge (at the
+  // door's start), and that side's label edge.
+  std::erase_if(points, [&](const ClassPoint& p) {
+    return p.label == LabelClass::kDoor && along.dot(p.position_m.head<2>() - door.start) < 0.35;
+  });
+  for (const ClassPoint& p : BoundaryPoints(truth, view, 0.02)) {
+    const double t = along.dot(p.position_m.head<2>() - door.start);
+    if (p.label != LabelClass::kDoor || t > 0.5) points.push_back(p);
+  }
+  const PlanScore hidden = ScorePlan(ReconstructPlan(points, {.viewpoint_m = view}).plan, truth);
+  // The leaf: as wide as the opening, hinged at its start, swung 70° into the
+  // room; points σ 1 cm, 1.2 m tall.
+  const double width = (door.end - door.start).norm();
+  const Vec2 leaf = std::cos(DegToRad(70.0)) * along + std::sin(DegToRad(70.0)) * inward;
+  for (double s = 0.03; s < width; s += 0.01) {
+    for (double z = 0.1; z < 1.3; z += 0.1) {
+      const Vec2 xy = door.start + s * leaf + 0.01 * std::sin(37 * s + 11 * z) * Vec2(-leaf.y(), leaf.x());
+      points.push_back({LabelClass::kDoor, Vec3(xy.x(), xy.y(), z), 0.01, PointSource::kDense, 0});
+    }
+  }
+  const PlanResult r = ReconstructPlan(points, {.viewpoint_m = view});
+  const PlanScore s = ScorePlan(r.plan, truth);
+  EXPECT_GT(hidden.door_width.Max().value_or(1), 0.2) << hidden.Table();
+  EXPECT_EQ(r.summary.door_leaves, 1);
+  EXPECT_EQ(s.doors.matched, 1) << s.Table();
+  EXPECT_LE(s.door_width.Max().value_or(1), 0.03) << s.Table();
+}
+
 TEST(ReconstructPlan, KeepsNonManhattanWallsAtTheirAngle) {
   Plan truth = Trapezoid();
   PlanResult r = ReconstructPlan(SamplePointsFromPlan(truth, {}, 3), {.seed = 3});
