@@ -261,8 +261,8 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
 // The stereo check (FramePointsOptions::contacts): a level camera sees a
 // vertical wall at one depth down each image column, so a wall's valid
 // disparities down a column should agree with their median. Textured walls
-// do (0.90–0.99 of pixels on the benchmark rooms); on plain paint SGBM
-// matches noise and they scatter (0.35–0.49). Counts the wall pixels of
+// do (0.87–0.99 of pixels on the benchmark rooms); on plain paint SGBM
+// matches noise and they scatter (0.30–0.42). Counts the wall pixels of
 // columns with at least kMinRun of them, and those within max(tolerance,
 // 3 %) of their column's median (cues.stereo_checked/agreed).
 void CheckWallStereo(const StereoFrame& frame, const FramePointsOptions& options, const DisparityResult& disparity,

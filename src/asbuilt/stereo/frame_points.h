@@ -145,7 +145,7 @@ struct FramePointsOptions {
   // capture's wall stereo is kept when at least stereo_check_min_agree of
   // its wall pixels do, or when fewer than stereo_check_min_pixels could be
   // compared (no evidence against it). Measured (bench/results/survey.md):
-  // textured walls 0.90–0.99 of pixels per capture, plain paint 0.35–0.49.
+  // textured walls 0.87–0.99 of pixels per capture, plain paint 0.30–0.42.
   double stereo_check_tolerance_px = 0.5;
   double stereo_check_min_agree = 0.7;
   int stereo_check_min_pixels = 2000;
@@ -260,10 +260,10 @@ struct FramePointsResult {
 };
 
 // Gathers a capture's frames and, with ContactUse::kWhereStereoFails, picks
-// the wall cue for the whole capture: the contact alternative when the
-// frames' wall stereo, pooled, disagrees with their floor contacts (a room's
-// walls share their paint; pooling outvotes a frame whose "floor contacts"
-// are the tops of things in front of a wall), the stereo one otherwise.
+// the wall cue for the whole capture (a room's walls share their paint): the
+// contact alternative when the frames' wall stereo, pooled, fails the column
+// check (FramePointsOptions::stereo_check_*) and there are contacts to
+// replace it; the stereo alternative otherwise.
 class CapturePoints {
  public:
   explicit CapturePoints(const FramePointsOptions& options) : options_(options) {}
