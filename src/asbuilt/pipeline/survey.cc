@@ -258,6 +258,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   std::vector<ReportFrame> report_frames;
   std::vector<Vec2> rigs;
   CapturePoints gathered(options.points);
+  std::vector<FrameCues> contact_cues;  // Each frame's contact alternative (--contacts auto).
   Vec3 rig_sum = Vec3::Zero();
   int done = 0;
   const int total = static_cast<int>(capture.frames.size());
@@ -275,6 +276,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
     add_stage("corners + points", std::max(0.0, frame_seconds - r.disparity.seconds));
     gathered.Add(r);
     summary.frame_cues.push_back(r.cues);
+    contact_cues.push_back(r.contact_cues);
     rigs.push_back(frame.position_m.head<2>());
     rig_sum += frame.position_m;
     if (options.report_frames == 0 || static_cast<int>(report_frames.size()) < options.report_frames) {
@@ -309,6 +311,13 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   points = std::move(gathered_points.points);
   summary.wall_cue = gathered_points.decision;
   if (!summary.wall_cue.empty()) spdlog::info("survey: {}", summary.wall_cue);
+  if (gathered_points.contacts_used && options.points.contacts == ContactUse::kWhereStereoFails) {
+    // The frames' cues as the points were chosen: the contact alternative's.
+    for (std::size_t i = 0; i < summary.frame_cues.size(); ++i) {
+      summary.frame_cues[i] = contact_cues[i];
+      if (i < report_frames.size()) report_frames[i].cues = contact_cues[i].BriefReport();
+    }
+  }
   if (gathered_points.contacts_used) {
     const ResolvedContacts& contacts = gathered_points.contacts;
     spdlog::info("survey: ceiling height {} ({}); {} floor contact(s) rejected as tops of things before a wall",

@@ -794,13 +794,14 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
       FramePointsPass(frame, options, /*contacts=*/false, /*wall_stereo=*/true, &with_contacts.disparity);
   result.contact_points = std::move(with_contacts.points);
   result.contacts = std::move(with_contacts.contacts);
-  const FrameCues& c = with_contacts.cues;
-  result.cues.floor_contacts = c.floor_contacts;
-  result.cues.floor_rejected = c.floor_rejected;
-  result.cues.ceiling_contacts = c.ceiling_contacts;
-  result.cues.stereo_checked = c.stereo_checked;
-  result.cues.stereo_agreed = c.stereo_agreed;
-  result.cues.seconds += c.seconds;
+  // Each alternative's cues say what it found; both carry the check and the
+  // time of both passes.
+  const double seconds = result.cues.seconds + with_contacts.cues.seconds;
+  result.cues.stereo_checked = with_contacts.cues.stereo_checked;
+  result.cues.stereo_agreed = with_contacts.cues.stereo_agreed;
+  result.cues.seconds = seconds;
+  result.contact_cues = with_contacts.cues;
+  result.contact_cues.seconds = seconds;
   return result;
 }
 
@@ -961,6 +962,7 @@ CapturePointsResult ComputeCapturePoints(const Capture& capture, const LabelProv
   }
   CapturePointsResult result;
   CapturePoints gathered(options);
+  std::vector<FrameCues> contact_cues;  // Each frame's contact alternative (kWhereStereoFails).
   int done = 0;
   for (const CaptureFrame& frame : capture.frames) {
     ReportProgress(progress, {"points", done, static_cast<std::int64_t>(capture.frames.size()), ""});
@@ -968,9 +970,11 @@ CapturePointsResult ComputeCapturePoints(const Capture& capture, const LabelProv
     FramePointsResult r = ComputeFramePoints(stereo, options);
     gathered.Add(r);
     result.frames.push_back(r.cues);
+    contact_cues.push_back(r.contact_cues);
     ++done;
   }
   CapturePoints::Result finished = gathered.Finish();
+  if (finished.contacts_used && options.contacts == ContactUse::kWhereStereoFails) result.frames = contact_cues;
   result.points = std::move(finished.points);
   result.ceiling = finished.contacts.ceiling;
   result.wall_cue = finished.decision;

@@ -257,6 +257,7 @@ struct FramePointsResult {
   // with kOff); these the contact one (contacts, no wall stereo points,
   // boundaries at the contacts' depth). CapturePoints chooses.
   std::vector<ClassPoint> contact_points;
+  FrameCues contact_cues;  // What the contact alternative's pass found.
 };
 
 // Gathers a capture's frames and, with ContactUse::kWhereStereoFails, picks
