@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <string>
 #include <vector>
@@ -40,6 +41,13 @@ inline double PeakRssMiB() {
   rusage usage{};
   ::getrusage(RUSAGE_SELF, &usage);
   return usage.ru_maxrss / 1024.0;
+}
+
+// A positive integer from the environment, or `fallback` when it is unset
+// or not a positive integer.
+inline int EnvPositiveInt(const char* name, int fallback) {
+  const char* v = std::getenv(name);
+  return v != nullptr && std::atoi(v) > 0 ? std::atoi(v) : fallback;
 }
 
 // Where a program writes its section: argv[1] if given, else

@@ -137,12 +137,8 @@ int main(int argc, char** argv) {
   using namespace asbuilt;
   using namespace asbuilt::bench;
   const std::string results = ResultsPath(argc, argv, "rooms");
-  auto env_int = [](const char* name, int fallback) {
-    const char* v = std::getenv(name);
-    return v != nullptr && std::atoi(v) > 0 ? std::atoi(v) : fallback;
-  };
-  const int rooms = env_int("ASBUILT_BENCH_ROOMS", 8);
-  const int first_seed = env_int("ASBUILT_BENCH_ROOM_SEED", 5);
+  const int rooms = EnvPositiveInt("ASBUILT_BENCH_ROOMS", 8);
+  const int first_seed = EnvPositiveInt("ASBUILT_BENCH_ROOM_SEED", 5);
   const fs::path cache = fs::path(ASBUILT_BINARY_DIR) / "bench" / "rooms";
   const fs::path out = fs::temp_directory_path() / fmt::format("asbuilt_bench_rooms_{}", ::getpid());
 

@@ -136,12 +136,8 @@ int main(int argc, char** argv) {
   using namespace asbuilt;
   using namespace asbuilt::bench;
   const std::string results = ResultsPath(argc, argv, "survey");
-  auto env_int = [](const char* name, int fallback) {
-    const char* v = std::getenv(name);
-    return v != nullptr && std::atoi(v) > 0 ? std::atoi(v) : fallback;
-  };
-  const int repeats = env_int("ASBUILT_BENCH_REPEATS", 3);
-  const int model_repeats = env_int("ASBUILT_BENCH_MODEL_REPEATS", 1);
+  const int repeats = EnvPositiveInt("ASBUILT_BENCH_REPEATS", 3);
+  const int model_repeats = EnvPositiveInt("ASBUILT_BENCH_MODEL_REPEATS", 1);
   const fs::path dir = fs::path(ASBUILT_BINARY_DIR) / "bench" / "survey_capture";
   const fs::path out = fs::temp_directory_path() / fmt::format("asbuilt_bench_survey_{}", ::getpid());
   const double load_start = LoadAverage();
