@@ -788,19 +788,35 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
     case ContactUse::kWhereStereoFails:
       break;
   }
-  // Both alternatives; the capture decides between them (CapturePoints).
-  FramePointsResult with_contacts = FramePointsPass(frame, options, /*contacts=*/true, /*wall_stereo=*/false, nullptr);
-  FramePointsResult result =
-      FramePointsPass(frame, options, /*contacts=*/false, /*wall_stereo=*/true, &with_contacts.disparity);
-  result.contact_points = std::move(with_contacts.points);
-  result.contacts = std::move(with_contacts.contacts);
+  // Both alternatives from one disparity map; the capture decides between
+  // them (CapturePoints). Door and window corner, edge and dense points are
+  // the same in both, so the contact pass computes only what differs —
+  // contacts, the stereo check, boundaries at the contacts' depth — and
+  // takes those from the stereo pass.
+  FramePointsResult result = FramePointsPass(frame, options, /*contacts=*/false, /*wall_stereo=*/true, nullptr);
+  FramePointsOptions contact_options = options;
+  contact_options.use_corners = contact_options.use_edges = contact_options.use_dense = false;
+  FramePointsResult with_contacts =
+      FramePointsPass(frame, contact_options, /*contacts=*/true, /*wall_stereo=*/false, &result.disparity);
+  FrameCues& cues = with_contacts.cues;
+  for (const ClassPoint& p : result.points) {
+    if (p.label == LabelClass::kWall || p.source == PointSource::kBoundary) continue;
+    with_contacts.points.push_back(p);
+    cues.corners_matched += p.source == PointSource::kCorner;
+    cues.edge_points += p.source == PointSource::kEdge;
+    cues.dense_points += p.source == PointSource::kDense;
+  }
+  cues.corners_found = result.cues.corners_found;
+  cues.edge_candidates = result.cues.edge_candidates;
   // Each alternative's cues say what it found; both carry the check and the
   // time of both passes.
-  const double seconds = result.cues.seconds + with_contacts.cues.seconds;
-  result.cues.stereo_checked = with_contacts.cues.stereo_checked;
-  result.cues.stereo_agreed = with_contacts.cues.stereo_agreed;
+  const double seconds = result.cues.seconds + cues.seconds;
+  result.contact_points = std::move(with_contacts.points);
+  result.contacts = std::move(with_contacts.contacts);
+  result.cues.stereo_checked = cues.stereo_checked;
+  result.cues.stereo_agreed = cues.stereo_agreed;
   result.cues.seconds = seconds;
-  result.contact_cues = with_contacts.cues;
+  result.contact_cues = cues;
   result.contact_cues.seconds = seconds;
   return result;
 }
