@@ -6,9 +6,9 @@
 #include <cmath>
 #include <functional>
 #include <numeric>
-#include <unordered_map>
 #include <numbers>
 #include <random>
+#include <unordered_map>
 
 #include <Eigen/Eigenvalues>
 #include <fmt/format.h>
@@ -184,12 +184,12 @@ EdgePair BoundaryEdges(const std::vector<double>& ts, double a, double b, double
 // line that meets the wall inside one of `hinge_windows` (t ranges along the
 // wall) at 15°–165° and does not run along a viewing ray (depth noise smears
 // a patch of points along its rays); RANSAC with a 2 cm band, then a total
-// least squares refit. `width` is the leaf's extent from the wall to its
-// free end (99th percentile). nullopt when no such line is seen whole.
+// least squares refit. `width` is the leaf's extent from where its line
+// meets the wall to its free end (98th percentile). nullopt when no such
+// line is seen whole.
 struct Leaf {
   double t_hinge = 0;
   double width = 0;
-  int points = 0;
   std::vector<Vec2> inliers;
 
   // The leaf's reach from a hinge known on the wall (98th percentile).
@@ -270,9 +270,8 @@ std::optional<Leaf> FindLeaf(std::vector<Vec2> pts, const Vec2& wall_start, cons
   for (int i : best) from_hinge.push_back(std::abs(d.dot(pts[i] - hinge)));
   std::sort(from_hinge.begin(), from_hinge.end());
   leaf.width = Quantile(from_hinge, 0.98);
-  leaf.points = static_cast<int>(best.size());
   for (int i : best) leaf.inliers.push_back(pts[i]);
-  const double span = Quantile(from_hinge, 0.98) - Quantile(from_hinge, 0.01);
+  const double span = leaf.width - Quantile(from_hinge, 0.01);
   spdlog::debug("plan: open leaf: {} of {} points, hinge at t = {:.3f}, width {:.3f} m, {:.3f} m of it seen",
                 best.size(), pts.size(), leaf.t_hinge, leaf.width, span);
   // The free end must be seen, and most of the leaf with it.
@@ -1175,14 +1174,14 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
       // Label edges on the wall surface fix an edge better than the extent
       // of the opening's points (recessed glass, jambs, depth noise).
       EdgePair edges = BoundaryEdges(boundary_ts, extent_a, extent_b, extent_var, o);
+      spdlog::debug("plan: wall {} {} group: extent [{:.3f}, {:.3f}], edges [{:.3f}{}, {:.3f}{}], {} boundary points",
+                    wi, door ? "door" : "window", extent_a, extent_b, edges.a, edges.from_boundary_a ? " (label edge)" : "",
+                    edges.b, edges.from_boundary_b ? " (label edge)" : "", boundary_ts.size());
       // One edge seen on the wall, the other not: an open leaf hides it —
       // the hinge side behind the leaf near its hinge, or the free side
       // behind the leaf's free end. A leaf is as wide as its clear opening,
       // so the unseen edge lies one leaf width from the seen one; the leaf
       // must meet the wall at one of the two.
-      spdlog::debug("plan: wall {} {} group: extent [{:.3f}, {:.3f}], edges [{:.3f}{}, {:.3f}{}], {} boundary points",
-                    wi, door ? "door" : "window", extent_a, extent_b, edges.a, edges.from_boundary_a ? " (label edge)" : "",
-                    edges.b, edges.from_boundary_b ? " (label edge)" : "", boundary_ts.size());
       if (door && edges.from_boundary_a != edges.from_boundary_b) {
         std::vector<Vec2> near;
         for (const Vec2& q : leaf_pts[wi]) {
@@ -1226,7 +1225,7 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
           }
           ++s.door_leaves;
           spdlog::debug("plan: wall {} door: width {:.3f} m from an open leaf ({} points{}, hinge at t = {:.3f}{})", wi,
-                        width, leaf->points, front_only ? ", front ones" : "", leaf->t_hinge,
+                        width, leaf->inliers.size(), front_only ? ", front ones" : "", leaf->t_hinge,
                         hinge_seen ? ", the seen edge" : "");
           break;
         }
