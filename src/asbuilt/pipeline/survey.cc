@@ -258,7 +258,6 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   std::vector<ReportFrame> report_frames;
   std::vector<Vec2> rigs;
   CapturePoints gathered(options.points);
-  std::vector<FrameCues> contact_cues;  // Each frame's contact alternative (--contacts auto).
   Vec3 rig_sum = Vec3::Zero();
   int done = 0;
   const int total = static_cast<int>(capture.frames.size());
@@ -275,8 +274,6 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
     add_stage("disparity", r.disparity.seconds);
     add_stage("corners + points", std::max(0.0, frame_seconds - r.disparity.seconds));
     gathered.Add(r);
-    summary.frame_cues.push_back(r.cues);
-    contact_cues.push_back(r.contact_cues);
     rigs.push_back(frame.position_m.head<2>());
     rig_sum += frame.position_m;
     if (options.report_frames == 0 || static_cast<int>(report_frames.size()) < options.report_frames) {
@@ -289,7 +286,6 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
         rf.overlay_jpeg = EncodeJpeg(LabelOverlay(left_bgr, stereo.labels_left));
       }
       if (!r.disparity.disparity_px.empty()) rf.disparity_jpeg = EncodeJpeg(ColorizeDisparity(r.disparity.disparity_px));
-      rf.cues = r.cues.BriefReport();
       report_frames.push_back(std::move(rf));
       add_stage("report pictures", Since(t));
     }
@@ -311,13 +307,8 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   points = std::move(gathered_points.points);
   summary.wall_cue = gathered_points.decision;
   if (!summary.wall_cue.empty()) spdlog::info("survey: {}", summary.wall_cue);
-  if (gathered_points.contacts_used && options.points.contacts == ContactUse::kWhereStereoFails) {
-    // The frames' cues as the points were chosen: the contact alternative's.
-    for (std::size_t i = 0; i < summary.frame_cues.size(); ++i) {
-      summary.frame_cues[i] = contact_cues[i];
-      if (i < report_frames.size()) report_frames[i].cues = contact_cues[i].BriefReport();
-    }
-  }
+  summary.frame_cues = std::move(gathered_points.frames);
+  for (std::size_t i = 0; i < report_frames.size(); ++i) report_frames[i].cues = summary.frame_cues[i].BriefReport();
   if (gathered_points.contacts_used) {
     const ResolvedContacts& contacts = gathered_points.contacts;
     spdlog::info("survey: ceiling height {} ({}); {} floor contact(s) rejected as tops of things before a wall",

@@ -916,6 +916,8 @@ void CapturePoints::Add(FramePointsResult& r) {
   pending_.Append(std::move(r.contacts));
   stereo_checked_ += r.cues.stereo_checked;
   stereo_agreed_ += r.cues.stereo_agreed;
+  stereo_cues_.push_back(r.cues);
+  contact_cues_.push_back(r.contact_cues);
 }
 
 CapturePoints::Result CapturePoints::Finish() {
@@ -923,6 +925,7 @@ CapturePoints::Result CapturePoints::Finish() {
   switch (options_.contacts) {
     case ContactUse::kOff:
       out.points = std::move(stereo_points_);
+      out.frames = std::move(stereo_cues_);
       return out;
     case ContactUse::kAlways:
       out.points = std::move(stereo_points_);
@@ -943,6 +946,7 @@ CapturePoints::Result CapturePoints::Finish() {
             100 * agree, stereo_checked_, contacts);
       } else if (stereo_fails) {
         out.points = std::move(contact_points_);
+        out.frames = std::move(contact_cues_);
         out.contacts_used = true;
         out.decision = fmt::format(
             "walls placed by their floor/ceiling contacts: their stereo was consistent at only {:.0f} % of {} wall "
@@ -959,6 +963,7 @@ CapturePoints::Result CapturePoints::Finish() {
       break;
     }
   }
+  if (out.frames.empty()) out.frames = std::move(stereo_cues_);
   if (out.contacts_used) {
     out.contacts = pending_.Resolve(options_);
     out.points.insert(out.points.end(), out.contacts.points.begin(), out.contacts.points.end());
@@ -978,19 +983,16 @@ CapturePointsResult ComputeCapturePoints(const Capture& capture, const LabelProv
   }
   CapturePointsResult result;
   CapturePoints gathered(options);
-  std::vector<FrameCues> contact_cues;  // Each frame's contact alternative (kWhereStereoFails).
   int done = 0;
   for (const CaptureFrame& frame : capture.frames) {
     ReportProgress(progress, {"points", done, static_cast<std::int64_t>(capture.frames.size()), ""});
     const StereoFrame stereo = LoadStereoFrame(capture, frame, labels, rectifier ? &*rectifier : nullptr);
     FramePointsResult r = ComputeFramePoints(stereo, options);
     gathered.Add(r);
-    result.frames.push_back(r.cues);
-    contact_cues.push_back(r.contact_cues);
     ++done;
   }
   CapturePoints::Result finished = gathered.Finish();
-  if (finished.contacts_used && options.contacts == ContactUse::kWhereStereoFails) result.frames = contact_cues;
+  result.frames = std::move(finished.frames);
   result.points = std::move(finished.points);
   result.ceiling = finished.contacts.ceiling;
   result.wall_cue = finished.decision;

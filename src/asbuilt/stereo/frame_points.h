@@ -268,13 +268,14 @@ struct FramePointsResult {
 class CapturePoints {
  public:
   explicit CapturePoints(const FramePointsOptions& options) : options_(options) {}
-  // Takes the frame's points and contacts (the rest of `r` is left).
+  // Takes the frame's points, contacts and cues (the rest of `r` is left).
   void Add(FramePointsResult& r);
 
   struct Result {
     std::vector<ClassPoint> points;
     bool contacts_used = false;  // Contact points are among `points`.
     std::string decision;        // Why, in a sentence (empty with kOff).
+    std::vector<FrameCues> frames;  // Each frame's cues, of the alternative chosen.
     int stereo_checked = 0, stereo_agreed = 0;
     ResolvedContacts contacts;   // Ceiling height and its provenance (points moved out).
   };
@@ -283,6 +284,7 @@ class CapturePoints {
  private:
   FramePointsOptions options_;
   std::vector<ClassPoint> stereo_points_, contact_points_;
+  std::vector<FrameCues> stereo_cues_, contact_cues_;
   PendingContacts pending_;
   int stereo_checked_ = 0, stereo_agreed_ = 0;
 };
