@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
@@ -911,8 +912,12 @@ std::string CapturePointsResult::BriefReport() const {
 }
 
 void CapturePoints::Add(FramePointsResult& r) {
-  stereo_points_.insert(stereo_points_.end(), r.points.begin(), r.points.end());
-  contact_points_.insert(contact_points_.end(), r.contact_points.begin(), r.contact_points.end());
+  auto take = [](std::vector<ClassPoint>& from, std::vector<ClassPoint>& to) {
+    to.insert(to.end(), std::make_move_iterator(from.begin()), std::make_move_iterator(from.end()));
+    from.clear();
+  };
+  take(r.points, stereo_points_);
+  take(r.contact_points, contact_points_);
   pending_.Append(std::move(r.contacts));
   stereo_checked_ += r.cues.stereo_checked;
   stereo_agreed_ += r.cues.stereo_agreed;
