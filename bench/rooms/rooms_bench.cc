@@ -158,8 +158,9 @@ int main(int argc, char** argv) {
   double render_seconds = 0;
   for (int i = 0; i < rooms; ++i) {
     const int seed = first_seed + i;
-    const Scene scene = RandomScene({}, seed);
-    const fs::path dir = cache / fmt::format("seed{}", seed);
+    // The rig where a surveyor would set it: the spot that sees every wall.
+    const Scene scene = RandomScene({.rig_spot = RigSpot::kSurvey}, seed);
+    const fs::path dir = cache / fmt::format("survey-seed{}", seed);
     if (!fs::exists(dir / "capture.json")) {
       CaptureRenderOptions render;
       render.views = 12;

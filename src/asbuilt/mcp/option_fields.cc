@@ -81,6 +81,11 @@ std::vector<ToolField> RandomSceneOptionFields() {
       {.name = "turn_step_deg", .type = ArgType::kNumber,
        .description = "Rig yaw step; 360 / step views.", .exclusive_minimum = 0.0,
        .maximum = 360.0, .default_value = d.turn_step_deg, .cli_names = "--step"},
+      {.name = "rig_spot", .type = ArgType::kEnum,
+       .description = "Where the rig stands: random (anywhere 0.8 m clear of the walls, for "
+                      "training views) or survey (where a surveyor would: the spot that sees every "
+                      "wall, farthest from them).",
+       .choices = {"random", "survey"}, .default_value = RigSpotName(d.rig_spot)},
   };
 }
 
@@ -99,6 +104,7 @@ RandomSceneOptions RandomSceneOptionsFromArgs(const ToolArgs& a) {
   o.min_furniture = static_cast<int>(a.Integer("min_furniture"));
   o.max_furniture = static_cast<int>(a.Integer("max_furniture"));
   o.turn_step_deg = a.Number("turn_step_deg");
+  o.rig_spot = ParseRigSpot(a.String("rig_spot"));
   return o;
 }
 

@@ -154,6 +154,15 @@ bool IsRotated(const Room& room) {
 
 }  // namespace
 
+const char* RigSpotName(RigSpot spot) { return spot == RigSpot::kSurvey ? "survey" : "random"; }
+
+RigSpot ParseRigSpot(std::string_view name) {
+  for (RigSpot s : {RigSpot::kRandom, RigSpot::kSurvey}) {
+    if (name == RigSpotName(s)) return s;
+  }
+  throw InvalidArgument(fmt::format("rig spot \"{}\": expected random or survey", name));
+}
+
 void RandomSceneOptions::Check() const {
   CheckArgument(min_side_m >= 1.5, fmt::format("RandomSceneOptions.min_side_m = {}, must be >= 1.5", min_side_m));
   CheckArgument(max_side_m >= min_side_m,
@@ -218,6 +227,11 @@ Scene RandomScene(const RandomSceneOptions& options, std::uint64_t seed) {
   std::optional<Vec2> spot = InteriorPoint(rng, room.polygon, 0.8);
   if (!spot) spot = InteriorPoint(rng, room.polygon, 0.3);
   if (!spot) spot = PolygonCentroid(room.polygon);
+  if (options.rig_spot == RigSpot::kSurvey) {
+    // The random spot is drawn all the same, so the seed's furniture pieces,
+    // lights and sky stay the same (placed clear of this spot instead).
+    if (std::optional<Vec2> survey = SurveySpot(room.polygon)) spot = survey;
+  }
   scene.turn = TurnInPlace{.position_m = Vec3(spot->x(), spot->y(), std::min(rng.Uniform(1.2, 1.7), room.height_m - 0.3)),
                            .start_deg = rng.Uniform(0.0, options.turn_step_deg),
                            .step_deg = options.turn_step_deg,

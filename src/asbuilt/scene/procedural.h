@@ -4,18 +4,29 @@
 // Procedural rooms for synthetic training data: rectangular, L-shaped and
 // rotated rooms with 1–4 doors and windows on varied walls (several on one
 // wall, doors tight in corners), furniture that occludes walls, randomised
-// materials, lights and environment, and a turn-in-place rig. Every scene
+// materials, lights and environment, and a turn-in-place rig (anywhere in
+// the room for training views, or where a surveyor would stand). Every scene
 // passes ValidateScene. Deterministic: the same options and seed give the
 // same scene on any platform (own RNG, no std:: distributions).
 
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "asbuilt/scene/scene.h"
 #include "asbuilt/util/progress.h"
 
 namespace asbuilt {
+
+// Where the turn-in-place rig stands.
+enum class RigSpot {
+  kRandom,  // Anywhere at least 0.8 m from the walls: varied training views.
+  kSurvey,  // Where a surveyor sets the tripod: SurveySpot (scene.h), seeing every wall.
+};
+const char* RigSpotName(RigSpot spot);  // "random" / "survey"
+// Parses a RigSpotName; throws InvalidArgument naming the value otherwise.
+RigSpot ParseRigSpot(std::string_view name);
 
 struct RandomSceneOptions {
   double min_side_m = 2.5;            // Bounding-box sides of the room, metres.
@@ -31,6 +42,7 @@ struct RandomSceneOptions {
   int min_furniture = 2;              // Pieces tried per room (some may not fit).
   int max_furniture = 8;
   double turn_step_deg = 30.0;        // Rig yaw step; 360 / step views.
+  RigSpot rig_spot = RigSpot::kRandom;  // The same seed gives the same room either way.
   StereoRigSpec rig;                  // Image size, FOV, baseline of every scene.
 
   void Check() const;

@@ -82,6 +82,29 @@ TEST(RandomScene, CoversTheVarietyTheDatasetNeeds) {
   EXPECT_GT(windows, n / 2);
 }
 
+TEST(RandomScene, SurveyRigStandsWhereItSeesEveryWall) {
+  for (std::uint64_t seed = 0; seed < 60; ++seed) {
+    const Scene random = RandomScene({}, seed);
+    const Scene survey = RandomScene({.rig_spot = RigSpot::kSurvey}, seed);
+    ASSERT_THAT(ValidateScene(survey), ::testing::IsEmpty()) << "seed " << seed;
+    // The same room, openings and pieces; only the rig (and where the
+    // furniture keeps clear of it) differs.
+    EXPECT_EQ(survey.rooms[0].polygon, random.rooms[0].polygon) << "seed " << seed;
+    EXPECT_EQ(survey.rooms[0].openings.size(), random.rooms[0].openings.size()) << "seed " << seed;
+    EXPECT_EQ(survey.lights.size(), random.lights.size()) << "seed " << seed;
+    const Vec2 spot = survey.turn->position_m.head<2>();
+    EXPECT_TRUE(spot.isApprox(*SurveySpot(survey.rooms[0].polygon))) << "seed " << seed;
+    // In view of every wall: on the inner side of every wall's line.
+    const Room& r = survey.rooms[0];
+    for (int w = 0; w < WallCount(r); ++w) {
+      EXPECT_GT(-WallOutwardNormal(r, w).dot(spot - WallStart(r, w)), 0.5) << "seed " << seed << " wall " << w;
+    }
+  }
+  EXPECT_EQ(ParseRigSpot("survey"), RigSpot::kSurvey);
+  EXPECT_STREQ(RigSpotName(ParseRigSpot("random")), "random");
+  EXPECT_THROW(ParseRigSpot("middle"), InvalidArgument);
+}
+
 TEST(WriteRandomScenes, WritesOneValidFilePerSeed) {
   fs::path dir = fs::temp_directory_path() / ("asbuilt_random_scenes_" + std::to_string(::getpid()));
   fs::remove_all(dir);

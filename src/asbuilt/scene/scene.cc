@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include <fmt/format.h>
@@ -591,6 +592,50 @@ std::string Scene::ToString() const {
   return fmt::format("Scene({}: {} rooms, {} openings, {} furniture, {} lights, {} views)", name,
                      rooms.size(), openings, furniture.size(), lights.size(),
                      ResolveViewpoints(*this).size());
+}
+
+std::optional<Vec2> SurveySpot(const std::vector<Vec2>& polygon) {
+  const std::size_t n = polygon.size();
+  if (n < 3) return std::nullopt;
+  Vec2 lo = polygon[0], hi = polygon[0];
+  for (const Vec2& p : polygon) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  // Signed distance to the nearest wall line, positive on the inner (left)
+  // side of every wall: positive exactly inside the kernel.
+  auto clearance = [&](const Vec2& p) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2 d = (polygon[(i + 1) % n] - polygon[i]).normalized();
+      nearest = std::min(nearest, Cross(d, p - polygon[i]));
+    }
+    return nearest;
+  };
+  const double step = std::max(hi.x() - lo.x(), hi.y() - lo.y()) / 200.0;
+  if (!(step > 0)) return std::nullopt;
+  std::vector<std::pair<Vec2, double>> grid;
+  double best = 0;
+  for (double y = lo.y() + 0.5 * step; y < hi.y(); y += step) {
+    for (double x = lo.x() + 0.5 * step; x < hi.x(); x += step) {
+      const Vec2 p(x, y);
+      const double c = clearance(p);
+      if (c <= 0) continue;
+      grid.emplace_back(p, c);
+      best = std::max(best, c);
+    }
+  }
+  if (grid.empty()) return std::nullopt;
+  // A convex room's centroid is as clear as any grid point (on the ridge of a
+  // rectangle, at its middle): take it exactly. Else the clearest grid point,
+  // on an equal-clearance ridge the one nearest the centroid.
+  const Vec2 centroid = PolygonCentroid(polygon);
+  if (clearance(centroid) >= best - 1e-9) return centroid;
+  std::optional<Vec2> spot;
+  for (const auto& [p, c] : grid) {
+    if (c >= best - 1e-9 && (!spot || (p - centroid).squaredNorm() < (*spot - centroid).squaredNorm())) spot = p;
+  }
+  return spot;
 }
 
 }  // namespace asbuilt

@@ -193,6 +193,17 @@ std::string WallCompassName(const Room& room, int wall);
 bool PointInPolygon(const std::vector<Vec2>& polygon, const Vec2& point);
 // Centroid of the polygon's area (vertex mean for degenerate polygons).
 Vec2 PolygonCentroid(const std::vector<Vec2>& polygon);
+// Where a surveyor sets the tripod in a counter-clockwise room polygon: a
+// spot from which a turn sees every wall, as far from the walls as that
+// allows. It is the point of the polygon's kernel (the intersection of the
+// inner sides of all its walls' lines) farthest from the nearest of those
+// lines, searched on a grid of 1/200 of the room's extent (so within 0.4 %
+// of the extent), or the centroid when that is as far (every convex room).
+// So: a rectangle's centre; the middle of the square where an L's wings
+// meet. From there no wall is seen edge-on, and the far walls' floor and
+// ceiling edges are in view. std::nullopt when the kernel is empty: no one
+// spot sees every wall, so shoot from several.
+std::optional<Vec2> SurveySpot(const std::vector<Vec2>& polygon);
 
 }  // namespace asbuilt
 

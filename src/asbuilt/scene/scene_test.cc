@@ -146,6 +146,29 @@ TEST(PointInPolygon, HandlesAnLShape) {
   EXPECT_TRUE(PolygonCentroid({{0, 0}, {2, 0}, {2, 2}, {0, 2}}).isApprox(Vec2(1, 1)));
 }
 
+TEST(SurveySpot, StandsWhereEveryWallIsInView) {
+  // A rectangle longer than wide: its centre, exactly.
+  std::optional<Vec2> rect = SurveySpot({{0, 0}, {9, 0}, {9, 3}, {0, 3}});
+  ASSERT_TRUE(rect);
+  EXPECT_TRUE(rect->isApprox(Vec2(4.5, 1.5))) << rect->transpose();
+  // An L (wings 4 m wide, 8 m long): the middle of the square where they
+  // meet, the only place that sees both wings whole.
+  std::optional<Vec2> l = SurveySpot({{0, 0}, {8, 0}, {8, 4}, {4, 4}, {4, 8}, {0, 8}});
+  ASSERT_TRUE(l);
+  EXPECT_NEAR(l->x(), 2.0, 0.05);
+  EXPECT_NEAR(l->y(), 2.0, 0.05);
+  // Turned and moved, the spot turns and moves with it.
+  const Eigen::Rotation2Dd rot(0.4);
+  std::vector<Vec2> turned;
+  for (const Vec2& p : std::vector<Vec2>{{0, 0}, {8, 0}, {8, 4}, {4, 4}, {4, 8}, {0, 8}}) turned.push_back(rot * p + Vec2(3, -1));
+  std::optional<Vec2> t = SurveySpot(turned);
+  ASSERT_TRUE(t);
+  EXPECT_LT((*t - (rot * Vec2(2, 2) + Vec2(3, -1))).norm(), 0.08);
+  // A U (two wings joined by a bar) has no spot that sees all of it.
+  EXPECT_FALSE(SurveySpot({{0, 0}, {6, 0}, {6, 4}, {4, 4}, {4, 1}, {2, 1}, {2, 4}, {0, 4}}));
+  EXPECT_FALSE(SurveySpot({{0, 0}, {1, 0}}));
+}
+
 TEST(ValidateScene, RejectsOpenAndSelfIntersectingPolygons) {
   Scene s = SmallClassroom();
   s.rooms[0].polygon = {{0, 0}, {6, 0}, {6, 8}, {0, 8}, {0, 0}};

@@ -1382,8 +1382,11 @@ std::vector<Opening> BuildOpenings(const Request& r, const Room& room, std::vect
   return out;
 }
 
-// A rig spot inside the room: the centroid, or the interior point nearest it.
-Vec2 RigSpot(const std::vector<Vec2>& polygon) {
+// The turn's spot: where a surveyor would stand (SurveySpot: a rectangle's
+// centre, the meeting square of an L's wings); for a room no one spot sees
+// whole, the centroid or the interior point nearest it.
+Vec2 TurnSpot(const std::vector<Vec2>& polygon) {
+  if (std::optional<Vec2> spot = SurveySpot(polygon)) return *spot;
   Vec2 c = PolygonCentroid(polygon);
   if (PointInPolygon(polygon, c)) return c;
   Vec2 lo = polygon[0], hi = polygon[0];
@@ -1535,9 +1538,9 @@ SceneTextResult SceneFromText(std::string_view text, const SceneTextOptions& opt
     scene.materials.push_back(m);
   }
 
-  // Rig: turn in place at the room's centre.
+  // Rig: turn in place where a surveyor would stand.
   double rig_h = std::min(r.rig_height.value_or(options.rig_height_m), height - 0.2);
-  Vec2 spot = RigSpot(scene.rooms[0].polygon);
+  Vec2 spot = TurnSpot(scene.rooms[0].polygon);
   scene.turn = TurnInPlace{.position_m = Vec3(spot.x(), spot.y(), rig_h),
                            .start_deg = 0.0,
                            .step_deg = r.rig_step.value_or(options.turn_step_deg),
