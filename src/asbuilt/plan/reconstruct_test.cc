@@ -160,6 +160,48 @@ TEST(ReconstructPlan, MeetsTheAccuracyTargetsOnNoisyRoomsWithOutliers) {
               pool.openings_matched, pool.openings_truth);
 }
 
+// A wall seen only at its far end (furniture before the rest, 5.5 m of
+// 8 m): its neighbour's corner lies beyond any plausible extension, so the
+// ring is closed by a connector — which runs along the wall's own line. It
+// is that wall, measured on its line to the corner, not an inferred one.
+TEST(ReconstructPlan, AWallSeenOnlyAtItsFarEndReachesItsCorner) {
+  const Plan truth = PolygonPlan({{0, 0}, {8, 0}, {8, 3.6}, {0, 3.6}});
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const SampleOptions sample;
+    std::vector<ClassPoint> points = SamplePointsFromPlan(truth, sample, seed);
+    std::erase_if(points, [](const ClassPoint& p) { return p.position_m.y() < 0.3 && p.position_m.x() < 5.5; });
+    PlanOptions options{.viewpoint_m = SampleViewpoint(truth, sample), .seed = seed};
+    const PlanResult r = ReconstructPlan(points, options);
+    const PlanScore s = ScorePlan(r.plan, truth);
+    EXPECT_EQ(r.summary.inferred_walls, 0) << "seed " << seed;
+    EXPECT_EQ(s.walls.predicted, 4) << "seed " << seed << "\n" << s.Table();
+    EXPECT_EQ(s.walls.matched, 4) << "seed " << seed << "\n" << s.Table();
+    EXPECT_LE(*s.wall_length.Max(), 0.01) << "seed " << seed << "\n" << s.Table();
+  }
+}
+
+// In a Manhattan room a wall whose points fit 4° off (seen in part, past
+// furniture; its σ counts only the points' noise) is snapped square: its
+// corners stay put instead of moving by decimetres.
+TEST(ReconstructPlan, AWallFittedAFewDegreesOffInAManhattanRoomIsSnappedSquare) {
+  const Plan truth = PolygonPlan({{0, 0}, {6, 0}, {6, 2.6}, {2.6, 2.6}, {2.6, 5}, {0, 5}});
+  const SampleOptions sample;
+  std::vector<ClassPoint> points = SamplePointsFromPlan(truth, sample, 4);
+  const Eigen::Rotation2Dd tilt(DegToRad(4.0));
+  for (ClassPoint& p : points) {
+    // The east wall (2.6 m), turned 4° about its middle.
+    if (p.position_m.x() < 5.8) continue;
+    const Vec2 q = tilt * (p.position_m.head<2>() - Vec2(6, 1.3)) + Vec2(6, 1.3);
+    p.position_m.head<2>() = q;
+  }
+  PlanOptions options{.viewpoint_m = SampleViewpoint(truth, sample), .seed = 4};
+  const PlanResult r = ReconstructPlan(points, options);
+  const PlanScore s = ScorePlan(r.plan, truth);
+  EXPECT_TRUE(r.summary.manhattan);
+  EXPECT_EQ(s.walls.matched, 6) << s.Table();
+  EXPECT_LE(*s.wall_length.Max(), 0.01) << s.Table();
+}
+
 TEST(ReconstructPlan, ReportsUncertaintiesThatCoverTheErrors) {
   Plan truth = Rectangle();
   int covered = 0, total = 0;
