@@ -230,7 +230,16 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
       const double sigma = options.contact_sigma_px * std::hypot(h / below, h * above / (below * below));
       result->contacts.paired_floor.push_back({*floor_point, sample, sigma});
     } else if (floor_point) {
-      result->points.push_back(*floor_point);
+      bool topped = true;
+      for (int v = static_cast<int>(floor_row - 0.5); v >= 0 && topped; --v) topped = IsComponent(label_at(v, u));
+      if (topped) {
+        // The image's top edge (row −0.5) still shows the wall at depth z.
+        const double z = cam.fy * h / (floor_row - cam.cy);
+        const double rise = (cam.cy + 0.5) / cam.fy;
+        result->contacts.topped_floor.push_back({*floor_point, h + z * rise, floor_point->sigma_m * rise});
+      } else {
+        result->points.push_back(*floor_point);
+      }
     }
     if (!std::isfinite(ceiling_row)) continue;
     // The wall's stereo depth just below the contact gives a rough height
@@ -349,6 +358,7 @@ std::optional<CeilingHeight> CeilingHeightFromSamples(std::vector<double> sample
 void PendingContacts::Append(PendingContacts&& other) {
   ceiling_rays.insert(ceiling_rays.end(), other.ceiling_rays.begin(), other.ceiling_rays.end());
   paired_floor.insert(paired_floor.end(), other.paired_floor.begin(), other.paired_floor.end());
+  topped_floor.insert(topped_floor.end(), other.topped_floor.begin(), other.topped_floor.end());
   stereo_samples_m.insert(stereo_samples_m.end(), other.stereo_samples_m.begin(), other.stereo_samples_m.end());
   other = {};
 }
@@ -377,6 +387,13 @@ ResolvedContacts PendingContacts::Resolve(const FramePointsOptions& options) con
       out.points.push_back(f.point);
     } else {
       ++out.floor_rejected;
+    }
+  }
+  for (const ToppedFloor& f : topped_floor) {
+    if (out.ceiling && f.min_height_m > out.ceiling->height_m + std::max(0.05, 3 * f.sigma_m)) {
+      ++out.floor_rejected;
+    } else {
+      out.points.push_back(f.point);
     }
   }
   if (out.ceiling) {

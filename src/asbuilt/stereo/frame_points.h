@@ -221,7 +221,7 @@ struct ResolvedContacts {
   std::vector<ClassPoint> points;
   std::optional<CeilingHeight> ceiling;
   std::string how;            // "given", "from 812 of 950 columns …".
-  int floor_rejected = 0;     // Floor contacts that disagreed with the ceiling.
+  int floor_rejected = 0;     // Floor contacts that disagreed with the ceiling (paired or topped).
   int ceiling_unused = 0;     // Ceiling contacts left unused (no height).
 };
 
@@ -233,8 +233,18 @@ struct PendingContacts {
     double ceiling_sample_m;     // …and the ceiling height its column implies,
     double sample_sigma_m;       // with its σ from the rows.
   };
+  // A floor contact whose column shows the wall (or its openings) all the
+  // way up to the image's top edge: that wall is at least min_height_m tall.
+  // Taller than the ceiling, it is no wall's base but the top of something
+  // standing before a wall (a bed, a cabinet), projected far beyond it.
+  struct ToppedFloor {
+    ClassPoint point;
+    double min_height_m;
+    double sigma_m;
+  };
   std::vector<ContactRay> ceiling_rays;
   std::vector<PairedFloor> paired_floor;
+  std::vector<ToppedFloor> topped_floor;
   // Rougher heights, from the wall's stereo depth just below each ceiling
   // contact: the fallback when too few columns see both of a wall's edges.
   std::vector<double> stereo_samples_m;
@@ -242,7 +252,8 @@ struct PendingContacts {
   void Append(PendingContacts&& other);
   // The ceiling's height (options.ceiling_height_m when given, else the
   // densest cluster of the paired samples, else of the stereo ones); the
-  // paired floor contacts that agree with it and the ceiling contacts.
+  // paired floor contacts that agree with it, the topped ones it does not
+  // rule out, and the ceiling contacts.
   ResolvedContacts Resolve(const FramePointsOptions& options) const;
 };
 

@@ -293,6 +293,31 @@ TEST(CeilingHeightFromSamples, TakesTheDenseClusterNotTheSpreadAbove) {
   EXPECT_FALSE(CeilingHeightFromSamples(scattered).has_value());
 }
 
+// A floor contact whose column shows wall up to the image's top edge says
+// how tall that wall is at least: a "wall" taller than the ceiling is the top
+// of a bed or cabinet before it, projected metres beyond the room. Kept when
+// the ceiling allows it, or when there is no ceiling height to judge by.
+TEST(PendingContacts, RejectsToppedFloorContactsTallerThanTheCeiling) {
+  PendingContacts pending;
+  auto contact = [](double x) {
+    return ClassPoint{LabelClass::kWall, Vec3(x, 0, 0), 0.01, PointSource::kContact, 0};
+  };
+  for (int i = 0; i < 50; ++i) pending.paired_floor.push_back({contact(1.0), 2.60 + 0.001 * (i % 5 - 2), 0.005});
+  pending.topped_floor.push_back({contact(2.0), 2.40, 0.01});   // A wall seen up to 2.40 m: fine.
+  pending.topped_floor.push_back({contact(3.0), 2.63, 0.01});   // Within 5 cm: fine.
+  pending.topped_floor.push_back({contact(9.0), 8.20, 0.05});   // A bed's top, 8 m "tall".
+  const ResolvedContacts resolved = pending.Resolve({});
+  ASSERT_TRUE(resolved.ceiling.has_value());
+  EXPECT_NEAR(resolved.ceiling->height_m, 2.60, 0.002);
+  EXPECT_EQ(resolved.floor_rejected, 1);
+  EXPECT_EQ(resolved.points.size(), 52u);
+  for (const ClassPoint& p : resolved.points) EXPECT_LT(p.position_m.x(), 5.0);
+
+  PendingContacts unknown;  // No ceiling height: nothing to judge by.
+  unknown.topped_floor.push_back({contact(9.0), 8.20, 0.05});
+  EXPECT_EQ(unknown.Resolve({}).points.size(), 1u);
+}
+
 // Opening label edges land on the wall at the casing's outer edge — also
 // beside p02's open door leaf, whose silhouette against the wall is an
 // occlusion and must give no boundary points.
