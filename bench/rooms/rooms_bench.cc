@@ -2,7 +2,8 @@
 // "many seeds, rectangular, L-shaped, rotated, with furniture"), scored
 // against each scene's truth with the issue's figures: wall length error
 // median ≤ 2 %, max ≤ 5 %, opening width median ≤ 3 %, wall recall ≥ 95 %,
-// opening recall ≥ 90 %. Each room (`scene random --seed S`) is rendered
+// opening recall ≥ 90 %. Each room (`scene random --seed S --rig-spot
+// survey`: the rig where it sees every wall) is rendered
 // once as a 12-view 640×480 turn-in-place capture (kept under the build
 // folder) and surveyed three ways: the shipped model, exact labels, and
 // exact labels with stereo only (--contacts off, what survey did before it
@@ -200,12 +201,14 @@ int main(int argc, char** argv) {
 
   std::string md = "## survey on asbuilt's own random rooms (bench_rooms)\n\n";
   md += fmt::format(
-      "`asbuilt scene random --seed S` for S = {}…{}, each rendered by asbuilt as a 12-view 640×480 "
+      "`asbuilt scene random --seed S --rig-spot survey` for S = {}…{}: the rig where a surveyor would set the "
+      "tripod, the spot that sees every wall, farthest from them (a rectangle's centre, the square where an L's "
+      "wings meet). Each rendered by asbuilt as a 12-view 640×480 "
       "turn-in-place capture (4 spp) and surveyed; scored against the scene's truth. Cells: walls matched/truth, "
       "length error median / max; openings matched/truth, width error median; \"(contacts)\" where survey "
       "placed the walls by their floor/ceiling edges because their stereo failed its check. \"Walls seen\": truth walls "
       "of which the capture's wall pixels (exact depth) cover at least half the length; the rest cannot be measured "
-      "from the rig's one spot (the far wing of an L, walls behind furniture). Targets (issue 9): "
+      "from the rig's one spot (walls behind furniture). Targets (issue 9): "
       "wall length median ≤ 2 %, max ≤ 5 %, opening width median ≤ 3 %, wall recall ≥ 95 %, opening recall ≥ "
       "90 %.\n\n",
       first_seed, first_seed + rooms - 1);
