@@ -923,6 +923,31 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
   spdlog::debug("plan: viewpoint ({:.3f}, {:.3f})", view.x(), view.y());
   std::vector<Line> ring;
   for (Ordered& e : ordered) ring.push_back(std::move(e.line));
+  // A line seen between two pieces of one wall and wholly behind that wall's
+  // line was seen through the wall's openings (ground contacts outside a
+  // window, a neighbouring room through a door): not this room's wall. The
+  // pieces then meet and merge below. (One piece alone is no evidence: the
+  // end wall of an L's far wing lies behind the line of the cut wall.)
+  for (size_t i = 0; ring.size() > 3 && i < ring.size();) {
+    const Line& before = ring[(i + ring.size() - 1) % ring.size()];
+    const Line& after = ring[(i + 1) % ring.size()];
+    const Line& l = ring[i];
+    auto behind = [&](const Vec2& p) {
+      // Farther from the viewpoint than the wall's line along the ray to p.
+      const double den = before.Normal().dot(p - view);
+      if (std::abs(den) < 1e-9) return false;
+      const double s_line = before.Normal().dot(before.c - view) / den;
+      return s_line > 0 && s_line < 1 - 2 * o.epsilon_m / std::max(1e-9, (p - view).norm());
+    };
+    if (Collinear(before, after, o) && !Collinear(before, l, o) && behind(l.Start()) && behind(l.End()) &&
+        l.votes < strong) {
+      spdlog::debug("plan: dropped a line seen through a wall's openings: ({:.3f}, {:.3f}) → ({:.3f}, {:.3f})",
+                    l.Start().x(), l.Start().y(), l.End().x(), l.End().y());
+      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
+      continue;
+    }
+    ++i;
+  }
   // Merge neighbours that continue each other (one wall seen in pieces).
   for (bool merged = true; merged && ring.size() > 2;) {
     merged = false;

@@ -202,6 +202,30 @@ TEST(ReconstructPlan, AWallFittedAFewDegreesOffInAManhattanRoomIsSnappedSquare) 
   EXPECT_LE(*s.wall_length.Max(), 0.01) << s.Table();
 }
 
+// Through a wall's windows the rig sees outside; what it finds there (here
+// a line of points 1.9 m behind the wall, between two pieces of it) is not a
+// wall of the room: the pieces join into one wall.
+TEST(ReconstructPlan, ALineSeenThroughAWallsGapIsNotAWall) {
+  const Plan truth = PolygonPlan({{0, 0}, {8.8, 0}, {8.8, 3.1}, {0, 3.1}});
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const SampleOptions sample;
+    std::vector<ClassPoint> points = SamplePointsFromPlan(truth, sample, seed);
+    std::erase_if(points, [](const ClassPoint& p) {
+      return p.position_m.y() < 0.3 && p.position_m.x() > 1.9 && p.position_m.x() < 6.9;
+    });
+    for (int i = 0; i < 400; ++i) {
+      const double x = 3.9 + 1.3 * i / 400.0;
+      points.push_back({LabelClass::kWall, Vec3(x, -1.9 + 0.005 * ((i % 5) - 2), 0.0), 0.01, PointSource::kDense, 0});
+    }
+    PlanOptions options{.viewpoint_m = SampleViewpoint(truth, sample), .seed = seed};
+    const PlanResult r = ReconstructPlan(points, options);
+    const PlanScore s = ScorePlan(r.plan, truth);
+    EXPECT_EQ(s.walls.predicted, 4) << "seed " << seed << "\n" << s.Table();
+    EXPECT_EQ(s.walls.matched, 4) << "seed " << seed << "\n" << s.Table();
+    EXPECT_LE(*s.wall_length.Max(), 0.01) << "seed " << seed << "\n" << s.Table();
+  }
+}
+
 TEST(ReconstructPlan, ReportsUncertaintiesThatCoverTheErrors) {
   Plan truth = Rectangle();
   int covered = 0, total = 0;
