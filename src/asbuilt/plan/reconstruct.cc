@@ -1005,41 +1005,24 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
     c.t_min = -0.5 * gap.norm();
     c.t_max = 0.5 * gap.norm();
     c.z_top = 0.5 * (a.z_top + b.z_top);
-    closed.push_back(c);
-    ++s.inferred_walls;
-  }
-  // A connector that runs along a neighbour's line is that wall seen only in
-  // part (its points stop short of the corner, past furniture): the wall goes
-  // on to where its line meets the other neighbour — when that is where the
-  // other neighbour's points end — and no wall is inferred.
-  for (size_t i = 0; i < closed.size() && closed.size() > 3;) {
-    const size_t prev = (i + closed.size() - 1) % closed.size(), next = (i + 1) % closed.size();
-    const Line& c = closed[i];
-    Line& a = closed[prev];
-    Line& b = closed[next];
-    auto along = [&](const Line& l) {
-      return !l.inferred && std::abs(AngleDiffModPi(l.theta, c.theta)) <= DegToRad(3.0);
-    };
-    const bool meet = c.inferred && !a.inferred && !b.inferred &&
-                      std::abs(AngleDiffModPi(a.theta, b.theta)) > DegToRad(o.parallel_max_deg);
-    const std::optional<Vec2> x = meet ? Intersect(a, b) : std::nullopt;
-    bool absorbed = false;
+    // A connector along a neighbour's own line is that wall seen only in
+    // part (its points stop short of the corner, past furniture): the wall
+    // goes on to where its line meets the other neighbour — when that is
+    // where the other's points end — and no wall is inferred.
     if (x) {
       const double ta = a.Dir().dot(*x - a.c), tb = b.Dir().dot(*x - b.c);
+      auto along = [&](const Line& l) { return std::abs(AngleDiffModPi(l.theta, c.theta)) <= DegToRad(3.0); };
       if (along(b) && ta > a.t_min && ta < a.t_max + ext && tb < b.t_min) {
-        b.t_min = tb;
-        absorbed = true;
-      } else if (along(a) && tb > b.t_min - ext && tb < b.t_max && ta > a.t_max) {
-        a.t_max = ta;
-        absorbed = true;
+        (i + 1 == ring.size() ? closed.front() : ring[i + 1]).t_min = tb;  // b, or its copy already closed.
+        continue;
+      }
+      if (along(a) && tb > b.t_min - ext && tb < b.t_max && ta > a.t_max) {
+        closed.back().t_max = ta;  // a's copy.
+        continue;
       }
     }
-    if (!absorbed) {
-      ++i;
-      continue;
-    }
-    closed.erase(closed.begin() + static_cast<std::ptrdiff_t>(i));
-    --s.inferred_walls;
+    closed.push_back(c);
+    ++s.inferred_walls;
   }
   ring = std::move(closed);
   LogLines("closed ring", ring);
