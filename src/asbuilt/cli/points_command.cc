@@ -26,7 +26,7 @@ int RunPointsCommand(int argc, char** argv) {
       "asbuilt points");
   AddCommonFlags(app);
   std::string capture_path, labels_dir, out_dir;
-  bool use_capture_labels = false, no_corners = false, no_edges = false, no_dense = false;
+  bool use_capture_labels = false, no_corners = false, no_edges = false, no_dense = false, no_vertices = false;
   FramePointsOptions options;
   app.add_option("capture", capture_path, "capture.json")->required();
   app.add_option("--labels", labels_dir, "folder of label images NNN.png (left view)");
@@ -41,6 +41,7 @@ int RunPointsCommand(int argc, char** argv) {
   app.add_flag("--no-corners", no_corners, "skip contour corners");
   app.add_flag("--no-edges", no_edges, "skip edge points");
   app.add_flag("--no-dense", no_dense, "skip dense points");
+  app.add_flag("--no-vertices", no_vertices, "skip wall-wall corner columns (vertex points)");
   AddContactsOption(app, &options.contacts);
   Parse(app, argc, argv);
   if (labels_dir.empty() == !use_capture_labels) {
@@ -49,6 +50,7 @@ int RunPointsCommand(int argc, char** argv) {
   options.use_corners = !no_corners;
   options.use_edges = !no_edges;
   options.use_dense = !no_dense;
+  options.use_vertices = !no_vertices;
   options.Check();
 
   const Capture capture = ReadCapture(capture_path);

@@ -29,6 +29,7 @@ const char* PointSourceName(PointSource s) {
     case PointSource::kOther: return "other";
     case PointSource::kBoundary: return "boundary";
     case PointSource::kContact: return "contact";
+    case PointSource::kVertex: return "vertex";
   }
   return "other";
 }
@@ -100,8 +101,9 @@ std::vector<ClassPoint> ParsePoints(std::string_view text_view, const std::strin
       else if (s == "other") p.source = PointSource::kOther;
       else if (s == "boundary") p.source = PointSource::kBoundary;
       else if (s == "contact") p.source = PointSource::kContact;
+      else if (s == "vertex") p.source = PointSource::kVertex;
       else {
-        fail(fmt::format("unknown source \"{}\" (corner, dense, edge, boundary, contact, other)", s));
+        fail(fmt::format("unknown source \"{}\" (corner, dense, edge, boundary, contact, vertex, other)", s));
         continue;
       }
     }

@@ -13,7 +13,8 @@
 // `class` is wall, door or window (or the label id 1/2/3); `sigma_m` is the
 // point's 1σ position uncertainty (from the disparity error); `source` is
 // corner (matched contour corner), dense (per-pixel disparity), edge
-// (structure line: wall–floor, wall–ceiling, wall–wall) or other; `frame`
+// (structure line: wall–floor, wall–ceiling, wall–wall), boundary, contact,
+// vertex (a wall–wall corner column) or other; `frame`
 // the capture frame index, −1 if none. The last three columns are optional
 // when reading (the paper's `class x y z` files load with sigma 0, source
 // other, frame −1). Lines starting with '#' and blank lines are skipped.
@@ -39,7 +40,11 @@ const char* LabelClassName(LabelClass c);  // "background", "wall", "door", "win
 // placed on that plane along the pixel's ray — the level rig's height is the
 // baseline, ten times the stereo one, so these fix a wall's position even
 // where the wall has no texture for stereo.
-enum class PointSource : std::uint8_t { kCorner, kDense, kEdge, kOther, kBoundary, kContact };
+// kVertex: a vertical wall–wall corner (a room vertex), found as a column
+// where two walls' shading meets on every row and matched in the right view
+// by its intensity profile — it carries near plain walls whose floor and
+// ceiling edges are out of view.
+enum class PointSource : std::uint8_t { kCorner, kDense, kEdge, kOther, kBoundary, kContact, kVertex };
 const char* PointSourceName(PointSource s);
 
 struct ClassPoint {

@@ -426,6 +426,8 @@ void FramePointsOptions::Check() const {
   disparity.Check();
   corners.Check();
   match.Check();
+  vertices.Check();
+  CheckArgument(vertex_sigma_px > 0, fmt::format("FramePointsOptions.vertex_sigma_px = {}, must be > 0", vertex_sigma_px));
   CheckArgument(dense_stride_px >= 1,
                 fmt::format("FramePointsOptions.dense_stride_px = {}, must be >= 1", dense_stride_px));
   CheckArgument(dense_inset_px >= 0,
@@ -483,6 +485,7 @@ std::string FrameCues::CarriedBy() const {
   add(edge_points > 0, "edge");
   add(dense_points > 0, "dense");
   add(boundary_points > 0, "boundary");
+  add(vertex_points > 0, "vertex");
   add(floor_contacts + ceiling_contacts > 0, "contact");
   return out.empty() ? "none" : out;
 }
@@ -490,9 +493,9 @@ std::string FrameCues::CarriedBy() const {
 std::string FrameCues::BriefReport() const {
   return fmt::format(
       "frame {}: corners {}/{}, edges {}/{}, dense {} ({:.0f}% of labelled px consistent), boundary {}, "
-      "contacts floor {} (+{} occluded) ceiling {}{} — {}, {:.0f} ms",
+      "vertices {}, contacts floor {} (+{} occluded) ceiling {}{} — {}, {:.0f} ms",
       index, corners_matched, corners_found, edge_points, edge_candidates, dense_points, 100.0 * dense_valid_fraction,
-      boundary_points, floor_contacts, floor_rejected, ceiling_contacts,
+      boundary_points, vertex_points, floor_contacts, floor_rejected, ceiling_contacts,
       stereo_checked == 0 ? ""
                           : fmt::format(", wall stereo consistent down its columns at {}/{} px ({:.0f} %)",
                                         stereo_agreed, stereo_checked, 100.0 * stereo_agreed / stereo_checked),
@@ -639,6 +642,18 @@ FramePointsResult FramePointsPass(const StereoFrame& frame, const FramePointsOpt
         if (add_point(lab[u], px, m->disparity_px, options.edge_sigma_px, PointSource::kEdge)) {
           ++result.cues.edge_points;
         }
+      }
+    }
+  }
+
+  // Vertices: wall–wall corner columns, placed by their own matches (they
+  // need no texture on the walls, nor a contact).
+  if (options.use_vertices) {
+    for (const WallVertex& wv :
+         FindWallVertices(gray_left, gray_right, frame.labels_left, full_min, full_max, options.vertices)) {
+      if (add_point(1, Vec2(wv.u_left_px, wv.v_mid_px), wv.disparity_px, options.vertex_sigma_px,
+                    PointSource::kVertex)) {
+        ++result.cues.vertex_points;
       }
     }
   }

@@ -43,6 +43,7 @@
 #include "asbuilt/stereo/corners.h"
 #include "asbuilt/stereo/disparity.h"
 #include "asbuilt/stereo/rectify.h"
+#include "asbuilt/stereo/wall_vertices.h"
 #include "asbuilt/util/progress.h"
 
 namespace asbuilt {
@@ -155,6 +156,11 @@ struct FramePointsOptions {
   // The ceiling's height above the floor when known; otherwise it is
   // estimated (see CeilingHeightFromSamples) and ceiling contacts wait for it.
   std::optional<double> ceiling_height_m;
+  // Vertices: wall–wall corner columns (wall_vertices.h), one point per
+  // corner and frame at the middle of the rows that show it, with this σ.
+  bool use_vertices = true;
+  WallVertexOptions vertices;
+  double vertex_sigma_px = 0.2;
   // 1σ disparity errors used for the point uncertainty.
   double corner_sigma_px = 0.25;
   double edge_sigma_px = 0.3;
@@ -185,6 +191,7 @@ struct FrameCues {
   int edge_points = 0;
   int dense_points = 0;
   int boundary_points = 0;  // Door/window label edges on the wall.
+  int vertex_points = 0;    // Wall–wall corner columns.
   int floor_contacts = 0;    // Wall/door–floor contact points.
   int floor_rejected = 0;    // Candidates whose floor disparity said "occluded".
   int ceiling_contacts = 0;  // Wall–ceiling contacts (rays until the height is known).
