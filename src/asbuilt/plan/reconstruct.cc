@@ -397,6 +397,61 @@ std::optional<Vec2> Intersect(const Line& a, const Line& b) {
   return a.c + s * a.Dir();
 }
 
+// A room vertex: a wall–wall corner column (PointSource::kVertex), seen in
+// one or more frames.
+struct Vertex {
+  Vec2 p = Vec2::Zero();
+  double sigma = 0;
+  int points = 0;
+};
+
+// Vertex points of all frames, clustered greedily (most precise first) within
+// max(15 cm, 3σ); each cluster at the 1/σ²-weighted mean of its points, with
+// σ from their σ and their spread.
+std::vector<Vertex> ClusterVertices(std::vector<std::pair<Vec2, double>> pts) {
+  std::sort(pts.begin(), pts.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  struct Acc {
+    Vec2 sum = Vec2::Zero();
+    double w = 0;
+    std::vector<Vec2> members;
+    Vec2 Mean() const { return sum / w; }
+  };
+  std::vector<Acc> acc;
+  for (const auto& [p, sigma] : pts) {
+    Acc* home = nullptr;
+    for (Acc& a : acc) {
+      if ((a.Mean() - p).norm() <= std::max(0.15, 3 * sigma)) {
+        home = &a;
+        break;
+      }
+    }
+    if (!home) home = &acc.emplace_back();
+    home->sum += p / (sigma * sigma);
+    home->w += 1 / (sigma * sigma);
+    home->members.push_back(p);
+  }
+  std::vector<Vertex> out;
+  for (const Acc& a : acc) {
+    const Vec2 m = a.Mean();
+    double spread = 0;
+    for (const Vec2& p : a.members) spread += (p - m).squaredNorm();
+    spread /= static_cast<double>(a.members.size());
+    out.push_back({m, std::sqrt(1 / a.w + spread), static_cast<int>(a.members.size())});
+  }
+  return out;
+}
+
+// Whether the ray from `view` to `p` passes through segment [s0, s1] before
+// reaching p, by more than `margin` (p lies behind the segment).
+bool BehindSegment(const Vec2& view, const Vec2& p, const Vec2& s0, const Vec2& s1, double margin) {
+  const Vec2 r = p - view, e = s1 - s0;
+  const double den = Cross(r, e);
+  if (std::abs(den) < 1e-12) return false;
+  const double along_ray = Cross(s0 - view, e) / den;  // Fraction of the way to p.
+  const double along_seg = Cross(s0 - view, r) / den;
+  return along_seg >= -0.02 && along_seg <= 1.02 && along_ray > 0 && along_ray < 1 - margin / r.norm();
+}
+
 // Sequential RANSAC over the wall points: returns lines with their members.
 // Two passes: the floor/ceiling contacts alone first (precise, few, and on
 // walls only — a far wall's few hundred must not wait for luck among a near
@@ -808,10 +863,13 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
   const double strong = weigh_votes ? kStrongLineVotes * o.min_wall_points : kInf;
   std::vector<Pt> walls_pts;
   std::vector<const ClassPoint*> opening_pts;
+  std::vector<std::pair<Vec2, double>> vertex_pts;  // Wall–wall corner columns: (x, y), σ.
   for (const ClassPoint& p : points) {
     if (!p.position_m.allFinite()) continue;
     double sigma = p.sigma_m > 0 ? p.sigma_m : o.nominal_sigma_m;
-    if (p.label == LabelClass::kWall) {
+    if (p.label == LabelClass::kWall && p.source == PointSource::kVertex) {
+      vertex_pts.emplace_back(p.position_m.head<2>(), sigma);
+    } else if (p.label == LabelClass::kWall) {
       double thr = std::min(o.max_inlier_distance_m, std::max(o.epsilon_m, o.inlier_sigmas * sigma));
       const double vote = weigh_votes ? std::min(1.0, (o.vote_sigma_m / sigma) * (o.vote_sigma_m / sigma)) : 1.0;
       walls_pts.push_back({p.position_m.head<2>(), p.position_m.z(), 1.0 / (sigma * sigma), sigma, thr, vote,
@@ -948,6 +1006,87 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
     }
     ++i;
   }
+  // Room vertices (wall–wall corner columns) confirm corners that the wall
+  // points alone leave open: a near plain wall seen only in part (its floor
+  // and ceiling edges out of view) still shows where it meets its
+  // neighbours. A vertex belongs to a line when it lies in its band
+  // (max(10 cm, 3σ)); the one a line reaches first beyond its end (or before
+  // its start), up to kVertexReach, is where that line goes on to.
+  // Vertices farther than ~6 m (σ > 12 cm) are too loosely placed to decide
+  // a corner.
+  std::vector<Vertex> vertices = ClusterVertices(vertex_pts);
+  std::erase_if(vertices, [](const Vertex& v) { return v.sigma > 0.12; });
+  constexpr double kVertexReach = 8.0;
+  constexpr double kVertexSlack = 0.1;  // A vertex up to this far inside a line's extent still counts.
+  auto on_line = [&](const Line& l, const Vertex& v) {
+    return std::abs(l.Distance(v.p)) <= std::max(0.1, 3 * v.sigma);
+  };
+  auto vertex_after = [&](const Line& l) -> const Vertex* {
+    const Vertex* best = nullptr;
+    double best_t = kInf;
+    for (const Vertex& v : vertices) {
+      const double t = l.Dir().dot(v.p - l.c);
+      if (on_line(l, v) && t > l.t_max - kVertexSlack && t < l.t_max + kVertexReach && t < best_t) {
+        best = &v, best_t = t;
+      }
+    }
+    return best;
+  };
+  auto vertex_before = [&](const Line& l) -> const Vertex* {
+    const Vertex* best = nullptr;
+    double best_t = -kInf;
+    for (const Vertex& v : vertices) {
+      const double t = l.Dir().dot(v.p - l.c);
+      if (on_line(l, v) && t < l.t_min + kVertexSlack && t > l.t_min - kVertexReach && t > best_t) {
+        best = &v, best_t = t;
+      }
+    }
+    return best;
+  };
+  if (!vertices.empty()) {
+    spdlog::debug("plan: {} room vertices from {} vertex points", vertices.size(), vertex_pts.size());
+    for (const Vertex& v : vertices) {
+      spdlog::debug("  vertex ({:.3f}, {:.3f}) ±{:.3f} m, {} points", v.p.x(), v.p.y(), v.sigma, v.points);
+    }
+  }
+  // A vertex on the extensions of two lines a few places apart in the ring
+  // is their corner; weak lines between them, wholly behind the two walls'
+  // extensions to it, were seen through those walls' openings (ground
+  // contacts outside a window).
+  for (size_t i = 0; ring.size() > 3 && i < ring.size(); ++i) {
+    const Vertex* v = vertex_after(ring[i]);
+    if (!v) continue;
+    bool cut = false;
+    for (size_t k = 2; k <= 3 && k + 1 < ring.size() && !cut; ++k) {
+      const size_t j = (i + k) % ring.size();
+      const Line& a = ring[i];
+      const Line& c = ring[j];
+      if (std::abs(AngleDiffModPi(a.theta, c.theta)) <= DegToRad(o.parallel_max_deg) || !on_line(c, *v) ||
+          c.Dir().dot(v->p - c.c) > c.t_min + kVertexSlack) {
+        continue;
+      }
+      bool hidden = true;
+      for (size_t m = 1; m < k && hidden; ++m) {
+        const Line& b = ring[(i + m) % ring.size()];
+        for (const Vec2& p : {b.Start(), b.End()}) {
+          hidden = hidden && b.votes < strong && b.votes < std::min(a.votes, c.votes) &&
+                   (BehindSegment(view, p, a.End(), v->p, 2 * o.epsilon_m) ||
+                    BehindSegment(view, p, v->p, c.Start(), 2 * o.epsilon_m));
+        }
+      }
+      if (!hidden) continue;
+      spdlog::debug("plan: vertex ({:.3f}, {:.3f}) joins two walls across {} line(s) seen through them", v->p.x(),
+                    v->p.y(), k - 1);
+      ring[i].t_max = std::max(a.t_max, a.Dir().dot(v->p - a.c));
+      ring[j].t_min = std::min(c.t_min, c.Dir().dot(v->p - c.c));
+      std::vector<size_t> gone;
+      for (size_t m = 1; m < k; ++m) gone.push_back((i + m) % ring.size());
+      std::sort(gone.rbegin(), gone.rend());
+      for (size_t g : gone) ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(g));
+      cut = true;
+    }
+    if (cut) i = static_cast<size_t>(-1);  // Start over (++i → 0).
+  }
   // Merge neighbours that continue each other (one wall seen in pieces).
   for (bool merged = true; merged && ring.size() > 2;) {
     merged = false;
@@ -981,29 +1120,60 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
     bool meet = std::abs(AngleDiffModPi(a.theta, b.theta)) > DegToRad(o.parallel_max_deg);
     std::optional<Vec2> x = meet ? Intersect(a, b) : std::nullopt;
     if (x && plausible(a, b, *x)) continue;
+    Line& b_copy = i + 1 == ring.size() ? closed.front() : ring[i + 1];  // b, or its copy already closed.
+    // A vertex on both lines where they meet: their corner, however far
+    // beyond their points.
+    if (x) {
+      const double ta = a.Dir().dot(*x - a.c), tb = b.Dir().dot(*x - b.c);
+      const bool at_corner = std::any_of(vertices.begin(), vertices.end(), [&](const Vertex& v) {
+        return on_line(a, v) && on_line(b, v) && (v.p - *x).norm() <= std::max(0.2, 3 * v.sigma);
+      });
+      if (at_corner && ta > a.t_min && tb < b.t_max) {
+        closed.back().t_max = std::max(a.t_max, ta);
+        b_copy.t_min = std::min(b.t_min, tb);
+        spdlog::debug("plan: a vertex places the corner at ({:.3f}, {:.3f})", x->x(), x->y());
+        continue;
+      }
+    }
     // Connector through the middle of the gap, in the nearest dominant
-    // direction to the gap when one is close, else along the gap.
-    Vec2 p = a.End(), q = b.Start();
+    // direction to the gap when one is close, else along the gap. Where a
+    // line's extension reaches a vertex, the line goes on to it and the
+    // connector starts (or ends) there.
+    const Vertex* va = vertex_after(a);
+    const Vertex* vb = vertex_before(b);
+    Vec2 p = va ? va->p : a.End(), q = vb ? vb->p : b.Start();
     Vec2 gap = q - p;
     if (gap.norm() < 1e-6) gap = b.Dir();
     Line c;
     c.inferred = true;
-    c.c = 0.5 * (p + q);
+    c.c = va && !vb ? p : vb && !va ? q : 0.5 * (p + q);
     c.theta = std::atan2(gap.y(), gap.x());
     c.var_theta = DegToRad(5.0) * DegToRad(5.0);
     c.var_rho = 0.05 * 0.05;
+    // From a vertex the wall turns: its connector takes the dominant
+    // direction nearest the gap's among those across the vertex's own line.
+    const Line* turned = va ? &a : vb ? &b : nullptr;
+    const Direction* nearest = nullptr;
     for (const Direction& d : dirs) {
-      double diff = AngleDiffModPi(c.theta, d.theta);
-      if (std::abs(diff) < DegToRad(30.0)) {
-        c.theta -= diff;
-        c.var_theta = d.Var();
-        break;
+      if (turned && std::abs(AngleDiffModPi(turned->theta, d.theta)) <= DegToRad(o.parallel_max_deg)) continue;
+      if (!nearest || std::abs(AngleDiffModPi(c.theta, d.theta)) < std::abs(AngleDiffModPi(c.theta, nearest->theta))) {
+        nearest = &d;
       }
+    }
+    if (nearest && std::abs(AngleDiffModPi(c.theta, nearest->theta)) < DegToRad(turned ? 60.0 : 30.0)) {
+      c.theta -= AngleDiffModPi(c.theta, nearest->theta);
+      c.var_theta = nearest->Var();
     }
     // Orient it from a towards b.
     if (c.Dir().dot(gap) < 0) c.theta = WrapAngle(c.theta + kPi);
-    c.t_min = -0.5 * gap.norm();
-    c.t_max = 0.5 * gap.norm();
+    c.t_min = c.Dir().dot(p - c.c);
+    c.t_max = c.Dir().dot(q - c.c);
+    if (va || vb) {
+      c.var_rho = std::pow(va && vb ? std::min(va->sigma, vb->sigma) : (va ? va : vb)->sigma, 2);
+      spdlog::debug("plan: connector through vertices ({}) → ({})",
+                    va ? fmt::format("{:.3f}, {:.3f}", va->p.x(), va->p.y()) : "none",
+                    vb ? fmt::format("{:.3f}, {:.3f}", vb->p.x(), vb->p.y()) : "none");
+    }
     c.z_top = 0.5 * (a.z_top + b.z_top);
     // A connector along a neighbour's own line is that wall seen only in
     // part (its points stop short of the corner, past furniture): the wall
@@ -1013,7 +1183,7 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
       const double ta = a.Dir().dot(*x - a.c), tb = b.Dir().dot(*x - b.c);
       auto along = [&](const Line& l) { return std::abs(AngleDiffModPi(l.theta, c.theta)) <= DegToRad(3.0); };
       if (along(b) && ta > a.t_min && ta < a.t_max + ext && tb < b.t_min) {
-        (i + 1 == ring.size() ? closed.front() : ring[i + 1]).t_min = tb;  // b, or its copy already closed.
+        b_copy.t_min = tb;
         continue;
       }
       if (along(a) && tb > b.t_min - ext && tb < b.t_max && ta > a.t_max) {
@@ -1021,6 +1191,8 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
         continue;
       }
     }
+    if (va) closed.back().t_max = std::max(a.t_max, a.Dir().dot(va->p - a.c));
+    if (vb) b_copy.t_min = std::min(b.t_min, b.Dir().dot(vb->p - b.c));
     closed.push_back(c);
     ++s.inferred_walls;
   }

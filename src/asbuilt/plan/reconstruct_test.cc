@@ -226,6 +226,63 @@ TEST(ReconstructPlan, ALineSeenThroughAWallsGapIsNotAWall) {
   }
 }
 
+// Vertex points (wall–wall corner columns) of `frames` frames at `corner`,
+// a few centimetres apart, as the stereo stage gives them.
+void AddVertex(std::vector<ClassPoint>& points, const Vec2& corner, int frames = 2) {
+  for (int f = 0; f < frames; ++f) {
+    const Vec2 p = corner + Vec2(0.02 * (f - 0.5), -0.015 * (f - 0.5));
+    points.push_back({LabelClass::kWall, Vec3(p.x(), p.y(), 1.5), 0.03, PointSource::kVertex, f});
+  }
+}
+
+// A near plain wall gives no points at all (its floor and ceiling edges are
+// out of view) and its neighbours only in part: the ring would close across
+// the L's notch. The vertex where the wall meets its neighbour places it.
+TEST(ReconstructPlan, AWallWithNoPointsIsPlacedFromTheVertexAtItsEnd) {
+  const Plan truth = PolygonPlan({{0, 0}, {6, 0}, {6, 2.6}, {2.6, 2.6}, {2.6, 5}, {0, 5}});
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const SampleOptions sample;
+    std::vector<ClassPoint> points = SamplePointsFromPlan(truth, sample, seed);
+    std::erase_if(points, [](const ClassPoint& p) {
+      const Vec2 q = p.position_m.head<2>();
+      return (q.y() > 2.3 && q.y() < 2.9 && q.x() > 2.7) ||  // The notch's wall: nothing.
+             (q.x() > 5.7 && q.y() > 1.2) ||                  // Its neighbours: in part.
+             (q.x() > 2.3 && q.x() < 2.9 && q.y() < 3.8);
+    });
+    AddVertex(points, {6, 2.6});
+    PlanOptions options{.viewpoint_m = SampleViewpoint(truth, sample), .seed = seed};
+    const PlanResult r = ReconstructPlan(points, options);
+    const PlanScore s = ScorePlan(r.plan, truth);
+    EXPECT_EQ(s.walls.predicted, 6) << "seed " << seed << "\n" << s.Table();
+    EXPECT_EQ(s.walls.matched, 6) << "seed " << seed << "\n" << s.Table();
+    EXPECT_LE(*s.wall_length.Max(), 0.02) << "seed " << seed << "\n" << s.Table();
+  }
+}
+
+// A wall seen only at its far end, with a line seen through its window
+// (ground outside) between it and the next wall: the vertex where the two
+// walls meet, on both their lines, makes them neighbours.
+TEST(ReconstructPlan, AVertexJoinsTwoWallsAcrossALineSeenThroughThem) {
+  const Plan truth = PolygonPlan({{0, 0}, {8, 0}, {8, 3.6}, {0, 3.6}});
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const SampleOptions sample;
+    std::vector<ClassPoint> points = SamplePointsFromPlan(truth, sample, seed);
+    std::erase_if(points, [](const ClassPoint& p) { return p.position_m.y() < 0.3 && p.position_m.x() < 5.5; });
+    for (int i = 0; i < 300; ++i) {
+      const double x = 1.0 + 2.5 * i / 300.0;
+      points.push_back({LabelClass::kWall, Vec3(x, -1.6 - 0.3 * x + 0.005 * ((i % 5) - 2), 0.0), 0.01,
+                        PointSource::kDense, 0});
+    }
+    AddVertex(points, {0, 0});
+    PlanOptions options{.viewpoint_m = SampleViewpoint(truth, sample), .seed = seed};
+    const PlanResult r = ReconstructPlan(points, options);
+    const PlanScore s = ScorePlan(r.plan, truth);
+    EXPECT_EQ(s.walls.predicted, 4) << "seed " << seed << "\n" << s.Table();
+    EXPECT_EQ(s.walls.matched, 4) << "seed " << seed << "\n" << s.Table();
+    EXPECT_LE(*s.wall_length.Max(), 0.01) << "seed " << seed << "\n" << s.Table();
+  }
+}
+
 TEST(ReconstructPlan, ReportsUncertaintiesThatCoverTheErrors) {
   Plan truth = Rectangle();
   int covered = 0, total = 0;
