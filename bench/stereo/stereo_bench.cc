@@ -47,14 +47,6 @@ cv::Mat Read(const fs::path& p, int flags = cv::IMREAD_COLOR) {
 
 int RoundUp16(double d) { return std::max(16, static_cast<int>(std::ceil(d / 16.0)) * 16); }
 
-double MaxFinite(const cv::Mat& m) {
-  double best = 0;
-  for (int y = 0; y < m.rows; ++y)
-    for (int x = 0; x < m.cols; ++x)
-      if (std::isfinite(m.at<float>(y, x))) best = std::max<double>(best, m.at<float>(y, x));
-  return best;
-}
-
 std::vector<Pair> LoadPairs() {
   std::vector<Pair> pairs;
   {

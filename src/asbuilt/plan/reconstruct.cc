@@ -692,14 +692,15 @@ std::vector<Direction> SnapDirections(const std::vector<Pt>& pts, std::vector<Li
     }
   }
   // Snap each line whose fitted direction agrees with a dominant one. In a
-  // Manhattan frame any line within snap_max_deg of an axis: rooms are built
+  // Manhattan frame any line within manhattan_snap_max_deg of an axis: rooms are built
   // square, and a wall seen in part, past furniture, fits a few degrees off
   // with a σ that only counts its points' noise (a 2 m wall 4.6° off at
-  // ±0.6°), which moves its corners by decimetres.
+  // ±0.6°), which moves its corners by decimetres; a far wall's smeared
+  // stereo fits up to 7° off (bench_rooms seed 12).
   for (Line& line : lines) {
     for (const Direction& d : dirs) {
       double diff = AngleDiffModPi(line.theta, d.theta);
-      double tol = manhattan ? DegToRad(o.snap_max_deg)
+      double tol = manhattan ? DegToRad(o.manhattan_snap_max_deg)
                              : std::min(DegToRad(o.snap_max_deg),
                                         std::max(DegToRad(o.snap_min_deg),
                                                  o.snap_sigmas * std::sqrt(line.var_theta + d.Var())));
@@ -779,6 +780,7 @@ void PlanOptions::Check() const {
                 fmt::format("PlanOptions.ransac_subset_points = {}, must be >= 10", ransac_subset_points));
   non_negative(snap_sigmas, "snap_sigmas");
   non_negative(snap_max_deg, "snap_max_deg");
+  non_negative(manhattan_snap_max_deg, "manhattan_snap_max_deg");
   non_negative(snap_min_deg, "snap_min_deg");
   non_negative(manhattan_max_deg, "manhattan_max_deg");
   CheckArgument(parallel_max_deg > 0 && parallel_max_deg < 90,

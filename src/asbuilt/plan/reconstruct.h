@@ -58,6 +58,7 @@ struct PlanOptions {
   int ransac_subset_points = 3000;    // Hypotheses are scored on a random subset of this size.
   double snap_sigmas = 3.0;           // Snap to a dominant direction within this many σ of the fit…
   double snap_max_deg = 5.0;          // …and never more than this many degrees.
+  double manhattan_snap_max_deg = 8.0;  // In a Manhattan frame, every line this close to an axis.
   double snap_min_deg = 0.05;         // Always snap within this (depth quantisation, exact labels).
   double manhattan_max_deg = 3.0;     // Two dominant directions this close to 90° may form a frame.
   double parallel_max_deg = 20.0;     // Neighbours closer than this in angle are not intersected.
