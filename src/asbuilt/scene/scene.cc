@@ -603,13 +603,14 @@ std::optional<Vec2> SurveySpot(const std::vector<Vec2>& polygon) {
     hi = hi.cwiseMax(p);
   }
   // Signed distance to the nearest wall line, positive on the inner (left)
-  // side of every wall: positive exactly inside the kernel.
+  // side of every wall: positive exactly inside the kernel. Outside it only
+  // the sign matters, so the first wall that has p behind it ends the search
+  // (this runs on a 200 × 200 grid for every text scene: it must be cheap).
+  std::vector<Vec2> dirs(n);
+  for (std::size_t i = 0; i < n; ++i) dirs[i] = (polygon[(i + 1) % n] - polygon[i]).normalized();
   auto clearance = [&](const Vec2& p) {
     double nearest = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec2 d = (polygon[(i + 1) % n] - polygon[i]).normalized();
-      nearest = std::min(nearest, Cross(d, p - polygon[i]));
-    }
+    for (std::size_t i = 0; i < n && nearest > 0; ++i) nearest = std::min(nearest, Cross(dirs[i], p - polygon[i]));
     return nearest;
   };
   const double step = std::max(hi.x() - lo.x(), hi.y() - lo.y()) / 200.0;
