@@ -822,17 +822,25 @@ FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePoints
       break;
   }
   // Both alternatives from one disparity map; the capture decides between
-  // them (CapturePoints). Door and window corner, edge and dense points are
+  // them (CapturePoints). Door and window corner, edge and dense points, and
+  // vertex points, are
   // the same in both, so the contact pass computes only what differs —
   // contacts, the stereo check, boundaries at the contacts' depth — and
   // takes those from the stereo pass.
   FramePointsResult result = FramePointsPass(frame, options, /*contacts=*/false, /*wall_stereo=*/true, nullptr);
   FramePointsOptions contact_options = options;
   contact_options.use_corners = contact_options.use_edges = contact_options.use_dense = false;
+  contact_options.use_vertices = false;  // The same in both: taken from the stereo pass below.
   FramePointsResult with_contacts =
       FramePointsPass(frame, contact_options, /*contacts=*/true, /*wall_stereo=*/false, &result.disparity);
   FrameCues& cues = with_contacts.cues;
   for (const ClassPoint& p : result.points) {
+    // Vertex points need neither the wall's stereo nor contacts: both alternatives keep them.
+    if (p.source == PointSource::kVertex) {
+      with_contacts.points.push_back(p);
+      ++cues.vertex_points;
+      continue;
+    }
     if (p.label == LabelClass::kWall || p.source == PointSource::kBoundary) continue;
     with_contacts.points.push_back(p);
     cues.corners_matched += p.source == PointSource::kCorner;
