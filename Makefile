@@ -29,6 +29,7 @@ demo: build
 
 bench: build
 	bash scripts/install-deps.sh --bench
+	cmake --build $(BUILD) -j $(JOBS) --target benchmarks
 	bash bench/run.sh $(BUILD)
 
 # Each libFuzzer harness for FUZZ_SECONDS (default 20; nightly: make fuzz FUZZ_SECONDS=3600).

@@ -2,6 +2,15 @@
 
 set(ASBUILT_WARNINGS -Wall -Wextra -Wpedantic -Wno-unused-parameter -Wno-missing-field-initializers)
 
+# Code that runs once per command or per test case (argument parsing, test
+# bodies) is compiled at -O1 in Release: its cost is template code generation
+# (CLI11, nlohmann-json, GoogleTest), and -O3 took 25–50 % longer per file for
+# no run-time gain (the work happens in the libraries, which stay at -O3).
+# Measured on 2 cores: bad_input_test.cc 24.0 -> 12.5 s, plan_command.cc 21.2 -> 15.4 s.
+function(asbuilt_light_optimization target)
+  target_compile_options(${target} PRIVATE $<$<CONFIG:Release>:-O1>)
+endfunction()
+
 function(asbuilt_apply_common target)
   target_compile_options(${target} PRIVATE ${ASBUILT_WARNINGS})
   if(ASBUILT_SANITIZE)
@@ -48,6 +57,7 @@ function(asbuilt_test)
     ASBUILT_SHARED_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/data"
     ASBUILT_BINARY_DIR="${PROJECT_BINARY_DIR}")
   asbuilt_apply_common(${target})
+  asbuilt_light_optimization(${target})
   gtest_discover_tests(${target} TEST_PREFIX "${ARG_NAME}/"
     DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT ${ARG_TIMEOUT})
 endfunction()
