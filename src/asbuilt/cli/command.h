@@ -10,6 +10,7 @@
 // command.cc. Errors are thrown (STYLE.md 7); main() maps them to exit codes.
 
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -41,6 +42,11 @@ void AddCommonFlags(CLI::App& app);
 // --contacts auto|always|off (FramePointsOptions::contacts), shared by
 // survey and points.
 void AddContactsOption(CLI::App& app, ContactUse* use);
+
+// --snap-contacts-px N (FramePointsOptions::contact_snap_px), shared by
+// survey and points; unset means "auto" (the command decides by the labels'
+// origin).
+void AddContactSnapOption(CLI::App& app, std::optional<int>* px);
 
 // Thrown by Parse() after it printed the help text (main() exits 0).
 struct HelpPrinted {};

@@ -2,6 +2,7 @@
 // class from a stereo capture and its segmentation (stereo/frame_points.h).
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
@@ -43,6 +44,8 @@ int RunPointsCommand(int argc, char** argv) {
   app.add_flag("--no-dense", no_dense, "skip dense points");
   app.add_flag("--no-vertices", no_vertices, "skip wall-wall corner columns (vertex points)");
   AddContactsOption(app, &options.contacts);
+  std::optional<int> snap_px;
+  AddContactSnapOption(app, &snap_px);
   Parse(app, argc, argv);
   if (labels_dir.empty() == !use_capture_labels) {
     throw CLI::ValidationError("--labels", "give exactly one of --labels DIR or --use-capture-labels");
@@ -51,6 +54,7 @@ int RunPointsCommand(int argc, char** argv) {
   options.use_edges = !no_edges;
   options.use_dense = !no_dense;
   options.use_vertices = !no_vertices;
+  options.contact_snap_px = snap_px.value_or(use_capture_labels ? 0 : FramePointsOptions::kDefaultContactSnapPx);
   options.Check();
 
   const Capture capture = ReadCapture(capture_path);

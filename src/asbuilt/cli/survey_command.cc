@@ -33,6 +33,7 @@ int RunSurveyCommand(int argc, char** argv) {
   app.add_option("--epsilon-m", options.plan.epsilon_m, "wall collinearity tolerance ε (m)")->capture_default_str();
   app.add_option("--dense-stride", options.points.dense_stride_px, "keep every n-th dense pixel")->capture_default_str();
   AddContactsOption(app, &options.points.contacts);
+  AddContactSnapOption(app, &options.contact_snap_px);
   app.add_option("--report-frames", options.report_frames, "frames pictured in the report (0 = all)")
       ->capture_default_str();
   app.add_flag("--no-report", no_report, "skip report.html");

@@ -143,6 +143,8 @@ fs::path ExecutableDir() {
 
 void SurveyOptions::Check() const {
   points.Check();
+  CheckArgument(!contact_snap_px || *contact_snap_px >= 0,
+                fmt::format("SurveyOptions.contact_snap_px = {}, must be >= 0", contact_snap_px.value_or(0)));
   plan.Check();
   CheckArgument(report_frames >= 0, fmt::format("SurveyOptions.report_frames = {}, must be >= 0", report_frames));
   CheckArgument(!(labels_dir && use_capture_labels),
@@ -257,7 +259,10 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   std::vector<ClassPoint> points;
   std::vector<ReportFrame> report_frames;
   std::vector<Vec2> rigs;
-  CapturePoints gathered(options.points);
+  FramePointsOptions point_options = options.points;
+  point_options.contact_snap_px = options.contact_snap_px.value_or(
+      options.use_capture_labels ? 0 : FramePointsOptions::kDefaultContactSnapPx);
+  CapturePoints gathered(point_options);
   Vec3 rig_sum = Vec3::Zero();
   int done = 0;
   const int total = static_cast<int>(capture.frames.size());
@@ -269,7 +274,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
     StereoFrame stereo = LoadStereoFrame(capture, frame, labels, rectifier ? &*rectifier : nullptr);
     add_stage("load + rectify", Since(t));  // Segmenting inside it is moved out below.
     t = Clock::now();
-    FramePointsResult r = ComputeFramePoints(stereo, options.points);
+    FramePointsResult r = ComputeFramePoints(stereo, point_options);
     double frame_seconds = Since(t);
     add_stage("disparity", r.disparity.seconds);
     add_stage("corners + points", std::max(0.0, frame_seconds - r.disparity.seconds));

@@ -38,6 +38,11 @@ struct SurveyOptions {
   // it exists.
   std::optional<std::filesystem::path> truth_path;
   FramePointsOptions points;
+  // Contact rows snap to the image's own edges within this many rows
+  // (FramePointsOptions::contact_snap_px, which this replaces); unset:
+  // kDefaultContactSnapPx for segmented or given labels, 0 for the capture's
+  // exact ones.
+  std::optional<int> contact_snap_px;
   PlanOptions plan;
   bool write_report = true;
   // Frames shown in the report (thumbnails, overlays, disparity); the rest

@@ -105,6 +105,46 @@ double ContactSigma(double z, double dh, double fy, double sigma_v, double sigma
   return std::hypot(from_row, from_height);
 }
 
+// Vertical colour steps for SnapRowToImageEdge: S(y, u) is the size of the
+// step from row y to row y + 1 (an edge at row y + 0.5), summed over the
+// colour channels (a blue-grey wall over beige tiles differs more in colour
+// than in brightness, while the tiles' grout lines differ in brightness),
+// after a Gaussian (σ 1 px) against noise, averaged over columns u − 2…u + 2.
+cv::Mat VerticalSteps(const cv::Mat& image) {
+  cv::Mat f;
+  image.convertTo(f, CV_32F);
+  cv::GaussianBlur(f, f, cv::Size(0, 0), 1.0);
+  cv::Mat diff = cv::abs(f.rowRange(1, f.rows) - f.rowRange(0, f.rows - 1));
+  cv::Mat summed = diff.reshape(1, diff.rows * diff.cols);  // One row per pixel, one column per channel.
+  cv::reduce(summed, summed, 1, cv::REDUCE_SUM);
+  cv::Mat steps = cv::Mat::zeros(image.size(), CV_32F);
+  summed.reshape(1, diff.rows).copyTo(steps.rowRange(0, f.rows - 1));
+  cv::blur(steps, steps, cv::Size(5, 1));
+  return steps;
+}
+
+// FramePointsOptions::contact_snap_px: the row of the strongest colour step
+// within `radius` rows of a label edge at `row` (k + 0.5), refined to a
+// sub-pixel peak; the label edge itself when the image shows no step of at
+// least `min_step` (channels summed) there, or the peak is at the window's
+// end.
+double SnapRowToImageEdge(const cv::Mat& steps, int u, double row, int radius, double min_step) {
+  if (radius <= 0 || steps.empty()) return row;
+  const int k0 = static_cast<int>(std::floor(row - 0.5));  // Edge between rows k0 and k0 + 1.
+  const int lo = std::max(0, k0 - radius), hi = std::min(steps.rows - 2, k0 + radius);
+  int best = -1;
+  float best_step = 0.0f;
+  for (int k = lo; k <= hi; ++k) {
+    const float a = steps.at<float>(k, u);
+    if (a > best_step) best_step = a, best = k;
+  }
+  if (best <= lo || best >= hi || best_step < min_step) return row;
+  const double a = steps.at<float>(best - 1, u), b = best_step, c = steps.at<float>(best + 1, u);
+  const double den = a - 2.0 * b + c;
+  const double offset = den < 0.0 ? std::clamp(0.5 * (a - c) / den, -0.5, 0.5) : 0.0;
+  return best + 0.5 + offset;
+}
+
 // The contact cue (frame_points.h). Per column: the lowest clean
 // wall/door → background transition below the horizon is the floor contact
 // (unless the floor's disparity below it says something nearer stands there);
@@ -132,6 +172,10 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
   if (!(h > 0.05)) return;                             // No usable height: no contacts.
   const int rows = labels.rows, cols = labels.cols, run = options.contact_min_run_px;
   const double fxb = cam.fx * frame.baseline_m;
+  const cv::Mat steps = options.contact_snap_px > 0 ? VerticalSteps(frame.left) : cv::Mat();
+  auto snap = [&](int u, double row) {
+    return SnapRowToImageEdge(steps, u, row, options.contact_snap_px, options.contact_snap_min_step);
+  };
   auto label_at = [&](int v, int u) { return labels.ptr<unsigned char>(v)[u]; };
   auto runs = [&](int v0, int dir, int n, auto&& pred, int u) {
     for (int k = 0; k < n; ++k) {
@@ -152,7 +196,8 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
   };
 
   for (int u = 0; u < cols; u += options.contact_col_step_px) {
-    // Floor: scan up from the bottom for the lowest wall/door → background edge.
+    // Floor: scan up from the bottom for the lowest wall/door → background
+    // edge (not snapped: FramePointsOptions::contact_snap_px says why).
     double floor_row = NAN;
     unsigned char floor_label = 0;
     for (int v = rows - 1 - run; v >= run; --v) {
@@ -202,14 +247,18 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
       }
     }
     // Ceiling: scan down from the top for the highest background → wall edge.
-    double ceiling_row = NAN;
+    // `ceiling_edge` is the label edge (which rows hold the wall),
+    // `ceiling_row` where the contact is measured (snapped when asked).
+    double ceiling_row = NAN, ceiling_edge = NAN;
     for (int v = run; v < rows - run; ++v) {
       if (v - 0.5 >= cam.cy - 1.0) break;  // At or below the horizon.
       if (label_at(v, u) != 1 || label_at(v - 1, u) != 0) continue;
       if (!runs(v - 1, -1, run, is_background, u) || !runs(v, 1, run, [](unsigned char l) { return l == 1; }, u)) {
         continue;
       }
-      ceiling_row = v - 0.5;
+      ceiling_edge = v - 0.5;
+      ceiling_row = snap(u, ceiling_edge);
+      if (ceiling_row >= cam.cy - 1.0) ceiling_row = ceiling_edge;
       break;
     }
     // One structure from ceiling to floor in this column (openings may cut
@@ -220,7 +269,7 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
     bool paired = false;
     if (floor_point && std::isfinite(ceiling_row)) {
       paired = true;
-      for (int v = static_cast<int>(ceiling_row + 0.5); v <= static_cast<int>(floor_row - 0.5) && paired; ++v) {
+      for (int v = static_cast<int>(ceiling_edge + 0.5); v <= static_cast<int>(floor_row - 0.5) && paired; ++v) {
         paired = IsComponent(label_at(v, u));
       }
     }
@@ -246,7 +295,7 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
     // too: the fallback when no column sees both contacts of a wall.
     {
       std::vector<float> ds;
-      const int v0 = static_cast<int>(ceiling_row + 0.5);
+      const int v0 = static_cast<int>(ceiling_edge + 0.5);
       for (int y = v0 + 2; y <= std::min(rows - 1, v0 + 10); ++y) {
         const float* d = disparity.ptr<float>(y);
         const unsigned char* l = labels.ptr<unsigned char>(y);
@@ -263,7 +312,7 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
     ContactRay r{.label = LabelClass::kWall, .origin_m = origin, .direction = ray(u, ceiling_row),
                  .fy_px = cam.fy, .frame = frame.index};
     ++result->cues.ceiling_contacts;
-    cover(u, static_cast<int>(ceiling_row + 0.5), 1);
+    cover(u, static_cast<int>(ceiling_edge + 0.5), 1);
     result->contacts.ceiling_rays.push_back(r);
   }
 }
@@ -461,6 +510,9 @@ void FramePointsOptions::Check() const {
                             "need step, run >= 1 and sigmas, tolerance > 0",
                             contact_col_step_px, contact_min_run_px, contact_sigma_px, camera_height_sigma_m,
                             contact_floor_tolerance_px));
+  CheckArgument(contact_snap_px >= 0 && contact_snap_min_step >= 0,
+                fmt::format("FramePointsOptions: contact_snap_px = {}, contact_snap_min_step = {}: must be >= 0",
+                            contact_snap_px, contact_snap_min_step));
   CheckArgument(stereo_check_tolerance_px > 0 && stereo_check_min_agree >= 0 && stereo_check_min_agree <= 1 &&
                     stereo_check_min_pixels >= 0 && stereo_check_min_contacts >= 0,
                 fmt::format("FramePointsOptions: stereo_check_tolerance_px = {}, stereo_check_min_agree = {}, "
