@@ -77,8 +77,8 @@ void AddContactsOption(CLI::App& app, ContactUse* use) {
 void AddContactSnapOption(CLI::App& app, std::optional<int>* px) {
   app.add_option_function<int>(
          "--snap-contacts-px", [px](int n) { *px = n; },
-         fmt::format("move each floor/ceiling contact to the image's strongest edge within N rows of the label "
-                     "edge (0 = off); auto = {} for segmented or given labels, 0 for a capture's exact labels",
+         fmt::format("move each ceiling contact to the image's strongest edge within N rows of the label edge "
+                     "(0 = off); auto = {} for segmented or given labels, 0 for a capture's exact labels",
                      FramePointsOptions::kDefaultContactSnapPx))
       ->check(CLI::Range(0, 64))
       ->default_str("auto");

@@ -54,7 +54,7 @@ int RunPointsCommand(int argc, char** argv) {
   options.use_edges = !no_edges;
   options.use_dense = !no_dense;
   options.use_vertices = !no_vertices;
-  options.contact_snap_px = snap_px.value_or(use_capture_labels ? 0 : FramePointsOptions::kDefaultContactSnapPx);
+  options.contact_snap_px = FramePointsOptions::ContactSnapPxFor(snap_px, use_capture_labels);
   options.Check();
 
   const Capture capture = ReadCapture(capture_path);

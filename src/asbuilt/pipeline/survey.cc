@@ -260,8 +260,8 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   std::vector<ReportFrame> report_frames;
   std::vector<Vec2> rigs;
   FramePointsOptions point_options = options.points;
-  point_options.contact_snap_px = options.contact_snap_px.value_or(
-      options.use_capture_labels ? 0 : FramePointsOptions::kDefaultContactSnapPx);
+  point_options.contact_snap_px =
+      FramePointsOptions::ContactSnapPxFor(options.contact_snap_px, options.use_capture_labels);
   CapturePoints gathered(point_options);
   Vec3 rig_sum = Vec3::Zero();
   int done = 0;

@@ -38,7 +38,7 @@ struct SurveyOptions {
   // it exists.
   std::optional<std::filesystem::path> truth_path;
   FramePointsOptions points;
-  // Contact rows snap to the image's own edges within this many rows
+  // Ceiling contact rows snap to the image's own edge within this many rows
   // (FramePointsOptions::contact_snap_px, which this replaces); unset:
   // kDefaultContactSnapPx for segmented or given labels, 0 for the capture's
   // exact ones.

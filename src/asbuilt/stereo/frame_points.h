@@ -160,6 +160,10 @@ struct FramePointsOptions {
   double contact_snap_min_step = 1.0;
   // What survey and points use for labels that are not a capture's exact ones.
   static constexpr int kDefaultContactSnapPx = 10;
+  // `asked` when given, else kDefaultContactSnapPx, or 0 for exact labels.
+  static int ContactSnapPxFor(std::optional<int> asked, bool exact_labels) {
+    return asked.value_or(exact_labels ? 0 : kDefaultContactSnapPx);
+  }
   // The stereo check (kWhereStereoFails): a level camera sees a vertical
   // wall at one depth down each image column, so a wall's valid disparities
   // down a column should lie within max(this, 3 %) of their median. The
