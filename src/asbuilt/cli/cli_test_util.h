@@ -36,6 +36,9 @@ inline RunResult RunAsbuilt(const std::string& args, int timeout_s = 0) {
   return r;
 }
 
+// ../shared/data (the tests' real third-party data).
+inline const std::filesystem::path kData = ASBUILT_SHARED_DATA_DIR;
+
 // An empty folder for the running test: <tmp>/<prefix><test name>.
 inline std::filesystem::path FreshTestDir(const std::string& prefix) {
   std::filesystem::path dir =

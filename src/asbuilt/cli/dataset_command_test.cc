@@ -15,15 +15,15 @@ namespace fs = std::filesystem;
 using testing_util::RunAsbuilt;
 using testing_util::RunResult;
 
-const fs::path kData = ASBUILT_SHARED_DATA_DIR;
+using testing_util::kData;
 
-fs::path TestDir() { return testing_util::FreshTestDir("asbuilt_cli_dataset_"); }
+fs::path DatasetCommandTestDir() { return testing_util::FreshTestDir("asbuilt_cli_dataset_"); }
 
 TEST(DatasetCommand, MixesRealAndSyntheticAndChecksTheManifest) {
   fs::path rooms = kData / "blender-rooms-public";
   fs::path ade = kData / "ade20k_sceneparsing_samples";
   if (!fs::exists(rooms) || !fs::exists(ade)) GTEST_SKIP() << "shared data not present";
-  fs::path dir = TestDir();
+  fs::path dir = DatasetCommandTestDir();
   // Real: the ADE20K samples imported to our labels, beside their images.
   RunResult imp = RunAsbuilt("labels import --format ade20k " + (ade / "annotations").string() + " -o " +
                              (dir / "real/labels").string());
@@ -47,7 +47,7 @@ TEST(DatasetCommand, MixesRealAndSyntheticAndChecksTheManifest) {
 }
 
 TEST(DatasetCommand, CheckReportsABadPairByNameAndExits1) {
-  fs::path dir = TestDir();
+  fs::path dir = DatasetCommandTestDir();
   WriteFileAtomic(dir / "images/a.png", "not an image");
   WriteFileAtomic(dir / "labels/a.png", "not an image");
   RunResult r = RunAsbuilt("dataset check " + dir.string());
@@ -57,7 +57,7 @@ TEST(DatasetCommand, CheckReportsABadPairByNameAndExits1) {
 }
 
 TEST(DatasetCommand, BadConfigIsAUsageError) {
-  fs::path dir = TestDir();
+  fs::path dir = DatasetCommandTestDir();
   RunResult r = RunAsbuilt("dataset mix --real " + dir.string() + " --config RS6050 -o " + (dir / "m.json").string());
   EXPECT_EQ(r.exit_code, 2) << r.out;
   EXPECT_NE(r.out.find("MixOptions.config = \"RS6050\""), std::string::npos) << r.out;

@@ -20,14 +20,14 @@ namespace fs = std::filesystem;
 using testing_util::RunAsbuilt;
 using testing_util::RunResult;
 
-const fs::path kData = ASBUILT_SHARED_DATA_DIR;
+using testing_util::kData;
 
-fs::path TestDir() { return testing_util::FreshTestDir("asbuilt_cli_labels_"); }
+fs::path LabelsCommandTestDir() { return testing_util::FreshTestDir("asbuilt_cli_labels_"); }
 
 TEST(LabelsCommand, ImportsAde20kAndNyuSamples) {
   fs::path ade = kData / "ade20k_sceneparsing_samples/annotations";
   if (!fs::exists(ade)) GTEST_SKIP() << "shared data not present";
-  fs::path dir = TestDir();
+  fs::path dir = LabelsCommandTestDir();
   RunResult r = RunAsbuilt("labels import --format ade20k " + ade.string() + " -o " + (dir / "ade").string());
   EXPECT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("imported 4 ade20k annotations"), std::string::npos) << r.out;
@@ -44,7 +44,7 @@ TEST(LabelsCommand, ImportsAde20kAndNyuSamples) {
 
 TEST(LabelsCommand, BadInputInABatchIsNamedAndTheRestConverted) {
   if (!fs::exists(kData / "nyuv2_sample")) GTEST_SKIP() << "shared data not present";
-  fs::path dir = TestDir();
+  fs::path dir = LabelsCommandTestDir();
   RunResult imp = RunAsbuilt("labels import --format nyuv2 " +
                              (kData / "nyuv2_sample/semantic40_ids.png").string() + " " + (dir / "missing.png").string() +
                              " -o " + (dir / "out").string());
@@ -54,7 +54,7 @@ TEST(LabelsCommand, BadInputInABatchIsNamedAndTheRestConverted) {
 }
 
 TEST(LabelsCommand, CalibrateConvertCompareReachTheTarget) {
-  fs::path dir = TestDir();
+  fs::path dir = LabelsCommandTestDir();
   for (int i = 0; i < 4; ++i) {
     cv::Mat labels = SyntheticRoomLabels(320, 240, 40 + i);
     WriteLabelImage(dir / fmt::format("masks/{:03d}.png", i), labels);

@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 using testing_util::RunAsbuilt;
 using testing_util::RunResult;
 
-fs::path TempDir(const std::string& name) {
+fs::path PlanTempDir(const std::string& name) {
   fs::path dir = fs::temp_directory_path() / ("asbuilt_cli_plan_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -47,7 +47,7 @@ std::string RectangleRoomPoints() {
 }
 
 TEST(PlanCommand, WritesAllFilesFromAPointFileAndEvalScoresThem) {
-  fs::path dir = TempDir("points");
+  fs::path dir = PlanTempDir("points");
   WriteFileAtomic(dir / "points.txt", RectangleRoomPoints());
   RunResult r = RunAsbuilt(fmt::format("plan {} -o {}", (dir / "points.txt").string(), (dir / "out").string()));
   ASSERT_EQ(r.exit_code, 0) << r.out;
@@ -71,7 +71,7 @@ TEST(PlanCommand, WritesAllFilesFromAPointFileAndEvalScoresThem) {
 TEST(PlanCommand, BuildsThePlanFromExactBlenderLabels) {
   fs::path capture = fs::path(ASBUILT_SOURCE_DIR) / "../shared/data/blender-rooms-public/p01_rect_1door_2win";
   if (!fs::exists(capture / "capture.json")) GTEST_SKIP() << "shared data not present";
-  fs::path dir = TempDir("capture");
+  fs::path dir = PlanTempDir("capture");
   RunResult r = RunAsbuilt(
       fmt::format("plan {} -o {} --stride-px 6", (capture / "capture.json").string(), dir.string()));
   ASSERT_EQ(r.exit_code, 0) << r.out;
@@ -82,7 +82,7 @@ TEST(PlanCommand, BuildsThePlanFromExactBlenderLabels) {
 }
 
 TEST(PlanCommand, BadInputNamesTheFileAndExits1WithoutOutput) {
-  fs::path dir = TempDir("bad");
+  fs::path dir = PlanTempDir("bad");
   WriteFileAtomic(dir / "points.txt", "wall 1 2\n");
   RunResult r = RunAsbuilt(fmt::format("plan {} -o {}", (dir / "points.txt").string(), (dir / "out").string()));
   EXPECT_EQ(r.exit_code, 1) << r.out;
@@ -101,7 +101,7 @@ TEST(PlanCommand, UsageErrorsExit2) {
 }
 
 TEST(EvalCommand, BadPlanFileNamesTheFieldAndExits1) {
-  fs::path dir = TempDir("eval_bad");
+  fs::path dir = PlanTempDir("eval_bad");
   WriteFileAtomic(dir / "plan.json", R"({"version": 1, "walls": [{"start": [0, 0], "end": "x"}]})");
   RunResult r = RunAsbuilt(fmt::format("eval plan {0} {0}", (dir / "plan.json").string()));
   EXPECT_EQ(r.exit_code, 1) << r.out;

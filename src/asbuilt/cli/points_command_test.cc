@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 using testing_util::RunAsbuilt;
 using testing_util::RunResult;
 
-const fs::path kData = ASBUILT_SHARED_DATA_DIR;
+using testing_util::kData;
 const fs::path kRoom = kData / "blender-rooms-public" / "p01_rect_1door_2win";
 
 template <typename... Args>
@@ -26,7 +26,7 @@ std::string Join(const Args&... args) {
   return out;
 }
 
-fs::path TempDir(const std::string& name) {
+fs::path PointsTempDir(const std::string& name) {
   fs::path dir = fs::temp_directory_path() / ("asbuilt_cli_stereo_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -34,7 +34,7 @@ fs::path TempDir(const std::string& name) {
 }
 
 TEST(PointsCommand, WritesPointsAndPlyFromALabelFolder) {
-  const fs::path out = TempDir("points");
+  const fs::path out = PointsTempDir("points");
   const RunResult r = RunAsbuilt(Join("points", (kRoom / "capture.json").string(), "--labels",
                                           (kRoom / "labels").string(), "-o", out.string()));
   ASSERT_EQ(r.exit_code, 0) << r.out;
@@ -47,7 +47,7 @@ TEST(PointsCommand, WritesPointsAndPlyFromALabelFolder) {
 }
 
 TEST(PointsCommand, MissingLabelFileIsAnInputErrorNamingIt) {
-  const fs::path out = TempDir("points_missing");
+  const fs::path out = PointsTempDir("points_missing");
   const RunResult r = RunAsbuilt(Join("points", (kRoom / "capture.json").string(), "--labels",
                                           out.string(), "-o", (out / "o").string()));
   EXPECT_EQ(r.exit_code, 1) << r.out;
@@ -61,7 +61,7 @@ TEST(PointsCommand, NeedsALabelSource) {
 }
 
 TEST(DisparityCommand, WritesPfmAndColourPicture) {
-  const fs::path out = TempDir("disparity");
+  const fs::path out = PointsTempDir("disparity");
   const RunResult r = RunAsbuilt(Join("disparity", (kRoom / "left" / "000.png").string(),
                                           (kRoom / "right" / "000.png").string(), "-o",
                                           (out / "d.pfm").string(), "--num-disparities", "64"));
@@ -74,7 +74,7 @@ TEST(DisparityCommand, WritesPfmAndColourPicture) {
 }
 
 TEST(CalibrateCommand, CalibratesRectifiesAndNamesAViewWithoutABoard) {
-  const fs::path out = TempDir("calibrate");
+  const fs::path out = PointsTempDir("calibrate");
   const fs::path c = kData / "opencv_stereo_calib";
   std::string left, right;
   for (const char* n : {"01", "02", "03", "04", "05", "06"}) {

@@ -19,7 +19,7 @@ using ::testing::HasSubstr;
 using testing_util::RunAsbuilt;
 using testing_util::RunResult;
 
-fs::path TempDir(const std::string& name) {
+fs::path SceneTempDir(const std::string& name) {
   fs::path dir = fs::temp_directory_path() / ("asbuilt_cli_scene_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -27,7 +27,7 @@ fs::path TempDir(const std::string& name) {
 }
 
 TEST(SceneCommand, TextToSceneToTruthGivesTheIssueExample) {
-  fs::path dir = TempDir("text");
+  fs::path dir = SceneTempDir("text");
   RunResult r = RunAsbuilt(
       "scene text \"a 6 by 8 m classroom, 3 m high, with a 1 m wide door on the east wall and two 1.5 m "
       "windows on the north wall\" -o " +
@@ -55,14 +55,14 @@ TEST(SceneCommand, TextToSceneToTruthGivesTheIssueExample) {
 }
 
 TEST(SceneCommand, TextReportsUnusedWords) {
-  fs::path dir = TempDir("unused");
+  fs::path dir = SceneTempDir("unused");
   RunResult r = RunAsbuilt("scene text \"a bedroom with a purple giraffe\" -o " + (dir / "s.json").string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_THAT(r.out, HasSubstr("2 words not understood: \"purple\", \"giraffe\""));
 }
 
 TEST(SceneCommand, ImpossibleTextExits1WithoutOutput) {
-  fs::path dir = TempDir("impossible");
+  fs::path dir = SceneTempDir("impossible");
   RunResult r = RunAsbuilt("scene text \"a 3 by 3 m room with six 1 m windows on the north wall\" -o " +
                            (dir / "s.json").string());
   EXPECT_EQ(r.exit_code, 1) << r.out;
@@ -71,7 +71,7 @@ TEST(SceneCommand, ImpossibleTextExits1WithoutOutput) {
 }
 
 TEST(SceneCommand, RandomWritesValidScenes) {
-  fs::path dir = TempDir("random");
+  fs::path dir = SceneTempDir("random");
   RunResult r = RunAsbuilt("scene random --seed 5 --count 3 -o " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_THAT(r.out, HasSubstr("3 scenes in "));
@@ -79,14 +79,14 @@ TEST(SceneCommand, RandomWritesValidScenes) {
                            (dir / "scene_0001.json").string() + " " + (dir / "scene_0002.json").string());
   EXPECT_EQ(v.exit_code, 0) << v.out;
   EXPECT_THAT(v.out, HasSubstr("scene_0002.json: ok (scene)"));
-  fs::path again = TempDir("random_again");
+  fs::path again = SceneTempDir("random_again");
   ASSERT_EQ(RunAsbuilt("scene random --seed 6 --count 1 -o " + again.string()).exit_code, 0);
   EXPECT_EQ(ReadFile(dir / "scene_0001.json"), ReadFile(again / "scene_0000.json"));
   EXPECT_EQ(RunAsbuilt("scene random --count 0 -o " + dir.string()).exit_code, 2);
 }
 
 TEST(SceneCommand, DescribeAndExportBlender) {
-  fs::path dir = TempDir("describe");
+  fs::path dir = SceneTempDir("describe");
   std::string example = std::string(ASBUILT_SOURCE_DIR) + "/examples/classroom.json";
   RunResult r = RunAsbuilt("scene describe " + example);
   ASSERT_EQ(r.exit_code, 0) << r.out;
@@ -98,7 +98,7 @@ TEST(SceneCommand, DescribeAndExportBlender) {
 }
 
 TEST(SceneCommand, BadSceneFileNamesTheField) {
-  fs::path dir = TempDir("bad");
+  fs::path dir = SceneTempDir("bad");
   WriteFileAtomic(dir / "bad.json",
                   R"({"version": 1, "rooms": [{"polygon": [[0, 0], [4, 0], [4, 4], [0, 4]],
                       "openings": [{"kind": "door", "wall": 9}]}]})");
@@ -112,7 +112,7 @@ TEST(SceneCommand, BadSceneFileNamesTheField) {
 }
 
 TEST(SceneCommand, LlmEndpointDownIsAClearError) {
-  fs::path dir = TempDir("llm");
+  fs::path dir = SceneTempDir("llm");
   RunResult r = RunAsbuilt("scene text \"an office\" --llm http://127.0.0.1:9/v1 --llm-timeout 2 -o " +
                            (dir / "s.json").string());
   EXPECT_EQ(r.exit_code, 1) << r.out;

@@ -16,14 +16,14 @@ namespace {
 namespace fs = std::filesystem;
 using testing_util::RunAsbuilt;
 
-fs::path TempDir(const std::string& name) {
+fs::path SegTempDir(const std::string& name) {
   fs::path d = fs::temp_directory_path() / fmt::format("asbuilt_cli_seg_{}_{}", name, ::getpid());
   fs::remove_all(d);
   return d;
 }
 
 TEST(SegCommands, TrainSegmentAndEvaluateToyRooms) {
-  fs::path d = TempDir("flow");
+  fs::path d = SegTempDir("flow");
   auto r = RunAsbuilt(fmt::format("experiment toy-rooms -o {} --count 8 --width 64 --height 48 --seed 2", (d / "toy").string()));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   r = RunAsbuilt(fmt::format("train --images {} -o {} --arch tiny --epochs 2 --steps-per-epoch 3 --scale 64x48 "
@@ -48,7 +48,7 @@ TEST(SegCommands, TrainSegmentAndEvaluateToyRooms) {
 // The paper's ratio experiment end to end through the CLI: two toy-room sets
 // stand in for real and synthetic; tiny model, two steps per config.
 TEST(SegCommands, ExperimentRatiosWritesTheTableAndPlotForEveryConfig) {
-  fs::path d = TempDir("ratios");
+  fs::path d = SegTempDir("ratios");
   for (auto [name, seed] : {std::pair{"real", 21}, std::pair{"synth", 22}}) {
     auto r = RunAsbuilt(fmt::format("experiment toy-rooms -o {} --count 10 --width 64 --height 48 --seed {}",
                                     (d / name).string(), seed));
@@ -78,7 +78,7 @@ TEST(SegCommands, ExperimentRatiosWritesTheTableAndPlotForEveryConfig) {
 }
 
 TEST(SegCommands, BadInputsExitWithClearErrors) {
-  fs::path d = TempDir("bad");
+  fs::path d = SegTempDir("bad");
   fs::create_directories(d);
   std::FILE* f = std::fopen((d / "fake.pt").c_str(), "w");
   std::fputs("not a checkpoint", f);

@@ -13,7 +13,7 @@ namespace asbuilt {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path TestDir() {
+fs::path CheckTestDir() {
   fs::path dir = fs::temp_directory_path() /
                  ("asbuilt_check_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   fs::remove_all(dir);
@@ -26,7 +26,7 @@ void MakePair(const fs::path& dir, const std::string& stem, cv::Mat label, cv::S
 }
 
 TEST(CheckDataset, ReportsEachBadPairByNameAndCountsTheGoodOnes) {
-  fs::path dir = TestDir();
+  fs::path dir = CheckTestDir();
   cv::Mat good(6, 8, CV_8UC1, cv::Scalar(1));
   good.colRange(0, 2).setTo(2);
   good.at<std::uint8_t>(0, 7) = 255;
@@ -64,7 +64,7 @@ TEST(CheckDataset, ReportsEachBadPairByNameAndCountsTheGoodOnes) {
 }
 
 TEST(CheckDataset, ChecksAManifestBySplitAndSource) {
-  fs::path dir = TestDir();
+  fs::path dir = CheckTestDir();
   for (int i = 0; i < 20; ++i) {
     MakePair(dir / "real", fmt::format("{:02d}", i), cv::Mat(6, 8, CV_8UC1, cv::Scalar(1)));
     MakePair(dir / "synth", fmt::format("{:02d}", i), cv::Mat(6, 8, CV_8UC1, cv::Scalar(2)));

@@ -16,7 +16,7 @@ namespace asbuilt {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path TestDir() {
+fs::path MixTestDir() {
   fs::path dir = fs::temp_directory_path() /
                  ("asbuilt_mix_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   fs::remove_all(dir);
@@ -79,7 +79,7 @@ class MixTest : public ::testing::Test {
     MakeDataset(dir / "synth", 400, 2);
   }
   void SetUp() override {
-    dir_ = TestDir();
+    dir_ = MixTestDir();
     fs::create_directories(dir_);
   }
   MixSummary Mix(const MixOptions& o) {

@@ -11,7 +11,7 @@ namespace asbuilt {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path TestDir() {
+fs::path PairsTestDir() {
   fs::path dir = fs::temp_directory_path() /
                  ("asbuilt_pairs_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   fs::remove_all(dir);
@@ -19,7 +19,7 @@ fs::path TestDir() {
 }
 
 TEST(ListPairs, MatchesByStemAndReportsOrphans) {
-  fs::path dir = TestDir();
+  fs::path dir = PairsTestDir();
   for (const char* f : {"images/a.jpg", "images/b.PNG", "images/c.jpg", "images/notes.txt",
                         "labels/a.png", "labels/b.png", "labels/d.png", "labels/.hidden.png"}) {
     WriteFileAtomic(dir / f, "x");
@@ -38,7 +38,7 @@ TEST(ListPairs, MatchesByStemAndReportsOrphans) {
 }
 
 TEST(ListPairs, DuplicateStemNamesBothFiles) {
-  fs::path dir = TestDir();
+  fs::path dir = PairsTestDir();
   for (const char* f : {"images/a.jpg", "images/a.png", "labels/a.png"}) WriteFileAtomic(dir / f, "x");
   try {
     ListPairs(dir / "images", dir / "labels");
@@ -50,7 +50,7 @@ TEST(ListPairs, DuplicateStemNamesBothFiles) {
 }
 
 TEST(ListPairs, MissingFolderIsNamed) {
-  fs::path dir = TestDir();
+  fs::path dir = PairsTestDir();
   WriteFileAtomic(dir / "labels/a.png", "x");
   try {
     ListPairs(dir / "images", dir / "labels");
@@ -61,7 +61,7 @@ TEST(ListPairs, MissingFolderIsNamed) {
 }
 
 TEST(ListDatasetPairs, FindsNestedCaptureFolders) {
-  fs::path dir = TestDir();
+  fs::path dir = PairsTestDir();
   for (const char* f : {"room1/left/000.png", "room1/labels/000.png", "room1/right/000.png",
                         "room2/left/000.png", "room2/labels/000.png", "room2/left/001.png",
                         "room2/labels/001.png"}) {
@@ -75,7 +75,7 @@ TEST(ListDatasetPairs, FindsNestedCaptureFolders) {
 }
 
 TEST(ListDatasetPairs, EmptyFolderIsAnError) {
-  fs::path dir = TestDir();
+  fs::path dir = PairsTestDir();
   fs::create_directories(dir / "x");
   EXPECT_THROW(ListDatasetPairs(dir), InputError);
 }

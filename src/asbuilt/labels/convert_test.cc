@@ -13,7 +13,7 @@ namespace asbuilt {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path TestDir() {
+fs::path ConvertTestDir() {
   fs::path dir = fs::temp_directory_path() /
                  ("asbuilt_convert_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   fs::remove_all(dir);
@@ -48,7 +48,7 @@ TEST(ConvertIdMap, RejectsAnEmptyPalette) {
 }
 
 TEST(ConvertIdMapFiles, ConvertsABatchKeepingNamesAndReportsBadFiles) {
-  fs::path dir = TestDir();
+  fs::path dir = ConvertTestDir();
   fs::create_directories(dir / "idmap");
   std::vector<fs::path> inputs;
   for (int i = 0; i < 6; ++i) {

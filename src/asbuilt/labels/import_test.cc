@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 
 const fs::path kData = ASBUILT_SHARED_DATA_DIR;
 
-fs::path TestDir() {
+fs::path ImportTestDir() {
   fs::path dir = fs::temp_directory_path() /
                  ("asbuilt_import_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   fs::remove_all(dir);
@@ -89,7 +89,7 @@ TEST(ImportNyu40, OfficeSampleMapsWallAndDoors) {
 }
 
 TEST(ImportNyu40, OutOfRangeIdIsAnInputError) {
-  fs::path dir = TestDir();
+  fs::path dir = ImportTestDir();
   fs::create_directories(dir);
   cv::Mat raw(4, 4, CV_8UC1, cv::Scalar(1));
   raw.at<std::uint8_t>(2, 3) = 57;
@@ -162,7 +162,7 @@ TEST(ImportLabelMe, NamesMapCaseInsensitivelyWithOverrides) {
 }
 
 TEST(ImportPalette, ColourMasksMapThroughThePalette) {
-  fs::path dir = TestDir();
+  fs::path dir = ImportTestDir();
   fs::create_directories(dir);
   Palette p;
   p.colours = {{1, {128, 0, 0}, 0}, {2, {0, 128, 0}, 0}, {3, {0, 0, 128}, 0}};  // VOC-like colours.
@@ -180,7 +180,7 @@ TEST(ImportPalette, ColourMasksMapThroughThePalette) {
 }
 
 TEST(ImportAnnotations, BatchReportsBadFilesAndCountsClasses) {
-  fs::path dir = TestDir();
+  fs::path dir = ImportTestDir();
   fs::create_directories(dir / "in");
   cv::imwrite((dir / "in/a.png").string(), cv::Mat(4, 4, CV_8UC1, cv::Scalar(1)));
   cv::imwrite((dir / "in/b.png").string(), cv::Mat(4, 4, CV_8UC1, cv::Scalar(15)));

@@ -12,7 +12,7 @@ namespace asbuilt {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path TestDir() {
+fs::path LabelIoTestDir() {
   fs::path dir = fs::temp_directory_path() /
                  ("asbuilt_label_io_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   fs::remove_all(dir);
@@ -20,7 +20,7 @@ fs::path TestDir() {
 }
 
 TEST(LabelIo, WritesAndReadsBackExactly) {
-  fs::path dir = TestDir();
+  fs::path dir = LabelIoTestDir();
   cv::Mat labels(7, 9, CV_8UC1);
   for (int i = 0; i < 63; ++i) labels.data[i] = static_cast<std::uint8_t>(i % 4);
   labels.at<std::uint8_t>(3, 3) = 255;
@@ -31,7 +31,7 @@ TEST(LabelIo, WritesAndReadsBackExactly) {
 }
 
 TEST(LabelIo, ColourLabelImageIsRejectedNamingTheFile) {
-  fs::path dir = TestDir();
+  fs::path dir = LabelIoTestDir();
   fs::create_directories(dir);
   cv::imwrite((dir / "rgb.png").string(), cv::Mat(4, 4, CV_8UC3, cv::Scalar(1, 2, 3)));
   try {
@@ -44,7 +44,7 @@ TEST(LabelIo, ColourLabelImageIsRejectedNamingTheFile) {
 }
 
 TEST(LabelIo, CorruptFileIsAnInputError) {
-  fs::path dir = TestDir();
+  fs::path dir = LabelIoTestDir();
   WriteFileAtomic(dir / "bad.png", "not a png");
   EXPECT_THROW(ReadLabelImage(dir / "bad.png"), InputError);
   EXPECT_THROW(ReadColourImage(dir / "bad.png"), InputError);
@@ -52,7 +52,7 @@ TEST(LabelIo, CorruptFileIsAnInputError) {
 }
 
 TEST(LabelIo, GreyImageReadsAsColour) {
-  fs::path dir = TestDir();
+  fs::path dir = LabelIoTestDir();
   fs::create_directories(dir);
   cv::imwrite((dir / "g.png").string(), cv::Mat(4, 4, CV_8UC1, cv::Scalar(77)));
   cv::Mat c = ReadColourImage(dir / "g.png");

@@ -10,7 +10,7 @@ namespace asbuilt {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path TestDir() {
+fs::path PaletteTestDir() {
   fs::path dir = fs::temp_directory_path() /
                  ("asbuilt_palette_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   fs::remove_all(dir);
@@ -25,7 +25,7 @@ TEST(Palette, NominalPrintsItself) {
 }
 
 TEST(Palette, RoundTrips) {
-  fs::path dir = TestDir();
+  fs::path dir = PaletteTestDir();
   Palette p = Palette::Nominal();
   p.method = "masks";
   p.colours[1].rgb = {201.25, 55.5, 50.125};
@@ -39,7 +39,7 @@ TEST(Palette, RoundTrips) {
 }
 
 TEST(Palette, ErrorsNameTheField) {
-  fs::path dir = TestDir();
+  fs::path dir = PaletteTestDir();
   WriteFileAtomic(dir / "palette.json", R"({"version": 1, "colours": [
       {"class": "wall", "id": 1, "rgb": [220, 60]},
       {"class": "door", "id": 7, "rgb": [0, 300, 0]}]})");
@@ -54,7 +54,7 @@ TEST(Palette, ErrorsNameTheField) {
 }
 
 TEST(Palette, EmptyColourListIsAnError) {
-  fs::path dir = TestDir();
+  fs::path dir = PaletteTestDir();
   WriteFileAtomic(dir / "palette.json", R"({"version": 1, "colours": []})");
   FileReport report = CheckPaletteFile(dir / "palette.json");
   ASSERT_EQ(report.errors.size(), 1u);
