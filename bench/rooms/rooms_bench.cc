@@ -46,16 +46,96 @@ struct Mode {
   bool model = false;
 };
 
+// What the capture sees of each truth wall and opening: every 4th pixel of
+// every frame labelled wall (door, window), back-projected with its depth.
+// A wall pixel goes to the truth wall whose inner face it lies on (within
+// 5 cm, inside its extent). A door/window pixel's viewing ray goes to where
+// it crosses the opening's wall, when the pixel lies no more than 1 m in
+// front of that wall (an open leaf) or behind it (glass, the view through a
+// doorway), inside the opening's extent. A wall (opening) counts as seen
+// when these fall into 10 cm bins covering at least half its length (width)
+// — what the rig sees less of cannot be measured from this spot by any
+// method (walls behind furniture, a door behind a wardrobe).
+struct Seen {
+  std::vector<bool> walls, openings;
+};
+
+Seen SeenFromRig(const fs::path& capture_json, const Plan& truth) {
+  const Capture capture = ReadCapture(capture_json);
+  const PinholeCamera camera = capture.camera.Pinhole();
+  struct Extent {
+    Vec2 start, dir, normal;  // A point of the wall line at t = 0 of the extent.
+    double length;
+    int label;
+    std::vector<bool> bins;
+  };
+  std::vector<Extent> extents;  // Walls, then openings.
+  const auto add = [&](const Vec2& a, const Vec2& b, int label) {
+    const Vec2 d = (b - a).normalized();
+    const double length = (b - a).norm();
+    extents.push_back({a, d, Vec2(-d.y(), d.x()), length, label,
+                       std::vector<bool>(static_cast<std::size_t>(std::ceil(length / 0.1)) + 1, false)});
+  };
+  for (const PlanWall& w : truth.walls) add(w.start, w.end, 1);
+  for (const PlanOpening& o : truth.openings) add(o.start, o.end, o.kind == OpeningKind::kDoor ? 2 : 3);
+  for (const CaptureFrame& f : capture.frames) {
+    if (!f.labels || !f.depth) continue;
+    const cv::Mat labels = cv::imread(capture.Resolve(*f.labels).string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat depth = cv::imread(capture.Resolve(*f.depth).string(), cv::IMREAD_UNCHANGED);
+    if (labels.empty() || depth.empty() || labels.size() != depth.size()) continue;
+    const Eigen::Isometry3d world_from_cam = WorldFromCamera(f.Pose(), capture.camera.baseline_m, StereoEye::kLeft);
+    const Vec2 c = world_from_cam.translation().head<2>();
+    for (int v = 0; v < labels.rows; v += 4) {
+      for (int u = 0; u < labels.cols; u += 4) {
+        const unsigned short mm = depth.at<unsigned short>(v, u);
+        const int label = labels.at<unsigned char>(v, u);
+        if (label < 1 || label > 3 || mm == 0) continue;
+        const Vec2 p = (world_from_cam * UnprojectToCamera(camera, Vec2(u, v), mm / 1000.0)).head<2>();
+        for (Extent& e : extents) {
+          if (e.label != label) continue;
+          Vec2 q = p;
+          if (label == 1) {
+            if (std::abs(e.normal.dot(p - e.start)) > 0.05) continue;
+          } else {
+            const Vec2 ray = p - c;
+            const double den = e.normal.dot(ray);
+            if (std::abs(den) < 1e-9) continue;
+            const double s = e.normal.dot(e.start - c) / den;  // Ray parameter where it crosses the wall.
+            if (s <= 0 || (1.0 - s) * ray.norm() < -1.0) continue;  // Behind the rig, or over 1 m in front.
+            q = c + s * ray;
+          }
+          const double t = e.dir.dot(q - e.start);
+          if (t < 0 || t > e.length) continue;
+          e.bins[static_cast<std::size_t>(t / 0.1)] = true;
+        }
+      }
+    }
+  }
+  Seen seen;
+  for (std::size_t i = 0; i < extents.size(); ++i) {
+    const std::vector<bool>& b = extents[i].bins;
+    const bool half = 2 * std::count(b.begin(), b.end(), true) >= static_cast<long>(b.size());
+    (i < truth.walls.size() ? seen.walls : seen.openings).push_back(half);
+  }
+  return seen;
+}
+
 // What one mode measured over all rooms, pooled as issue 9 counts it.
 struct Pooled {
   MatchCount walls, openings;
-  int visible = 0, visible_matched = 0;  // Truth walls the capture sees (VisibleWalls), and of those matched.
+  int visible = 0, visible_matched = 0;  // Truth walls the capture sees (SeenFromRig), and of those matched.
+  int openings_seen = 0, openings_seen_matched = 0;  // The same for doors and windows.
   std::vector<double> visible_wall_errors;
   std::vector<double> wall_errors, width_errors;
   int failed = 0;  // Surveys that wrote no plan.
 
-  void Add(const PlanScore& s, const std::vector<bool>& visible_walls) {
+  void Add(const PlanScore& s, const Seen& seen) {
+    const std::vector<bool>& visible_walls = seen.walls;
     for (bool v : visible_walls) visible += v;
+    for (bool v : seen.openings) openings_seen += v;
+    for (const OpeningMatch& m : s.opening_matches) {
+      openings_seen_matched += m.truth < static_cast<int>(seen.openings.size()) && seen.openings[m.truth];
+    }
     for (const WallMatch& m : s.wall_matches) {
       if (m.truth < static_cast<int>(visible_walls.size()) && visible_walls[m.truth]) {
         ++visible_matched;
@@ -88,47 +168,6 @@ std::string Shape(const Scene& scene) {
   deg = std::min(deg, 90.0 - deg);
   if (deg > 0.5) shape.append(fmt::format(", rotated {:.0f}°", deg));
   return shape;
-}
-
-// Which truth walls the capture sees: every 4th wall pixel of every frame,
-// back-projected with its depth, goes to the truth wall whose inner face it
-// lies on (within 5 cm, inside the wall's extent). A wall counts as visible
-// when points fall into 10 cm bins covering at least half its length — a
-// wall the rig sees less of cannot be measured from this spot by any method.
-std::vector<bool> VisibleWalls(const fs::path& capture_json, const Plan& truth) {
-  const Capture capture = ReadCapture(capture_json);
-  const PinholeCamera camera = capture.camera.Pinhole();
-  std::vector<std::vector<bool>> bins(truth.walls.size());
-  for (std::size_t i = 0; i < truth.walls.size(); ++i) {
-    bins[i].assign(static_cast<std::size_t>(std::ceil(truth.walls[i].Length() / 0.1)) + 1, false);
-  }
-  for (const CaptureFrame& f : capture.frames) {
-    if (!f.labels || !f.depth) continue;
-    const cv::Mat labels = cv::imread(capture.Resolve(*f.labels).string(), cv::IMREAD_UNCHANGED);
-    const cv::Mat depth = cv::imread(capture.Resolve(*f.depth).string(), cv::IMREAD_UNCHANGED);
-    if (labels.empty() || depth.empty() || labels.size() != depth.size()) continue;
-    const Eigen::Isometry3d world_from_cam = WorldFromCamera(f.Pose(), capture.camera.baseline_m, StereoEye::kLeft);
-    for (int v = 0; v < labels.rows; v += 4) {
-      for (int u = 0; u < labels.cols; u += 4) {
-        const unsigned short mm = depth.at<unsigned short>(v, u);
-        if (labels.at<unsigned char>(v, u) != 1 || mm == 0) continue;
-        const Vec2 p = (world_from_cam * UnprojectToCamera(camera, Vec2(u, v), mm / 1000.0)).head<2>();
-        for (std::size_t i = 0; i < truth.walls.size(); ++i) {
-          const PlanWall& w = truth.walls[i];
-          const double len = w.Length();
-          const Vec2 d = (w.end - w.start) / len;
-          const double t = d.dot(p - w.start);
-          if (t < 0 || t > len || std::abs(Vec2(-d.y(), d.x()).dot(p - w.start)) > 0.05) continue;
-          bins[i][static_cast<std::size_t>(t / 0.1)] = true;
-        }
-      }
-    }
-  }
-  std::vector<bool> visible;
-  for (const std::vector<bool>& b : bins) {
-    visible.push_back(2 * std::count(b.begin(), b.end(), true) >= static_cast<long>(b.size()));
-  }
-  return visible;
 }
 
 }  // namespace
@@ -172,16 +211,17 @@ int main(int argc, char** argv) {
       RenderCapture(scene, dir, render);
       render_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
-    const std::vector<bool> visible = VisibleWalls(dir / "capture.json", ReadPlan(dir / "truth.json"));
-    const int n_visible = static_cast<int>(std::count(visible.begin(), visible.end(), true));
-    std::string row = fmt::format("| {} | {} | {}/{} |", seed, Shape(scene), n_visible, visible.size());
+    const Seen seen = SeenFromRig(dir / "capture.json", ReadPlan(dir / "truth.json"));
+    const auto count = [](const std::vector<bool>& v) { return std::count(v.begin(), v.end(), true); };
+    std::string row = fmt::format("| {} | {} | {}/{} | {}/{} |", seed, Shape(scene), count(seen.walls),
+                                  seen.walls.size(), count(seen.openings), seen.openings.size());
     for (std::size_t m = 0; m < modes.size(); ++m) {
       std::string cell;
       try {
         const SurveyResult r = RunSurvey(dir / "capture.json", out / fmt::format("{}_{}", seed, m), modes[m].options);
         if (!r.summary.score) throw Error("no score");
         const PlanScore& s = *r.summary.score;
-        pooled[m].Add(s, visible);
+        pooled[m].Add(s, seen);
         const bool contacts = r.summary.wall_cue.find("contacts") != std::string::npos &&
                               r.summary.wall_cue.find("by stereo") == std::string::npos;
         cell = fmt::format("{}walls {}/{}, {} / {}; openings {}/{}, {}", contacts ? "(contacts) " : "",
@@ -208,28 +248,33 @@ int main(int argc, char** argv) {
       "length error median / max; openings matched/truth, width error median; \"(contacts)\" where survey "
       "placed the walls by their floor/ceiling edges because their stereo failed its check. \"Walls seen\": truth walls "
       "of which the capture's wall pixels (exact depth) cover at least half the length; the rest cannot be measured "
-      "from the rig's one spot (walls behind furniture). Targets (issue 9): "
+      "from the rig's one spot (walls behind furniture). \"Openings seen\": the same for doors and windows, "
+      "by where their pixels' viewing rays cross the wall (a door behind a wardrobe is not seen). Targets (issue 9): "
       "wall length median ≤ 2 %, max ≤ 5 %, opening width median ≤ 3 %, wall recall ≥ 95 %, opening recall ≥ "
       "90 %.\n\n",
       first_seed, first_seed + rooms - 1);
-  md += "| seed | room | walls seen |";
+  md += "| seed | room | walls seen | openings seen |";
   for (const Mode& m : modes) md += fmt::format(" {} |", m.name);
-  md += "\n|---|---|---|";
+  md += "\n|---|---|---|---|";
   for (std::size_t m = 0; m < modes.size(); ++m) md += "---|";
   md += fmt::format("\n{}\n", rows);
   md += "Pooled over the rooms (every matched wall and opening counts once):\n\n";
   md += "| | wall recall | wall length err median | max | walls seen: recall | median | max | opening recall | "
-        "opening width err median | no plan |\n";
-  md += "|---|---|---|---|---|---|---|---|---|---|\n";
+        "openings seen: recall | opening width err median | no plan |\n";
+  md += "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t m = 0; m < modes.size(); ++m) {
     const Pooled& p = pooled[m];
     RelativeErrors walls{p.wall_errors}, widths{p.width_errors}, seen{p.visible_wall_errors};
     const std::string seen_recall =
         p.visible > 0 ? fmt::format("{:.1f} %", 100.0 * p.visible_matched / p.visible) : std::string("–");
-    md += fmt::format("| {} | {} ({}/{}) | {} | {} | {} ({}/{}) | {} | {} | {} ({}/{}) | {} | {} |\n", modes[m].name,
-                      Pct(p.walls.Recall()), p.walls.matched, p.walls.truth, Pct(walls.Median()), Pct(walls.Max()),
-                      seen_recall, p.visible_matched, p.visible, Pct(seen.Median()), Pct(seen.Max()),
-                      Pct(p.openings.Recall()), p.openings.matched, p.openings.truth, Pct(widths.Median()), p.failed);
+    const std::string openings_seen_recall =
+        p.openings_seen > 0 ? fmt::format("{:.1f} %", 100.0 * p.openings_seen_matched / p.openings_seen)
+                            : std::string("–");
+    md += fmt::format("| {} | {} ({}/{}) | {} | {} | {} ({}/{}) | {} | {} | {} ({}/{}) | {} ({}/{}) | {} | {} |\n",
+                      modes[m].name, Pct(p.walls.Recall()), p.walls.matched, p.walls.truth, Pct(walls.Median()),
+                      Pct(walls.Max()), seen_recall, p.visible_matched, p.visible, Pct(seen.Median()), Pct(seen.Max()),
+                      Pct(p.openings.Recall()), p.openings.matched, p.openings.truth, openings_seen_recall,
+                      p.openings_seen_matched, p.openings_seen, Pct(widths.Median()), p.failed);
   }
   md += "\n";
   if (modes.front().model == false) md += "No shipped-model column: this build has no LibTorch or no models/ file.\n\n";
