@@ -19,10 +19,10 @@ build: deps $(BUILD)/build.ninja
 
 # The tests, then (scripts/sanitize.sh) the input-parsing modules' tests and
 # the bad-input suite under ASan + UBSan, and each fuzz harness for
-# FUZZ_SECONDS (default 15).
+# FUZZ_SECONDS (default 10).
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
-	JOBS=$(JOBS) FUZZ_SECONDS=$(or $(FUZZ_SECONDS),15) bash scripts/sanitize.sh
+	JOBS=$(JOBS) FUZZ_SECONDS=$(or $(FUZZ_SECONDS),10) bash scripts/sanitize.sh
 
 demo: build
 	$(BUILD)/asbuilt demo

@@ -40,11 +40,26 @@ endfunction()
 # compiler and flag set (Release, the sanitizer build); GCC rejects a shared
 # one across targets whose -D, -O or -fPIC/-fPIE differ, and ours do.
 # ASBUILT_PCH=OFF builds without them, which also shows a file that forgot an
-# include. Test binaries use unity builds instead (asbuilt_test).
+# include. Test binaries and the program use unity batches instead (asbuilt_unity).
 function(asbuilt_precompile target kind)
   if(ASBUILT_PCH)
     target_precompile_headers(${target} PRIVATE ${PROJECT_SOURCE_DIR}/cmake/pch/${kind}_pch.h)
   endif()
+endfunction()
+
+# asbuilt_unity(<target>)
+# Unity build: up to ASBUILT_UNITY_BATCH files per translation unit, so
+# GoogleTest's, CLI11's, nlohmann-json's and Eigen's headers are parsed and
+# their templates instantiated once per batch, not once per file. For the
+# test binaries and the `asbuilt` program (code that runs once per command,
+# at -O1); the libraries stay one file per unit in Release. Building
+# scene_test + plan_test and their libraries on 2 cores: 189 s one by one,
+# 163 s with a precompiled header per target, 134 s with unity batches of 8
+# (and the libraries' precompiled headers); a precompiled header on top of a
+# unity batch costs more than it saves. A file's helpers in an anonymous
+# namespace share the batch with its neighbours': give them distinct names.
+function(asbuilt_unity target)
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${ASBUILT_UNITY_BATCH})
 endfunction()
 
 # asbuilt_library(NAME <module> SRCS <files> [DEPS <targets>] [PRIVATE_DEPS <targets>])
@@ -80,15 +95,8 @@ function(asbuilt_test)
     ASBUILT_SHARED_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/data"
     ASBUILT_BINARY_DIR="${PROJECT_BINARY_DIR}")
   asbuilt_apply_common(${target} LIGHT)
-  # Unity build: up to ASBUILT_UNITY_TESTS test files per translation unit,
-  # so GoogleTest's, nlohmann-json's and Eigen's headers are parsed and their
-  # templates instantiated once per batch, not once per file. Building
-  # scene_test + plan_test and their libraries on 2 cores: 189 s one by
-  # one, 163 s with a precompiled header per target, 134 s with unity
-  # batches of 8 (and the libraries' precompiled headers); a precompiled
-  # header on top of a unity batch costs more than it saves.
-  if(ASBUILT_UNITY_TESTS)
-    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${ASBUILT_UNITY_TESTS})
+  if(ASBUILT_UNITY_BATCH)
+    asbuilt_unity(${target})
   else()
     asbuilt_precompile(${target} test)
   endif()

@@ -3,7 +3,7 @@
 # AddressSanitizer + UBSan (and libFuzzer coverage) of the modules that parse
 # input, then
 #   1. their unit tests and the CLI bad-input suite under the sanitizers,
-#   2. each libFuzzer harness for FUZZ_SECONDS (default 15) via scripts/fuzz.sh.
+#   2. each libFuzzer harness for FUZZ_SECONDS (default 10) via scripts/fuzz.sh.
 # Any sanitizer report, failing test or fuzz finding fails the script.
 #
 # Modules (CI): the ones that parse input — util geometry formats scene stereo
@@ -14,14 +14,14 @@
 # Debian's prebuilt LibTorch is not instrumented, and mixing it with ASan
 # reports false positives in its own allocator and OpenMP runtime.
 #
-#   scripts/sanitize.sh                      build + tests + 15 s per harness
+#   scripts/sanitize.sh                      build + tests + 10 s per harness
 #   SANITIZE_FULL=1 scripts/sanitize.sh      + render labels dataset, cli/BadInput.*
 #   FUZZ_SECONDS=3600 scripts/sanitize.sh    nightly-length fuzzing
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${SANITIZE_BUILD:-build-asan}
 jobs=${JOBS:-$(nproc)}
-seconds=${FUZZ_SECONDS:-15}
+seconds=${FUZZ_SECONDS:-10}
 modules=(util geometry formats scene stereo plan mcp)
 targets=()
 regex_extra=""
@@ -34,9 +34,11 @@ fi
 t0=$(date +%s)
 if [[ ! -f $build/build.ninja ]]; then
   # -O1 -gline-tables-only: readable sanitizer stacks at a fraction of -O2 -g's build time.
+  # Unity batches for the libraries too: this build runs once per CI job, not for speed.
   CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize \
     -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -gline-tables-only" -DCMAKE_C_FLAGS_SANITIZE="-O1 -gline-tables-only" \
-    -DASBUILT_SANITIZE=ON -DASBUILT_FUZZ=ON -DASBUILT_WITH_TORCH=OFF -DASBUILT_BUILD_BENCH=OFF >/dev/null
+    -DASBUILT_SANITIZE=ON -DASBUILT_FUZZ=ON -DASBUILT_WITH_TORCH=OFF -DASBUILT_BUILD_BENCH=OFF \
+    -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=8 >/dev/null
 fi
 for m in "${modules[@]}"; do targets+=("${m}_test"); done
 for f in fuzz/*_fuzz.cc; do targets+=("fuzz_$(basename "$f" _fuzz.cc)"); done

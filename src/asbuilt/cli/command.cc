@@ -84,6 +84,17 @@ void AddContactSnapOption(CLI::App& app, std::optional<int>* px) {
       ->default_str("auto");
 }
 
+void ParseSizeFlag(const std::string& text, const std::string& flag, int& w, int& h) {
+  if (text.empty()) return;
+  int a = 0, b = 0;
+  char x = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d", &a, &x, &b) != 3 || (x != 'x' && x != 'X') || a <= 0 || b <= 0) {
+    throw CLI::ValidationError(flag, fmt::format("expected WIDTHxHEIGHT (e.g. 256x192), got '{}'", text));
+  }
+  w = a;
+  h = b;
+}
+
 std::vector<std::filesystem::path> ExpandFileArgs(const std::vector<std::string>& args,
                                                   const std::string& flag) {
   std::vector<std::filesystem::path> out;

@@ -48,6 +48,10 @@ void AddContactsOption(CLI::App& app, ContactUse* use);
 // origin).
 void AddContactSnapOption(CLI::App& app, std::optional<int>* px);
 
+// WIDTHxHEIGHT of `flag` into w and h (left alone when `text` is empty);
+// throws CLI::ValidationError naming the flag otherwise.
+void ParseSizeFlag(const std::string& text, const std::string& flag, int& w, int& h);
+
 // Thrown by Parse() after it printed the help text (main() exits 0).
 struct HelpPrinted {};
 

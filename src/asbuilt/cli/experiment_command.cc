@@ -15,22 +15,6 @@
 #include "asbuilt/util/progress.h"
 
 namespace asbuilt::cli {
-namespace {
-
-// "256x192" → (256, 192); empty leaves the defaults. Throws
-// CLI::ValidationError naming the flag (same syntax as `asbuilt train`).
-void ParseSize(const std::string& text, const std::string& flag, int& w, int& h) {
-  if (text.empty()) return;
-  int a = 0, b = 0;
-  char x = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d", &a, &x, &b) != 3 || (x != 'x' && x != 'X') || a <= 0 || b <= 0) {
-    throw CLI::ValidationError(flag, fmt::format("expected WIDTHxHEIGHT (e.g. 256x192), got '{}'", text));
-  }
-  w = a;
-  h = b;
-}
-
-}  // namespace
 
 int RunExperimentCommand(int argc, char** argv) {
   CLI::App app("Segmentation experiments.", "asbuilt experiment");
@@ -92,8 +76,8 @@ int RunExperimentCommand(int argc, char** argv) {
     r.synthetic_dir = synthetic;
     r.real_test_dir = real_test;
     for (const std::string& e : extra_tests) r.extra_test_dirs.emplace_back(e);
-    ParseSize(scale, "--scale", r.train.augment.scale_width_px, r.train.augment.scale_height_px);
-    ParseSize(crop, "--crop", r.train.augment.crop_width_px, r.train.augment.crop_height_px);
+    ParseSizeFlag(scale, "--scale", r.train.augment.scale_width_px, r.train.augment.scale_height_px);
+    ParseSizeFlag(crop, "--crop", r.train.augment.crop_width_px, r.train.augment.crop_height_px);
     r.train.augment.photometric = !no_photometric;
     r.train.augment.blur_noise = !no_blur_noise;
     r.out_dir = out;

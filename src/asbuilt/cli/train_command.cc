@@ -13,21 +13,6 @@
 #include "asbuilt/util/progress.h"
 
 namespace asbuilt::cli {
-namespace {
-
-// "256x192" → (256, 192); throws CLI::ValidationError naming the flag.
-void ParseSize(const std::string& text, const std::string& flag, int& w, int& h) {
-  if (text.empty()) return;
-  int a = 0, b = 0;
-  char x = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d", &a, &x, &b) != 3 || (x != 'x' && x != 'X') || a <= 0 || b <= 0) {
-    throw CLI::ValidationError(flag, fmt::format("expected WIDTHxHEIGHT (e.g. 256x192), got '{}'", text));
-  }
-  w = a;
-  h = b;
-}
-
-}  // namespace
 
 int RunTrainCommand(int argc, char** argv) {
   CLI::App app(
@@ -80,8 +65,8 @@ int RunTrainCommand(int argc, char** argv) {
   o.augment.flip = !no_flip;
   o.augment.photometric = !no_photometric;
   o.augment.blur_noise = !no_blur_noise;
-  ParseSize(scale, "--scale", o.augment.scale_width_px, o.augment.scale_height_px);
-  ParseSize(crop, "--crop", o.augment.crop_width_px, o.augment.crop_height_px);
+  ParseSizeFlag(scale, "--scale", o.augment.scale_width_px, o.augment.scale_height_px);
+  ParseSizeFlag(crop, "--crop", o.augment.crop_width_px, o.augment.crop_height_px);
 
 #ifdef ASBUILT_SEG_NO_TORCH
   throw Error("asbuilt train: this build has no LibTorch (configured with ASBUILT_WITH_TORCH=OFF)");

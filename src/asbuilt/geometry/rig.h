@@ -20,6 +20,10 @@ using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 
+// Plan (floor) geometry: the z component of a × b, and `d` turned +90°.
+inline double Cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+inline Vec2 Perp(const Vec2& d) { return Vec2(-d.y(), d.x()); }
+
 inline constexpr double kPi = 3.14159265358979323846;
 inline double DegToRad(double deg) { return deg * kPi / 180.0; }
 inline double RadToDeg(double rad) { return rad * 180.0 / kPi; }

@@ -80,13 +80,10 @@ struct Sheet {
 // default stroke-miterlimit, i.e. corners sharper than about 29°.
 constexpr double kMitreLimit = 4.0;
 
-Vec2 Perp(const Vec2& d) { return Vec2(-d.y(), d.x()); }
 double WrapPositive(double a) {
   a = std::fmod(a, 2 * kPi);
   return a < 0 ? a + 2 * kPi : a;
 }
-double Cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 // Whether `p` lies inside `polygon` (even-odd rule).
 bool Inside(const std::vector<Vec2>& polygon, const Vec2& p) {
   bool inside = false;
@@ -160,13 +157,6 @@ void CheckDrawable(const Plan& plan, const std::string& name) {
   }
 }
 
-// Text angle that reads left-to-right or bottom-to-top.
-double Readable(double angle) {
-  while (angle > kPi / 2 + 1e-9) angle -= kPi;
-  while (angle <= -kPi / 2 + 1e-9) angle += kPi;
-  return angle;
-}
-
 // A dimension from a to b, its line offset by `offset` along `out` (unit),
 // extension lines from the measured points, 45° ticks, text above the line.
 // `paper`: how many times the annotation is larger in the world than at
@@ -183,14 +173,12 @@ void AddDimension(Sheet& sheet, const Vec2& a, const Vec2& b, const Vec2& out, d
   Vec2 slash = (dir + out).normalized() * tick;
   sheet.lines.push_back({da - slash, da + slash, 0.35, kDim});
   sheet.lines.push_back({db - slash, db + slash, 0.35, kDim});
-  double angle = Readable(std::atan2(dir.y(), dir.x()));
+  double angle = ReadableTextAngle(std::atan2(dir.y(), dir.x()));
   Vec2 up = Perp(Vec2(std::cos(angle), std::sin(angle)));
   sheet.texts.push_back({0.5 * (da + db) + 0.04 * paper * up, angle, text_height_m, 0.5, text, false, kDim});
   sheet.Grow(da + (overshoot + text_height_m + 0.05 * paper) * out);
   sheet.Grow(db + (overshoot + text_height_m + 0.05 * paper) * out);
 }
-
-double Thickness(const PlanWall& w, const DrawingOptions& o) { return w.thickness.value_or(o.nominal_thickness_m); }
 
 // The sheet for a drawing at 1:scale. Walls and openings are drawn to their
 // world size; the annotation (text, dimension spacing and ticks, scale bar,
@@ -220,8 +208,8 @@ Sheet LayOut(const Plan& plan, const DrawingOptions& o, double scale) {
   std::vector<bool> bevel_after(n, false);  // Bevel between wall i and wall i+1.
   for (int i = 0; i < n; ++i) {
     const PlanWall& w = plan.walls[i];
-    outer_start[i] = w.start + Thickness(w, o) * outward(i);
-    outer_end[i] = w.end + Thickness(w, o) * outward(i);
+    outer_start[i] = w.start + DrawnThickness(w, o) * outward(i);
+    outer_end[i] = w.end + DrawnThickness(w, o) * outward(i);
   }
   for (int i = 0; i < n && n >= 2; ++i) {
     int j = (i + 1) % n;
@@ -231,7 +219,8 @@ Sheet LayOut(const Plan& plan, const DrawingOptions& o, double scale) {
     if (den != 0) {
       double s = Cross(outer_start[j] - outer_start[i], db) / den;
       Vec2 x = outer_start[i] + s * da;
-      double th = std::max(std::abs(Thickness(plan.walls[i], o)), std::abs(Thickness(plan.walls[j], o)));
+      double th =
+          std::max(std::abs(DrawnThickness(plan.walls[i], o)), std::abs(DrawnThickness(plan.walls[j], o)));
       if ((x - plan.walls[i].end).norm() <= kMitreLimit * th) {  // False for NaN too.
         outer_end[i] = outer_start[j] = x;
         continue;
@@ -247,7 +236,7 @@ Sheet LayOut(const Plan& plan, const DrawingOptions& o, double scale) {
     double len = w.Length();
     if (len <= 0) continue;
     Vec2 d = (w.end - w.start) / len, out = outward(i);
-    double th = Thickness(w, o);
+    double th = DrawnThickness(w, o);
     for (auto [t0, t1] : WallPiecesBetweenOpenings(plan, i)) {
       Vec2 i0 = w.start + t0 * d, i1 = w.start + t1 * d;
       Vec2 o0 = t0 <= 1e-9 ? outer_start[i] : i0 + th * out;
@@ -275,7 +264,7 @@ Sheet LayOut(const Plan& plan, const DrawingOptions& o, double scale) {
   for (const PlanOpening& op : plan.openings) {
     const PlanWall& w = plan.walls[op.wall];
     Vec2 d = (w.end - w.start).normalized(), out = outward(op.wall), in = -out;
-    double th = Thickness(w, o);
+    double th = DrawnThickness(w, o);
     Vec2 a = op.start, b = op.end;
     if (d.dot(b - a) < 0) std::swap(a, b);
     // Jambs.
@@ -308,7 +297,7 @@ Sheet LayOut(const Plan& plan, const DrawingOptions& o, double scale) {
     double len = w.Length();
     if (len <= 0) continue;
     Vec2 d = (w.end - w.start) / len, out = outward(i);
-    double th = Thickness(w, o);
+    double th = DrawnThickness(w, o);
     std::vector<std::pair<double, const PlanOpening*>> marks;
     for (const PlanOpening& op : plan.openings) {
       if (op.wall != i) continue;
@@ -356,7 +345,7 @@ Sheet LayOut(const Plan& plan, const DrawingOptions& o, double scale) {
       v1 = std::max(v1, v.dot(p));
     }
     double max_th = 0;
-    for (const PlanWall& w : plan.walls) max_th = std::max(max_th, Thickness(w, o));
+    for (const PlanWall& w : plan.walls) max_th = std::max(max_th, DrawnThickness(w, o));
     double off = max_th + 1.3 * paper;
     // Only where no single wall already gives the overall size.
     auto covered = [&](double size) {
@@ -594,6 +583,16 @@ void DrawingOptions::Check() const {
                 fmt::format("DrawingOptions.max_page_side_mm = {}, must be in (0, 5080]", max_page_side_mm));
   CheckArgument(max_png_side_px >= 16 && max_png_side_px <= 32767,
                 fmt::format("DrawingOptions.max_png_side_px = {}, must be in [16, 32767]", max_png_side_px));
+}
+
+double DrawnThickness(const PlanWall& wall, const DrawingOptions& options) {
+  return wall.thickness.value_or(options.nominal_thickness_m);
+}
+
+double ReadableTextAngle(double angle) {
+  while (angle > kPi / 2 + 1e-9) angle -= kPi;
+  while (angle <= -kPi / 2 + 1e-9) angle += kPi;
+  return angle;
 }
 
 std::string DimensionText(double length_m, std::optional<double> sigma_m, const DrawingOptions& options) {

@@ -75,6 +75,12 @@ void WritePlanFiles(const Plan& plan, const std::filesystem::path& folder, const
 // with " ±5" appended when `sigma_m` is significant for the options.
 std::string DimensionText(double length_m, std::optional<double> sigma_m, const DrawingOptions& options);
 
+// Shared by the drawings and the DXF writer: a wall's drawn thickness (its
+// own, or the options' nominal one), and a text angle (radians) turned by π
+// where needed so that it reads left-to-right or bottom-to-top.
+double DrawnThickness(const PlanWall& wall, const DrawingOptions& options);
+double ReadableTextAngle(double angle);
+
 }  // namespace asbuilt
 
 #endif  // ASBUILT_PLAN_DRAWING_H_

@@ -11,7 +11,6 @@
 namespace asbuilt {
 namespace {
 
-Vec2 Perp(const Vec2& d) { return Vec2(-d.y(), d.x()); }
 
 // Group-code writer with a handle allocator.
 class DxfOut {
@@ -151,13 +150,6 @@ Entity Line(const std::string& layer, const Vec2& a, const Vec2& b) {
   return e;
 }
 
-// Text angle that reads left-to-right or bottom-to-top, radians.
-double Readable(double angle) {
-  while (angle > kPi / 2 + 1e-9) angle -= kPi;
-  while (angle <= -kPi / 2 + 1e-9) angle += kPi;
-  return angle;
-}
-
 Dimension MakeDimension(const Vec2& a, const Vec2& b, const Vec2& out, double offset, const std::string& text,
                         const DrawingOptions& opt) {
   Dimension d;
@@ -167,7 +159,7 @@ Dimension MakeDimension(const Vec2& a, const Vec2& b, const Vec2& out, double of
   d.line2 = b + offset * out;
   d.text = text;
   Vec2 dir = (b - a).normalized();
-  double angle = Readable(std::atan2(dir.y(), dir.x()));
+  double angle = ReadableTextAngle(std::atan2(dir.y(), dir.x()));
   Vec2 up = Perp(Vec2(std::cos(angle), std::sin(angle)));
   d.text_at = 0.5 * (d.line1 + d.line2) + 0.04 * up;
   d.text_angle_deg = RadToDeg(angle);
@@ -190,7 +182,6 @@ Dimension MakeDimension(const Vec2& a, const Vec2& b, const Vec2& out, double of
   return d;
 }
 
-double Thickness(const PlanWall& w, const DrawingOptions& o) { return w.thickness.value_or(o.nominal_thickness_m); }
 
 }  // namespace
 
@@ -207,7 +198,7 @@ std::string PlanToDxf(const Plan& plan, const DrawingOptions& opt) {
     double len = w.Length();
     if (len <= 0) continue;
     Vec2 d = (w.end - w.start) / len, out = outward(i);
-    double th = Thickness(w, opt);
+    double th = DrawnThickness(w, opt);
     entities.push_back(Line("WALLS", w.start, w.end));
     for (auto [t0, t1] : WallPiecesBetweenOpenings(plan, i)) {
       Vec2 i0 = w.start + t0 * d, i1 = w.start + t1 * d;
@@ -232,7 +223,7 @@ std::string PlanToDxf(const Plan& plan, const DrawingOptions& opt) {
   for (const PlanOpening& op : plan.openings) {
     const PlanWall& w = plan.walls[op.wall];
     Vec2 d = (w.end - w.start).normalized(), out = outward(op.wall), in = -out;
-    double th = Thickness(w, opt);
+    double th = DrawnThickness(w, opt);
     Vec2 a = op.start, b = op.end;
     if (d.dot(b - a) < 0) std::swap(a, b);
     const std::string layer = op.kind == OpeningKind::kDoor ? "DOORS" : "WINDOWS";

@@ -19,7 +19,6 @@
 namespace asbuilt {
 namespace {
 
-double Cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 Vec2 DirOf(double theta) { return Vec2(std::cos(theta), std::sin(theta)); }
 Vec2 NormalOf(double theta) { return Vec2(-std::sin(theta), std::cos(theta)); }
 

@@ -11,7 +11,6 @@
 namespace asbuilt {
 namespace {
 
-double Cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // True when the open segment p→q properly crosses segment a→b.
 bool Crosses(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) {

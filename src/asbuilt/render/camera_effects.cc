@@ -9,6 +9,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "asbuilt/util/hash.h"
+
 namespace asbuilt {
 namespace {
 
@@ -23,16 +25,9 @@ inline float LinearToSrgb(float x) {
   return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
 }
 
-inline std::uint64_t SplitMix(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ULL;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
-  return x ^ (x >> 31);
-}
-
 // A standard normal value from a hashed key (Box–Muller).
 inline float HashGaussian(std::uint64_t key) {
-  std::uint64_t h = SplitMix(key);
+  std::uint64_t h = SplitMix64(key);
   float u1 = ((h >> 40) + 0.5f) * (1.0f / 16777216.0f);
   float u2 = (((h >> 16) & 0xFFFFFF) + 0.5f) * (1.0f / 16777216.0f);
   return std::sqrt(-2.0f * std::log(u1)) * std::cos(6.2831853f * u2);
@@ -51,7 +46,7 @@ std::string ViewEffects::ToString() const {
 ViewEffects RandomViewEffects(double strength, std::uint64_t seed) {
   ViewEffects e;
   if (strength <= 0) return e;
-  std::mt19937_64 rng(SplitMix(seed ^ 0xEFFEC75ULL));
+  std::mt19937_64 rng(SplitMix64(seed ^ 0xEFFEC75ULL));
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   e.exposure = std::exp(strength * 0.45 * u(rng));
   double temp = strength * 0.12 * u(rng);  // Warm/cool.

@@ -11,6 +11,7 @@
 #include "asbuilt/render/ray_tracer.h"
 #include "asbuilt/render/texture.h"
 #include "asbuilt/util/error.h"
+#include "asbuilt/util/hash.h"
 
 namespace asbuilt {
 namespace {
@@ -22,20 +23,13 @@ constexpr float kGlassTransmission = 0.85f;
 constexpr float kGlassReflection = 0.06f;
 constexpr int kAmbientScale = 1;
 
-inline std::uint64_t SplitMix(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ULL;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
-  return x ^ (x >> 31);
-}
-
 // Small fast generator, seeded per pixel so results do not depend on threads.
 struct Rng {
   std::uint64_t state;
   std::int64_t rays = 0;  // Rays traced for this pixel (statistics).
   float Next() {
     state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    std::uint64_t x = SplitMix(state);
+    std::uint64_t x = SplitMix64(state);
     return static_cast<float>(x >> 40) * (1.0f / 16777216.0f);
   }
 };
@@ -220,7 +214,7 @@ Eigen::Isometry3d WorldFromStereoEye(const Viewpoint& viewpoint, double baseline
 SceneRenderer::SceneRenderer(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   impl_->mesh = BuildSceneMesh(scene);
   impl_->tracer = std::make_unique<RayTracer>(impl_->mesh);
-  impl_->texture_seed = static_cast<std::uint32_t>(SplitMix(scene.seed));
+  impl_->texture_seed = static_cast<std::uint32_t>(SplitMix64(scene.seed));
 }
 
 SceneRenderer::~SceneRenderer() = default;
@@ -281,7 +275,7 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
   const PinholeCamera& K = cam.camera;
   const int W = K.width_px, H = K.height_px;
   const int spp = options.samples_per_pixel;
-  const std::uint64_t view_seed = SplitMix(options.seed ^ SplitMix(view_key + 0x5EED));
+  const std::uint64_t view_seed = SplitMix64(options.seed ^ SplitMix64(view_key + 0x5EED));
 
   RenderedView out;
   out.effects = RandomViewEffects(options.camera_effects, view_seed);
@@ -310,7 +304,7 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
       for (int y = r.rows().begin(); y < r.rows().end(); ++y) {
         for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
           const std::size_t i = static_cast<std::size_t>(y) * W + x;
-          Rng rng{SplitMix(view_seed ^ (static_cast<std::uint64_t>(eye_index) << 62) ^ (i * 0x9E3779B97F4A7C15ULL))};
+          Rng rng{SplitMix64(view_seed ^ (static_cast<std::uint64_t>(eye_index) << 62) ^ (i * 0x9E3779B97F4A7C15ULL))};
           Vec3f albedo_sum = Vec3f::Zero(), e_sum = Vec3f::Zero(), extra_sum = Vec3f::Zero();
           for (int s = 0; s < spp; ++s) {
             // Sample 0 goes through the pixel centre (labels, depth); the

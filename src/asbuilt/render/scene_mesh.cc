@@ -73,7 +73,6 @@ void AddPrism(MeshObject& o, const std::vector<Vec2>& poly, double z0, double z1
   }
 }
 
-double Cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 bool PointInPolygon(const std::vector<Vec2>& poly, const Vec2& p) {
   bool inside = false;

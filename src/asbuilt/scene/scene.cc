@@ -15,7 +15,6 @@ namespace {
 constexpr double kEps = 1e-9;       // Metres: length comparisons.
 constexpr double kSameM = 1e-6;     // Metres: two points are the same.
 
-double Cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Closed segments [p1, p2] and [q1, q2] share at least one point.
 bool SegmentsIntersect(const Vec2& p1, const Vec2& p2, const Vec2& q1, const Vec2& q2) {
