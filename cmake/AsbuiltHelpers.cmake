@@ -47,7 +47,7 @@ function(asbuilt_precompile target kind)
   endif()
 endfunction()
 
-# asbuilt_unity(<target>)
+# asbuilt_unity(<target> <pch kind>)
 # Unity build: up to ASBUILT_UNITY_BATCH files per translation unit, so
 # GoogleTest's, CLI11's, nlohmann-json's and Eigen's headers are parsed and
 # their templates instantiated once per batch, not once per file. For the
@@ -58,8 +58,14 @@ endfunction()
 # (and the libraries' precompiled headers); a precompiled header on top of a
 # unity batch costs more than it saves. A file's helpers in an anonymous
 # namespace share the batch with its neighbours': give them distinct names.
-function(asbuilt_unity target)
-  set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${ASBUILT_UNITY_BATCH})
+# With ASBUILT_UNITY_BATCH=0 the target gets its precompiled header of
+# `pch_kind` instead.
+function(asbuilt_unity target pch_kind)
+  if(ASBUILT_UNITY_BATCH)
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${ASBUILT_UNITY_BATCH})
+  else()
+    asbuilt_precompile(${target} ${pch_kind})
+  endif()
 endfunction()
 
 # asbuilt_library(NAME <module> SRCS <files> [DEPS <targets>] [PRIVATE_DEPS <targets>])
@@ -95,11 +101,7 @@ function(asbuilt_test)
     ASBUILT_SHARED_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/data"
     ASBUILT_BINARY_DIR="${PROJECT_BINARY_DIR}")
   asbuilt_apply_common(${target} LIGHT)
-  if(ASBUILT_UNITY_BATCH)
-    asbuilt_unity(${target})
-  else()
-    asbuilt_precompile(${target} test)
-  endif()
+  asbuilt_unity(${target} test)
   gtest_discover_tests(${target} TEST_PREFIX "${ARG_NAME}/"
     DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT ${ARG_TIMEOUT})
 endfunction()

@@ -10,19 +10,13 @@
 #include "asbuilt/scene/furnish.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
+#include "asbuilt/util/hash.h"
 
 namespace asbuilt {
 namespace fs = std::filesystem;
 namespace {
 
 constexpr double kMinWallClearanceM = 0.3;
-
-std::uint64_t Mix(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ULL;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
-  return x ^ (x >> 31);
-}
 
 double DistanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
   Vec2 ab = b - a;
@@ -103,11 +97,11 @@ std::pair<int, int> ShardRange(int count, int shard_index, int shard_count) {
 }
 
 std::uint64_t SynthSceneSeed(const DatasetSynthOptions& options, int index) {
-  return Mix(options.seed ^ 0x5CE4E5EEDULL) + static_cast<std::uint64_t>(index / options.items_per_scene);
+  return SplitMix64(options.seed ^ 0x5CE4E5EEDULL) + static_cast<std::uint64_t>(index / options.items_per_scene);
 }
 
 SynthItem PlanSynthItem(const DatasetSynthOptions& options, const Scene& scene, int index) {
-  SceneRng rng(Mix(options.seed * 0x100000001B3ULL + static_cast<std::uint64_t>(index)));
+  SceneRng rng(SplitMix64(options.seed * 0x100000001B3ULL + static_cast<std::uint64_t>(index)));
   SynthItem item;
   item.index = index;
   item.scene_seed = scene.seed;
