@@ -179,6 +179,42 @@ EdgePair BoundaryEdges(const std::vector<double>& ts, double a, double b, double
   return out;
 }
 
+// An opening's point projected onto its host wall.
+struct OpeningPoint {
+  double t;  // Along the wall from its start.
+  double z;
+  double sigma;
+  bool boundary;  // A label edge on the wall surface (PointSource::kBoundary).
+};
+
+// Two openings on one wall closer than `opening_gap_m` (windows either side
+// of a 20 cm pier) fall into one group. The pier shows as a gap in the
+// openings' own points with label edges on the wall at both of its ends;
+// an occluder in front of one opening leaves a gap too, but no wall edges
+// at it. Splits `group` (sorted by t) at such gaps.
+std::vector<std::vector<OpeningPoint>> SplitAtPiers(const std::vector<OpeningPoint>& group,
+                                                    const PlanOptions& o) {
+  constexpr double kMinPier = 0.06, kReach = 0.05;
+  std::vector<double> inner, edges;
+  for (const OpeningPoint& g : group) (g.boundary ? edges : inner).push_back(g.t);
+  auto count_in = [&](double lo, double hi) {
+    return std::lower_bound(edges.begin(), edges.end(), hi) - std::lower_bound(edges.begin(), edges.end(), lo);
+  };
+  std::vector<double> cuts;
+  for (size_t k = 1; k < inner.size(); ++k) {
+    const double lo = inner[k - 1], hi = inner[k], mid = 0.5 * (lo + hi);
+    if (hi - lo < kMinPier) continue;
+    if (count_in(lo - kReach, mid) >= o.min_boundary_points && count_in(mid, hi + kReach) >= o.min_boundary_points) {
+      cuts.push_back(mid);
+    }
+  }
+  std::vector<std::vector<OpeningPoint>> out(cuts.size() + 1);
+  for (const OpeningPoint& g : group) {
+    out[std::upper_bound(cuts.begin(), cuts.end(), g.t) - cuts.begin()].push_back(g);
+  }
+  return out;
+}
+
 // An open door leaf in plan: door points in front of the wall along one
 // line that meets the wall inside one of `hinge_windows` (t ranges along the
 // wall) at 15°–165° and does not run along a viewing ray (depth noise smears
@@ -1295,12 +1331,6 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
   }
 
   // 5. Openings: host wall, projection, grouping, extent minus casing.
-  struct OpeningPoint {
-    double t;
-    double z;
-    double sigma;
-    bool boundary;  // A label edge on the wall surface (PointSource::kBoundary).
-  };
   std::vector<std::vector<OpeningPoint>> per_wall_kind(2 * n);
   // Door points standing in front of each wall: open leaves (FindLeaf).
   std::vector<std::vector<Vec2>> leaf_pts(n);
@@ -1376,11 +1406,16 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
     const double len = w.Length();
     const Vec2 d = (w.end - w.start) / len;
     std::sort(v.begin(), v.end(), [](const OpeningPoint& a, const OpeningPoint& b) { return a.t < b.t; });
+    std::vector<std::vector<OpeningPoint>> groups;
     size_t begin = 0;
     for (size_t i = 1; i <= v.size(); ++i) {
       if (i < v.size() && v[i].t - v[i - 1].t <= o.opening_gap_m) continue;
-      std::vector<OpeningPoint> group(v.begin() + begin, v.begin() + i);
+      for (std::vector<OpeningPoint>& g : SplitAtPiers({v.begin() + begin, v.begin() + i}, o)) {
+        groups.push_back(std::move(g));
+      }
       begin = i;
+    }
+    for (const std::vector<OpeningPoint>& group : groups) {
       if (static_cast<int>(group.size()) < o.min_opening_points) continue;
       std::vector<double> ts, zs, boundary_ts;
       double sum_var = 0;

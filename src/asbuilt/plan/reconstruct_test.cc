@@ -376,6 +376,28 @@ TEST(ReconstructPlan, OpeningWidthsComeFromLabelEdgesOnTheWall) {
   for (const PlanOpening& o : r.plan.openings) EXPECT_LT(o.width_sigma_m.value_or(1), 0.03);
 }
 
+TEST(ReconstructPlan, TwoWindowsEitherSideOfANarrowPierStayTwo) {
+  // Clear openings 0.25 m apart: their labels (casings included) 0.15 m,
+  // closer than the gap that splits openings.
+  Plan truth = PolygonPlan({{0, 0}, {4.5, 0}, {4.5, 3.6}, {0, 3.6}});
+  AddOpening(truth, OpeningKind::kWindow, 2, 0.8, 1.3, 1.4, 0.9);
+  AddOpening(truth, OpeningKind::kWindow, 2, 2.35, 1.2, 1.4, 0.9);
+  SampleOptions sample{.outlier_fraction = 0};
+  const Vec3 view = SampleViewpoint(truth, sample);
+  std::vector<ClassPoint> points = SamplePointsFromPlan(truth, sample, 5);
+  const PlanOptions options{.viewpoint_m = view};
+  // Without the label edges at the pier, the windows' points alone cannot
+  // tell a pier from something standing in front of one wide window.
+  const PlanScore merged = ScorePlan(ReconstructPlan(points, options).plan, truth);
+  EXPECT_LT(merged.windows.matched, 2) << merged.Table();
+  const std::vector<ClassPoint> edges = BoundaryPoints(truth, view, 0.08);
+  points.insert(points.end(), edges.begin(), edges.end());
+  const PlanScore split = ScorePlan(ReconstructPlan(points, options).plan, truth);
+  EXPECT_EQ(split.windows.predicted, 2) << split.Table();
+  EXPECT_EQ(split.windows.matched, 2) << split.Table();
+  EXPECT_LE(split.opening_width.Max().value_or(1), 0.01) << split.Table();
+}
+
 TEST(ReconstructPlan, AnOpenLeafDoesNotWidenTheDoor) {
   const Plan truth = Rectangle();
   SampleOptions sample{.outlier_fraction = 0};
