@@ -334,6 +334,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // far wall's few precise contacts may come only after several.
 constexpr int kMaxRansacFailures = 12;
 
+
 double Votes(const std::vector<Pt>& pts, const std::vector<int>& idx) {
   double v = 0;
   for (int i : idx) v += pts[i].vote;
@@ -712,16 +713,18 @@ std::vector<Direction> SnapDirections(const std::vector<Pt>& pts, std::vector<Li
   }
   // Manhattan frame: the two strongest directions 90° apart within the data.
   manhattan = false;
+  std::vector<int> frame_axes;
   for (size_t a = 0; a < dirs.size() && !manhattan; ++a) {
     for (size_t b = a + 1; b < dirs.size() && !manhattan; ++b) {
       double off = std::abs(std::abs(AngleDiffModPi(dirs[a].theta, dirs[b].theta)) - kPi / 2);
-      double tol = std::max(DegToRad(o.snap_min_deg), o.snap_sigmas * std::sqrt(dirs[a].Var() + dirs[b].Var()));
+      double tol = std::max(DegToRad(o.manhattan_always_deg), o.snap_sigmas * std::sqrt(dirs[a].Var() + dirs[b].Var()));
       if (off < DegToRad(o.manhattan_max_deg) && off <= tol) {
         double frame = CircularMean({{dirs[a].theta, dirs[a].sum_w}, {dirs[b].theta, dirs[b].sum_w}}, 4);
         double sw = dirs[a].sum_w + dirs[b].sum_w;
         Direction da{frame, sw}, db{std::fmod(frame + kPi / 2, kPi), sw};
         dirs[a] = da;
         dirs[b] = db;
+        frame_axes = {static_cast<int>(a), static_cast<int>(b)};
         manhattan = true;
       }
     }
@@ -733,6 +736,29 @@ std::vector<Direction> SnapDirections(const std::vector<Pt>& pts, std::vector<Li
   // ±0.6°), which moves its corners by decimetres; a far wall's smeared
   // stereo fits up to 7° off (bench_rooms seed 12).
   for (Line& line : lines) {
+    // In a Manhattan frame, up to noisy_snap_max_deg off an axis when the axis
+    // explains the line's points within their own noise (χ² up by less than
+    // one per point): a far plain wall's stereo, smeared ±20 cm along its
+    // rays, is cut by sequential RANSAC into pieces fitted 15–25° off, each
+    // its own "direction" (bench_rooms seed 15); a slanted wall measured to
+    // centimetres is not.
+    bool on_axis = false;
+    for (const int axis : frame_axes) {
+      const double diff = AngleDiffModPi(line.theta, dirs[axis].theta);
+      if (std::abs(diff) > DegToRad(o.noisy_snap_max_deg)) continue;
+      Line snapped = FitLine(pts, line.members, line.theta - diff, o.max_independent_points, o.max_gap_m);
+      if (snapped.chi2 - line.chi2 < static_cast<double>(line.members.size())) {
+        if (std::abs(diff) > DegToRad(o.manhattan_snap_max_deg)) {
+          spdlog::debug("plan: a noisy line {:.1f}° off the frame snapped onto it: ({:.3f}, {:.3f}) → ({:.3f}, {:.3f})",
+                        RadToDeg(diff), line.Start().x(), line.Start().y(), line.End().x(), line.End().y());
+        }
+        snapped.var_theta = dirs[axis].Var();
+        line = std::move(snapped);
+        on_axis = true;
+        break;
+      }
+    }
+    if (on_axis) continue;
     for (const Direction& d : dirs) {
       double diff = AngleDiffModPi(line.theta, d.theta);
       double tol = manhattan ? DegToRad(o.manhattan_snap_max_deg)
@@ -818,6 +844,8 @@ void PlanOptions::Check() const {
   non_negative(manhattan_snap_max_deg, "manhattan_snap_max_deg");
   non_negative(snap_min_deg, "snap_min_deg");
   non_negative(manhattan_max_deg, "manhattan_max_deg");
+  non_negative(manhattan_always_deg, "manhattan_always_deg");
+  non_negative(noisy_snap_max_deg, "noisy_snap_max_deg");
   CheckArgument(parallel_max_deg > 0 && parallel_max_deg < 90,
                 fmt::format("PlanOptions.parallel_max_deg = {}, must be in (0, 90)", parallel_max_deg));
   positive(max_corner_extension_m, "max_corner_extension_m");

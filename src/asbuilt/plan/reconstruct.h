@@ -60,7 +60,16 @@ struct PlanOptions {
   double snap_max_deg = 5.0;          // …and never more than this many degrees.
   double manhattan_snap_max_deg = 8.0;  // In a Manhattan frame, every line this close to an axis.
   double snap_min_deg = 0.05;         // Always snap within this (depth quantisation, exact labels).
-  double manhattan_max_deg = 3.0;     // Two dominant directions this close to 90° may form a frame.
+  double manhattan_max_deg = 3.0;     // Two dominant directions this close to 90° may form a frame…
+  // …and this close always do: rooms are built square to well within a
+  // degree, while fits of thousands of stereo points give their angles σ of
+  // hundredths of a degree and land 0.1–0.5° off square (bench_rooms seeds
+  // 5, 9, 10, 15, 19 formed no frame at 3σ).
+  double manhattan_always_deg = 1.0;
+  // In a Manhattan frame, a line up to this far off an axis is snapped too
+  // when the axis explains its points within their own noise (χ² up by
+  // less than one per point): noisy far walls, cut into pieces by RANSAC.
+  double noisy_snap_max_deg = 25.0;
   double parallel_max_deg = 20.0;     // Neighbours closer than this in angle are not intersected.
   double max_corner_extension_m = 2.5;  // A corner may lie at most this far beyond a wall's points.
   double door_casing_m = 0.07;        // Door labels extend this far beyond the clear opening (casing).

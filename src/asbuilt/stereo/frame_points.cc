@@ -195,6 +195,16 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
     }
   };
 
+  // This frame's top edge, for every frame's topped floor contacts (Resolve).
+  PendingContacts::TopEdge top{.frame = frame.index, .world_from_camera = world_from_cam, .camera = cam};
+  top.wall_to_row.assign(cols, -1);
+  for (int u = 0; u < cols; ++u) {
+    int v = 0;
+    while (v < rows && IsComponent(label_at(v, u))) ++v;
+    top.wall_to_row[u] = v - 1;
+  }
+  result->contacts.top_edges.push_back(std::move(top));
+
   for (int u = 0; u < cols; u += options.contact_col_step_px) {
     // Floor: scan up from the bottom for the lowest wall/door → background
     // edge (not snapped: FramePointsOptions::contact_snap_px says why).
@@ -404,10 +414,40 @@ std::optional<CeilingHeight> CeilingHeightFromSamples(std::vector<double> sample
   return out;
 }
 
+// The least height a topped floor contact's wall must have: the most that
+// any frame taken from the same spot shows (a camera within 0.3 m of the
+// contact's own; a rig turned in place keeps them within one baseline),
+// where that frame's column through the contact is wall from its top edge
+// down to within 3 rows of it.
+double ToppedHeight(const PendingContacts::ToppedFloor& f, const std::vector<PendingContacts::TopEdge>& frames,
+                    double min_depth_m) {
+  constexpr double kSameSpotM = 0.3;
+  constexpr int kRowMargin = 3;
+  const auto own = std::find_if(frames.begin(), frames.end(),
+                                [&](const PendingContacts::TopEdge& e) { return e.frame == f.point.frame; });
+  if (own == frames.end()) return f.min_height_m;
+  const Vec3 own_origin = own->world_from_camera.translation();
+  double height = f.min_height_m;
+  for (const PendingContacts::TopEdge& e : frames) {
+    const Vec3 origin = e.world_from_camera.translation();
+    if ((origin - own_origin).head<2>().norm() > kSameSpotM) continue;
+    const Vec3 in_cam = e.world_from_camera.inverse() * f.point.position_m;
+    if (!(in_cam.z() >= min_depth_m)) continue;
+    const std::optional<Vec2> px = ProjectFromCamera(e.camera, in_cam);
+    if (!px) continue;
+    const long u = std::lround(px->x());
+    if (u < 0 || u >= static_cast<long>(e.wall_to_row.size())) continue;
+    if (e.wall_to_row[u] < px->y() - kRowMargin) continue;
+    height = std::max(height, origin.z() + in_cam.z() * (e.camera.cy + 0.5) / e.camera.fy);
+  }
+  return height;
+}
+
 void PendingContacts::Append(PendingContacts&& other) {
   ceiling_rays.insert(ceiling_rays.end(), other.ceiling_rays.begin(), other.ceiling_rays.end());
   paired_floor.insert(paired_floor.end(), other.paired_floor.begin(), other.paired_floor.end());
   topped_floor.insert(topped_floor.end(), other.topped_floor.begin(), other.topped_floor.end());
+  top_edges.insert(top_edges.end(), other.top_edges.begin(), other.top_edges.end());
   stereo_samples_m.insert(stereo_samples_m.end(), other.stereo_samples_m.begin(), other.stereo_samples_m.end());
   other = {};
 }
@@ -439,7 +479,8 @@ ResolvedContacts PendingContacts::Resolve(const FramePointsOptions& options) con
     }
   }
   for (const ToppedFloor& f : topped_floor) {
-    if (out.ceiling && f.min_height_m > out.ceiling->height_m + std::max(0.05, 3 * f.sigma_m)) {
+    if (out.ceiling && ToppedHeight(f, top_edges, options.min_depth_m) >
+                           out.ceiling->height_m + std::max(0.05, 3 * f.sigma_m)) {
       ++out.floor_rejected;
     } else {
       out.points.push_back(f.point);

@@ -273,9 +273,23 @@ struct PendingContacts {
     double min_height_m;
     double sigma_m;
   };
+  // What one frame shows at its top edge: per column, the lowest row down
+  // to which the column is wall (or its openings) from the top (−1: its top
+  // pixel is not). A topped floor contact is checked against every frame
+  // taken from the same spot: near an image's side its own column's top
+  // edge is low (rays there rise less for the same depth), and a bed's top
+  // passes for a wall's base; the frame that sees it head-on shows the
+  // "wall" reaching far above the ceiling.
+  struct TopEdge {
+    int frame = -1;  // Capture frame index (ClassPoint::frame).
+    Eigen::Isometry3d world_from_camera = Eigen::Isometry3d::Identity();
+    PinholeCamera camera;
+    std::vector<int> wall_to_row;
+  };
   std::vector<ContactRay> ceiling_rays;
   std::vector<PairedFloor> paired_floor;
   std::vector<ToppedFloor> topped_floor;
+  std::vector<TopEdge> top_edges;
   // Rougher heights, from the wall's stereo depth just below each ceiling
   // contact: the fallback when too few columns see both of a wall's edges.
   std::vector<double> stereo_samples_m;

@@ -371,6 +371,46 @@ TEST(PendingContacts, RejectsToppedFloorContactsTallerThanTheCeiling) {
   EXPECT_EQ(unknown.Resolve({}).points.size(), 1u);
 }
 
+// Near an image's side a column's top edge rises less for the same depth,
+// so a bed's top seen there passes the topped check in its own frame; the
+// frame beside it, from the same spot, sees the same "wall base" head-on
+// with wall up to its top edge, and 4 m of it.
+TEST(PendingContacts, ChecksToppedFloorContactsInEveryFrameFromTheSameSpot) {
+  PinholeCamera cam;
+  cam.fx = cam.fy = 381.0;
+  const Vec3 rig(0, 0, 1.5);
+  auto frame = [&](int index, double yaw_deg, const Vec3& at, int wall_to_row) {
+    PendingContacts::TopEdge e{.frame = index,
+                               .world_from_camera = WorldFromCamera({.position_m = at, .yaw_rad = DegToRad(yaw_deg)},
+                                                                    0.12, StereoEye::kLeft),
+                               .camera = cam};
+    e.wall_to_row.assign(cam.width_px, wall_to_row);
+    return e;
+  };
+  auto pending_with = [&](std::vector<PendingContacts::TopEdge> frames) {
+    PendingContacts pending;
+    for (int i = 0; i < 50; ++i) {
+      pending.paired_floor.push_back({{LabelClass::kWall, Vec3(0, 2, 0), 0.01, PointSource::kContact, 0}, 3.46, 0.005});
+    }
+    // Seen by frame 0 at u ≈ 12, depth 3.1 m: "wall" up to 3.45 m there.
+    pending.topped_floor.push_back({{LabelClass::kWall, Vec3(-2.5, 3.1, 0), 0.01, PointSource::kContact, 0}, 3.45, 0.01});
+    pending.top_edges = std::move(frames);
+    return pending;
+  };
+  // Alone, frame 0 keeps it.
+  EXPECT_EQ(pending_with({frame(0, 0, rig, 479)}).Resolve({}).floor_rejected, 0);
+  // Frame 1, turned 40° towards it, sees wall from its top edge down to it
+  // at depth 4 m: 4 m tall, the ceiling is at 3.46 m.
+  const ResolvedContacts both = pending_with({frame(0, 0, rig, 479), frame(1, 40, rig, 479)}).Resolve({});
+  EXPECT_EQ(both.floor_rejected, 1);
+  EXPECT_EQ(both.points.size(), 50u);
+  // Frame 1 sees the ceiling above it (wall only down from its top to row
+  // 100), or was taken elsewhere: no evidence, kept.
+  EXPECT_EQ(pending_with({frame(0, 0, rig, 479), frame(1, 40, rig, 100)}).Resolve({}).floor_rejected, 0);
+  EXPECT_EQ(pending_with({frame(0, 0, rig, 479), frame(1, 40, rig + Vec3(1, 0, 0), 479)}).Resolve({}).floor_rejected,
+            0);
+}
+
 // Opening label edges land on the wall at the casing's outer edge — also
 // beside p02's open door leaf, whose silhouette against the wall is an
 // occlusion and must give no boundary points.
