@@ -2,6 +2,7 @@
 // a dimensioned floor plan and a report out (pipeline/survey.h).
 
 #include <string>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -26,6 +27,11 @@ int RunSurveyCommand(int argc, char** argv) {
   app.add_option("capture", capture, "capture.json")->required();
   app.add_option("-o,--out", out_dir, "output folder")->required();
   app.add_option("--model", model, "segmentation model (default: the shipped model)");
+  std::string seg_scale = "auto";
+  app.add_option("--seg-scale", seg_scale,
+                 "scale the segmenter sees: auto (the images' own size, up to twice the model's training "
+                 "scale), model (its training scale) or WxH")
+      ->capture_default_str();
   app.add_option("--labels", labels_dir, "use these label images (NNN.png per frame) instead of segmenting");
   app.add_flag("--capture-labels", options.use_capture_labels,
                "use the capture's own exact labels (synthetic captures; the method's upper bound)");
@@ -39,6 +45,13 @@ int RunSurveyCommand(int argc, char** argv) {
   app.add_flag("--no-report", no_report, "skip report.html");
   Parse(app, argc, argv);
   if (!model.empty()) options.model_path = model;
+  if (seg_scale == "model") {
+    options.segment_scale_px = std::pair{0, 0};
+  } else if (seg_scale != "auto") {
+    int w = 0, h = 0;
+    ParseSizeFlag(seg_scale, "--seg-scale", w, h);
+    options.segment_scale_px = std::pair{w, h};
+  }
   if (!labels_dir.empty()) options.labels_dir = labels_dir;
   if (!truth.empty()) options.truth_path = truth;
   options.write_report = !no_report;

@@ -20,6 +20,7 @@
 
 #include "asbuilt/formats/capture.h"
 #include "asbuilt/formats/points_file.h"
+#include "asbuilt/pipeline/report.h"
 #include "asbuilt/pipeline/survey.h"
 #include "asbuilt/seg/segmenter.h"
 #include "asbuilt/stereo/euroc_calibration.h"
@@ -154,7 +155,7 @@ TEST_F(SurveyEuroc, ShippedModelRunsEndToEndAndSaysWhatItCannotMeasure) {
   ExpectCoverageNote(r);
   const std::string html = ReadFile(out / "report.html");
   for (const std::string& note : r.summary.notes) {
-    EXPECT_NE(html.find(note.substr(0, 20)), std::string::npos) << "report.html lacks the note: " << note;
+    EXPECT_NE(html.find(HtmlEscape(note.substr(0, 20))), std::string::npos) << "report.html lacks the note: " << note;
   }
 }
 

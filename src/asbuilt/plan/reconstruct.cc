@@ -946,10 +946,18 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
   }
   s.wall_points = static_cast<int>(walls_pts.size());
   if (s.wall_points < 2 * o.min_wall_points) {
-    // Nothing to measure at all: survey fails on this (exit 1, no outputs).
-    throw Error(fmt::format("{}: {} wall points, need at least {} (2 × PlanOptions.min_wall_points){}",
-                            points_source.empty() ? "plan" : points_source, s.wall_points, 2 * o.min_wall_points,
-                            s.wall_points == 0 ? ": no wall was labelled, or no wall pixel had a valid disparity" : ""));
+    // None at all: nothing was labelled or matched, and survey fails on it
+    // (exit 1, no outputs). A few: an input problem (`asbuilt plan` exits 1)
+    // that survey reports as a note while still writing points and report
+    // (a real capture the segmenter finds little wall in).
+    if (s.wall_points == 0) {
+      throw Error(fmt::format("{}: 0 wall points, need at least {} (2 × PlanOptions.min_wall_points): no wall was "
+                              "labelled, or no wall pixel had a valid disparity",
+                              points_source.empty() ? "plan" : points_source, 2 * o.min_wall_points));
+    }
+    throw InputError(points_source.empty() ? "plan" : points_source, "",
+                     fmt::format("{} wall points, need at least {} (2 × PlanOptions.min_wall_points)", s.wall_points,
+                                 2 * o.min_wall_points));
   }
 
   // 2. Lines.
