@@ -148,11 +148,9 @@ void SurveyOptions::Check() const {
                 fmt::format("SurveyOptions.contact_snap_px = {}, must be >= 0", contact_snap_px.value_or(0)));
   plan.Check();
   CheckArgument(report_frames >= 0, fmt::format("SurveyOptions.report_frames = {}, must be >= 0", report_frames));
-  CheckArgument(!segment_scale_px || (segment_scale_px->first >= 0 && segment_scale_px->second >= 0 &&
-                                       (segment_scale_px->first == 0) == (segment_scale_px->second == 0)),
-                fmt::format("SurveyOptions.segment_scale_px = {}x{}: give both sides > 0, or 0x0 for the model's",
-                            segment_scale_px ? segment_scale_px->first : 0,
-                            segment_scale_px ? segment_scale_px->second : 0));
+  if (segment_scale_px) {
+    SegmentOptions{.scale_width_px = segment_scale_px->first, .scale_height_px = segment_scale_px->second}.Check();
+  }
   CheckArgument(!(labels_dir && use_capture_labels),
                 "SurveyOptions: give either labels_dir or use_capture_labels, not both");
 }

@@ -334,7 +334,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // far wall's few precise contacts may come only after several.
 constexpr int kMaxRansacFailures = 12;
 
-
 double Votes(const std::vector<Pt>& pts, const std::vector<int>& idx) {
   double v = 0;
   for (int i : idx) v += pts[i].vote;
@@ -736,22 +735,23 @@ std::vector<Direction> SnapDirections(const std::vector<Pt>& pts, std::vector<Li
   // ±0.6°), which moves its corners by decimetres; a far wall's smeared
   // stereo fits up to 7° off (bench_rooms seed 12).
   for (Line& line : lines) {
-    // In a Manhattan frame, up to noisy_snap_max_deg off an axis when the axis
-    // explains the line's points within their own noise (χ² up by less than
-    // one per point): a far plain wall's stereo, smeared ±20 cm along its
-    // rays, is cut by sequential RANSAC into pieces fitted 15–25° off, each
-    // its own "direction" (bench_rooms seed 15); a slanted wall measured to
-    // centimetres is not.
+    // In a Manhattan frame, beyond manhattan_snap_max_deg and up to
+    // noisy_snap_max_deg off an axis, when the axis explains the line's
+    // points within their own noise (χ² up by less than one per point): a
+    // far plain wall's stereo, smeared ±20 cm along its rays, is cut by
+    // sequential RANSAC into pieces fitted 15–25° off, each its own
+    // "direction" (bench_rooms seed 15); a slanted wall measured to
+    // centimetres is not. Closer lines snap by the rule below.
     bool on_axis = false;
     for (const int axis : frame_axes) {
       const double diff = AngleDiffModPi(line.theta, dirs[axis].theta);
-      if (std::abs(diff) > DegToRad(o.noisy_snap_max_deg)) continue;
+      if (std::abs(diff) <= DegToRad(o.manhattan_snap_max_deg) || std::abs(diff) > DegToRad(o.noisy_snap_max_deg)) {
+        continue;
+      }
       Line snapped = FitLine(pts, line.members, line.theta - diff, o.max_independent_points, o.max_gap_m);
       if (snapped.chi2 - line.chi2 < static_cast<double>(line.members.size())) {
-        if (std::abs(diff) > DegToRad(o.manhattan_snap_max_deg)) {
-          spdlog::debug("plan: a noisy line {:.1f}° off the frame snapped onto it: ({:.3f}, {:.3f}) → ({:.3f}, {:.3f})",
-                        RadToDeg(diff), line.Start().x(), line.Start().y(), line.End().x(), line.End().y());
-        }
+        spdlog::debug("plan: a noisy line {:.1f}° off the frame snapped onto it: ({:.3f}, {:.3f}) → ({:.3f}, {:.3f})",
+                      RadToDeg(diff), line.Start().x(), line.Start().y(), line.End().x(), line.End().y());
         snapped.var_theta = dirs[axis].Var();
         line = std::move(snapped);
         on_axis = true;

@@ -289,9 +289,8 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
       const double sigma = options.contact_sigma_px * std::hypot(h / below, h * above / (below * below));
       result->contacts.paired_floor.push_back({*floor_point, sample, sigma});
     } else if (floor_point) {
-      bool topped = true;
-      for (int v = static_cast<int>(floor_row - 0.5); v >= 0 && topped; --v) topped = IsComponent(label_at(v, u));
-      if (topped) {
+      // Wall (or openings) from the image's top edge down to the contact.
+      if (result->contacts.top_edges.back().wall_to_row[u] >= static_cast<int>(floor_row - 0.5)) {
         // The image's top edge (row −0.5) still shows the wall at depth z.
         const double z = cam.fy * h / (floor_row - cam.cy);
         const double rise = (cam.cy + 0.5) / cam.fy;
