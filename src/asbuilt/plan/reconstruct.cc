@@ -333,6 +333,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // each failure removes a clutter patch (points by a corner, furniture), and a
 // far wall's few precise contacts may come only after several.
 constexpr int kMaxRansacFailures = 12;
+// WidenForBend tests a line for a bend when each half has this many points.
+constexpr int kMinBendHalfPoints = 10;
 
 double Votes(const std::vector<Pt>& pts, const std::vector<int>& idx) {
   double v = 0;
@@ -362,6 +364,38 @@ struct Line {
   double Distance(const Vec2& p) const { return Normal().dot(p - c); }
 };
 
+// The direction of the weighted total-least-squares line through the points
+// idx[i] for which `keep(i)` holds, with its variance (reduced χ², correlation
+// cap: see FitLine); nullopt with fewer than 2 of them.
+template <typename Keep>
+std::optional<std::pair<double, double>> TlsDirection(const std::vector<Pt>& pts, const std::vector<int>& idx,
+                                                      Keep&& keep, int max_independent) {
+  double sw = 0;
+  int count = 0;
+  Vec2 c = Vec2::Zero();
+  for (size_t k = 0; k < idx.size(); ++k) {
+    if (!keep(k)) continue;
+    sw += pts[idx[k]].w;
+    c += pts[idx[k]].w * pts[idx[k]].p;
+    ++count;
+  }
+  if (count < 2) return std::nullopt;
+  c /= sw;
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (size_t k = 0; k < idx.size(); ++k) {
+    if (!keep(k)) continue;
+    Vec2 d = pts[idx[k]].p - c;
+    cov += pts[idx[k]].w * d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
+  const Vec2 dir = es.eigenvectors().col(1);
+  // The smaller eigenvalue is the weighted χ², the larger Σ w·t².
+  const double chi2 = std::max(es.eigenvalues()(0), 0.0), swt2 = std::max(es.eigenvalues()(1), 1e-12);
+  const double reduced = count > 2 ? chi2 / (count - 2) : 1.0;
+  const double correlation = std::max(1.0, static_cast<double>(count) / max_independent);
+  return std::pair{std::atan2(dir.y(), dir.x()), reduced / swt2 * correlation};
+}
+
 // Weighted total least squares on `idx`; with `fixed_theta` only the offset
 // is estimated. Variances are scaled by the reduced χ² and by the correlation
 // cap (dense points are not independent measurements).
@@ -377,15 +411,8 @@ Line FitLine(const std::vector<Pt>& pts, std::vector<int> idx, std::optional<dou
   c /= sw;
   if (fixed_theta) {
     line.theta = *fixed_theta;
-  } else {
-    Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-    for (int i : idx) {
-      Vec2 d = pts[i].p - c;
-      cov += pts[i].w * d * d.transpose();
-    }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
-    Vec2 dir = es.eigenvectors().col(1);
-    line.theta = std::atan2(dir.y(), dir.x());
+  } else if (const auto free = TlsDirection(pts, idx, [](size_t) { return true; }, max_independent)) {
+    line.theta = free->first;
   }
   line.c = c;
   Vec2 dir = line.Dir(), n = line.Normal();
@@ -679,10 +706,40 @@ double CircularMean(const std::vector<std::pair<double, double>>& angle_weight, 
   return m < 0 ? m + 2 * kPi / k : m;
 }
 
+// PlanOptions::bend_sigmas: a line's angle σ covers how far its parts
+// disagree with it. Its points are split in two halves at the median along
+// the line; when a half fits a direction more than bend_sigmas of its own σ
+// off the whole line's, the line's σ becomes at least that difference. A
+// bend (a "V" of two pieces) and a step (two parallel pieces side by side,
+// which one line fits askew) both show.
+void WidenForBend(const std::vector<Pt>& pts, Line& line, const PlanOptions& o) {
+  if (o.bend_sigmas <= 0 || line.members.size() < 2 * kMinBendHalfPoints) return;
+  std::vector<double> along;  // Each member's position along the line, in members' order.
+  along.reserve(line.members.size());
+  for (int i : line.members) along.push_back(line.Dir().dot(pts[i].p - line.c));
+  std::vector<double> sorted = along;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double mid = sorted[sorted.size() / 2];
+  const auto a = TlsDirection(pts, line.members, [&](size_t k) { return along[k] < mid; }, o.max_independent_points);
+  const auto b = TlsDirection(pts, line.members, [&](size_t k) { return along[k] >= mid; }, o.max_independent_points);
+  if (!a || !b) return;
+  const double before = line.var_theta;
+  for (const auto& [theta, var] : {*a, *b}) {
+    const double off = std::abs(AngleDiffModPi(theta, line.theta));
+    if (off > o.bend_sigmas * std::sqrt(var)) line.var_theta = std::max(line.var_theta, off * off);
+  }
+  if (line.var_theta > before) {
+    spdlog::debug("plan: line ({:.3f}, {:.3f}) → ({:.3f}, {:.3f}) θ {:.2f}° is bent: halves {:.2f}°, {:.2f}°; σ {:.3f}° → {:.2f}°",
+                  line.Start().x(), line.Start().y(), line.End().x(), line.End().y(), RadToDeg(line.theta),
+                  RadToDeg(a->first), RadToDeg(b->first), RadToDeg(std::sqrt(before)), RadToDeg(std::sqrt(line.var_theta)));
+  }
+}
+
 // Dominant directions from the lines, a Manhattan frame when supported, and
 // snapping of the lines that agree.
 std::vector<Direction> SnapDirections(const std::vector<Pt>& pts, std::vector<Line>& lines,
                                       const PlanOptions& o, bool& manhattan) {
+  for (Line& line : lines) WidenForBend(pts, line, o);
   auto weight = [](const Line& l) { return 1.0 / (l.var_theta + 1e-12); };
   std::vector<int> order(lines.size());
   std::iota(order.begin(), order.end(), 0);
@@ -749,9 +806,12 @@ std::vector<Direction> SnapDirections(const std::vector<Pt>& pts, std::vector<Li
         continue;
       }
       Line snapped = FitLine(pts, line.members, line.theta - diff, o.max_independent_points, o.max_gap_m);
-      if (snapped.chi2 - line.chi2 < static_cast<double>(line.members.size())) {
-        spdlog::debug("plan: a noisy line {:.1f}° off the frame snapped onto it: ({:.3f}, {:.3f}) → ({:.3f}, {:.3f})",
-                      RadToDeg(diff), line.Start().x(), line.Start().y(), line.End().x(), line.End().y());
+      // A bent line (WidenForBend) whose σ takes in the axis snaps too.
+      if (snapped.chi2 - line.chi2 < static_cast<double>(line.members.size()) ||
+          std::abs(diff) <= o.snap_sigmas * std::sqrt(line.var_theta)) {
+        spdlog::debug("plan: a noisy line {:.1f}° ±{:.1f}° off the frame snapped onto it: ({:.3f}, {:.3f}) → ({:.3f}, {:.3f})",
+                      RadToDeg(diff), RadToDeg(std::sqrt(line.var_theta)), line.Start().x(), line.Start().y(),
+                      line.End().x(), line.End().y());
         snapped.var_theta = dirs[axis].Var();
         line = std::move(snapped);
         on_axis = true;
@@ -846,6 +906,7 @@ void PlanOptions::Check() const {
   non_negative(manhattan_max_deg, "manhattan_max_deg");
   non_negative(manhattan_always_deg, "manhattan_always_deg");
   non_negative(noisy_snap_max_deg, "noisy_snap_max_deg");
+  non_negative(bend_sigmas, "bend_sigmas");
   CheckArgument(parallel_max_deg > 0 && parallel_max_deg < 90,
                 fmt::format("PlanOptions.parallel_max_deg = {}, must be in (0, 90)", parallel_max_deg));
   positive(max_corner_extension_m, "max_corner_extension_m");

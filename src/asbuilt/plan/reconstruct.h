@@ -70,6 +70,16 @@ struct PlanOptions {
   // when the axis explains its points within their own noise (χ² up by
   // less than one per point): noisy far walls, cut into pieces by RANSAC.
   double noisy_snap_max_deg = 25.0;
+  // A line whose two halves fit directions more than this many of their σ
+  // apart is bent, and its angle σ is at least half the bend (0: off). Point
+  // noise alone gives a fit's angle σ of hundredths of a degree, but a
+  // segmenter that takes a skirting board for floor over part of a wall
+  // pushes that part's contacts 10–20 cm out: bench_rooms seed 10's 4.8 m
+  // south wall came out as a "V" of two pieces 4.8° apart, fitted as one
+  // line 2.7° off at ±0.06°. It outweighed two square walls measured to
+  // millimetres and kept the room from its Manhattan frame (max wall error
+  // 14.1 %; 2.5 % with this rule).
+  double bend_sigmas = 3.0;
   double parallel_max_deg = 20.0;     // Neighbours closer than this in angle are not intersected.
   double max_corner_extension_m = 2.5;  // A corner may lie at most this far beyond a wall's points.
   double door_casing_m = 0.07;        // Door labels extend this far beyond the clear opening (casing).
