@@ -68,7 +68,9 @@ struct PlanOptions {
   double manhattan_always_deg = 1.0;
   // In a Manhattan frame, a line up to this far off an axis is snapped too
   // when the axis explains its points within their own noise (χ² up by
-  // less than one per point): noisy far walls, cut into pieces by RANSAC.
+  // less than one per point): noisy far walls, cut into pieces by RANSAC;
+  // or when snap_sigmas of its angle σ, widened for a bend (bend_sigmas),
+  // take in the axis.
   double noisy_snap_max_deg = 25.0;
   // A line whose two halves fit directions more than this many of their σ
   // apart is bent, and its angle σ is at least half the bend (0: off). Point

@@ -340,6 +340,38 @@ TEST(ReconstructPlan, AWallBentByItsContactsDoesNotTurnTheRoom) {
   for (const WallMatch& m : s_square.wall_matches) EXPECT_LT(m.angle_deg, 0.5) << s_square.Table();
 }
 
+// bench_rooms seed 15 with exact labels: the stereo smeared around the L's
+// inner corner gives a line of two pieces 17° apart, crossing the corner 20°
+// off the axis. Its σ, widened for the bend (12°), takes in the axis: it
+// snaps square and joins the wall it belongs to, instead of closing the room
+// with a slanted wall.
+TEST(ReconstructPlan, ABentLineAcrossAnInnerCornerSnapsSquare) {
+  const Plan truth = PolygonPlan({{0, 0}, {8.146, 0}, {8.146, 5.193}, {5.485, 5.193}, {5.485, 8.785}, {0, 8.785}});
+  std::vector<ClassPoint> points;
+  std::mt19937_64 rng(15);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  auto piece = [&](const Vec2& a, const Vec2& b, int n, double scatter, double sigma) {
+    for (int i = 0; i < n; ++i) {
+      const Vec2 p = a + (b - a) * (i + 0.5) / n + scatter * Vec2(noise(rng), noise(rng));
+      points.push_back({LabelClass::kWall, Vec3(p.x(), p.y(), 1.0), sigma, PointSource::kDense, i % 12});
+    }
+  };
+  piece({0.05, 0}, {8.10, 0}, 3000, 0.01, 0.03);
+  piece({8.146, 0.05}, {8.146, 5.15}, 3000, 0.01, 0.03);
+  piece({6.20, 5.193}, {8.10, 5.193}, 600, 0.01, 0.03);
+  piece({5.485, 6.80}, {5.485, 8.70}, 1500, 0.01, 0.03);
+  piece({0.05, 8.785}, {5.40, 8.785}, 3000, 0.01, 0.03);
+  piece({0, 0.05}, {0, 8.70}, 3000, 0.01, 0.03);
+  piece({5.26, 7.11}, {5.40, 6.00}, 800, 0.02, 0.05);  // The smear: two pieces.
+  piece({5.40, 6.00}, {6.10, 5.00}, 800, 0.02, 0.05);
+  const PlanResult r = ReconstructPlan(points, {.viewpoint_m = Vec3(2.88, 2.61, 1.56)});
+  const PlanScore s = ScorePlan(r.plan, truth);
+  EXPECT_TRUE(r.summary.manhattan);
+  EXPECT_EQ(s.walls.matched, 6) << s.Table();
+  EXPECT_LE(s.wall_length.Max().value_or(1), 0.05) << s.Table();
+  for (const WallMatch& m : s.wall_matches) EXPECT_LT(m.angle_deg, 0.5) << s.Table();
+}
+
 // A wall seen only at its far end, with a line seen through its window
 // (ground outside) between it and the next wall: the vertex where the two
 // walls meet, on both their lines, makes them neighbours.
