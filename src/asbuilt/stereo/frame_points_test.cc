@@ -346,6 +346,29 @@ TEST(CeilingHeightFromSamples, TakesTheDenseClusterNotTheSpreadAbove) {
   EXPECT_FALSE(CeilingHeightFromSamples(scattered).has_value());
 }
 
+// Where furniture hides most wall bases, a flat top along the walls gives a
+// tight cluster of its own above the ceiling, and it may be the densest
+// (bench_rooms seed 22, exact labels): the cluster below it that stands
+// apart is the ceiling. A tail of stray samples below the true cluster (a
+// segmenter's wandering edges, seed 16) is not.
+TEST(CeilingHeightFromSamples, TakesAClusterApartBelowAFlatTopsCluster) {
+  std::vector<double> samples;
+  for (int i = 0; i < 15; ++i) samples.push_back(2.765 + 0.0015 * i);  // The ceiling: 2.765–2.786 m.
+  for (int i = 0; i < 78; ++i) samples.push_back(3.396 + 0.0002 * i);  // A table's top.
+  for (int i = 0; i < 45; ++i) samples.push_back(3.66 + 0.01 * i);     // Taller things' tops.
+  auto h = CeilingHeightFromSamples(samples);
+  ASSERT_TRUE(h.has_value());
+  EXPECT_NEAR(h->height_m, 2.775, 0.005);
+  EXPECT_EQ(h->samples, 15);
+
+  std::vector<double> tailed;
+  for (int i = 0; i < 120; ++i) tailed.push_back(3.445 + 0.0001 * i);  // The ceiling: 3.445–3.457 m.
+  for (int i = 0; i < 130; ++i) tailed.push_back(3.30 + 0.001 * i);    // A tail below: 3.30–3.43 m.
+  h = CeilingHeightFromSamples(tailed);
+  ASSERT_TRUE(h.has_value());
+  EXPECT_NEAR(h->height_m, 3.451, 0.005);
+}
+
 // A floor contact whose column shows wall up to the image's top edge says
 // how tall that wall is at least: a "wall" taller than the ceiling is the top
 // of a bed or cabinet before it, projected metres beyond the room. Kept when
