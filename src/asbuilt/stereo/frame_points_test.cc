@@ -394,6 +394,31 @@ TEST(PendingContacts, RejectsToppedFloorContactsTallerThanTheCeiling) {
   EXPECT_EQ(unknown.Resolve({}).points.size(), 1u);
 }
 
+// The walls' stereo heights under the ceiling edges check the paired
+// estimate: pairs that all took a table's top for the wall base (3.40 m)
+// lie outside the stereo's middle half (2.76–2.91 m), and the stereo's
+// median is used (bench_rooms seed 22 with the shipped model); pairs inside
+// that range are used as they are.
+TEST(PendingContacts, ChecksTheCeilingHeightAgainstTheWallsStereo) {
+  auto contact = [](double x) {
+    return ClassPoint{LabelClass::kWall, Vec3(x, 0, 0), 0.01, PointSource::kContact, 0};
+  };
+  PendingContacts pending;
+  for (int i = 0; i < 78; ++i) pending.paired_floor.push_back({contact(1.0), 3.40 + 0.0002 * i, 0.005});
+  for (int i = 0; i < 20; ++i) pending.paired_floor.push_back({contact(1.0), 2.78 + 0.007 * i, 0.005});  // Spread.
+  for (int i = 0; i < 1000; ++i) pending.stereo_samples_m.push_back(2.70 + 0.0003 * i);  // 2.70–3.00 m.
+  ResolvedContacts resolved = pending.Resolve({});
+  ASSERT_TRUE(resolved.ceiling.has_value());
+  EXPECT_NEAR(resolved.ceiling->height_m, 2.85, 0.002);
+  EXPECT_NE(resolved.how.find("stereo"), std::string::npos) << resolved.how;
+
+  pending.stereo_samples_m.clear();  // Stereo heights around 3.40 m: the pairs stand.
+  for (int i = 0; i < 1000; ++i) pending.stereo_samples_m.push_back(3.25 + 0.0003 * i);
+  resolved = pending.Resolve({});
+  ASSERT_TRUE(resolved.ceiling.has_value());
+  EXPECT_NEAR(resolved.ceiling->height_m, 3.407, 0.005);
+}
+
 // Near an image's side a column's top edge rises less for the same depth,
 // so a bed's top seen there passes the topped check in its own frame; the
 // frame beside it, from the same spot, sees the same "wall base" head-on
