@@ -1278,6 +1278,56 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
     Vec2 p = va ? va->p : a.End(), q = vb ? vb->p : b.Start();
     Vec2 gap = q - p;
     if (gap.norm() < 1e-6) gap = b.Dir();
+    // Both ends at vertices, the gap running across the dominant directions
+    // (more than 20° off the nearest): two walls are missing, not one. The
+    // wall turns at each vertex (the dominant direction across a at va,
+    // across b at vb, each the one nearer the gap), and the two connectors
+    // meet where those lines cross (bench_rooms seed 28: a small room's two
+    // near plain walls gave no points; one connector from corner to corner
+    // would have cut the room in half).
+    if (va && vb) {
+      auto turn = [&](const Line& l) -> const Direction* {
+        const Direction* best = nullptr;
+        for (const Direction& d : dirs) {
+          if (std::abs(AngleDiffModPi(l.theta, d.theta)) <= DegToRad(o.parallel_max_deg)) continue;
+          if (!best || std::abs(AngleDiffModPi(std::atan2(gap.y(), gap.x()), d.theta)) <
+                           std::abs(AngleDiffModPi(std::atan2(gap.y(), gap.x()), best->theta))) {
+            best = &d;
+          }
+        }
+        return best;
+      };
+      const Direction* da = turn(a);
+      const Direction* db = turn(b);
+      const double gap_theta = std::atan2(gap.y(), gap.x());
+      auto off = [&](const Direction* d) { return std::abs(AngleDiffModPi(gap_theta, d->theta)); };
+      if (da && db && std::min(off(da), off(db)) > DegToRad(20.0) &&
+          std::abs(AngleDiffModPi(da->theta, db->theta)) > DegToRad(o.parallel_max_deg)) {
+        Line c1, c2;
+        c1.c = p, c1.theta = da->theta;
+        c2.c = q, c2.theta = db->theta;
+        const std::optional<Vec2> corner = Intersect(c1, c2);
+        if (corner && (*corner - p).dot(gap) > 0 && (q - *corner).dot(gap) > 0) {
+          for (auto [c, from, to, sigma] : {std::tuple{&c1, p, *corner, va->sigma}, std::tuple{&c2, *corner, q, vb->sigma}}) {
+            c->inferred = true;
+            if (c->Dir().dot(to - from) < 0) c->theta = WrapAngle(c->theta + kPi);
+            c->var_theta = (c == &c1 ? da : db)->Var();
+            c->var_rho = sigma * sigma;
+            c->t_min = c->Dir().dot(from - c->c);
+            c->t_max = c->Dir().dot(to - c->c);
+            c->z_top = 0.5 * (a.z_top + b.z_top);
+          }
+          spdlog::debug("plan: two connectors through vertices ({:.3f}, {:.3f}) → ({:.3f}, {:.3f}), turning at "
+                        "({:.3f}, {:.3f})", p.x(), p.y(), q.x(), q.y(), corner->x(), corner->y());
+          closed.back().t_max = std::max(a.t_max, a.Dir().dot(p - a.c));
+          b_copy.t_min = std::min(b.t_min, b.Dir().dot(q - b.c));
+          closed.push_back(c1);
+          closed.push_back(c2);
+          s.inferred_walls += 2;
+          continue;
+        }
+      }
+    }
     Line c;
     c.inferred = true;
     c.c = va && !vb ? p : vb && !va ? q : 0.5 * (p + q);

@@ -372,6 +372,32 @@ TEST(ReconstructPlan, ABentLineAcrossAnInnerCornerSnapsSquare) {
   for (const WallMatch& m : s.wall_matches) EXPECT_LT(m.angle_deg, 0.5) << s.Table();
 }
 
+// bench_rooms seed 28 with exact labels: a small L whose two near plain
+// walls (the rig 0.8 and 1.2 m from them) gave no points, only the vertices
+// at their far ends. The gap between those vertices runs diagonally across
+// the room: two walls are missing, not one, and they meet where the walls
+// turning at each vertex cross.
+TEST(ReconstructPlan, TwoMissingWallsBetweenVerticesTurnAtTheirCorner) {
+  const Plan truth = PolygonPlan({{1.51, 0}, {3.01, 0}, {3.01, 4.22}, {0, 4.22}, {0, 2.26}, {1.51, 2.26}}, 2.94);
+  std::vector<ClassPoint> points;
+  auto piece = [&](const Vec2& a, const Vec2& b, int n) {
+    for (int i = 0; i < n; ++i) {
+      const Vec2 p = a + (b - a) * (i + 0.5) / n + Vec2(0.002 * (i % 3 - 1), 0.002 * (i % 5 - 2));
+      points.push_back({LabelClass::kWall, Vec3(p.x(), p.y(), 0.0), 0.01, PointSource::kContact, i % 12});
+    }
+  };
+  piece({1.55, 0.0}, {2.97, 0.0}, 400);   // South.
+  piece({0.0, 2.30}, {0.0, 4.18}, 125);   // West.
+  piece({1.51, 0.06}, {1.51, 0.84}, 70);  // The notch, in part.
+  for (const Vec2& v : {Vec2(3.01, 0.0), Vec2(0.0, 4.22), Vec2(0.0, 2.26), Vec2(1.51, 2.26)}) AddVertex(points, v);
+  const PlanResult r = ReconstructPlan(points, {.viewpoint_m = Vec3(2.27, 3.02, 1.42)});
+  const PlanScore s = ScorePlan(r.plan, truth);
+  EXPECT_EQ(s.walls.predicted, 6) << s.Table();
+  EXPECT_EQ(s.walls.matched, 6) << s.Table();
+  EXPECT_LE(s.wall_length.Max().value_or(1), 0.03) << s.Table();
+  EXPECT_NEAR(r.summary.area_m2, PolygonArea(truth.rooms[0].polygon), 0.3);
+}
+
 // A wall seen only at its far end, with a line seen through its window
 // (ground outside) between it and the next wall: the vertex where the two
 // walls meet, on both their lines, makes them neighbours.
