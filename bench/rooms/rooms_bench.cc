@@ -10,7 +10,7 @@
 // checked its wall stereo). Writes bench/results/rooms.md.
 //
 //   bench_rooms [RESULTS.md]
-//   env ASBUILT_BENCH_ROOMS (default 16 rooms), ASBUILT_BENCH_ROOM_SEED (default 5).
+//   env ASBUILT_BENCH_ROOMS (default 28 rooms), ASBUILT_BENCH_ROOM_SEED (default 5).
 
 #include <unistd.h>
 
@@ -177,7 +177,7 @@ int main(int argc, char** argv) {
   using namespace asbuilt;
   using namespace asbuilt::bench;
   const std::string results = ResultsPath(argc, argv, "rooms");
-  const int rooms = EnvPositiveInt("ASBUILT_BENCH_ROOMS", 16);
+  const int rooms = EnvPositiveInt("ASBUILT_BENCH_ROOMS", 28);
   const int first_seed = EnvPositiveInt("ASBUILT_BENCH_ROOM_SEED", 5);
   const fs::path cache = fs::path(ASBUILT_BINARY_DIR) / "bench" / "rooms";
   const fs::path out = fs::temp_directory_path() / fmt::format("asbuilt_bench_rooms_{}", ::getpid());

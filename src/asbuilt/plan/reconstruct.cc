@@ -1275,6 +1275,13 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
     // connector starts (or ends) there.
     const Vertex* va = vertex_after(a);
     const Vertex* vb = vertex_before(b);
+    // A vertex that takes the connector's end farther from the other line's
+    // end is some other corner on the line's extension (bench_rooms seed 8,
+    // exact labels: the east wall's, 2 m beyond a wall's points, cut off an
+    // L's wing), not the one this gap closes.
+    const double raw_gap = (b.Start() - a.End()).norm();
+    if (va && (b.Start() - va->p).norm() > raw_gap + kVertexSlack) va = nullptr;
+    if (vb && (vb->p - a.End()).norm() > raw_gap + kVertexSlack) vb = nullptr;
     Vec2 p = va ? va->p : a.End(), q = vb ? vb->p : b.Start();
     Vec2 gap = q - p;
     if (gap.norm() < 1e-6) gap = b.Dir();
@@ -1347,6 +1354,29 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
     if (nearest && std::abs(AngleDiffModPi(c.theta, nearest->theta)) < DegToRad(turned ? 60.0 : 30.0)) {
       c.theta -= AngleDiffModPi(c.theta, nearest->theta);
       c.var_theta = nearest->Var();
+    }
+    // With neither end at a vertex, a vertex in the gap (between the ends
+    // along and across the connector) on neither line is the missing wall's
+    // own corner column, seen where the rest of it was hidden: the connector
+    // runs through it, not through the gap's middle (bench_rooms seed 8,
+    // exact labels: a wardrobe hid all but 0.3 m of an L wing's wall; the
+    // middle put it 32 cm off, the vertex 2 cm).
+    if (!va && !vb) {
+      const Vertex* inside = nullptr;
+      for (const Vertex& v : vertices) {
+        if (on_line(a, v) || on_line(b, v)) continue;
+        const double m = std::max(0.1, 3 * v.sigma);
+        auto between = [&](const Vec2& axis) {
+          const double t = axis.dot(v.p - p), end = axis.dot(q - p);
+          return t >= std::min(0.0, end) - m && t <= std::max(0.0, end) + m;
+        };
+        if (between(c.Dir()) && between(c.Normal()) && (!inside || v.sigma < inside->sigma)) inside = &v;
+      }
+      if (inside) {
+        spdlog::debug("plan: connector through the vertex ({:.3f}, {:.3f}) in its gap", inside->p.x(), inside->p.y());
+        c.c = inside->p;
+        c.var_rho = inside->sigma * inside->sigma;
+      }
     }
     // Orient it from a towards b.
     if (c.Dir().dot(gap) < 0) c.theta = WrapAngle(c.theta + kPi);

@@ -398,6 +398,35 @@ TEST(ReconstructPlan, TwoMissingWallsBetweenVerticesTurnAtTheirCorner) {
   EXPECT_NEAR(r.summary.area_m2, PolygonArea(truth.rooms[0].polygon), 0.3);
 }
 
+// bench_rooms seed 8 with exact labels: a wardrobe hides an L wing's wall
+// but for its corner column (a vertex), and the wall beside it is seen only
+// from 0.6 m beyond. The connector runs through that vertex, not through the
+// gap's middle; and a vertex on a neighbour's line 2 m farther on (the east
+// wall's, where the line's extension meets it) is not taken for this
+// gap's corner.
+TEST(ReconstructPlan, AConnectorRunsThroughTheVertexInItsGap) {
+  const Plan truth = PolygonPlan({{0, 0}, {4.424, 0}, {4.424, 3.486}, {2.347, 3.486}, {2.347, 2.184}, {0, 2.184}});
+  std::vector<ClassPoint> points;
+  auto piece = [&](const Vec2& a, const Vec2& b, int n) {
+    for (int i = 0; i < n; ++i) {
+      const Vec2 p = a + (b - a) * (i + 0.5) / n + Vec2(0.002 * (i % 3 - 1), 0.002 * (i % 5 - 2));
+      points.push_back({LabelClass::kWall, Vec3(p.x(), p.y(), 1.0), 0.01, PointSource::kDense, i % 12});
+    }
+  };
+  piece({0.05, 0.0}, {4.38, 0.0}, 800);     // South.
+  piece({4.424, 0.05}, {4.424, 3.44}, 700);  // East.
+  piece({4.38, 3.486}, {2.93, 3.486}, 300);  // The wing's north wall, beyond the wardrobe.
+  piece({2.30, 2.184}, {0.05, 2.184}, 450);  // North of the main part.
+  piece({0.0, 2.14}, {0.0, 0.05}, 400);      // West.
+  AddVertex(points, {2.347, 2.489});         // The hidden wall's corner column.
+  AddVertex(points, {4.424, 2.150});         // On the east wall, on the extension of y = 2.184.
+  const PlanResult r = ReconstructPlan(points, {.viewpoint_m = Vec3(3.395, 1.139, 1.30)});
+  const PlanScore s = ScorePlan(r.plan, truth);
+  EXPECT_EQ(s.walls.predicted, 6) << s.Table();
+  EXPECT_EQ(s.walls.matched, 6) << s.Table();
+  EXPECT_LE(s.wall_length.Max().value_or(1), 0.03) << s.Table();
+}
+
 // A wall seen only at its far end, with a line seen through its window
 // (ground outside) between it and the next wall: the vertex where the two
 // walls meet, on both their lines, makes them neighbours.
