@@ -263,6 +263,16 @@ TEST(ReconstructPlan, ALineSeenThroughAWallsGapIsNotAWall) {
   }
 }
 
+// `n` wall points (σ 1 cm) along a → b, scattered by ±2 mm; contacts lie on
+// the floor, other points 1 m up.
+void AddWallRun(std::vector<ClassPoint>& points, const Vec2& a, const Vec2& b, int n, PointSource source) {
+  const double z = source == PointSource::kContact ? 0.0 : 1.0;
+  for (int i = 0; i < n; ++i) {
+    const Vec2 p = a + (b - a) * (i + 0.5) / n + Vec2(0.002 * (i % 3 - 1), 0.002 * (i % 5 - 2));
+    points.push_back({LabelClass::kWall, Vec3(p.x(), p.y(), z), 0.01, source, i % 12});
+  }
+}
+
 // Vertex points (wall–wall corner columns) of `frames` frames at `corner`,
 // a few centimetres apart, as the stereo stage gives them.
 void AddVertex(std::vector<ClassPoint>& points, const Vec2& corner, int frames = 2) {
@@ -380,12 +390,7 @@ TEST(ReconstructPlan, ABentLineAcrossAnInnerCornerSnapsSquare) {
 TEST(ReconstructPlan, TwoMissingWallsBetweenVerticesTurnAtTheirCorner) {
   const Plan truth = PolygonPlan({{1.51, 0}, {3.01, 0}, {3.01, 4.22}, {0, 4.22}, {0, 2.26}, {1.51, 2.26}}, 2.94);
   std::vector<ClassPoint> points;
-  auto piece = [&](const Vec2& a, const Vec2& b, int n) {
-    for (int i = 0; i < n; ++i) {
-      const Vec2 p = a + (b - a) * (i + 0.5) / n + Vec2(0.002 * (i % 3 - 1), 0.002 * (i % 5 - 2));
-      points.push_back({LabelClass::kWall, Vec3(p.x(), p.y(), 0.0), 0.01, PointSource::kContact, i % 12});
-    }
-  };
+  auto piece = [&](const Vec2& a, const Vec2& b, int n) { AddWallRun(points, a, b, n, PointSource::kContact); };
   piece({1.55, 0.0}, {2.97, 0.0}, 400);   // South.
   piece({0.0, 2.30}, {0.0, 4.18}, 125);   // West.
   piece({1.51, 0.06}, {1.51, 0.84}, 70);  // The notch, in part.
@@ -407,12 +412,7 @@ TEST(ReconstructPlan, TwoMissingWallsBetweenVerticesTurnAtTheirCorner) {
 TEST(ReconstructPlan, AConnectorRunsThroughTheVertexInItsGap) {
   const Plan truth = PolygonPlan({{0, 0}, {4.424, 0}, {4.424, 3.486}, {2.347, 3.486}, {2.347, 2.184}, {0, 2.184}});
   std::vector<ClassPoint> points;
-  auto piece = [&](const Vec2& a, const Vec2& b, int n) {
-    for (int i = 0; i < n; ++i) {
-      const Vec2 p = a + (b - a) * (i + 0.5) / n + Vec2(0.002 * (i % 3 - 1), 0.002 * (i % 5 - 2));
-      points.push_back({LabelClass::kWall, Vec3(p.x(), p.y(), 1.0), 0.01, PointSource::kDense, i % 12});
-    }
-  };
+  auto piece = [&](const Vec2& a, const Vec2& b, int n) { AddWallRun(points, a, b, n, PointSource::kDense); };
   piece({0.05, 0.0}, {4.38, 0.0}, 800);     // South.
   piece({4.424, 0.05}, {4.424, 3.44}, 700);  // East.
   piece({4.38, 3.486}, {2.93, 3.486}, 300);  // The wing's north wall, beyond the wardrobe.
