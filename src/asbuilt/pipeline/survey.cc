@@ -346,10 +346,14 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   for (std::size_t i = 0; i < report_frames.size(); ++i) report_frames[i].cues = summary.frame_cues[i].BriefReport();
   if (gathered_points.contacts_used) {
     const ResolvedContacts& contacts = gathered_points.contacts;
-    spdlog::info("survey: ceiling height {} ({}); {} floor contact(s) rejected as tops of things before a wall",
+    spdlog::info("survey: ceiling height {} ({}); {} floor contact(s) rejected as tops of things before a wall{}",
                  contacts.ceiling ? fmt::format("{:.3f} ± {:.3f} m", contacts.ceiling->height_m, contacts.ceiling->sigma_m)
                                   : "not measured",
-                 contacts.how, contacts.floor_rejected);
+                 contacts.how, contacts.floor_rejected,
+                 contacts.ceiling_rejected > 0
+                     ? fmt::format(", {} ceiling contact(s) where a frame beside saw the wall rise higher",
+                                   contacts.ceiling_rejected)
+                     : "");
     if (contacts.ceiling) {
       summary.ceiling_height_m = contacts.ceiling->height_m;
       summary.ceiling_height_sigma_m = contacts.ceiling->sigma_m;

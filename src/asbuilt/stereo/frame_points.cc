@@ -451,6 +451,36 @@ std::optional<CeilingHeight> CeilingHeightFromSamples(std::vector<double> sample
 // contact's own; a rig turned in place keeps them within one baseline),
 // where that frame's column through the contact is wall from its top edge
 // down to within 3 rows of it.
+// Whether another frame taken from the same spot contradicts a ceiling
+// contact: its column through the contact's point shows wall (or openings)
+// from the image's top edge down past that point, so the wall rises above
+// where this frame's label edge put the ceiling. A segmenter that takes a
+// near wall's shadowed top for ceiling puts a "ceiling edge" there, which
+// the ceiling's height places metres beyond the wall (bench_rooms seed 28:
+// a door 1.2 m away, 86 ceiling contacts 2.8 m away); the frames beside it
+// see that wall up to their top edge.
+bool CeilingEdgeContradicted(const ClassPoint& p, const std::vector<PendingContacts::TopEdge>& frames,
+                             double min_depth_m) {
+  constexpr double kSameSpotM = 0.3;
+  constexpr int kRowMargin = 3;
+  const auto own = std::find_if(frames.begin(), frames.end(),
+                                [&](const PendingContacts::TopEdge& e) { return e.frame == p.frame; });
+  if (own == frames.end()) return false;
+  const Vec3 own_origin = own->world_from_camera.translation();
+  for (const PendingContacts::TopEdge& e : frames) {
+    if (e.frame == p.frame) continue;
+    if ((e.world_from_camera.translation() - own_origin).head<2>().norm() > kSameSpotM) continue;
+    const Vec3 in_cam = e.world_from_camera.inverse() * p.position_m;
+    if (!(in_cam.z() >= min_depth_m)) continue;
+    const std::optional<Vec2> px = ProjectFromCamera(e.camera, in_cam);
+    if (!px || px->y() < kRowMargin) continue;
+    const long u = std::lround(px->x());
+    if (u < 0 || u >= static_cast<long>(e.wall_to_row.size())) continue;
+    if (e.wall_to_row[u] >= px->y() + kRowMargin) return true;
+  }
+  return false;
+}
+
 double ToppedHeight(const PendingContacts::ToppedFloor& f, const std::vector<PendingContacts::TopEdge>& frames,
                     double min_depth_m) {
   constexpr double kSameSpotM = 0.3;
@@ -556,7 +586,10 @@ ResolvedContacts PendingContacts::Resolve(const FramePointsOptions& options) con
   }
   if (out.ceiling) {
     auto ceiling_points = CeilingContactPoints(ceiling_rays, *out.ceiling, options);
-    out.points.insert(out.points.end(), ceiling_points.begin(), ceiling_points.end());
+    const auto contradicted = [&](const ClassPoint& p) { return CeilingEdgeContradicted(p, top_edges, options.min_depth_m); };
+    const auto kept = std::partition(ceiling_points.begin(), ceiling_points.end(), std::not_fn(contradicted));
+    out.ceiling_rejected = static_cast<int>(ceiling_points.end() - kept);
+    out.points.insert(out.points.end(), ceiling_points.begin(), kept);
   } else {
     out.ceiling_unused = static_cast<int>(ceiling_rays.size());
   }

@@ -254,6 +254,7 @@ struct ResolvedContacts {
   std::string how;            // "given", "from 812 of 950 columns …".
   int floor_rejected = 0;     // Floor contacts that disagreed with the ceiling (paired or topped).
   int ceiling_unused = 0;     // Ceiling contacts left unused (no height).
+  int ceiling_rejected = 0;   // Ceiling contacts that a frame from the same spot saw wall above.
 };
 
 // Contacts that need the whole capture: the ceiling's height comes from all

@@ -419,22 +419,32 @@ TEST(PendingContacts, ChecksTheCeilingHeightAgainstTheWallsStereo) {
   EXPECT_NEAR(resolved.ceiling->height_m, 3.407, 0.005);
 }
 
+// The 640×480 camera (f 381 px) of the TopEdge tests below.
+PinholeCamera TopEdgeCamera() {
+  PinholeCamera cam;
+  cam.fx = cam.fy = 381.0;
+  return cam;
+}
+
+// Frame `index`'s top edge, seen from `at` turned `yaw_deg`: every column
+// wall from the top down to `wall_to_row` (−1: none).
+PendingContacts::TopEdge TopEdgeAt(int index, double yaw_deg, const Vec3& at, int wall_to_row) {
+  PendingContacts::TopEdge e{.frame = index,
+                             .world_from_camera = WorldFromCamera({.position_m = at, .yaw_rad = DegToRad(yaw_deg)},
+                                                                  0.12, StereoEye::kLeft),
+                             .camera = TopEdgeCamera()};
+  e.wall_to_row.assign(e.camera.width_px, wall_to_row);
+  return e;
+}
+
 // Near an image's side a column's top edge rises less for the same depth,
 // so a bed's top seen there passes the topped check in its own frame; the
 // frame beside it, from the same spot, sees the same "wall base" head-on
 // with wall up to its top edge, and 4 m of it.
 TEST(PendingContacts, ChecksToppedFloorContactsInEveryFrameFromTheSameSpot) {
-  PinholeCamera cam;
-  cam.fx = cam.fy = 381.0;
+  const PinholeCamera cam = TopEdgeCamera();
   const Vec3 rig(0, 0, 1.5);
-  auto frame = [&](int index, double yaw_deg, const Vec3& at, int wall_to_row) {
-    PendingContacts::TopEdge e{.frame = index,
-                               .world_from_camera = WorldFromCamera({.position_m = at, .yaw_rad = DegToRad(yaw_deg)},
-                                                                    0.12, StereoEye::kLeft),
-                               .camera = cam};
-    e.wall_to_row.assign(cam.width_px, wall_to_row);
-    return e;
-  };
+  const auto frame = TopEdgeAt;
   auto pending_with = [&](std::vector<PendingContacts::TopEdge> frames) {
     PendingContacts pending;
     for (int i = 0; i < 50; ++i) {
@@ -456,6 +466,44 @@ TEST(PendingContacts, ChecksToppedFloorContactsInEveryFrameFromTheSameSpot) {
   // 100), or was taken elsewhere: no evidence, kept.
   EXPECT_EQ(pending_with({frame(0, 0, rig, 479), frame(1, 40, rig, 100)}).Resolve({}).floor_rejected, 0);
   EXPECT_EQ(pending_with({frame(0, 0, rig, 479), frame(1, 40, rig + Vec3(1, 0, 0), 479)}).Resolve({}).floor_rejected,
+            0);
+}
+
+// A ceiling contact is dropped when a frame taken from the same spot sees the
+// wall (or its openings) from its top edge down past the contact's point:
+// the wall rises above where the label edge put the ceiling (bench_rooms
+// seed 28: a segmenter took a near door's shadowed top for ceiling).
+TEST(PendingContacts, DropsCeilingContactsThatAFrameBesideSeesWallAbove) {
+  const PinholeCamera cam = TopEdgeCamera();
+  const Vec3 rig(0, 0, 1.5);
+  const auto frame = TopEdgeAt;
+  auto pending_with = [&](std::vector<PendingContacts::TopEdge> frames) {
+    PendingContacts pending;
+    for (int i = 0; i < 50; ++i) {
+      pending.paired_floor.push_back({{LabelClass::kWall, Vec3(0, 2, 0), 0.01, PointSource::kContact, 0}, 3.46, 0.005});
+    }
+    // Frame 0's ray to a ceiling edge at (−2, 6, 3.46): row ≈ 115 there, and
+    // in frame 1 (turned 40° towards it) at u ≈ 470, row ≈ 112.
+    const Eigen::Isometry3d world_from_cam = frames.front().world_from_camera;
+    const Vec3 target(-2.0, 6.0, 3.46);
+    const double depth = (world_from_cam.inverse() * target).z();
+    pending.ceiling_rays.push_back({LabelClass::kWall, world_from_cam.translation(),
+                                    (target - world_from_cam.translation()) / depth, cam.fy, 0});
+    pending.top_edges = std::move(frames);
+    return pending;
+  };
+  const ResolvedContacts alone = pending_with({frame(0, 0, rig, -1)}).Resolve({});
+  EXPECT_EQ(alone.ceiling_rejected, 0);
+  ASSERT_EQ(alone.points.size(), 51u);
+  EXPECT_NEAR((alone.points.back().position_m - Vec3(-2.0, 6.0, 3.46)).norm(), 0.0, 0.02);
+  // Frame 1 sees wall from its top edge to the bottom: the ceiling is not there.
+  const ResolvedContacts beside = pending_with({frame(0, 0, rig, -1), frame(1, 40, rig, 479)}).Resolve({});
+  EXPECT_EQ(beside.ceiling_rejected, 1);
+  EXPECT_EQ(beside.points.size(), 50u);
+  // Frame 1 sees wall only down to row 100 (above the point), or was taken
+  // elsewhere: no evidence, kept.
+  EXPECT_EQ(pending_with({frame(0, 0, rig, -1), frame(1, 40, rig, 100)}).Resolve({}).ceiling_rejected, 0);
+  EXPECT_EQ(pending_with({frame(0, 0, rig, -1), frame(1, 40, rig + Vec3(1, 0, 0), 479)}).Resolve({}).ceiling_rejected,
             0);
 }
 
