@@ -1292,38 +1292,36 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
     // meet where those lines cross (bench_rooms seed 28: a small room's two
     // near plain walls gave no points; one connector from corner to corner
     // would have cut the room in half).
+    // An inferred wall along c's line, pointing along `toward`, from `from` to `to`.
+    auto finish = [&](Line& c, const Vec2& from, const Vec2& to, const Vec2& toward) {
+      c.inferred = true;
+      if (c.Dir().dot(toward) < 0) c.theta = WrapAngle(c.theta + kPi);
+      c.t_min = c.Dir().dot(from - c.c);
+      c.t_max = c.Dir().dot(to - c.c);
+      c.z_top = 0.5 * (a.z_top + b.z_top);
+    };
     if (va && vb) {
-      auto turn = [&](const Line& l) -> const Direction* {
+      const double gap_theta = std::atan2(gap.y(), gap.x());
+      auto off = [&](const Direction& d) { return std::abs(AngleDiffModPi(gap_theta, d.theta)); };
+      auto turn = [&](const Line& l) -> const Direction* {  // Across l, nearest the gap.
         const Direction* best = nullptr;
         for (const Direction& d : dirs) {
           if (std::abs(AngleDiffModPi(l.theta, d.theta)) <= DegToRad(o.parallel_max_deg)) continue;
-          if (!best || std::abs(AngleDiffModPi(std::atan2(gap.y(), gap.x()), d.theta)) <
-                           std::abs(AngleDiffModPi(std::atan2(gap.y(), gap.x()), best->theta))) {
-            best = &d;
-          }
+          if (!best || off(d) < off(*best)) best = &d;
         }
         return best;
       };
       const Direction* da = turn(a);
       const Direction* db = turn(b);
-      const double gap_theta = std::atan2(gap.y(), gap.x());
-      auto off = [&](const Direction* d) { return std::abs(AngleDiffModPi(gap_theta, d->theta)); };
-      if (da && db && std::min(off(da), off(db)) > DegToRad(20.0) &&
+      if (da && db && std::min(off(*da), off(*db)) > DegToRad(20.0) &&
           std::abs(AngleDiffModPi(da->theta, db->theta)) > DegToRad(o.parallel_max_deg)) {
         Line c1, c2;
-        c1.c = p, c1.theta = da->theta;
-        c2.c = q, c2.theta = db->theta;
+        c1.c = p, c1.theta = da->theta, c1.var_theta = da->Var(), c1.var_rho = va->sigma * va->sigma;
+        c2.c = q, c2.theta = db->theta, c2.var_theta = db->Var(), c2.var_rho = vb->sigma * vb->sigma;
         const std::optional<Vec2> corner = Intersect(c1, c2);
         if (corner && (*corner - p).dot(gap) > 0 && (q - *corner).dot(gap) > 0) {
-          for (auto [c, from, to, sigma] : {std::tuple{&c1, p, *corner, va->sigma}, std::tuple{&c2, *corner, q, vb->sigma}}) {
-            c->inferred = true;
-            if (c->Dir().dot(to - from) < 0) c->theta = WrapAngle(c->theta + kPi);
-            c->var_theta = (c == &c1 ? da : db)->Var();
-            c->var_rho = sigma * sigma;
-            c->t_min = c->Dir().dot(from - c->c);
-            c->t_max = c->Dir().dot(to - c->c);
-            c->z_top = 0.5 * (a.z_top + b.z_top);
-          }
+          finish(c1, p, *corner, *corner - p);
+          finish(c2, *corner, q, q - *corner);
           spdlog::debug("plan: two connectors through vertices ({:.3f}, {:.3f}) → ({:.3f}, {:.3f}), turning at "
                         "({:.3f}, {:.3f})", p.x(), p.y(), q.x(), q.y(), corner->x(), corner->y());
           closed.back().t_max = std::max(a.t_max, a.Dir().dot(p - a.c));
@@ -1336,7 +1334,6 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
       }
     }
     Line c;
-    c.inferred = true;
     c.c = va && !vb ? p : vb && !va ? q : 0.5 * (p + q);
     c.theta = std::atan2(gap.y(), gap.x());
     c.var_theta = DegToRad(5.0) * DegToRad(5.0);
@@ -1378,17 +1375,13 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
         c.var_rho = inside->sigma * inside->sigma;
       }
     }
-    // Orient it from a towards b.
-    if (c.Dir().dot(gap) < 0) c.theta = WrapAngle(c.theta + kPi);
-    c.t_min = c.Dir().dot(p - c.c);
-    c.t_max = c.Dir().dot(q - c.c);
+    finish(c, p, q, gap);  // From a towards b.
     if (va || vb) {
       c.var_rho = std::pow(va && vb ? std::min(va->sigma, vb->sigma) : (va ? va : vb)->sigma, 2);
       spdlog::debug("plan: connector through vertices ({}) → ({})",
                     va ? fmt::format("{:.3f}, {:.3f}", va->p.x(), va->p.y()) : "none",
                     vb ? fmt::format("{:.3f}, {:.3f}", vb->p.x(), vb->p.y()) : "none");
     }
-    c.z_top = 0.5 * (a.z_top + b.z_top);
     // A connector along a neighbour's own line is that wall seen only in
     // part (its points stop short of the corner, past furniture): the wall
     // goes on to where its line meets the other neighbour — when that is

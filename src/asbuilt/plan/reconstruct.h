@@ -72,8 +72,9 @@ struct PlanOptions {
   // or when snap_sigmas of its angle σ, widened for a bend (bend_sigmas),
   // take in the axis.
   double noisy_snap_max_deg = 25.0;
-  // A line whose two halves fit directions more than this many of their σ
-  // apart is bent, and its angle σ is at least half the bend (0: off). Point
+  // A line is bent when a half of its points (split at the median along it)
+  // fits a direction more than this many of that half's σ off the whole
+  // line's; its angle σ is then at least that difference (0: off). Point
   // noise alone gives a fit's angle σ of hundredths of a degree, but a
   // segmenter that takes a skirting board for floor over part of a wall
   // pushes that part's contacts 10–20 cm out: bench_rooms seed 10's 4.8 m

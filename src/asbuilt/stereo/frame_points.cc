@@ -446,11 +446,48 @@ std::optional<CeilingHeight> CeilingHeightFromSamples(std::vector<double> sample
   return out;
 }
 
+// The frames taken from the same spot as a contact point's own frame (a
+// camera within 0.3 m of it; a rig turned in place keeps them within one
+// baseline), each with the pixel where it sees the point, when it does:
+// `visit(frame, u, v, point_in_camera)`, u the column (in range), v the row.
+template <typename Visit>
+void ForFramesSeeingFromTheSameSpot(const ClassPoint& p, const std::vector<PendingContacts::TopEdge>& frames,
+                                    double min_depth_m, Visit&& visit) {
+  constexpr double kSameSpotM = 0.3;
+  const auto own = std::find_if(frames.begin(), frames.end(),
+                                [&](const PendingContacts::TopEdge& e) { return e.frame == p.frame; });
+  if (own == frames.end()) return;
+  const Vec3 own_origin = own->world_from_camera.translation();
+  for (const PendingContacts::TopEdge& e : frames) {
+    if ((e.world_from_camera.translation() - own_origin).head<2>().norm() > kSameSpotM) continue;
+    const Vec3 in_cam = e.world_from_camera.inverse() * p.position_m;
+    if (!(in_cam.z() >= min_depth_m)) continue;
+    const std::optional<Vec2> px = ProjectFromCamera(e.camera, in_cam);
+    if (!px) continue;
+    const long u = std::lround(px->x());
+    if (u < 0 || u >= static_cast<long>(e.wall_to_row.size())) continue;
+    visit(e, static_cast<int>(u), px->y(), in_cam);
+  }
+}
+
+// Rows of slack when a frame's top edge is compared with a point's row.
+constexpr int kTopEdgeRowMargin = 3;
+
 // The least height a topped floor contact's wall must have: the most that
-// any frame taken from the same spot shows (a camera within 0.3 m of the
-// contact's own; a rig turned in place keeps them within one baseline),
-// where that frame's column through the contact is wall from its top edge
-// down to within 3 rows of it.
+// any frame taken from the same spot shows, where that frame's column
+// through the contact is wall from its top edge down to within 3 rows of it.
+double ToppedHeight(const PendingContacts::ToppedFloor& f, const std::vector<PendingContacts::TopEdge>& frames,
+                    double min_depth_m) {
+  double height = f.min_height_m;
+  ForFramesSeeingFromTheSameSpot(f.point, frames, min_depth_m,
+                                 [&](const PendingContacts::TopEdge& e, int u, double v, const Vec3& in_cam) {
+                                   if (e.wall_to_row[u] < v - kTopEdgeRowMargin) return;
+                                   height = std::max(height, e.world_from_camera.translation().z() +
+                                                                 in_cam.z() * (e.camera.cy + 0.5) / e.camera.fy);
+                                 });
+  return height;
+}
+
 // Whether another frame taken from the same spot contradicts a ceiling
 // contact: its column through the contact's point shows wall (or openings)
 // from the image's top edge down past that point, so the wall rises above
@@ -461,48 +498,13 @@ std::optional<CeilingHeight> CeilingHeightFromSamples(std::vector<double> sample
 // see that wall up to their top edge.
 bool CeilingEdgeContradicted(const ClassPoint& p, const std::vector<PendingContacts::TopEdge>& frames,
                              double min_depth_m) {
-  constexpr double kSameSpotM = 0.3;
-  constexpr int kRowMargin = 3;
-  const auto own = std::find_if(frames.begin(), frames.end(),
-                                [&](const PendingContacts::TopEdge& e) { return e.frame == p.frame; });
-  if (own == frames.end()) return false;
-  const Vec3 own_origin = own->world_from_camera.translation();
-  for (const PendingContacts::TopEdge& e : frames) {
-    if (e.frame == p.frame) continue;
-    if ((e.world_from_camera.translation() - own_origin).head<2>().norm() > kSameSpotM) continue;
-    const Vec3 in_cam = e.world_from_camera.inverse() * p.position_m;
-    if (!(in_cam.z() >= min_depth_m)) continue;
-    const std::optional<Vec2> px = ProjectFromCamera(e.camera, in_cam);
-    if (!px || px->y() < kRowMargin) continue;
-    const long u = std::lround(px->x());
-    if (u < 0 || u >= static_cast<long>(e.wall_to_row.size())) continue;
-    if (e.wall_to_row[u] >= px->y() + kRowMargin) return true;
-  }
-  return false;
-}
-
-double ToppedHeight(const PendingContacts::ToppedFloor& f, const std::vector<PendingContacts::TopEdge>& frames,
-                    double min_depth_m) {
-  constexpr double kSameSpotM = 0.3;
-  constexpr int kRowMargin = 3;
-  const auto own = std::find_if(frames.begin(), frames.end(),
-                                [&](const PendingContacts::TopEdge& e) { return e.frame == f.point.frame; });
-  if (own == frames.end()) return f.min_height_m;
-  const Vec3 own_origin = own->world_from_camera.translation();
-  double height = f.min_height_m;
-  for (const PendingContacts::TopEdge& e : frames) {
-    const Vec3 origin = e.world_from_camera.translation();
-    if ((origin - own_origin).head<2>().norm() > kSameSpotM) continue;
-    const Vec3 in_cam = e.world_from_camera.inverse() * f.point.position_m;
-    if (!(in_cam.z() >= min_depth_m)) continue;
-    const std::optional<Vec2> px = ProjectFromCamera(e.camera, in_cam);
-    if (!px) continue;
-    const long u = std::lround(px->x());
-    if (u < 0 || u >= static_cast<long>(e.wall_to_row.size())) continue;
-    if (e.wall_to_row[u] < px->y() - kRowMargin) continue;
-    height = std::max(height, origin.z() + in_cam.z() * (e.camera.cy + 0.5) / e.camera.fy);
-  }
-  return height;
+  bool contradicted = false;
+  ForFramesSeeingFromTheSameSpot(p, frames, min_depth_m,
+                                 [&](const PendingContacts::TopEdge& e, int u, double v, const Vec3&) {
+                                   if (e.frame == p.frame || v < kTopEdgeRowMargin) return;
+                                   contradicted |= e.wall_to_row[u] >= v + kTopEdgeRowMargin;
+                                 });
+  return contradicted;
 }
 
 void PendingContacts::Append(PendingContacts&& other) {

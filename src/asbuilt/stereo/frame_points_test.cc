@@ -419,6 +419,15 @@ TEST(PendingContacts, ChecksTheCeilingHeightAgainstTheWallsStereo) {
   EXPECT_NEAR(resolved.ceiling->height_m, 3.407, 0.005);
 }
 
+// 50 paired floor contacts that all put the ceiling at `height_m`.
+PendingContacts PairedAtCeiling(double height_m) {
+  PendingContacts pending;
+  for (int i = 0; i < 50; ++i) {
+    pending.paired_floor.push_back({{LabelClass::kWall, Vec3(0, 2, 0), 0.01, PointSource::kContact, 0}, height_m, 0.005});
+  }
+  return pending;
+}
+
 // The 640×480 camera (f 381 px) of the TopEdge tests below.
 PinholeCamera TopEdgeCamera() {
   PinholeCamera cam;
@@ -446,10 +455,7 @@ TEST(PendingContacts, ChecksToppedFloorContactsInEveryFrameFromTheSameSpot) {
   const Vec3 rig(0, 0, 1.5);
   const auto frame = TopEdgeAt;
   auto pending_with = [&](std::vector<PendingContacts::TopEdge> frames) {
-    PendingContacts pending;
-    for (int i = 0; i < 50; ++i) {
-      pending.paired_floor.push_back({{LabelClass::kWall, Vec3(0, 2, 0), 0.01, PointSource::kContact, 0}, 3.46, 0.005});
-    }
+    PendingContacts pending = PairedAtCeiling(3.46);
     // Seen by frame 0 at u ≈ 12, depth 3.1 m: "wall" up to 3.45 m there.
     pending.topped_floor.push_back({{LabelClass::kWall, Vec3(-2.5, 3.1, 0), 0.01, PointSource::kContact, 0}, 3.45, 0.01});
     pending.top_edges = std::move(frames);
@@ -478,10 +484,7 @@ TEST(PendingContacts, DropsCeilingContactsThatAFrameBesideSeesWallAbove) {
   const Vec3 rig(0, 0, 1.5);
   const auto frame = TopEdgeAt;
   auto pending_with = [&](std::vector<PendingContacts::TopEdge> frames) {
-    PendingContacts pending;
-    for (int i = 0; i < 50; ++i) {
-      pending.paired_floor.push_back({{LabelClass::kWall, Vec3(0, 2, 0), 0.01, PointSource::kContact, 0}, 3.46, 0.005});
-    }
+    PendingContacts pending = PairedAtCeiling(3.46);
     // Frame 0's ray to a ceiling edge at (−2, 6, 3.46): row ≈ 115 there, and
     // in frame 1 (turned 40° towards it) at u ≈ 470, row ≈ 112.
     const Eigen::Isometry3d world_from_cam = frames.front().world_from_camera;
