@@ -451,7 +451,6 @@ PendingContacts::TopEdge TopEdgeAt(int index, double yaw_deg, const Vec3& at, in
 // frame beside it, from the same spot, sees the same "wall base" head-on
 // with wall up to its top edge, and 4 m of it.
 TEST(PendingContacts, ChecksToppedFloorContactsInEveryFrameFromTheSameSpot) {
-  const PinholeCamera cam = TopEdgeCamera();
   const Vec3 rig(0, 0, 1.5);
   const auto frame = TopEdgeAt;
   auto pending_with = [&](std::vector<PendingContacts::TopEdge> frames) {
