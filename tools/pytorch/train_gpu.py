@@ -78,7 +78,9 @@ def augment(bgr, label, a, rng):
     ratio = rng.uniform(0.5, 2.0)
     size = (max(1, int(fw * ratio)), max(1, int(fh * ratio)))
     bgr = cv2.resize(bgr, size, interpolation=cv2.INTER_LINEAR)
-    label = cv2.resize(label, size, interpolation=cv2.INTER_NEAREST)
+    # INTER_NEAREST_EXACT: INTER_NEAREST moves label edges half a pixel right
+    # and down of the image's (seg/segmenter.h, label_offset_px).
+    label = cv2.resize(label, size, interpolation=cv2.INTER_NEAREST_EXACT)
     cw, ch = a.crop
     pw, ph = max(0, cw - size[0]), max(0, ch - size[1])
     if pw or ph:
@@ -248,6 +250,7 @@ def main():
 
     def save(name, record_meta):
         meta = {"format": tw.CHECKPOINT_FORMAT, "scale": list(args.scale), "crop": list(args.crop),
+                "label_resize": "nearest_exact",
                 "epoch": int(round(step * args.batch / len(train))), "step": step,
                 "history": history, "best_miou": best, "best_epoch": int(round(best_step * args.batch / len(train))),
                 "best_step": best_step,

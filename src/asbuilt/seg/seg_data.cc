@@ -110,7 +110,10 @@ void AugmentPair(SegPair& pair, const AugmentOptions& o, std::mt19937_64& rng) {
   double ratio = U(o.ratio_min, o.ratio_max);
   cv::Size size(std::max(1, static_cast<int>(fit.width * ratio)), std::max(1, static_cast<int>(fit.height * ratio)));
   cv::resize(pair.bgr, pair.bgr, size, 0, 0, cv::INTER_LINEAR);
-  cv::resize(pair.label, pair.label, size, 0, 0, cv::INTER_NEAREST);
+  // INTER_NEAREST_EXACT: plain INTER_NEAREST takes the source pixel left of
+  // and above each target centre, moving label edges half a pixel right and
+  // down of the image's (SegmenterInfo::label_offset_px).
+  cv::resize(pair.label, pair.label, size, 0, 0, cv::INTER_NEAREST_EXACT);
   // Pad to the crop size (label 255 = ignore), then crop.
   int pad_w = std::max(0, o.crop_width_px - size.width), pad_h = std::max(0, o.crop_height_px - size.height);
   if (pad_w > 0 || pad_h > 0) {

@@ -220,6 +220,7 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
     meta["config"] = ConfigToJson(config);
     meta["scale"] = {options.augment.scale_width_px, options.augment.scale_height_px};
     meta["crop"] = {options.augment.crop_width_px, options.augment.crop_height_px};
+    meta["label_resize"] = "nearest_exact";  // SegmenterInfo::label_offset_px.
     meta["epoch"] = epoch;
     meta["step"] = static_cast<std::int64_t>(epoch) * steps_per_epoch;
     meta["parameters"] = n_params;
