@@ -356,6 +356,28 @@ std::vector<Case> Cases() {
       {"DatasetCheckEmptyFolder", {{"ds", "<dir"}}, "dataset check {d}/ds", 1, {"{d}/ds"}},
       {"DatasetCheckLabelSizeMismatch", {{"ds/images/a.png", "<rgb 32x24 40"}, {"ds/labels/a.png", "<png 16x12 1"}}, "dataset check {d}/ds", 1, {"a.png", "16x12"}},
 
+      // ---------------------------------------------------------------- pano / eval zind
+      {"PanoViewsNotTwoToOne", {{"p.png", "<rgb 96x72 9"}}, "pano views {d}/p.png -o {d}/out", 1, {"{d}/p.png", "96x72"}},
+      {"PanoViewsCorruptImage", {{"p.jpg", "<garbage"}}, "pano views {d}/p.jpg -o {d}/out", 1, {"{d}/p.jpg"}},
+      {"PanoViewsMissingImage", {}, "pano views {d}/p.jpg -o {d}/out", 1, {"{d}/p.jpg", "no such file"}},
+      {"PanoViewsAbsurdPitch", {{"p.png", "<rgb 64x32 9"}}, "pano views {d}/p.png -o {d}/out --pitch 95", 2, {"pitch_deg = 95"}},
+      {"PanoViewsBadSize", {{"p.png", "<rgb 64x32 9"}}, "pano views {d}/p.png -o {d}/out --size 0x48", 2, {"--size"}},
+      {"PanoViewsZindMalformed", {{"tour/zind_data.json", "{\"merger\": ["}}, "pano views pano_1 --zind {d}/tour -o {d}/out", 1,
+       {"{d}/tour/zind_data.json"}},
+      {"PanoViewsZindBadDoors", {{"tour/p.jpg", "<jpg 64x32 9"}, {"tour/zind_data.json", R"({"scale_meters_per_coordinate": {"f": 2},
+        "merger": {"f": {"c": {"p": {"pano_1": {"is_primary": true, "camera_height": 1, "ceiling_height": 1.5, "image_path": "p.jpg",
+        "floor_plan_transformation": {"translation": [0, 0], "rotation": 0, "scale": 1},
+        "layout_raw": {"vertices": [[0, 0], [1, 0], [1, 1]], "doors": [[0, 0]]}}}}}}})"}},
+       "pano views pano_1 --zind {d}/tour -o {d}/out", 1, {"{d}/tour/zind_data.json", "merger.f.c.p.pano_1.layout_raw.doors"}},
+      {"PanoViewsZindUnknownPano", {{"tour/p.jpg", "<jpg 64x32 9"}, {"tour/zind_data.json", R"({"scale_meters_per_coordinate": {"f": 2},
+        "merger": {"f": {"c": {"p": {"pano_1": {"is_primary": true, "camera_height": 1, "ceiling_height": 1.5, "image_path": "p.jpg",
+        "floor_plan_transformation": {"translation": [0, 0], "rotation": 0, "scale": 1},
+        "layout_raw": {"vertices": [[0, 0], [1, 0], [1, 1]]}}}}}}})"}},
+       "pano views pano_9 --zind {d}/tour -o {d}/out", 1, {"{d}/tour/zind_data.json", "pano_9"}},
+      {"EvalZindMissingTour", {}, "eval zind --model {src}/models/segformer_b0_asbuilt.pt --zind {d}/tour -o {d}/out", 1, {"{d}/tour"}},
+      {"EvalZindBadViews", {}, "eval zind --model {src}/models/segformer_b0_asbuilt.pt --zind {d}/tour -o {d}/out --views 0", 2,
+       {"views = 0"}},
+
       // ---------------------------------------------------------------- mcp
       {"McpWorkspaceIsAFile", {{"ws", "just a file"}}, "mcp --workspace {d}/ws", 1, {"{d}/ws"}},
 

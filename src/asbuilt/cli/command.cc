@@ -22,7 +22,8 @@ std::span<const Command> Commands() {
        &RunValidateCommand},
       {"plan", "floor plan from labelled points: walls, openings, dimensions → JSON, SVG, DXF, PDF, PNG",
        &RunPlanCommand},
-      {"eval", "score results against the truth (eval plan: a floor plan vs truth.json; eval seg: a segmenter)", &RunEvalCommand},
+      {"eval", "score results against the truth (eval plan: a floor plan vs truth.json; eval seg: a segmenter; "
+               "eval zind: a segmenter on real photos)", &RunEvalCommand},
       {"scene", "scenes from words or at random: text (built-in parser or --llm URL), random, truth, describe, "
                 "export-blender, schema",
        &RunSceneCommand},
@@ -46,6 +47,8 @@ std::span<const Command> Commands() {
       {"experiment", "segmentation experiments: real/synthetic ratios (the paper's table + plot), toy rooms",
        &RunExperimentCommand},
       {"model", "segmenter model files: info, export to / import from PyTorch (safetensors)", &RunModelCommand},
+      {"pano", "equirectangular panoramas → turn-in-place perspective views (+ ZInD layout labels, truth plan)",
+       &RunPanoCommand},
       {"version", "print the version", &RunVersionCommand},
   };
   return kCommands;
@@ -82,6 +85,22 @@ void AddContactSnapOption(CLI::App& app, std::optional<int>* px) {
                      FramePointsOptions::kDefaultContactSnapPx))
       ->check(CLI::Range(0, 64))
       ->default_str("auto");
+}
+
+void AddTurnInPlaceFlags(CLI::App& app, TurnInPlaceOptions* turn, std::string* size) {
+  app.add_option("--size", *size, "view size WIDTHxHEIGHT")->default_str(fmt::format("{}x{}", turn->width_px, turn->height_px));
+  app.add_option("--fx", turn->fx, "focal length, pixels")->capture_default_str();
+  app.add_option("--fy", turn->fy, "vertical focal length, pixels (0 = fx)")->capture_default_str();
+  app.add_option("--views", turn->views, "views per panorama")->capture_default_str();
+  app.add_option("--yaw-step", turn->yaw_step_deg, "degrees between views, counter-clockwise seen from above")
+      ->capture_default_str();
+  app.add_option("--first-yaw", turn->first_yaw_deg, "yaw of the first view, degrees (0 looks along the pano frame's +Y)")
+      ->capture_default_str();
+  app.add_option("--pitch", turn->pitch_deg, "tilt of every view, degrees, up positive")->capture_default_str();
+}
+
+void ApplyTurnInPlaceSize(const std::string& size, TurnInPlaceOptions& turn) {
+  ParseSizeFlag(size, "--size", turn.width_px, turn.height_px);
 }
 
 void ParseSizeFlag(const std::string& text, const std::string& flag, int& w, int& h) {

@@ -18,6 +18,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "asbuilt/pano/perspective.h"
 #include "asbuilt/stereo/frame_points.h"
 
 namespace asbuilt::cli {
@@ -51,6 +52,12 @@ void AddContactSnapOption(CLI::App& app, std::optional<int>* px);
 // WIDTHxHEIGHT of `flag` into w and h (left alone when `text` is empty);
 // throws CLI::ValidationError naming the flag otherwise.
 void ParseSizeFlag(const std::string& text, const std::string& flag, int& w, int& h);
+
+// The views of a panorama (TurnInPlaceOptions), shared by `pano views` and
+// `eval zind`: --size WxH (into *size, parsed by ApplyTurnInPlaceSize),
+// --fx, --fy, --views, --yaw-step, --first-yaw, --pitch.
+void AddTurnInPlaceFlags(CLI::App& app, TurnInPlaceOptions* turn, std::string* size);
+void ApplyTurnInPlaceSize(const std::string& size, TurnInPlaceOptions& turn);
 
 // Thrown by Parse() after it printed the help text (main() exits 0).
 struct HelpPrinted {};
@@ -89,6 +96,7 @@ int RunMcpCommand(int argc, char** argv);
 int RunLabelsCommand(int argc, char** argv);
 int RunDatasetCommand(int argc, char** argv);
 int RunVersionCommand(int argc, char** argv);
+int RunPanoCommand(int argc, char** argv);
 
 }  // namespace asbuilt::cli
 

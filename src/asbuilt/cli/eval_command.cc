@@ -2,6 +2,7 @@
 // evaluation is one CLI11 subcommand:
 //   eval plan PLAN TRUTH [--json FILE]   floor plan vs truth.json (plan/score.h)
 //   eval seg --model M (--manifest F | --images D [--labels D])   segmenter (seg/evaluate.h)
+//   eval zind --model M --zind TOUR [-o DIR]   segmenter on real photos (pipeline/zind_eval.h)
 
 #include <string>
 
@@ -9,6 +10,8 @@
 
 #include "asbuilt/cli/command.h"
 #include "asbuilt/formats/plan_file.h"
+#include "asbuilt/formats/zind.h"
+#include "asbuilt/pipeline/zind_eval.h"
 #include "asbuilt/plan/score.h"
 #include "asbuilt/seg/evaluate.h"
 #include "asbuilt/seg/seg_data.h"
@@ -58,7 +61,57 @@ int RunEvalCommand(int argc, char** argv) {
   seg_cmd->add_option("--json", seg_json, "also write the metrics as JSON to FILE");
   seg_cmd->add_option("--markdown", seg_md, "also write the Markdown table to FILE");
 
+  // eval zind
+  CLI::App* zind_cmd = app.add_subcommand(
+      "zind",
+      "score a segmenter on real photos: each primary panorama of a ZInD tour (taken inside its room)\n"
+      "turned into perspective views, labelled from its annotated layout (furniture in front of a wall\n"
+      "counts as wall; passages ignored), scored on whole views and on the upper half (above the horizon).\n"
+      "Writes DIR/metrics.json, metrics.md, report.html and contact sheets. ZInD is for academic use only:\n"
+      "research measurement, never training data (docs/seg.md)");
+  std::string zind_model, zind_tour, zind_out = "zind-eval", zind_size, zind_scale, zind_layout = "raw";
+  ZindEvalOptions zind_options;
+  SegmentOptions zind_segment;
+  bool zind_no_sheets = false;
+  zind_cmd->add_option("--model", zind_model, "checkpoint (e.g. models/segformer_b0_asbuilt.pt)")->required();
+  zind_cmd->add_option("--zind", zind_tour, "ZInD tour folder (with zind_data.json and panos/)")->required();
+  zind_cmd->add_option("-o,--out", zind_out, "output folder (never commit it: derived from ZInD)")->capture_default_str();
+  AddTurnInPlaceFlags(*zind_cmd, &zind_options.turn, &zind_size);
+  zind_cmd->add_option("--seg-scale", zind_scale, "scale the segmenter sees, WxH (default: the view size)");
+  zind_cmd->add_option("--mode", zind_segment.mode, "whole or slide")->capture_default_str();
+  zind_cmd->add_option("--layout", zind_layout, "ZInD layout the labels come from: raw, complete, visible")
+      ->check(CLI::IsMember({"raw", "complete", "visible"}))
+      ->capture_default_str();
+  zind_cmd->add_option("--max-panoramas", zind_options.max_panoramas, "score at most N panoramas (0 = all)")
+      ->capture_default_str();
+  zind_cmd->add_option("--batch", zind_options.batch_size, "views per forward pass")->capture_default_str();
+  zind_cmd->add_flag("--no-sheets", zind_no_sheets, "skip the contact sheets and report.html");
+
   Parse(app, argc, argv);
+
+  if (zind_cmd->parsed()) {
+    ApplyTurnInPlaceSize(zind_size, zind_options.turn);
+    zind_options.write_sheets = !zind_no_sheets;
+    zind_options.layout = zind_layout == "complete"  ? ZindLayoutKind::kComplete
+                          : zind_layout == "visible" ? ZindLayoutKind::kVisible
+                                                     : ZindLayoutKind::kRaw;
+    zind_options.Check();
+    zind_segment.scale_width_px = zind_options.turn.width_px;
+    zind_segment.scale_height_px = zind_options.turn.height_px;
+    ParseSizeFlag(zind_scale, "--seg-scale", zind_segment.scale_width_px, zind_segment.scale_height_px);
+    const ZindTour tour = ReadZindTour(zind_tour);
+    auto segmenter = LoadSegmenter(zind_model, zind_segment);
+    zind_options.segmenter_name =
+        fmt::format("{} ({}, {} inference at {}x{})", std::filesystem::path(zind_model).filename().string(),
+                    segmenter->info().ToString(), zind_segment.mode, zind_segment.scale_width_px,
+                    zind_segment.scale_height_px);
+    ProgressPrinter printer;
+    ZindEvalSummary s = EvaluateOnZind(*segmenter, tour, zind_out, zind_options, printer.Callback());
+    printer.Finish();
+    fmt::print("{}\n{}\nreport: {}\n", s.ToMarkdown(), s.BriefReport(),
+               (std::filesystem::path(zind_out) / (zind_options.write_sheets ? "report.html" : "metrics.md")).string());
+    return 0;
+  }
 
   if (seg_cmd->parsed()) {
     if (seg_manifest.empty() == seg_images.empty()) {

@@ -1,0 +1,117 @@
+#include "asbuilt/pano/pano_views.h"
+
+#include <filesystem>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "asbuilt/formats/plan_file.h"
+#include "asbuilt/pano/layout_labels.h"
+#include "asbuilt/util/error.h"
+#include "asbuilt/util/file.h"
+
+namespace asbuilt {
+namespace {
+namespace fs = std::filesystem;
+
+fs::path FreshDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("asbuilt_pano_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// A panorama whose colour tells the direction: blue rises with the column, red with the row.
+fs::path WriteGradientPanorama(const fs::path& dir) {
+  cv::Mat pano(256, 512, CV_8UC3);
+  for (int v = 0; v < pano.rows; ++v)
+    for (int u = 0; u < pano.cols; ++u) pano.at<cv::Vec3b>(v, u) = cv::Vec3b(u / 2, 60, v);
+  const fs::path path = dir / "pano.png";
+  cv::imwrite(path.string(), pano);
+  return path;
+}
+
+ZindPanorama Room(const fs::path& image) {
+  ZindPanorama p;
+  p.floor_id = "floor_01";
+  p.complete_room_id = "complete_room_01";
+  p.partial_room_id = "partial_room_01";
+  p.pano_id = "pano_1";
+  p.label = "test room";
+  p.image = image;
+  p.camera_height_m = 1.4;
+  p.ceiling_height_m = 2.4;
+  p.layout_raw.vertices_m = {{-2, -2}, {2, -2}, {2, 2}, {-2, 2}};
+  p.layout_raw.openings = {
+      {.kind = ZindOpeningKind::kDoor, .start_m = {-0.5, 2}, .end_m = {0.5, 2}, .bottom_m = 0, .top_m = 2, .wall = 2}};
+  return p;
+}
+
+TEST(WritePanoViews, WritesViewsAndAMonoCapture) {
+  const fs::path dir = FreshDir("views");
+  const fs::path pano = WriteGradientPanorama(dir);
+  const PanoViewsSummary s = WritePanoViews(
+      pano, dir / "out", {.turn = {.width_px = 160, .height_px = 120, .fx = 100, .views = 4, .yaw_step_deg = 90}});
+  EXPECT_EQ(s.views, 4);
+  EXPECT_FALSE(s.labels);
+  EXPECT_EQ(s.BriefReport(), "4 views → " + (dir / "out/views.json").string());
+  const nlohmann::json j = nlohmann::json::parse(ReadFile(dir / "out/views.json"));
+  EXPECT_EQ(j["kind"], "mono");
+  EXPECT_EQ(j["provisional"], true);
+  EXPECT_EQ(j["camera"]["width"], 160);
+  EXPECT_EQ(j["camera"]["cx"], 79.5);
+  ASSERT_EQ(j["frames"].size(), 4u);
+  EXPECT_EQ(j["frames"][3]["yaw_deg"], 270.0);
+  EXPECT_EQ(j["frames"][3]["image"], "images/003.png");
+  EXPECT_FALSE(j["frames"][0].contains("position_m"));  // No camera height given.
+  EXPECT_FALSE(j.contains("notice"));
+  const cv::Mat view = cv::imread((dir / "out/images/001.png").string());
+  ASSERT_EQ(view.size(), cv::Size(160, 120));
+  // View 1 looks at yaw 90° (−X): three quarters across the panorama.
+  EXPECT_NEAR(view.at<cv::Vec3b>(60, 80)[0], 384 / 2, 2);
+  EXPECT_NEAR(view.at<cv::Vec3b>(60, 80)[2], 128, 2);
+  EXPECT_FALSE(fs::exists(dir / "out/labels"));
+}
+
+TEST(WritePanoViews, WritesLabelsOverlaysAndTruthForAnAnnotatedPanorama) {
+  const fs::path dir = FreshDir("zind");
+  const fs::path pano = WriteGradientPanorama(dir);
+  const ZindPanorama room = Room(pano);
+  const PanoViewsSummary s = WritePanoViews(pano, dir / "out", {.turn = {.views = 2, .yaw_step_deg = 180}, .overlays = true},
+                                            &room);
+  EXPECT_TRUE(s.labels);
+  const nlohmann::json j = nlohmann::json::parse(ReadFile(dir / "out/views.json"));
+  EXPECT_EQ(j["notice"], kZindNotice);
+  EXPECT_EQ(j["source"]["zind"]["pano"], "floor_01/complete_room_01/partial_room_01/pano_1");
+  EXPECT_EQ(j["frames"][1]["position_m"], nlohmann::json({0.0, 0.0, 1.4}));
+  EXPECT_EQ(j["frames"][1]["labels"], "labels/001.png");
+  const cv::Mat labels = cv::imread((dir / "out/labels/000.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(labels.type(), CV_8U);
+  EXPECT_EQ(labels.at<std::uint8_t>(240, 320), 2);  // View 0 looks at the door.
+  EXPECT_TRUE(fs::exists(dir / "out/overlays/001.png"));
+  const Plan truth = ReadPlan(dir / "out/truth.json");
+  EXPECT_EQ(truth.walls.size(), 4u);
+  EXPECT_EQ(truth.openings.size(), 1u);
+  EXPECT_DOUBLE_EQ(truth.rooms[0].area_m2, 16.0);
+}
+
+TEST(WritePanoViews, NamesAPanoramaThatIsNotOne) {
+  const fs::path dir = FreshDir("bad");
+  cv::imwrite((dir / "square.png").string(), cv::Mat(100, 100, CV_8UC3, cv::Scalar(1, 2, 3)));
+  WriteFileAtomic(dir / "broken.jpg", "not a jpeg");
+  try {
+    WritePanoViews(dir / "square.png", dir / "out", {});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problems()[0].ToString(),
+              (dir / "square.png").string() + ": 100x100 is not an equirectangular panorama (twice as wide as high)");
+  }
+  EXPECT_THROW(WritePanoViews(dir / "broken.jpg", dir / "out", {}), InputError);
+  EXPECT_THROW(WritePanoViews(dir / "missing.jpg", dir / "out", {}), InputError);
+  EXPECT_THROW(WritePanoViews(dir / "square.png", dir / "out", {.camera_height_m = -1}), InvalidArgument);
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+}  // namespace
+}  // namespace asbuilt

@@ -1,0 +1,126 @@
+#include "asbuilt/pano/perspective.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <opencv2/imgproc.hpp>
+
+#include "asbuilt/util/error.h"
+
+namespace asbuilt {
+namespace {
+
+// Columns copied from the other side of the seam, so bilinear sampling wraps.
+constexpr int kSeamPad = 2;
+
+}  // namespace
+
+Mat3 PanoView::WorldFromCamera() const {
+  const double p = DegToRad(pitch_deg);
+  Mat3 tilt;  // About the camera x axis; +pitch turns the optical axis (z) up (−y).
+  tilt << 1, 0, 0, 0, std::cos(p), -std::sin(p), 0, std::sin(p), std::cos(p);
+  return WorldFromCameraRotation(DegToRad(yaw_deg)) * tilt;
+}
+
+Vec3 PanoView::RayInWorld(const Vec2& pixel) const {
+  return WorldFromCamera() * Vec3((pixel.x() - camera.cx) / camera.fx, (pixel.y() - camera.cy) / camera.fy, 1.0);
+}
+
+void PanoView::Check() const {
+  camera.Check();
+  CheckArgument(std::isfinite(yaw_deg), fmt::format("PanoView.yaw_deg = {}, must be finite", yaw_deg));
+  CheckArgument(std::isfinite(pitch_deg) && std::abs(pitch_deg) < 90,
+                fmt::format("PanoView.pitch_deg = {}, must be in (−90, 90)", pitch_deg));
+}
+
+std::string PanoView::ToString() const {
+  return fmt::format("PanoView({}x{} fx={:.1f} yaw {:.1f}° pitch {:.1f}°)", camera.width_px, camera.height_px,
+                     camera.fx, yaw_deg, pitch_deg);
+}
+
+Vec2 EquirectPixelFromDirection(const Vec3& d, int width_px, int height_px) {
+  const double yaw = std::atan2(-d.x(), d.y());
+  const double elevation = std::atan2(d.z(), std::hypot(d.x(), d.y()));
+  double turn = -yaw / (2 * kPi);  // Clockwise turns from +Y, in [−0.5, 0.5].
+  turn -= std::floor(turn);
+  double u = width_px * turn - 0.5;
+  if (u >= width_px - 0.5) u -= width_px;
+  return Vec2(u, height_px * (0.5 - elevation / kPi) - 0.5);
+}
+
+Vec3 DirectionFromEquirectPixel(const Vec2& pixel, int width_px, int height_px) {
+  const double yaw = -2 * kPi * (pixel.x() + 0.5) / width_px;
+  const double elevation = kPi * (0.5 - (pixel.y() + 0.5) / height_px);
+  return Vec3(-std::sin(yaw) * std::cos(elevation), std::cos(yaw) * std::cos(elevation), std::sin(elevation));
+}
+
+void TurnInPlaceOptions::Check() const {
+  CheckArgument(width_px > 0 && width_px <= 32768,
+                fmt::format("TurnInPlaceOptions.width_px = {}, must be in 1..32768", width_px));
+  CheckArgument(height_px > 0 && height_px <= 32768,
+                fmt::format("TurnInPlaceOptions.height_px = {}, must be in 1..32768", height_px));
+  CheckArgument(std::isfinite(fx) && fx > 0, fmt::format("TurnInPlaceOptions.fx = {}, must be > 0", fx));
+  CheckArgument(std::isfinite(fy) && fy >= 0, fmt::format("TurnInPlaceOptions.fy = {}, must be >= 0 (0 = fx)", fy));
+  CheckArgument(views > 0 && views <= 3600, fmt::format("TurnInPlaceOptions.views = {}, must be in 1..3600", views));
+  CheckArgument(std::isfinite(yaw_step_deg), fmt::format("TurnInPlaceOptions.yaw_step_deg = {}, must be finite", yaw_step_deg));
+  CheckArgument(std::isfinite(first_yaw_deg),
+                fmt::format("TurnInPlaceOptions.first_yaw_deg = {}, must be finite", first_yaw_deg));
+  CheckArgument(std::isfinite(pitch_deg) && std::abs(pitch_deg) < 90,
+                fmt::format("TurnInPlaceOptions.pitch_deg = {}, must be in (−90, 90)", pitch_deg));
+}
+
+std::vector<PanoView> TurnInPlaceViews(const TurnInPlaceOptions& options) {
+  options.Check();
+  const PinholeCamera camera{.width_px = options.width_px,
+                             .height_px = options.height_px,
+                             .fx = options.fx,
+                             .fy = options.fy > 0 ? options.fy : options.fx,
+                             .cx = 0.5 * options.width_px - 0.5,
+                             .cy = 0.5 * options.height_px - 0.5};
+  std::vector<PanoView> views;
+  for (int i = 0; i < options.views; ++i) {
+    views.push_back({.camera = camera, .yaw_deg = options.first_yaw_deg + i * options.yaw_step_deg,
+                     .pitch_deg = options.pitch_deg});
+  }
+  return views;
+}
+
+cv::Mat RenderPanoView(const cv::Mat& equirect, const PanoView& view) {
+  view.Check();
+  CheckArgument(!equirect.empty(), "RenderPanoView: the panorama is empty");
+  CheckArgument(std::abs(equirect.cols - 2 * equirect.rows) <= 1,
+                fmt::format("RenderPanoView: an equirectangular panorama is twice as wide as high, got {}x{}",
+                            equirect.cols, equirect.rows));
+  // Reduce the panorama where a view pixel spans more than 1.5 panorama
+  // pixels (at the view's centre, where its pixels span the most).
+  cv::Mat source = equirect;
+  const double view_px_per_rad = std::min(view.camera.fx, view.camera.fy);
+  const double pano_px_per_rad = equirect.cols / (2 * kPi);
+  if (pano_px_per_rad > 1.5 * view_px_per_rad) {
+    const int width = std::max(8, static_cast<int>(std::ceil(2 * kPi * view_px_per_rad)) & ~1);
+    cv::resize(equirect, source, cv::Size(width, width / 2), 0, 0, cv::INTER_AREA);
+  }
+  cv::Mat padded;
+  cv::copyMakeBorder(source, padded, 0, 0, kSeamPad, kSeamPad, cv::BORDER_WRAP);
+
+  // Sample positions: each view pixel's ray → panorama pixel.
+  const int w = view.camera.width_px, h = view.camera.height_px;
+  cv::Mat map_x(h, w, CV_32F), map_y(h, w, CV_32F);
+  const Mat3 world_from_camera = view.WorldFromCamera();
+  for (int v = 0; v < h; ++v) {
+    float* mx = map_x.ptr<float>(v);
+    float* my = map_y.ptr<float>(v);
+    for (int u = 0; u < w; ++u) {
+      const Vec3 ray = world_from_camera * Vec3((u - view.camera.cx) / view.camera.fx,
+                                                (v - view.camera.cy) / view.camera.fy, 1.0);
+      const Vec2 p = EquirectPixelFromDirection(ray, source.cols, source.rows);
+      mx[u] = static_cast<float>(p.x() + kSeamPad);
+      my[u] = static_cast<float>(p.y());
+    }
+  }
+  cv::Mat out;
+  cv::remap(padded, out, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  return out;
+}
+
+}  // namespace asbuilt
