@@ -141,9 +141,11 @@ class GuidSource {
 
 struct ResolvedWall {
   double length_m = 0, thickness_m = 0, height_m = 0;
+  bool degenerate = false;  // Zero length: an IfcWall without geometry.
   bool thickness_default = false, height_default = false;
   Vec2 dir = Vec2::UnitX();  // Unit vector start → end.
-  // Footprint in the wall's frame (x along, y into the room), counter-clockwise.
+  // Footprint in the wall's frame (x along, y into the room), counter-clockwise;
+  // empty for a degenerate wall.
   std::vector<Vec2> footprint;
 };
 
@@ -161,7 +163,6 @@ void CheckModellable(const Plan& plan, const std::string& name) {
     const PlanWall& w = plan.walls[i];
     if (!Finite(w.start)) fail(fmt::format("walls[{}].start = {} is not finite", i, PointText(w.start)));
     if (!Finite(w.end)) fail(fmt::format("walls[{}].end = {} is not finite", i, PointText(w.end)));
-    if (!(w.Length() > 1e-9)) fail(fmt::format("walls[{}] has zero length", i));
     check_size(w.thickness, fmt::format("walls[{}].thickness", i));
     check_size(w.height, fmt::format("walls[{}].height", i));
   }
@@ -178,7 +179,6 @@ void CheckModellable(const Plan& plan, const std::string& name) {
   }
   for (size_t i = 0; i < plan.rooms.size(); ++i) {
     const PlanRoom& r = plan.rooms[i];
-    if (r.polygon.size() < 3) fail(fmt::format("rooms[{}].polygon has {} points, needs 3", i, r.polygon.size()));
     for (size_t k = 0; k < r.polygon.size(); ++k) {
       if (!Finite(r.polygon[k])) {
         fail(fmt::format("rooms[{}].polygon[{}] = {} is not finite", i, k, PointText(r.polygon[k])));
@@ -201,7 +201,8 @@ std::vector<ResolvedWall> ResolveWalls(const Plan& plan, const IfcOptions& o) {
     const PlanWall& w = plan.walls[i];
     ResolvedWall& r = walls[i];
     r.length_m = w.Length();
-    r.dir = (w.end - w.start) / r.length_m;
+    r.degenerate = !(r.length_m > 1e-9);
+    if (!r.degenerate) r.dir = (w.end - w.start) / r.length_m;
     std::tie(r.thickness_m, r.thickness_default) = SizeOr(w.thickness, o.default_wall_thickness_m);
     std::tie(r.height_m, r.height_default) = SizeOr(w.height, o.default_wall_height_m);
     outer_start[i] = w.start - r.thickness_m * Perp(r.dir);  // The room is on the left.
@@ -212,6 +213,7 @@ std::vector<ResolvedWall> ResolveWalls(const Plan& plan, const IfcOptions& o) {
   for (int i = 0; i < n && n >= 2; ++i) {
     const int j = (i + 1) % n;
     if ((plan.walls[i].end - plan.walls[j].start).norm() > 1e-6) continue;
+    if (walls[i].degenerate || walls[j].degenerate) continue;
     const Vec2 &da = walls[i].dir, &db = walls[j].dir;
     const double den = Cross(da, db);
     if (std::abs(den) < 1e-9) continue;
@@ -223,6 +225,7 @@ std::vector<ResolvedWall> ResolveWalls(const Plan& plan, const IfcOptions& o) {
   }
   for (int i = 0; i < n; ++i) {
     ResolvedWall& r = walls[i];
+    if (r.degenerate) continue;
     const Vec2 origin = plan.walls[i].start, left = Perp(r.dir);
     auto local = [&](const Vec2& p) { return Vec2((p - origin).dot(r.dir), (p - origin).dot(left)); };
     Vec2 os = local(outer_start[i]), oe = local(outer_end[i]);
@@ -320,7 +323,7 @@ class IfcModel {
     std::string name, value, description;
   };
   static Property Length(const std::string& name, double v) {
-    return {name, fmt::format("IFCPOSITIVELENGTHMEASURE({})", StepReal(v)), ""};
+    return {name, fmt::format("{}({})", v > 0 ? "IFCPOSITIVELENGTHMEASURE" : "IFCLENGTHMEASURE", StepReal(v)), ""};
   }
   static Property Sigma(const std::string& name, double v) {
     return {name, fmt::format("IFCLENGTHMEASURE({})", StepReal(v)), "1 sigma (standard uncertainty, 68 %)"};
@@ -386,14 +389,16 @@ class IfcModel {
   std::pair<int, int> Wall(int index, const ResolvedWall& w) {
     const PlanWall& pw = plan_.walls[index];
     const int placement = LocalPlacement(storey_placement_, Placement3(pw.start.x(), pw.start.y(), 0.0, w.dir));
-    const int axis_line = Polyline({Vec2(0, 0), Vec2(w.length_m, 0)}, false);
-    const int axis = out_.Add("IFCSHAPEREPRESENTATION", fmt::format("{},'Axis','Curve2D',({})", Ref(axis_), Ref(axis_line)));
-    const int profile = out_.Add("IFCARBITRARYCLOSEDPROFILEDEF", fmt::format(".AREA.,$,{}", Ref(Polyline(w.footprint, true))));
-    const int body = BodyRep(Extrusion(profile, w.height_m));
-    const int shape = Shape({axis, body});
+    std::string shape = "$";  // A zero-length wall has no geometry.
+    if (!w.degenerate) {
+      const int axis_line = Polyline({Vec2(0, 0), Vec2(w.length_m, 0)}, false);
+      const int axis = out_.Add("IFCSHAPEREPRESENTATION", fmt::format("{},'Axis','Curve2D',({})", Ref(axis_), Ref(axis_line)));
+      const int profile = out_.Add("IFCARBITRARYCLOSEDPROFILEDEF", fmt::format(".AREA.,$,{}", Ref(Polyline(w.footprint, true))));
+      shape = Ref(Shape({axis, BodyRep(Extrusion(profile, w.height_m))}));
+    }
     const int wall = out_.Add("IFCWALL", fmt::format("{},$,{},{},{},.NOTDEFINED.",
                                                      Root(fmt::format("Wall {}", index + 1), fmt::format("plan.json walls[{}]", index)),
-                                                     Ref(placement), Ref(shape), StepString(fmt::format("W{}", index + 1))));
+                                                     Ref(placement), shape, StepString(fmt::format("W{}", index + 1))));
     std::vector<Property> props = {Integer("PlanIndex", index, "index in plan.json walls"),
                                    Length("Length", w.length_m)};
     if (pw.length_sigma_m) props.push_back(Sigma("LengthSigma", *pw.length_sigma_m));
@@ -467,15 +472,18 @@ class IfcModel {
   int Space(int index, double height_m) {
     const PlanRoom& room = plan_.rooms[index];
     std::vector<Vec2> polygon = room.polygon;
-    if ((polygon.front() - polygon.back()).norm() < 1e-9) polygon.pop_back();
+    if (polygon.size() >= 2 && (polygon.front() - polygon.back()).norm() < 1e-9) polygon.pop_back();
     if (PolygonArea(polygon) < 0) std::reverse(polygon.begin(), polygon.end());
     const int placement = LocalPlacement(storey_placement_, identity_);
-    const int profile = out_.Add("IFCARBITRARYCLOSEDPROFILEDEF", fmt::format(".AREA.,$,{}", Ref(Polyline(polygon, true))));
-    const int shape = Shape({BodyRep(Extrusion(profile, height_m))});
+    std::string shape = "$";  // A room without area has no geometry.
+    if (polygon.size() >= 3 && std::abs(PolygonArea(polygon)) > 1e-12) {
+      const int profile = out_.Add("IFCARBITRARYCLOSEDPROFILEDEF", fmt::format(".AREA.,$,{}", Ref(Polyline(polygon, true))));
+      shape = Ref(Shape({BodyRep(Extrusion(profile, height_m))}));
+    }
     const std::string name = fmt::format("Room {}", index + 1);
     const int space = out_.Add("IFCSPACE", fmt::format("{},$,{},{},$,.ELEMENT.,.SPACE.,$",
                                                        Root(name, fmt::format("plan.json rooms[{}]", index)),
-                                                       Ref(placement), Ref(shape)));
+                                                       Ref(placement), shape));
     std::vector<Property> props = {Integer("PlanIndex", index, "index in plan.json rooms"),
                                    {"Area", fmt::format("IFCAREAMEASURE({})", StepReal(room.area_m2)), "floor area, m2"}};
     if (room.area_sigma_m2) {

@@ -55,9 +55,11 @@ struct IfcOptions {
   void Check() const;
 };
 
-// The file's text. Throws Error ("plan: walls[2].end = (nan, 1) is not
-// finite", "plan: openings[0].wall = 5 is not a wall of the plan") for a plan
-// that cannot be modelled, InvalidArgument for bad options.
+// The file's text. Throws Error ("plan: cannot model the plan: walls[2].end =
+// (nan, 1) is not finite", "… openings[0].wall = 5 is not a wall of the
+// plan (4 walls)") for a plan that cannot be modelled, InvalidArgument for
+// bad options. A zero-length wall or a room without area is written without
+// geometry (its properties kept), as the drawings draw such a plan.
 std::string PlanToIfc(const Plan& plan, const IfcOptions& options = {});
 
 // Writes PlanToIfc() atomically; errors name `path` instead of "plan".
