@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <string>
 
 #include <fmt/format.h>
@@ -136,6 +137,18 @@ TEST(PlanToIfc, TheSamePlanGivesTheSameFileAndAnotherPlanOtherIds) {
   };
   EXPECT_NE(first_guid(a), first_guid(b));
   EXPECT_EQ(first_guid(a).size(), 22u);
+  // Every GlobalId in the file is distinct.
+  std::set<std::string> ids;
+  int roots = 0;
+  for (size_t p = a.find("('"); p != std::string::npos; p = a.find("('", p + 2)) {
+    const std::string token = a.substr(p + 2, 23);
+    if (token.size() == 23 && token[22] == '\'' && a.compare(p + 25, 3, ",$,") == 0) {
+      ++roots;
+      ids.insert(token.substr(0, 22));
+    }
+  }
+  EXPECT_GT(roots, 50);
+  EXPECT_EQ(static_cast<int>(ids.size()), roots);
 }
 
 TEST(PlanToIfc, MarksAThicknessThePlanDoesNotGiveAsTheStatedDefault) {
