@@ -6,7 +6,7 @@
 #
 #   scripts/install-deps.sh          build + test dependencies
 #   scripts/install-deps.sh --bench  also what `make bench` compares against
-#                                    (Blender, Python PyTorch)
+#                                    (Python PyTorch, hyperfine)
 set -euo pipefail
 
 packages=(
@@ -19,10 +19,12 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev
   python3 python3-ezdxf librsvg2-bin
+  libifcplusplus-dev libboost-dev
+  blender
   chromium
 )
 if [[ "${1:-}" == "--bench" ]]; then
-  packages+=(blender python3-torch hyperfine)
+  packages+=(python3-torch hyperfine)
 fi
 # Node.js (for the MCP SDK client test). Some images ship nodesource's nodejs,
 # which bundles npm and conflicts with Debian's npm package: only ask for

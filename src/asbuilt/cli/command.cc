@@ -14,7 +14,7 @@ namespace asbuilt::cli {
 std::span<const Command> Commands() {
   static const Command kCommands[] = {
       {"help", "list the commands, or show one command's help", &RunHelpCommand},
-      {"survey", "the main job: stereo capture → dimensioned floor plan (SVG, DXF, PDF, JSON) + report.html",
+      {"survey", "the main job: stereo capture → dimensioned floor plan (SVG, DXF, PDF, JSON, IFC) + report.html",
        &RunSurveyCommand},
       {"demo", "the whole method on a built-in classroom: text → scene → render → survey → measured vs true",
        &RunDemoCommand},

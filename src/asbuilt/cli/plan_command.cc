@@ -1,6 +1,6 @@
 // `asbuilt plan POINTS -o FOLDER` — floor plan from labelled class points
 // (the point file of `asbuilt points`), written as plan.json, plan.svg,
-// plan.dxf, plan.pdf and plan.png. Given a synthetic capture.json with label
+// plan.dxf, plan.pdf, plan.png and plan.ifc. Given a synthetic capture.json with label
 // and depth maps instead, it back-projects the labelled pixels first (the
 // "exact labels" upper bound of the survey).
 
@@ -23,7 +23,8 @@ namespace asbuilt::cli {
 int RunPlanCommand(int argc, char** argv) {
   CLI::App app(
       "Floor plan from labelled class points: walls, openings, dimensions with ± uncertainty.\n"
-      "Writes plan.json, plan.svg, plan.dxf, plan.pdf and plan.png into the output folder.\n"
+      "Writes plan.json, plan.svg, plan.dxf, plan.pdf, plan.png and plan.ifc (IFC4, for BIM tools)\n"
+      "into the output folder.\n"
       "INPUT is a point file (`class x y z [sigma source frame]` lines), or a synthetic\n"
       "capture.json with label and depth maps (exact class points from the labels).",
       "asbuilt plan");
@@ -31,6 +32,7 @@ int RunPlanCommand(int argc, char** argv) {
   std::string input, out_dir;
   PlanOptions options;
   DrawingOptions drawing;
+  IfcOptions ifc;
   std::vector<double> viewpoint;
   int stride_px = 2;
   app.add_option("input", input, "points.txt, or capture.json with labels + depth")->required();
@@ -55,14 +57,19 @@ int RunPlanCommand(int argc, char** argv) {
   app.add_option("--scale", drawing.scale, "paper scale 1:N of SVG and PDF")->capture_default_str();
   app.add_option("--png-px-per-m", drawing.png_px_per_m, "PNG resolution")->capture_default_str();
   app.add_option("--wall-thickness-m", drawing.nominal_thickness_m,
-                 "drawn thickness of walls whose thickness is unknown")->capture_default_str();
+                 "thickness of walls whose thickness is unknown, in the drawings and plan.ifc (marked there "
+                 "as a default)")->capture_default_str();
+  app.add_option("--wall-height-m", ifc.default_wall_height_m,
+                 "plan.ifc: height of walls whose height is unknown (marked as a default)")->capture_default_str();
   bool no_uncertainty = false;
   app.add_flag("--no-uncertainty", no_uncertainty, "do not print ± on the drawings");
   Parse(app, argc, argv);
   drawing.show_uncertainty = !no_uncertainty;
+  ifc.default_wall_thickness_m = drawing.nominal_thickness_m;
   if (viewpoint.size() == 3) options.viewpoint_m = Vec3(viewpoint[0], viewpoint[1], viewpoint[2]);
   options.Check();  // Usage errors before any file is read.
   drawing.Check();
+  ifc.Check();
 
   std::vector<ClassPoint> points;
   if (std::filesystem::path(input).extension() == ".json") {
@@ -73,7 +80,7 @@ int RunPlanCommand(int argc, char** argv) {
     points = ReadPoints(input);
   }
   PlanResult result = ReconstructPlan(points, options, input);
-  WritePlanFiles(result.plan, out_dir, drawing);
+  WritePlanFiles(result.plan, out_dir, drawing, ifc);
   fmt::print("{}: {}\n", out_dir, result.summary.BriefReport());
   return 0;
 }

@@ -52,7 +52,7 @@ TEST(PlanCommand, WritesAllFilesFromAPointFileAndEvalScoresThem) {
   RunResult r = RunAsbuilt(fmt::format("plan {} -o {}", (dir / "points.txt").string(), (dir / "out").string()));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("4 walls (0 inferred), 1 openings, closed, 20.0"), std::string::npos) << r.out;
-  for (const char* name : {"plan.json", "plan.svg", "plan.dxf", "plan.pdf", "plan.png"}) {
+  for (const char* name : {"plan.json", "plan.svg", "plan.dxf", "plan.pdf", "plan.png", "plan.ifc"}) {
     EXPECT_TRUE(fs::exists(dir / "out" / name)) << name;
   }
   WriteFileAtomic(dir / "truth.json", R"({"version": 1, "units": "m",

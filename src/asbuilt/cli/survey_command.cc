@@ -15,7 +15,7 @@ namespace asbuilt::cli {
 int RunSurveyCommand(int argc, char** argv) {
   CLI::App app(
       "Survey a room: segment both views of every stereo frame, match and triangulate wall, door\n"
-      "and window points, fit the floor plan and write plan.json/.svg/.dxf/.pdf/.png, points.txt,\n"
+      "and window points, fit the floor plan and write plan.json/.svg/.dxf/.pdf/.png/.ifc, points.txt,\n"
       "points.ply and report.html. A capture with `rectified: false` is rectified first with its\n"
       "calibration. Scores against --truth, or truth.json beside the capture when present.\n"
       "A synthetic capture's own labels are never used unless --labels or --capture-labels says so.",

@@ -186,7 +186,7 @@ std::string SurveyReportHtml(const SurveyReport& r) {
 
   // The plan and the points.
   html += "<section><h2>Floor plan</h2><div class=\"grid\" style=\"grid-template-columns:2fr 1fr\">";
-  html += fmt::format("<figure class=\"plan\">{}<figcaption>The measured plan (plan.svg; also plan.dxf, "
+  html += fmt::format("<figure class=\"plan\">{}<figcaption>The measured plan (plan.svg; also plan.dxf, plan.ifc, "
                       "plan.pdf, plan.json).</figcaption></figure>",
                       r.plan_svg.empty() ? std::string("<p><i>(no plan could be drawn)</i></p>")
                                          : Img(r.plan_svg, "image/svg+xml", "floor plan"));

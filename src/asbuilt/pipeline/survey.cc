@@ -408,7 +408,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   WritePointsPly(points, out_dir / "points.ply");
   std::string plan_svg;
   if (!result.plan.walls.empty()) {
-    WritePlanFiles(result.plan, out_dir);  // plan.json again (same), .svg, .dxf, .pdf, .png
+    WritePlanFiles(result.plan, out_dir);  // plan.json again (same), .svg, .dxf, .pdf, .png, .ifc
     plan_svg = ReadFile(out_dir / "plan.svg");
   }
   if (summary.score) WriteFileAtomic(out_dir / "score.json", PlanScoreToJson(*summary.score).dump(2) + "\n");

@@ -92,7 +92,7 @@ struct SurveyResult {
 };
 
 // Runs the whole survey and writes into `out_dir`: plan.json, plan.svg,
-// plan.dxf, plan.pdf, plan.png, points.txt, points.ply, score.json (with a
+// plan.dxf, plan.pdf, plan.png, plan.ifc, points.txt, points.ply, score.json (with a
 // truth), summary.json and report.html. Every file is written atomically.
 // Throws InputError for bad captures, images or models (naming the file).
 SurveyResult RunSurvey(const std::filesystem::path& capture_json,

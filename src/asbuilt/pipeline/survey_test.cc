@@ -37,12 +37,20 @@ TEST(RunSurvey, ExactLabelsOnBlenderRectangleMeetTargets) {
   EXPECT_LE(s.opening_width.Median().value_or(1), 0.02) << s.Table();
   EXPECT_LE(s.opening_width.Max().value_or(1), 0.03) << s.Table();
   EXPECT_LE(s.area_relative_error.value_or(1), 0.02) << s.Table();
-  for (const char* f : {"plan.json", "plan.svg", "plan.dxf", "plan.pdf", "plan.png", "points.txt", "points.ply", "score.json", "summary.json", "report.html"}) {
+  for (const char* f : {"plan.json", "plan.svg", "plan.dxf", "plan.pdf", "plan.png", "plan.ifc", "points.txt", "points.ply", "score.json", "summary.json", "report.html"}) {
     EXPECT_TRUE(fs::exists(out / f)) << f;
   }
   std::string html = ReadFile(out / "report.html");
   EXPECT_NE(html.find("Accuracy against the truth plan"), std::string::npos);
   EXPECT_NE(html.find("exact labels"), std::string::npos);
+  // plan.ifc, read back by IFC++ (plan/ifc_check.cc), holds every wall,
+  // opening and room of plan.json.
+  if (std::string(ASBUILT_IFC_CHECK).empty()) GTEST_SKIP() << "IFC++ (libifcplusplus-dev) not installed";
+  std::string cmd = fmt::format("{} {} {} > {} 2>&1", ASBUILT_IFC_CHECK, (out / "plan.ifc").string(),
+                                (out / "plan.json").string(), (out / "ifc_check.txt").string());
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << ReadFile(out / "ifc_check.txt");
+  EXPECT_EQ(ReadFile(out / "ifc_check.txt").rfind("ok: 4 walls, 1 door, 2 windows, 1 space", 0), 0u)
+      << ReadFile(out / "ifc_check.txt");
 }
 
 // The L room's door stands open into the room: its leaf must not widen it,

@@ -732,8 +732,10 @@ void WritePlanPng(const Plan& plan, const fs::path& path, const DrawingOptions& 
   file.Commit();
 }
 
-void WritePlanFiles(const Plan& plan, const fs::path& folder, const DrawingOptions& options) {
+void WritePlanFiles(const Plan& plan, const fs::path& folder, const DrawingOptions& options,
+                    const IfcOptions& ifc) {
   options.Check();
+  ifc.Check();
   std::error_code ec;
   fs::create_directories(folder, ec);
   if (ec) throw Error(fmt::format("{}: cannot create folder: {}", folder.string(), ec.message()));
@@ -742,6 +744,7 @@ void WritePlanFiles(const Plan& plan, const fs::path& folder, const DrawingOptio
   WritePlanDxf(plan, folder / "plan.dxf", options);
   WritePlanPdf(plan, folder / "plan.pdf", options);
   WritePlanPng(plan, folder / "plan.png", options);
+  WritePlanIfc(plan, folder / "plan.ifc", ifc);
 }
 
 }  // namespace asbuilt

@@ -27,6 +27,7 @@
 #include <string>
 
 #include "asbuilt/formats/plan_file.h"
+#include "asbuilt/plan/ifc.h"
 
 namespace asbuilt {
 
@@ -67,9 +68,11 @@ double PlanPageScale(const Plan& plan, const DrawingOptions& options = {});
 // Likewise for WritePlanPng and max_png_side_px.
 double PlanPngScale(const Plan& plan, const DrawingOptions& options = {});
 
-// Writes plan.json, plan.svg, plan.dxf, plan.pdf and plan.png into `folder`
-// (created if missing). Throws Error naming the file that failed.
-void WritePlanFiles(const Plan& plan, const std::filesystem::path& folder, const DrawingOptions& options = {});
+// Writes plan.json, plan.svg, plan.dxf, plan.pdf, plan.png and plan.ifc
+// (plan/ifc.h) into `folder` (created if missing). Throws Error naming the
+// file that failed.
+void WritePlanFiles(const Plan& plan, const std::filesystem::path& folder, const DrawingOptions& options = {},
+                    const IfcOptions& ifc = {});
 
 // Text of a length in the drawing's units: millimetres, rounded ("4500"),
 // with " ±5" appended when `sigma_m` is significant for the options.

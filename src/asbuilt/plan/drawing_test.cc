@@ -127,7 +127,7 @@ TEST(PlanFiles, WritesAllFiveAtomically) {
   fs::path dir = fs::temp_directory_path() / "asbuilt_plan_files";
   fs::remove_all(dir);
   WritePlanFiles(RoomWithDoorAndWindow(), dir);
-  for (const char* name : {"plan.json", "plan.svg", "plan.dxf", "plan.pdf", "plan.png"}) {
+  for (const char* name : {"plan.json", "plan.svg", "plan.dxf", "plan.pdf", "plan.png", "plan.ifc"}) {
     EXPECT_TRUE(fs::exists(dir / name)) << name;
     EXPECT_GT(fs::file_size(dir / name), 200u) << name;
   }

@@ -339,12 +339,27 @@ def build_camera(rig, views):
     scene.frame_set(1)
 
 
+def cycles_has_denoiser():
+    # Builds without OpenImageDenoise (Debian's Blender 3.4, say) stop the
+    # render with "Build without OpenImageDenoiser" when denoising is on.
+    try:
+        import _cycles
+    except ImportError:
+        return False
+    return bool(getattr(_cycles, "with_openimagedenoise", False))
+
+
 def setup_render():
     scene = bpy.context.scene
     scene.render.engine = "CYCLES"
     scene.cycles.device = "CPU"
     scene.cycles.samples = SETTINGS["samples"]
-    scene.cycles.use_denoising = SETTINGS["denoise"]
+    denoise = SETTINGS["denoise"]
+    if denoise and not cycles_has_denoiser():
+        print("asbuilt: note: this Blender build has no OpenImageDenoise; rendering without denoising "
+              "(expect more noise; raise the samples to compensate)")
+        denoise = False
+    scene.cycles.use_denoising = denoise
     scene.view_settings.view_transform = "Standard"
     layer = scene.view_layers[0]
     layer.use_pass_object_index = True

@@ -25,7 +25,10 @@ namespace asbuilt {
 
 struct BlenderExportOptions {
   int samples = 64;            // Cycles samples per pixel; more = less noise, slower.
-  bool denoise = true;         // Cycles denoiser (OpenImageDenoise on CPU).
+  // Cycles denoiser (OpenImageDenoise on CPU). The script checks at run time
+  // whether the Blender build has it and, when not, renders without and
+  // prints a note (Debian's Blender 3.4 has none).
+  bool denoise = true;
   bool index_pass = true;      // Write the object-index (label id) pass as EXR.
   double sensor_width_mm = 36.0;  // Blender sensor width; focal length follows from fx.
 
