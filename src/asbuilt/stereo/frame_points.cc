@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <iterator>
+#include <numeric>
 
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
@@ -166,6 +167,111 @@ struct FloorColumn {
   double depth_m = 0.0;
   unsigned char label = 0;
 };
+// FramePointsOptions::skirting_depth_m: the height above the floor of the
+// strongest colour step 3–25 cm above a wall foot at `floor_row` and depth
+// `z` (the top of a skirting board), or nullopt when that stretch of the
+// column shows no step of `min_step`, or only at its ends.
+std::optional<double> SkirtingTop(const cv::Mat& steps, int u, double floor_row, double z, double h,
+                                  const PinholeCamera& cam, double min_step) {
+  constexpr double kLowest = 0.03, kHighest = 0.25;
+  const int lo = std::max(0, static_cast<int>(std::floor(cam.cy + cam.fy * (h - kHighest) / z)));
+  const int hi = std::min(static_cast<int>(std::floor(floor_row - 0.5)) - 1,
+                          static_cast<int>(std::floor(cam.cy + cam.fy * (h - kLowest) / z - 0.5)));
+  if (hi - lo < 2) return std::nullopt;
+  int best = -1;
+  float best_step = 0.0f;
+  for (int k = lo; k <= hi; ++k) {
+    const float a = steps.at<float>(k, u);
+    if (a > best_step) best_step = a, best = k;
+  }
+  if (best <= lo || best >= hi || best_step < min_step) return std::nullopt;
+  return h - (best + 0.5 - cam.cy) * z / cam.fy;
+}
+
+// Whether a frame's wall feet stand on skirting: a step in at least half of
+// them, two thirds of those within 1.5 cm of their median height.
+bool SkirtingSeen(std::vector<double> heights, int wall_feet, double* height_m) {
+  if (wall_feet < 10 || 2 * static_cast<int>(heights.size()) < wall_feet) return false;
+  std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
+  const double median = heights[heights.size() / 2];
+  const auto near = std::count_if(heights.begin(), heights.end(), [&](double s) { return std::abs(s - median) <= 0.015; });
+  if (3 * near < 2 * static_cast<long>(heights.size())) return false;
+  *height_m = median;
+  return true;
+}
+
+// Moves the wall floor contacts this frame added (from the given indices
+// on) `depth_m` back from the camera, along the wall's normal there (from
+// the contacts 2 columns either side), and rescales their ceiling samples:
+// the wall's face stands behind the skirting's foot.
+void MoveWallFeetBehindSkirting(double depth_m, const Eigen::Isometry3d& world_from_cam, const PinholeCamera& cam,
+                                std::size_t first_point, std::size_t first_paired, std::size_t first_topped,
+                                FramePointsResult* result, std::vector<FloorColumn>* floor_columns) {
+  // This frame's wall feet in column order, wherever they were filed.
+  std::vector<ClassPoint*> feet;
+  std::vector<double*> samples;  // The paired ceiling sample of each foot, or null.
+  for (std::size_t i = first_point; i < result->points.size(); ++i) {
+    ClassPoint& p = result->points[i];
+    if (p.source == PointSource::kContact && p.label == LabelClass::kWall && p.position_m.z() == 0.0) {
+      feet.push_back(&p), samples.push_back(nullptr);
+    }
+  }
+  for (std::size_t i = first_paired; i < result->contacts.paired_floor.size(); ++i) {
+    auto& pf = result->contacts.paired_floor[i];
+    if (pf.point.label == LabelClass::kWall) feet.push_back(&pf.point), samples.push_back(&pf.ceiling_sample_m);
+  }
+  for (std::size_t i = first_topped; i < result->contacts.topped_floor.size(); ++i) {
+    auto& tf = result->contacts.topped_floor[i];
+    if (tf.point.label == LabelClass::kWall) feet.push_back(&tf.point), samples.push_back(nullptr);
+  }
+  const Eigen::Isometry3d cam_from_world = world_from_cam.inverse();
+  const Vec3 origin = world_from_cam.translation();
+  const double h = origin.z();
+  // Order by bearing in the camera (its image column).
+  std::vector<std::size_t> order(feet.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::vector<double> bearing(feet.size());
+  for (std::size_t i = 0; i < feet.size(); ++i) {
+    const Vec3 c = cam_from_world * feet[i]->position_m;
+    bearing[i] = c.x() / c.z();
+  }
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return bearing[a] < bearing[b]; });
+  std::vector<Vec3> moved(feet.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const Vec3& p = feet[order[k]]->position_m;
+    const Vec3& a = feet[order[k >= 2 ? k - 2 : 0]]->position_m;
+    const Vec3& b = feet[order[std::min(order.size() - 1, k + 2)]]->position_m;
+    Vec2 away(p.x() - origin.x(), p.y() - origin.y());
+    away.normalize();
+    Vec2 normal = away;
+    const Vec2 along(b.x() - a.x(), b.y() - a.y());
+    // A local wall direction when the neighbours are on the same wall (close
+    // together); else straight away from the camera.
+    if (along.norm() > 1e-6 && along.norm() < 0.5) {
+      normal = Vec2(-along.y(), along.x()).normalized();
+      if (normal.dot(away) < 0) normal = -normal;
+    }
+    moved[order[k]] = p + depth_m * Vec3(normal.x(), normal.y(), 0.0);
+  }
+  std::vector<double> ratio(feet.size());  // New depth over old.
+  for (std::size_t i = 0; i < feet.size(); ++i) {
+    const double z_old = (cam_from_world * feet[i]->position_m).z(), z_new = (cam_from_world * moved[i]).z();
+    ratio[i] = z_old > 0 ? z_new / z_old : 1.0;
+    feet[i]->position_m = moved[i];
+    if (samples[i]) *samples[i] = h + (*samples[i] - h) * ratio[i];
+  }
+  // The boundary points take their wall depth from these columns.
+  if (feet.empty()) return;
+  for (FloorColumn& c : *floor_columns) {
+    if (c.label != 1) continue;
+    const double b = (c.u - cam.cx) / cam.fx;
+    const auto nearest = std::min_element(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+      return std::abs(bearing[x] - b) < std::abs(bearing[y] - b);
+    });
+    c.depth_m *= ratio[*nearest];
+  }
+}
+
 void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& options,
                       const Eigen::Isometry3d& world_from_cam, FramePointsResult* result, cv::Mat* covered,
                       std::vector<FloorColumn>* floor_columns) {
@@ -176,7 +282,12 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
   if (!(h > 0.05)) return;                             // No usable height: no contacts.
   const int rows = labels.rows, cols = labels.cols, run = options.contact_min_run_px;
   const double fxb = cam.fx * frame.baseline_m;
-  const cv::Mat steps = options.contact_snap_px > 0 ? VerticalSteps(frame.left) : cv::Mat();
+  const cv::Mat steps =
+      options.contact_snap_px > 0 || options.skirting_depth_m > 0 ? VerticalSteps(frame.left) : cv::Mat();
+  const std::size_t first_point = result->points.size(), first_paired = result->contacts.paired_floor.size(),
+                    first_topped = result->contacts.topped_floor.size();
+  std::vector<double> skirting_heights;  // Per wall foot: the step above it, in metres above the floor.
+  int wall_feet = 0;
   auto snap = [&](int u, double row) {
     return SnapRowToImageEdge(steps, u, row, options.contact_snap_px, options.contact_snap_min_step);
   };
@@ -255,6 +366,12 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
                                  PointSource::kContact, frame.index};
         ++result->cues.floor_contacts;
         floor_columns->push_back({u, floor_row, z, floor_label});
+        if (floor_label == 1 && !steps.empty()) {
+          ++wall_feet;
+          if (const auto s = SkirtingTop(steps, u, floor_row, z, h, cam, options.contact_snap_min_step)) {
+            skirting_heights.push_back(*s);
+          }
+        }
         cover(u, static_cast<int>(floor_row - 0.5), -1);
       } else {
         floor_row = NAN;
@@ -327,6 +444,10 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
     ++result->cues.ceiling_contacts;
     cover(u, static_cast<int>(ceiling_edge + 0.5), 1);
     result->contacts.ceiling_rays.push_back(r);
+  }
+  if (options.skirting_depth_m > 0 && SkirtingSeen(skirting_heights, wall_feet, &result->cues.skirting_height_m)) {
+    MoveWallFeetBehindSkirting(options.skirting_depth_m, world_from_cam, cam, first_point, first_paired, first_topped,
+                               result, floor_columns);
   }
 }
 
@@ -441,7 +562,10 @@ std::optional<CeilingHeight> CeilingHeightFromSamples(std::vector<double> sample
   std::vector<double> dev;
   for (double x : near) dev.push_back(std::abs(x - out.height_m));
   // σ of the median: 1.4826·MAD/√n, floored (the samples share a rig height).
-  out.sigma_m = std::max(0.002, 1.4826 * median(dev) / std::sqrt(static_cast<double>(near.size())));
+  // Samples of one frame's neighbouring columns share its label edges' errors:
+  // count at most two per frame of a 12-frame turn as independent.
+  out.sigma_m =
+      std::max(0.002, 1.4826 * median(dev) / std::sqrt(std::min(24.0, static_cast<double>(near.size()))));
   out.samples = static_cast<int>(near.size());
   return out;
 }
@@ -657,6 +781,8 @@ void FramePointsOptions::Check() const {
   CheckArgument(contact_snap_px >= 0 && contact_snap_min_step >= 0,
                 fmt::format("FramePointsOptions: contact_snap_px = {}, contact_snap_min_step = {}: must be >= 0",
                             contact_snap_px, contact_snap_min_step));
+  CheckArgument(skirting_depth_m >= 0 && skirting_depth_m < 0.1,
+                fmt::format("FramePointsOptions.skirting_depth_m = {}, must be in [0, 0.1)", skirting_depth_m));
   CheckArgument(stereo_check_tolerance_px > 0 && stereo_check_min_agree >= 0 && stereo_check_min_agree <= 1 &&
                     stereo_check_min_pixels >= 0 && stereo_check_min_contacts >= 0,
                 fmt::format("FramePointsOptions: stereo_check_tolerance_px = {}, stereo_check_min_agree = {}, "

@@ -158,6 +158,12 @@ struct FramePointsOptions {
   // by 0.3 px median.
   int contact_snap_px = 0;
   double contact_snap_min_step = 1.0;
+  // Skirting boards (labelled wall) stand this far in front of the wall's
+  // face, so a floor contact at their foot places the wall too near. A frame
+  // whose wall foot contacts show a colour step at one height 3–25 cm above
+  // the floor in most columns has them; its wall floor contacts then move
+  // this far back, normal to the wall. 0 turns the correction off.
+  double skirting_depth_m = 0.012;
   // What survey and points use for labels that are not a capture's exact ones.
   static constexpr int kDefaultContactSnapPx = 10;
   // `asked` when given, else kDefaultContactSnapPx, or 0 for exact labels.
@@ -217,6 +223,7 @@ struct FrameCues {
   int boundary_points = 0;  // Door/window label edges on the wall.
   int vertex_points = 0;    // Wall–wall corner columns.
   int floor_contacts = 0;    // Wall/door–floor contact points.
+  double skirting_height_m = NAN;  // A skirting's top seen over the wall feet (NAN: none).
   int floor_rejected = 0;    // Candidates whose floor disparity said "occluded".
   int ceiling_contacts = 0;  // Wall–ceiling contacts (rays until the height is known).
   // The stereo check (FramePointsOptions::contacts): wall pixels compared

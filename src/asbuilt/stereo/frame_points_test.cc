@@ -244,6 +244,62 @@ TEST(ComputeFramePoints, ContactPointsLieOnTruthWallsAndGiveTheCeilingHeight) {
   }
 }
 
+// How far inside the room (negative: behind the wall's face) a point lies:
+// the distance to the nearest truth wall, signed by the room polygon.
+double InsideTheWalls(const Plan& truth, const Vec3& p) {
+  const std::vector<Vec2>& poly = truth.rooms.at(0).polygon;
+  bool inside = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    if ((poly[i].y() > p.y()) != (poly[j].y() > p.y()) &&
+        p.x() < poly[j].x() + (poly[i].x() - poly[j].x()) * (p.y() - poly[j].y()) / (poly[i].y() - poly[j].y())) {
+      inside = !inside;
+    }
+  }
+  return inside ? DistanceToWalls(truth, p) : -DistanceToWalls(truth, p);
+}
+
+// The Blender rooms have 8 cm skirting boards 15 mm deep: the wall's foot
+// the labels show is the skirting's, 15 mm in front of the wall's face. Each
+// frame sees the skirting's top over its wall feet; its contacts then move
+// back to the face, and the ceiling's height from floor/ceiling pairs with
+// them.
+TEST(ComputeFramePoints, WallFeetOnSkirtingMoveBackToTheWallsFace) {
+  const std::string room = "p01_rect_1door_2win";
+  RoomFrames r = LoadRoom(room, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11});
+  const Plan truth = ReadPlan(RoomDir(room) / "truth.json");
+  const double truth_height = truth.walls.at(0).height.value_or(NAN);
+  auto measure = [&](double skirting_depth_m, std::vector<double>* skirting_heights) {
+    FramePointsOptions options;
+    options.contacts = ContactUse::kAlways;
+    options.skirting_depth_m = skirting_depth_m;
+    PendingContacts pending;
+    std::vector<double> inside;
+    for (const StereoFrame& f : r.frames) {
+      FramePointsResult result = ComputeFramePoints(f, options);
+      if (std::isfinite(result.cues.skirting_height_m)) skirting_heights->push_back(result.cues.skirting_height_m);
+      pending.Append(std::move(result.contacts));
+    }
+    const ResolvedContacts resolved = pending.Resolve(options);
+    for (const ClassPoint& p : resolved.points) {
+      if (p.position_m.z() == 0.0 && p.label == LabelClass::kWall) inside.push_back(InsideTheWalls(truth, p.position_m));
+    }
+    return std::pair{Percentile(inside, 0.5), resolved.ceiling->height_m};
+  };
+  std::vector<double> none, seen;
+  const auto [before_m, before_height_m] = measure(0.0, &none);
+  const auto [after_m, after_height_m] = measure(0.015, &seen);
+  std::printf("%s: wall feet %.4f → %.4f m inside the walls; ceiling %.4f → %.4f m (truth %.4f); skirting seen in "
+              "%zu of 12 frames, median top %.3f m\n",
+              room.c_str(), before_m, after_m, before_height_m, after_height_m, truth_height, seen.size(),
+              Percentile(seen, 0.5));
+  EXPECT_TRUE(none.empty());
+  EXPECT_GE(seen.size(), 8u);
+  EXPECT_NEAR(Percentile(seen, 0.5), 0.08, 0.015);
+  EXPECT_GT(before_m, 0.008);
+  EXPECT_LT(std::abs(after_m), 0.5 * before_m);
+  EXPECT_LT(std::abs(after_height_m - truth_height), std::abs(before_height_m - truth_height));
+}
+
 // A segmenter's label edges wave by pixels; contact_snap_px moves each
 // ceiling contact row to the image's own edge. Blender rooms (another
 // renderer's images) with their exact labels shifted up and down column by
