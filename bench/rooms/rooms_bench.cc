@@ -9,8 +9,15 @@
 // exact labels with stereo only (--contacts off, what survey did before it
 // checked its wall stereo). Writes bench/results/rooms.md.
 //
+// Also surveys the two Blender rooms (shared/data/blender-rooms-public) and
+// reports, per mode, whether the plans' ± mean what they say (issue 23):
+// the share of true wall lengths, opening widths and room areas within 1σ
+// and 2σ of the measured value, and the mean signed error.
+//
 //   bench_rooms [RESULTS.md]
-//   env ASBUILT_BENCH_ROOMS (default 28 rooms), ASBUILT_BENCH_ROOM_SEED (default 5).
+//   env ASBUILT_BENCH_ROOMS (default 28 rooms), ASBUILT_BENCH_ROOM_SEED (default 5),
+//   ASBUILT_BENCH_ROOM_MODES (default "model,exact,stereo"),
+//   ASBUILT_BENCH_KEEP (a folder: keep each survey's outputs there).
 
 #include <unistd.h>
 
@@ -31,6 +38,7 @@
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/geometry/rig.h"
 #include "asbuilt/pipeline/survey.h"
+#include "asbuilt/plan/score.h"
 #include "asbuilt/render/capture_render.h"
 #include "asbuilt/scene/procedural.h"
 #include "asbuilt/seg/segmenter.h"
@@ -44,7 +52,39 @@ struct Mode {
   std::string name;
   SurveyOptions options;
   bool model = false;
+  // Issue 23: the plans' ± against the truth, per set of rooms.
+  UncertaintyCalibration walls[2], widths[2], areas[2];  // [0] random rooms, [1] Blender rooms.
+  void Calibrate(const PlanScore& s, int set) { AddToCalibration(s, &walls[set], &widths[set], &areas[set]); }
 };
+
+// One row per mode and kind of dimension: random rooms, Blender rooms, both.
+std::string CalibrationTable(const std::vector<Mode>& modes) {
+  const auto pct = [](std::optional<double> v) { return v ? fmt::format("{:.0f} %", 100 * *v) : std::string("–"); };
+  const auto cells = [&](const UncertaintyCalibration& c) {
+    const std::optional<double> bias = c.MeanSignedRelativeError();
+    return fmt::format("{} | {} | {} | {}", c.items.size(), pct(c.Within(1.0)), pct(c.Within(2.0)),
+                       bias ? fmt::format("{:+.2f} %", 100 * *bias) : std::string("–"));
+  };
+  const auto both = [](const UncertaintyCalibration& a, const UncertaintyCalibration& b) {
+    UncertaintyCalibration c = a;
+    c.items.insert(c.items.end(), b.items.begin(), b.items.end());
+    c.without_sigma += b.without_sigma;
+    return c;
+  };
+  std::string md =
+      "Calibration of the ± (issue 23: 60–80 % of true values within 1σ, 90–98 % within 2σ, mean signed wall "
+      "length error within ±0.15 %). Per cell: n | within 1σ | within 2σ | mean signed relative error.\n\n"
+      "| mode | dimension | random rooms | | | | Blender rooms | | | | both | | | |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const Mode& m : modes) {
+    const std::pair<const char*, const UncertaintyCalibration*> kinds[] = {
+        {"wall lengths", m.walls}, {"opening widths", m.widths}, {"room areas", m.areas}};
+    for (const auto& [name, c] : kinds) {
+      md += fmt::format("| {} | {} | {} | {} | {} |\n", m.name, name, cells(c[0]), cells(c[1]), cells(both(c[0], c[1])));
+    }
+  }
+  return md + "\n";
+}
 
 // What the capture sees of each truth wall and opening: every 4th pixel of
 // every frame labelled wall (door, window), back-projected with its depth.
@@ -182,12 +222,21 @@ int main(int argc, char** argv) {
   const fs::path cache = fs::path(ASBUILT_BINARY_DIR) / "bench" / "rooms";
   const fs::path out = fs::temp_directory_path() / fmt::format("asbuilt_bench_rooms_{}", ::getpid());
 
+  const char* mode_env = std::getenv("ASBUILT_BENCH_ROOM_MODES");
+  const std::string wanted = mode_env ? mode_env : "model,exact,stereo";
+  const auto want = [&](std::string_view m) { return wanted.find(m) != std::string::npos; };
+  const char* keep_env = std::getenv("ASBUILT_BENCH_KEEP");
   std::vector<Mode> modes;
-  if (SegmenterAvailable() && fs::exists(DefaultModelPath())) modes.push_back({"shipped model", {}, true});
-  modes.push_back({"exact labels", {.use_capture_labels = true}});
-  Mode stereo_only{"exact labels, stereo only (--contacts off)", {.use_capture_labels = true}};
-  stereo_only.options.points.contacts = ContactUse::kOff;
-  modes.push_back(stereo_only);
+  if (want("model") && SegmenterAvailable() && fs::exists(DefaultModelPath())) {
+    modes.push_back({.name = "shipped model", .model = true});
+  }
+  if (want("exact")) modes.push_back({.name = "exact labels", .options = {.use_capture_labels = true}});
+  if (want("stereo")) {
+    Mode stereo_only{.name = "exact labels, stereo only (--contacts off)", .options = {.use_capture_labels = true}};
+    stereo_only.options.points.contacts = ContactUse::kOff;
+    modes.push_back(stereo_only);
+  }
+  if (modes.empty()) throw Error("ASBUILT_BENCH_ROOM_MODES names no mode (model, exact, stereo)");
   for (Mode& m : modes) {
     m.options.write_report = false;
     m.options.report_frames = 1;
@@ -222,6 +271,7 @@ int main(int argc, char** argv) {
         if (!r.summary.score) throw Error("no score");
         const PlanScore& s = *r.summary.score;
         pooled[m].Add(s, seen);
+        modes[m].Calibrate(s, 0);
         const bool contacts = r.summary.wall_cue.find("contacts") != std::string::npos &&
                               r.summary.wall_cue.find("by stereo") == std::string::npos;
         cell = fmt::format("{}walls {}/{}, {} / {}; openings {}/{}, {}", contacts ? "(contacts) " : "",
@@ -236,6 +286,24 @@ int main(int argc, char** argv) {
       fmt::print(stderr, "bench_rooms: seed {} {}: {}\n", seed, modes[m].name, cell);
     }
     rows += fmt::format("{}\n", row);
+  }
+  // The Blender rooms, for the calibration of the ±.
+  const fs::path blender = fs::path(ASBUILT_SHARED_DATA_DIR) / "blender-rooms-public";
+  for (const char* room : {"p01_rect_1door_2win", "p02_L_shape"}) {
+    if (!fs::exists(blender / room / "capture.json")) continue;
+    for (std::size_t m = 0; m < modes.size(); ++m) {
+      const SurveyResult r = RunSurvey(blender / room / "capture.json", out / fmt::format("{}_{}", room, m), modes[m].options);
+      if (r.summary.score) modes[m].Calibrate(*r.summary.score, 1);
+      fmt::print(stderr, "bench_rooms: {} {}: {}\n", room, modes[m].name,
+                 r.summary.score ? r.summary.score->ToString() : std::string("no score"));
+    }
+  }
+  if (keep_env) {
+    fs::create_directories(keep_env);
+    for (const auto& entry : fs::directory_iterator(out)) {
+      fs::remove_all(fs::path(keep_env) / entry.path().filename());
+      fs::rename(entry.path(), fs::path(keep_env) / entry.path().filename());
+    }
   }
   fs::remove_all(out);
 
@@ -276,7 +344,7 @@ int main(int argc, char** argv) {
                       Pct(p.openings.Recall()), p.openings.matched, p.openings.truth, openings_seen_recall,
                       p.openings_seen_matched, p.openings_seen, Pct(widths.Median()), p.failed);
   }
-  md += "\n";
+  md += "\n" + CalibrationTable(modes);
   if (modes.front().model == false) md += "No shipped-model column: this build has no LibTorch or no models/ file.\n\n";
   if (render_seconds > 0) md += fmt::format("Rendering the captures that were not cached took {:.0f} s.\n\n", render_seconds);
   WriteSection(results, md);

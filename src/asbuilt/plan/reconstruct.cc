@@ -886,6 +886,8 @@ void PlanOptions::Check() const {
   non_negative(inlier_sigmas, "inlier_sigmas");
   positive(max_inlier_distance_m, "max_inlier_distance_m");
   positive(nominal_sigma_m, "nominal_sigma_m");
+  non_negative(shared_sigma_fraction, "shared_sigma_fraction");
+  non_negative(shared_stereo_sigma_fraction, "shared_stereo_sigma_fraction");
   CheckArgument(vote_sigma_m > 0 && std::isfinite(vote_sigma_m),
                 fmt::format("PlanOptions.vote_sigma_m = {}, must be > 0", vote_sigma_m));
   CheckArgument(min_wall_points >= 3, fmt::format("PlanOptions.min_wall_points = {}, must be >= 3", min_wall_points));
@@ -1426,6 +1428,20 @@ PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOpti
   // Room height: a high quantile of all wall inliers' heights.
   double height = 0;
   for (const Line& l : ring) height = std::max(height, l.z_top);
+
+  // What a wall's points share does not average out over them
+  // (PlanOptions::shared_sigma_fraction, shared_stereo_sigma_fraction).
+  for (Line& l : ring) {
+    if (l.members.empty()) continue;
+    std::vector<double> sigmas;
+    sigmas.reserve(l.members.size());
+    for (int k : l.members) {
+      const Pt& p = walls_pts[k];
+      sigmas.push_back((p.contact ? o.shared_sigma_fraction : o.shared_stereo_sigma_fraction) * p.sigma);
+    }
+    std::nth_element(sigmas.begin(), sigmas.begin() + sigmas.size() / 2, sigmas.end());
+    l.var_rho += std::pow(sigmas[sigmas.size() / 2], 2);
+  }
 
   // ± by numerical propagation of each line's (θ, ρ) variances.
   // Propagation works on copies without the member lists (cheap to copy).

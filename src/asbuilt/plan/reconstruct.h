@@ -102,6 +102,13 @@ struct PlanOptions {
   double leaf_max_distance_m = 1.5;
   int leaf_min_points = 20;
   int max_independent_points = 400;   // Dense points are correlated: cap the points a ± assumes.
+  // Errors a wall's points share do not average out over them: a wall's
+  // offset keeps this share of its points' median σ — for contacts (the
+  // rig's height, a label edge a fraction of a pixel off along the whole
+  // wall, a skirting's depth) and for stereo points (the matcher's
+  // sub-pixel bias). docs/plan.md, "±", says how they were measured.
+  double shared_sigma_fraction = 0.5;
+  double shared_stereo_sigma_fraction = 0.25;
   std::optional<Vec3> viewpoint_m;    // Capture centre (rig position), if known; improves openings.
   std::uint64_t seed = 1;             // RANSAC sampling.
 

@@ -160,7 +160,8 @@ PlanScore ScorePlan(const Plan& predicted, const Plan& truth, const ScoreOptions
     const PlanWall& wt = truth.walls[c.t];
     WallMatch m{.predicted = c.p, .truth = c.t, .predicted_length_m = wp.Length(),
                 .truth_length_m = wt.Length(), .mean_distance_m = c.cost,
-                .angle_deg = RadToDeg(LineAngle(wp.end - wp.start, wt.end - wt.start))};
+                .angle_deg = RadToDeg(LineAngle(wp.end - wp.start, wt.end - wt.start)),
+                .predicted_length_sigma_m = wp.length_sigma_m};
     score.wall_matches.push_back(m);
   }
   std::sort(score.wall_matches.begin(), score.wall_matches.end(),
@@ -194,7 +195,8 @@ PlanScore ScorePlan(const Plan& predicted, const Plan& truth, const ScoreOptions
       const PlanOpening& op = predicted.openings[pi[c.p]];
       const PlanOpening& ot = truth.openings[ti[c.t]];
       OpeningMatch m{.kind = kind, .predicted = pi[c.p], .truth = ti[c.t], .predicted_width_m = op.width,
-                     .truth_width_m = ot.width, .centre_distance_m = c.cost};
+                     .truth_width_m = ot.width, .centre_distance_m = c.cost,
+                     .predicted_width_sigma_m = op.width_sigma_m};
       errors.values.push_back(m.RelativeWidthError());
       score.opening_width.values.push_back(m.RelativeWidthError());
       score.opening_matches.push_back(m);
@@ -202,12 +204,63 @@ PlanScore ScorePlan(const Plan& predicted, const Plan& truth, const ScoreOptions
   }
 
   // Room area.
-  if (!predicted.rooms.empty()) score.predicted_area_m2 = TotalArea(predicted);
+  if (!predicted.rooms.empty()) {
+    score.predicted_area_m2 = TotalArea(predicted);
+    double variance = 0.0;
+    bool all = true;
+    for (const PlanRoom& r : predicted.rooms) {
+      all = all && r.area_sigma_m2.has_value();
+      variance += r.area_sigma_m2.value_or(0.0) * r.area_sigma_m2.value_or(0.0);
+    }
+    if (all) score.predicted_area_sigma_m2 = std::sqrt(variance);
+  }
   if (!truth.rooms.empty()) score.truth_area_m2 = TotalArea(truth);
   if (score.predicted_area_m2 && score.truth_area_m2 && *score.truth_area_m2 > 0) {
     score.area_relative_error = std::abs(*score.predicted_area_m2 - *score.truth_area_m2) / *score.truth_area_m2;
   }
   return score;
+}
+
+void UncertaintyCalibration::Add(double measured, double truth, std::optional<double> sigma) {
+  if (sigma && *sigma > 0.0) {
+    items.push_back({measured, truth, *sigma});
+  } else {
+    ++without_sigma;
+    items.push_back({measured, truth, 0.0});
+  }
+}
+
+std::optional<double> UncertaintyCalibration::Within(double k) const {
+  if (items.empty()) return std::nullopt;
+  int inside = 0;
+  for (const Item& i : items) inside += std::abs(i.measured - i.truth) <= k * i.sigma;
+  return static_cast<double>(inside) / static_cast<double>(items.size());
+}
+
+std::optional<double> UncertaintyCalibration::MeanSignedRelativeError() const {
+  if (items.empty()) return std::nullopt;
+  double sum = 0.0;
+  for (const Item& i : items) sum += (i.measured - i.truth) / i.truth;
+  return sum / static_cast<double>(items.size());
+}
+
+std::string UncertaintyCalibration::ToString() const {
+  const auto pct = [](std::optional<double> v) { return v ? fmt::format("{:.1f} %", 100 * *v) : std::string("–"); };
+  const std::optional<double> bias = MeanSignedRelativeError();
+  return fmt::format("n {}: {} within 1σ, {} within 2σ, bias {}{}", items.size(), pct(Within(1.0)), pct(Within(2.0)),
+                     bias ? fmt::format("{:+.2f} %", 100 * *bias) : std::string("–"),
+                     without_sigma > 0 ? fmt::format(" ({} without ±)", without_sigma) : std::string());
+}
+
+void AddToCalibration(const PlanScore& score, UncertaintyCalibration* walls, UncertaintyCalibration* widths,
+                      UncertaintyCalibration* areas) {
+  for (const WallMatch& m : score.wall_matches) walls->Add(m.predicted_length_m, m.truth_length_m, m.predicted_length_sigma_m);
+  for (const OpeningMatch& m : score.opening_matches) {
+    widths->Add(m.predicted_width_m, m.truth_width_m, m.predicted_width_sigma_m);
+  }
+  if (score.predicted_area_m2 && score.truth_area_m2) {
+    areas->Add(*score.predicted_area_m2, *score.truth_area_m2, score.predicted_area_sigma_m2);
+  }
 }
 
 std::string PlanScore::ToString() const {
@@ -264,20 +317,23 @@ nlohmann::json PlanScoreToJson(const PlanScore& score) {
   j["window_width_relative_error"] = ErrorsJson(score.window_width);
   j["opening_width_relative_error"] = ErrorsJson(score.opening_width);
   j["room_area"] = {{"predicted_m2", OptionalJson(score.predicted_area_m2)},
+                    {"predicted_sigma_m2", OptionalJson(score.predicted_area_sigma_m2)},
                     {"truth_m2", OptionalJson(score.truth_area_m2)},
                     {"relative_error", OptionalJson(score.area_relative_error)}};
   nlohmann::json wm = nlohmann::json::array();
   for (const WallMatch& m : score.wall_matches) {
     wm.push_back({{"predicted", m.predicted}, {"truth", m.truth}, {"predicted_length_m", m.predicted_length_m},
                   {"truth_length_m", m.truth_length_m}, {"mean_distance_m", m.mean_distance_m},
-                  {"angle_deg", m.angle_deg}, {"relative_length_error", m.RelativeLengthError()}});
+                  {"angle_deg", m.angle_deg}, {"relative_length_error", m.RelativeLengthError()},
+                  {"predicted_length_sigma_m", OptionalJson(m.predicted_length_sigma_m)}});
   }
   j["wall_matches"] = wm;
   nlohmann::json om = nlohmann::json::array();
   for (const OpeningMatch& m : score.opening_matches) {
     om.push_back({{"kind", OpeningKindName(m.kind)}, {"predicted", m.predicted}, {"truth", m.truth},
                   {"predicted_width_m", m.predicted_width_m}, {"truth_width_m", m.truth_width_m},
-                  {"centre_distance_m", m.centre_distance_m}, {"relative_width_error", m.RelativeWidthError()}});
+                  {"centre_distance_m", m.centre_distance_m}, {"relative_width_error", m.RelativeWidthError()},
+                  {"predicted_width_sigma_m", OptionalJson(m.predicted_width_sigma_m)}});
   }
   j["opening_matches"] = om;
   return j;

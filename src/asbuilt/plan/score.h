@@ -66,6 +66,7 @@ struct WallMatch {
   double truth_length_m = 0.0;
   double mean_distance_m = 0.0;
   double angle_deg = 0.0;
+  std::optional<double> predicted_length_sigma_m;  // The plan's ±, when it has one.
   double RelativeLengthError() const;
 };
 
@@ -76,6 +77,7 @@ struct OpeningMatch {
   double predicted_width_m = 0.0;
   double truth_width_m = 0.0;
   double centre_distance_m = 0.0;
+  std::optional<double> predicted_width_sigma_m;  // The plan's ±, when it has one.
   double RelativeWidthError() const;
 };
 
@@ -88,6 +90,7 @@ struct PlanScore {
   RelativeErrors window_width;
   RelativeErrors opening_width;  // Doors and windows together.
   std::optional<double> predicted_area_m2;  // nullopt when the plan has no room.
+  std::optional<double> predicted_area_sigma_m2;  // Its ±, combined over rooms.
   std::optional<double> truth_area_m2;
   std::optional<double> area_relative_error;  // nullopt when either has no room.
   std::vector<WallMatch> wall_matches;
@@ -98,6 +101,30 @@ struct PlanScore {
   // A readable multi-line table for terminals and reports.
   std::string Table() const;
 };
+
+// Whether a plan's ± means what it says: over many measured dimensions,
+// the share whose truth lies within 1σ and 2σ of the measured value (a
+// Gaussian gives 68 % and 95 %) and the mean signed relative error (the
+// bias). One per kind of dimension (wall lengths, opening widths, areas).
+struct UncertaintyCalibration {
+  struct Item {
+    double measured = 0.0, truth = 0.0, sigma = 0.0;
+  };
+  std::vector<Item> items;  // Those with a σ; the others are only counted.
+  int without_sigma = 0;
+
+  void Add(double measured, double truth, std::optional<double> sigma);
+  // Shares of items with |measured − truth| ≤ k·σ; nullopt when empty.
+  std::optional<double> Within(double k) const;
+  // Mean of (measured − truth)/truth over every item; nullopt when empty.
+  std::optional<double> MeanSignedRelativeError() const;
+  // "n 136: 72.1 % within 1σ, 94.9 % within 2σ, bias −0.05 %".
+  std::string ToString() const;
+};
+
+// Every matched wall length, opening width and room area of `score`.
+void AddToCalibration(const PlanScore& score, UncertaintyCalibration* walls, UncertaintyCalibration* widths,
+                      UncertaintyCalibration* areas);
 
 PlanScore ScorePlan(const Plan& predicted, const Plan& truth, const ScoreOptions& options = {});
 

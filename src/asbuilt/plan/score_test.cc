@@ -119,5 +119,36 @@ TEST(ScorePlan, BlenderTruthScoresPerfectlyAgainstItself) {
   EXPECT_EQ(s.windows.matched, 2);
 }
 
+TEST(UncertaintyCalibration, CountsTruthWithinOneAndTwoSigmaAndTheBias) {
+  UncertaintyCalibration c;
+  EXPECT_FALSE(c.Within(1.0).has_value());
+  c.Add(10.05, 10.0, 0.1);  // 0.5σ.
+  c.Add(9.85, 10.0, 0.1);   // 1.5σ.
+  c.Add(10.3, 10.0, 0.1);   // 3σ.
+  c.Add(10.0, 10.0, std::nullopt);  // No ±: within only when exact.
+  EXPECT_DOUBLE_EQ(*c.Within(1.0), 0.5);
+  EXPECT_DOUBLE_EQ(*c.Within(2.0), 0.75);
+  EXPECT_NEAR(*c.MeanSignedRelativeError(), (0.005 - 0.015 + 0.03) / 4, 1e-12);
+  EXPECT_EQ(c.ToString(), "n 4: 50.0 % within 1σ, 75.0 % within 2σ, bias +0.50 % (1 without ±)");
+}
+
+TEST(ScorePlan, CarriesThePlansSigmasIntoTheMatchesAndTheCalibration) {
+  Plan truth, measured;
+  truth.walls.push_back({.start = {0, 0}, .end = {4, 0}});
+  measured.walls.push_back({.start = {0, 0.01}, .end = {4.03, 0.01}, .length_sigma_m = 0.01});
+  truth.rooms.push_back({.polygon = {{0, 0}, {4, 0}, {4, 3}}, .area_m2 = 6.0});
+  measured.rooms.push_back({.polygon = {{0, 0}, {4, 0}, {4, 3}}, .area_m2 = 6.1, .area_sigma_m2 = 0.2});
+  const PlanScore s = ScorePlan(measured, truth);
+  ASSERT_EQ(s.wall_matches.size(), 1u);
+  EXPECT_EQ(s.wall_matches[0].predicted_length_sigma_m, 0.01);
+  EXPECT_EQ(s.predicted_area_sigma_m2, 0.2);
+  UncertaintyCalibration walls, widths, areas;
+  AddToCalibration(s, &walls, &widths, &areas);
+  EXPECT_DOUBLE_EQ(*walls.Within(2.0), 0.0);  // 3 cm off at ±1 cm.
+  EXPECT_DOUBLE_EQ(*walls.Within(3.5), 1.0);
+  EXPECT_TRUE(widths.items.empty());
+  EXPECT_DOUBLE_EQ(*areas.Within(1.0), 1.0);
+}
+
 }  // namespace
 }  // namespace asbuilt
