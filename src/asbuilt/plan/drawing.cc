@@ -381,8 +381,8 @@ Sheet LayOut(const Plan& plan, const DrawingOptions& o, double scale) {
     c /= 3 * a;
     if (!std::isfinite(c.x()) || !std::isfinite(c.y()) || !Inside(room.polygon, c)) c = mean;
     std::string area = fmt::format("{:.2f} m²", room.area_m2);
-    if (o.show_uncertainty && room.area_sigma_m2 && *room.area_sigma_m2 >= 0.005) {
-      area = fmt::format("{:.2f} ± {:.2f} m²", room.area_m2, *room.area_sigma_m2);
+    if (o.show_uncertainty && room.area_sigma_m2) {
+      area = fmt::format("{:.2f} ± {:.2f} m²", room.area_m2, std::max(0.01, *room.area_sigma_m2));
     }
     sheet.texts.push_back({c + Vec2(0, 0.05 * paper), 0, 1.4 * text_height_m, 0.5, "ROOM", true, kBlack});
     sheet.texts.push_back({c - Vec2(0, 0.22 * paper), 0, 1.2 * text_height_m, 0.5, area, false, kBlack});
@@ -598,7 +598,7 @@ double ReadableTextAngle(double angle) {
 std::string DimensionText(double length_m, std::optional<double> sigma_m, const DrawingOptions& options) {
   std::string text = fmt::format("{}", static_cast<long>(std::lround(length_m * 1000)));
   if (options.show_uncertainty && sigma_m && *sigma_m >= options.significant_sigma_m) {
-    text += fmt::format(" ±{}", static_cast<long>(std::lround(*sigma_m * 1000)));
+    text += fmt::format(" ±{}", std::max(1L, static_cast<long>(std::lround(*sigma_m * 1000))));
   }
   return text;
 }

@@ -84,9 +84,13 @@ std::pair<double, double> PdfPageSize(const std::string& pdf) {
   return {w, h};
 }
 
-TEST(DimensionText, IsMillimetresWithSignificantUncertainty) {
+TEST(DimensionText, IsMillimetresWithItsUncertaintyOfAtLeastOneMillimetre) {
   DrawingOptions o;
+  EXPECT_EQ(DimensionText(4.5, 0.002, o), "4500 ±2");
+  EXPECT_EQ(DimensionText(4.5, 0.0002, o), "4500 ±1");
+  o.significant_sigma_m = 0.005;
   EXPECT_EQ(DimensionText(4.5, 0.002, o), "4500");
+  o.significant_sigma_m = 0.0;
   EXPECT_EQ(DimensionText(3.6004, 0.012, o), "3600 ±12");
   EXPECT_EQ(DimensionText(0.9, std::nullopt, o), "900");
   o.show_uncertainty = false;
@@ -98,7 +102,7 @@ TEST(PlanSvg, DrawsWallsDoorSwingWindowDimensionsAreaAndScaleBar) {
   EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
   EXPECT_NE(svg.find("<polygon"), std::string::npos);
   EXPECT_NE(svg.find(" A "), std::string::npos);  // Door swing arc.
-  for (const char* text : {">4500<", ">3600 ±12<", ">900<", ">1200<", ">16.20 ± 0.03 m²<", ">2 m<"}) {
+  for (const char* text : {">4500 ±4<", ">3600 ±12<", ">900<", ">1200<", ">16.20 ± 0.03 m²<", ">2 m<"}) {
     EXPECT_NE(svg.find(text), std::string::npos) << text;
   }
   // Wall pieces: wall 0 is cut by the door (2 pieces), wall 1 by the window (2).

@@ -272,8 +272,8 @@ std::string PlanToDxf(const Plan& plan, const DrawingOptions& opt) {
     t.a = c;
     t.height = 1.2 * opt.text_height_m;
     t.text = fmt::format("{:.2f} m2", room.area_m2);
-    if (opt.show_uncertainty && room.area_sigma_m2 && *room.area_sigma_m2 >= 0.005) {
-      t.text = fmt::format("{:.2f} +/- {:.2f} m2", room.area_m2, *room.area_sigma_m2);
+    if (opt.show_uncertainty && room.area_sigma_m2) {
+      t.text = fmt::format("{:.2f} +/- {:.2f} m2", room.area_m2, std::max(0.01, *room.area_sigma_m2));
     }
     entities.push_back(t);
   }
