@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <iterator>
 
@@ -1145,6 +1146,36 @@ std::string CapturePointsResult::BriefReport() const {
       frames.size(), carried, points.size(), by_class[1], by_class[2], by_class[3], by_source[0], by_source[2],
       by_source[1], by_source[4], by_source[5],
       ceiling ? fmt::format(", ceiling {:.3f} ± {:.3f} m", ceiling->height_m, ceiling->sigma_m) : "", seconds);
+}
+
+FramePointsResult ComputeMonoFramePoints(const MonoFrame& frame, const FramePointsOptions& options) {
+  options.Check();
+  frame.camera.Check();
+  CheckArgument(!frame.image.empty() && frame.image.cols == frame.camera.width_px &&
+                    frame.image.rows == frame.camera.height_px,
+                fmt::format("ComputeMonoFramePoints: frame {}: the image must be non-empty and of the camera's size",
+                            frame.index));
+  CheckArgument(frame.labels.type() == CV_8UC1 && frame.labels.size() == frame.image.size(),
+                fmt::format("ComputeMonoFramePoints: frame {}: labels must be CV_8UC1 of the image size", frame.index));
+  // The stereo pass with a nominal 1 m "baseline" whose disparities are all
+  // invalid: it then adds contacts and boundaries at the contacts' depth
+  // (disparity and depth convert through the same f·B both ways, so B
+  // cancels) and nothing that needs a match. The rig centre is moved by
+  // half that baseline so the left camera sits at the frame's position.
+  constexpr double kNominalBaselineM = 1.0;
+  const double yaw = frame.pose.yaw_rad;
+  StereoFrame stereo{.left = frame.image, .right = frame.image, .labels_left = frame.labels,
+                     .camera = frame.camera, .baseline_m = kNominalBaselineM,
+                     .pose = {frame.pose.position_m + 0.5 * kNominalBaselineM * Vec3(std::cos(yaw), std::sin(yaw), 0),
+                              yaw},
+                     .index = frame.index};
+  DisparityResult none;
+  none.disparity_px = cv::Mat(frame.labels.size(), CV_32F, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
+  none.valid = cv::Mat::zeros(frame.labels.size(), CV_8U);
+  none.num_disparities_px = 16;
+  FramePointsOptions mono = options;
+  mono.use_corners = mono.use_edges = mono.use_dense = mono.use_vertices = false;
+  return FramePointsPass(stereo, mono, /*contacts=*/true, /*wall_stereo=*/false, &none);
 }
 
 void CapturePoints::Add(FramePointsResult& r) {
