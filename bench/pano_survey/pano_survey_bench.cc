@@ -193,6 +193,9 @@ int main(int argc, char** argv) {
     };
     SurveyOptions with_labels = base;
     with_labels.labels_dir = dir / "labels";
+    // Layout labels mark the clear opening (ZInD's annotated ends): no
+    // casing to take off, unlike rendered or segmented labels.
+    with_labels.plan.door_casing_m = with_labels.plan.window_casing_m = 0.0;
     by_labels.push_back(run("survey_labels", with_labels));
     if (with_model) {
       const auto t0 = std::chrono::steady_clock::now();

@@ -196,7 +196,7 @@ TEST_F(CaptureFileTest, MonoFrameWithBadYawOrNoHeightIsRefused) {
   WriteFileAtomic(dir_ / "views/000.png", "png");
   auto errors = Errors(R"({"version": 1, "kind": "mono",
       "camera": {"width": 640, "height": 480, "fx": 400.0, "fy": 400.0, "cx": 319.5, "cy": 239.5},
-      "frames": [{"index": 0, "image": "views/000.png", "yaw_deg": 1e999, "position_m": [0, 0, -1]}]})");
+      "frames": [{"index": 0, "image": "views/000.png", "yaw_deg": "NaN", "position_m": [0, 0, -1]}]})");
   ASSERT_EQ(errors.size(), 2u);
   EXPECT_EQ(errors[0].rfind("frames[0].yaw_deg: ", 0), 0u) << errors[0];
   EXPECT_EQ(errors[1].rfind("frames[0].position_m: the camera's height", 0), 0u) << errors[1];
