@@ -16,6 +16,7 @@
 //   bench_pano_survey [RESULTS.md]
 //   env ASBUILT_BENCH_PANO_PANORAMAS  at most N panoramas (default all)
 //       ASBUILT_BENCH_PANO_MODEL      0: skip the segmenter run
+//       ASBUILT_BENCH_PANO_SEG        WxH the segmenter sees (default: survey's auto)
 
 #include <sys/resource.h>
 
@@ -159,6 +160,10 @@ int main(int argc, char** argv) {
 
   SurveyOptions base;
   base.report_frames = 12;
+  if (const char* seg = std::getenv("ASBUILT_BENCH_PANO_SEG"); seg != nullptr) {
+    int w = 0, h = 0;
+    if (std::sscanf(seg, "%dx%d", &w, &h) == 2 && w > 0 && h > 0) base.segment_scale_px = std::pair{w, h};
+  }
   const std::vector<PanoView> views = PanoramaSurveyViews(base.panorama_views);
   double load[1] = {0};
   const bool have_load = ::getloadavg(load, 1) == 1;
