@@ -201,6 +201,7 @@ int main(int argc, char** argv) {
     // Layout labels mark the clear opening (ZInD's annotated ends): no
     // casing to take off, unlike rendered or segmented labels.
     with_labels.plan.door_casing_m = with_labels.plan.window_casing_m = 0.0;
+    with_labels.contact_snap_px = 0;  // Exact edges: nothing to snap (FramePointsOptions::contact_snap_px).
     by_labels.push_back(run("survey_labels", with_labels));
     if (with_model) {
       const auto t0 = std::chrono::steady_clock::now();

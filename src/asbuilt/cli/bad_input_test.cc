@@ -295,6 +295,8 @@ std::vector<Case> Cases() {
       {"SurveyMonoNaNYaw", {{"v.png", "<rgb 96x72 128"}, {"capture.json", R"({"version": 1, "kind": "mono", "camera": {"width": 96, "height": 72, "fx": 60, "fy": 60, "cx": 47.5, "cy": 35.5}, "frames": [{"index": 0, "image": "v.png", "yaw_deg": NaN, "position_m": [0, 0, 1.4]}]})"}},
        "survey {d}/capture.json -o {d}/out", 1, {"{d}/capture.json"}},
       {"SurveyMonoInfiniteYaw", {{"v.png", "<rgb 96x72 128"}, {"capture.json", R"({"version": 1, "kind": "mono", "camera": {"width": 96, "height": 72, "fx": 60, "fy": 60, "cx": 47.5, "cy": 35.5}, "frames": [{"index": 0, "image": "v.png", "yaw_deg": 1e999, "position_m": [0, 0, 1.4]}]})"}},
+       "survey {d}/capture.json -o {d}/out", 1, {"{d}/capture.json", "1e999"}},
+      {"SurveyMonoNaNStringYaw", {{"v.png", "<rgb 96x72 128"}, {"capture.json", R"({"version": 1, "kind": "mono", "camera": {"width": 96, "height": 72, "fx": 60, "fy": 60, "cx": 47.5, "cy": 35.5}, "frames": [{"index": 0, "image": "v.png", "yaw_deg": "NaN", "position_m": [0, 0, 1.4]}]})"}},
        "survey {d}/capture.json -o {d}/out", 1, {"{d}/capture.json", "frames[0].yaw_deg"}},
       {"SurveyMonoNoCameraHeight", {{"v.png", "<rgb 96x72 128"}, {"capture.json", R"({"version": 1, "kind": "mono", "camera": {"width": 96, "height": 72, "fx": 60, "fy": 60, "cx": 47.5, "cy": 35.5}, "frames": [{"index": 0, "image": "v.png", "yaw_deg": 0}]})"}},
        "survey {d}/capture.json -o {d}/out", 1, {"{d}/capture.json", "frames[0].position_m"}},

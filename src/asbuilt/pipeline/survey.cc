@@ -671,8 +671,8 @@ SurveyResult RunMonoSurvey(const Capture& capture, const fs::path& capture_json,
 
   FramePointsOptions point_options = options.points;
   point_options.contacts = ContactUse::kAlways;
-  point_options.contact_snap_px = FramePointsOptions::ContactSnapPxFor(
-      options.contact_snap_px, options.use_capture_labels || options.labels_dir.has_value());
+  point_options.contact_snap_px =
+      FramePointsOptions::ContactSnapPxFor(options.contact_snap_px, options.use_capture_labels);
   CapturePoints gathered(point_options);
   constexpr std::size_t kBatch = 4;
   Vec3 camera_sum = Vec3::Zero();
