@@ -239,6 +239,12 @@ int main(int argc, char** argv) {
                       by_model.empty() ? "" : by_model.front().summary.labels_source);
     md += PooledTable(model_pooled, 0.85, 0.90, "") + "\n";
     md += RunTable(by_model) + "\n";
+    md += "Where it stands: the geometry is not the limit (the layout-label run above); the segmenter is. "
+          "It was trained on rendered rooms only and scores mIoU 0.23 on these photos (bench/results/zind.md): "
+          "its wall/floor and wall/ceiling edges wander, furniture and open doors break the wall bases, and "
+          "spurious short walls cut the room polygon. Segmenting the 512x1024 views at their full size instead "
+          "of 240x480 did not help (measured 2026-12-03 with ASBUILT_BENCH_PANO_SEG=512x1024: IoU median 0.575, "
+          "wall recall 36/68, 27 s a panorama).\n\n";
   } else {
     md += "The shipped-model run was skipped (no LibTorch, no model, or ASBUILT_BENCH_PANO_MODEL=0).\n\n";
   }
