@@ -282,6 +282,28 @@ std::vector<Case> Cases() {
       {"SurveyLabelsWrongSize", With(kPair, {{"capture.json", cap_ok}, {"labels/000.png", "<png 40x30 1"}}),
        "survey {d}/capture.json -o {d}/out --labels {d}/labels", 1, {"{d}/l.png", "40x30"}},
       {"SurveyMissingModel", With(kPair, {{"capture.json", cap_ok}}), "survey {d}/capture.json -o {d}/out --model {d}/nope.pt", 1, {"{d}/nope.pt"}},
+      // Mono and panorama captures (issue 22): the camera height is required, a
+      // panorama must be 2:1, yaw must be a finite number.
+      {"SurveyPanoramaNotTwoToOne", {{"pano.jpg", "<jpg 96x72 128"}, {"capture.json", R"({"version": 1, "kind": "panorama", "panorama": "pano.jpg", "position_m": [0, 0, 1.4]})"}},
+       "survey {d}/capture.json -o {d}/out", 1, {"{d}/capture.json", "panorama", "96x72", "twice as wide as high"}},
+      {"SurveyPanoramaNoCameraHeight", {{"pano.jpg", "<jpg 128x64 128"}, {"capture.json", R"({"version": 1, "kind": "panorama", "panorama": "pano.jpg"})"}},
+       "survey {d}/capture.json -o {d}/out", 1, {"{d}/capture.json", "position_m"}},
+      {"SurveyPanoramaZeroCameraHeight", {{"pano.jpg", "<jpg 128x64 128"}, {"capture.json", R"({"version": 1, "kind": "panorama", "panorama": "pano.jpg", "position_m": [0, 0, 0]})"}},
+       "survey {d}/capture.json -o {d}/out", 1, {"{d}/capture.json", "position_m", "height above the floor"}},
+      {"SurveyPanoramaCorrupt", {{"pano.jpg", "<garbage"}, {"capture.json", R"({"version": 1, "kind": "panorama", "panorama": "pano.jpg", "position_m": [0, 0, 1.4]})"}},
+       "survey {d}/capture.json -o {d}/out", 1, {"{d}/pano.jpg"}},
+      {"SurveyMonoNaNYaw", {{"v.png", "<rgb 96x72 128"}, {"capture.json", R"({"version": 1, "kind": "mono", "camera": {"width": 96, "height": 72, "fx": 60, "fy": 60, "cx": 47.5, "cy": 35.5}, "frames": [{"index": 0, "image": "v.png", "yaw_deg": NaN, "position_m": [0, 0, 1.4]}]})"}},
+       "survey {d}/capture.json -o {d}/out", 1, {"{d}/capture.json"}},
+      {"SurveyMonoInfiniteYaw", {{"v.png", "<rgb 96x72 128"}, {"capture.json", R"({"version": 1, "kind": "mono", "camera": {"width": 96, "height": 72, "fx": 60, "fy": 60, "cx": 47.5, "cy": 35.5}, "frames": [{"index": 0, "image": "v.png", "yaw_deg": 1e999, "position_m": [0, 0, 1.4]}]})"}},
+       "survey {d}/capture.json -o {d}/out", 1, {"{d}/capture.json", "1e999"}},
+      {"SurveyMonoNaNStringYaw", {{"v.png", "<rgb 96x72 128"}, {"capture.json", R"({"version": 1, "kind": "mono", "camera": {"width": 96, "height": 72, "fx": 60, "fy": 60, "cx": 47.5, "cy": 35.5}, "frames": [{"index": 0, "image": "v.png", "yaw_deg": "NaN", "position_m": [0, 0, 1.4]}]})"}},
+       "survey {d}/capture.json -o {d}/out", 1, {"{d}/capture.json", "frames[0].yaw_deg"}},
+      {"SurveyMonoNoCameraHeight", {{"v.png", "<rgb 96x72 128"}, {"capture.json", R"({"version": 1, "kind": "mono", "camera": {"width": 96, "height": 72, "fx": 60, "fy": 60, "cx": 47.5, "cy": 35.5}, "frames": [{"index": 0, "image": "v.png", "yaw_deg": 0}]})"}},
+       "survey {d}/capture.json -o {d}/out", 1, {"{d}/capture.json", "frames[0].position_m"}},
+      {"SurveyMonoTiltedView", {{"v.png", "<rgb 96x72 128"}, {"capture.json", R"({"version": 1, "kind": "mono", "camera": {"width": 96, "height": 72, "fx": 60, "fy": 60, "cx": 47.5, "cy": 35.5}, "frames": [{"index": 0, "image": "v.png", "yaw_deg": 0, "pitch_deg": 20, "position_m": [0, 0, 1.4]}]})"}},
+       "survey {d}/capture.json -o {d}/out --labels {d}", 1, {"{d}/capture.json", "frames[0].pitch_deg", "level"}},
+      {"ValidatePanoramaNotTwoToOne", {{"pano.png", "<png 96x72 128"}, {"c.json", R"({"version": 1, "kind": "panorama", "panorama": "pano.png", "position_m": [0, 0, 1.4]})"}},
+       "validate {d}/c.json", 1, {"{d}/c.json", "panorama", "twice as wide as high"}},
 
       // ---------------------------------------------------------------- points
       {"PointsMissingLabelsFolder", With(kPair, {{"capture.json", cap_ok}}), "points {d}/capture.json --labels {d}/labels -o {d}/out", 1, {"{d}/labels"}},

@@ -47,7 +47,7 @@ int RunPanoCommand(int argc, char** argv) {
   CLI::App* views_cmd = app.add_subcommand(
       "views",
       "turn a panorama into the perspective views a camera turning in place at its centre takes:\n"
-      "DIR/images/NNN.png and DIR/views.json (camera, yaw and pitch per view; docs/formats.md, provisional).\n"
+      "DIR/images/NNN.png and DIR/capture.json (a mono capture: camera, yaw and pitch per view; docs/formats.md).\n"
       "With --zind TOUR (a ZInD tour folder; PANO is then a pano id such as pano_15 or one of the tour's\n"
       "images) also layout labels DIR/labels/NNN.png and the room's plan DIR/truth.json, in the pano frame\n"
       "(docs/seg.md). ZInD is for academic use only: research measurement, never training data.");
@@ -58,7 +58,7 @@ int RunPanoCommand(int argc, char** argv) {
   views_cmd->add_option("-o,--out", out, "output folder")->required();
   AddTurnInPlaceFlags(*views_cmd, &options.turn, &size);
   views_cmd->add_option("--camera-height-m", camera_height_m,
-                        "camera height above the floor for views.json's position_m (default: ZInD's, else none)");
+                        "camera height above the floor for capture.json's position_m (default: ZInD's, else none)");
   views_cmd->add_option("--zind", zind_dir, "ZInD tour folder (with zind_data.json): also labels and truth.json");
   views_cmd->add_option("--layout", layout, "ZInD layout the labels come from: raw, complete, visible")
       ->capture_default_str();

@@ -36,10 +36,10 @@ TEST(PanoCommand, WritesViewsLabelsAndTruthOfAZindPanorama) {
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find(kNotice), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("3 views + layout labels + truth.json"), std::string::npos) << r.out;
-  for (const char* f : {"images/002.png", "labels/002.png", "overlays/000.png", "truth.json", "views.json"}) {
+  for (const char* f : {"images/002.png", "labels/002.png", "overlays/000.png", "truth.json", "capture.json"}) {
     EXPECT_TRUE(fs::exists(d / f)) << f;
   }
-  EXPECT_NE(ReadFile(d / "views.json").find("\"yaw_deg\": 240.0"), std::string::npos);
+  EXPECT_NE(ReadFile(d / "capture.json").find("\"yaw_deg\": 240.0"), std::string::npos);
   // The plain form: any 2:1 image, by path, without labels.
   r = RunAsbuilt(fmt::format("pano views {} -o {} --views 1", (kTour / "panos/floor_01_partial_room_01_pano_15.jpg").string(),
                              (d / "plain").string()));

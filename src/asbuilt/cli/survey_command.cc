@@ -1,5 +1,6 @@
-// `asbuilt survey capture.json -o out/` — the main job: a stereo capture in,
-// a dimensioned floor plan and a report out (pipeline/survey.h).
+// `asbuilt survey capture.json -o out/` — the main job: a stereo, mono or
+// panorama capture in, a dimensioned floor plan and a report out
+// (pipeline/survey.h).
 
 #include <string>
 #include <utility>
@@ -18,7 +19,10 @@ int RunSurveyCommand(int argc, char** argv) {
       "and window points, fit the floor plan and write plan.json/.svg/.dxf/.pdf/.png/.ifc, points.txt,\n"
       "points.ply and report.html. A capture with `rectified: false` is rectified first with its\n"
       "calibration. Scores against --truth, or truth.json beside the capture when present.\n"
-      "A synthetic capture's own labels are never used unless --labels or --capture-labels says so.",
+      "A synthetic capture's own labels are never used unless --labels or --capture-labels says so.\n"
+      "A mono capture (level views of one camera) or a panorama capture (one 2:1 equirectangular\n"
+      "photo, resampled into --pano-views level views) places the walls from their floor and\n"
+      "ceiling edges and the camera height in position_m (docs/survey.md).",
       "asbuilt survey");
   AddCommonFlags(app);
   std::string capture, out_dir, model, labels_dir, truth;
@@ -43,6 +47,15 @@ int RunSurveyCommand(int argc, char** argv) {
   app.add_option("--report-frames", options.report_frames, "frames pictured in the report (0 = all)")
       ->capture_default_str();
   app.add_flag("--no-report", no_report, "skip report.html");
+  std::string pano_size = fmt::format("{}x{}", options.panorama_views.width_px, options.panorama_views.height_px);
+  app.add_option("--pano-size", pano_size, "panorama captures: size of the level views it is resampled into")
+      ->capture_default_str();
+  app.add_option("--pano-fx", options.panorama_views.fx, "panorama captures: the views' focal length (px)")
+      ->capture_default_str();
+  app.add_option("--pano-views", options.panorama_views.views, "panorama captures: number of views")
+      ->capture_default_str();
+  app.add_option("--pano-yaw-step", options.panorama_views.yaw_step_deg, "panorama captures: yaw step (deg)")
+      ->capture_default_str();
   Parse(app, argc, argv);
   if (!model.empty()) options.model_path = model;
   if (seg_scale == "model") {
@@ -52,6 +65,7 @@ int RunSurveyCommand(int argc, char** argv) {
     ParseSizeFlag(seg_scale, "--seg-scale", w, h);
     options.segment_scale_px = std::pair{w, h};
   }
+  ParseSizeFlag(pano_size, "--pano-size", options.panorama_views.width_px, options.panorama_views.height_px);
   if (!labels_dir.empty()) options.labels_dir = labels_dir;
   if (!truth.empty()) options.truth_path = truth;
   options.write_report = !no_report;

@@ -29,7 +29,11 @@ struct FileKind {
 };
 
 const FileKind kFileKinds[] = {
-    {"capture", [](const nlohmann::json& d) { return d.contains("frames") && d.contains("camera"); },
+    {"capture",
+     [](const nlohmann::json& d) {
+       return (d.contains("frames") && d.contains("camera")) || d.contains("panorama") ||
+              (d.contains("kind") && d.value("kind", nlohmann::json()).is_string());
+     },
      &CheckCaptureFile},
     {"plan", [](const nlohmann::json& d) { return d.contains("walls"); }, &CheckPlanFile},
     // OpenCV YAML, not JSON: only with --kind calibration.

@@ -131,6 +131,83 @@ TEST_F(CaptureFileTest, TruncatedJsonIsASyntaxError) {
   EXPECT_NE(errors[0].find("invalid JSON at line"), std::string::npos);
 }
 
+// A PNG header of the given size (enough for the reader's shape check).
+std::string PngHeader(int width, int height) {
+  std::string h = "\x89PNG\r\n\x1a\n";
+  h += std::string("\0\0\0\x0dIHDR", 8);
+  for (int v : {width, height}) {
+    for (int shift : {24, 16, 8, 0}) h += static_cast<char>((v >> shift) & 0xFF);
+  }
+  return h + std::string(13, '\0');
+}
+
+TEST_F(CaptureFileTest, MonoCaptureReadsAndRoundTrips) {
+  WriteFileAtomic(dir_ / "views/000.png", "png");
+  const std::string text = R"({"version": 1, "kind": "mono",
+      "camera": {"width": 640, "height": 480, "fx": 400.0, "fy": 400.0, "cx": 319.5, "cy": 239.5},
+      "frames": [{"index": 0, "image": "views/000.png", "yaw_deg": 30, "position_m": [0, 0, 1.435]}]})";
+  EXPECT_TRUE(Errors(text).empty());
+  Capture c = ReadCapture(dir_ / "capture.json");
+  EXPECT_EQ(c.kind, CaptureKind::kMono);
+  ASSERT_EQ(c.frames.size(), 1u);
+  EXPECT_EQ(c.frames[0].left, "views/000.png");
+  EXPECT_TRUE(c.frames[0].right.empty());
+  EXPECT_DOUBLE_EQ(c.frames[0].position_m.z(), 1.435);
+  WriteCapture(c, dir_ / "copy.json");
+  EXPECT_EQ(CaptureToJson(ReadCapture(dir_ / "copy.json")), CaptureToJson(c));
+  EXPECT_EQ(CaptureToJson(c)["frames"][0]["image"], "views/000.png");
+}
+
+TEST_F(CaptureFileTest, PanoramaCaptureReadsAndRoundTrips) {
+  WriteFileAtomic(dir_ / "pano.png", PngHeader(2048, 1024));
+  EXPECT_TRUE(Errors(R"({"version": 1, "kind": "panorama", "panorama": "pano.png",
+                         "position_m": [0, 0, 1.435], "yaw_deg": 10})").empty());
+  Capture c = ReadCapture(dir_ / "capture.json");
+  EXPECT_EQ(c.kind, CaptureKind::kPanorama);
+  ASSERT_TRUE(c.panorama);
+  EXPECT_EQ(c.panorama->image, "pano.png");
+  EXPECT_DOUBLE_EQ(c.panorama->yaw_deg, 10.0);
+  EXPECT_TRUE(c.frames.empty());
+  WriteCapture(c, dir_ / "copy.json");
+  EXPECT_EQ(CaptureToJson(ReadCapture(dir_ / "copy.json")), CaptureToJson(c));
+  EXPECT_EQ(c.ToString(), "Capture(panorama pano.png, camera at (0.000, 0.000, 1.435) m, yaw 10.0°)");
+}
+
+TEST_F(CaptureFileTest, PanoramaThatIsNotTwoToOneIsRefused) {
+  WriteFileAtomic(dir_ / "pano.png", PngHeader(2048, 1536));
+  auto errors = Errors(R"({"version": 1, "kind": "panorama", "panorama": "pano.png", "position_m": [0, 0, 1.4]})");
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find("panorama: "), std::string::npos) << errors[0];
+  EXPECT_NE(errors[0].find("is 2048x1536: an equirectangular panorama is twice as wide as high"), std::string::npos)
+      << errors[0];
+}
+
+TEST_F(CaptureFileTest, PanoramaWithoutCameraHeightIsRefused) {
+  WriteFileAtomic(dir_ / "pano.png", PngHeader(2048, 1024));
+  auto missing = Errors(R"({"version": 1, "kind": "panorama", "panorama": "pano.png"})");
+  ASSERT_EQ(missing.size(), 1u);
+  EXPECT_EQ(missing[0].rfind("position_m: ", 0), 0u) << missing[0];
+  auto zero = Errors(R"({"version": 1, "kind": "panorama", "panorama": "pano.png", "position_m": [0, 0, 0]})");
+  ASSERT_EQ(zero.size(), 1u);
+  EXPECT_EQ(zero[0], "position_m: the camera's height above the floor (z) must be > 0, got 0: walls are placed from it");
+}
+
+TEST_F(CaptureFileTest, MonoFrameWithBadYawOrNoHeightIsRefused) {
+  WriteFileAtomic(dir_ / "views/000.png", "png");
+  auto errors = Errors(R"({"version": 1, "kind": "mono",
+      "camera": {"width": 640, "height": 480, "fx": 400.0, "fy": 400.0, "cx": 319.5, "cy": 239.5},
+      "frames": [{"index": 0, "image": "views/000.png", "yaw_deg": "NaN", "position_m": [0, 0, -1]}]})");
+  ASSERT_EQ(errors.size(), 2u);
+  EXPECT_EQ(errors[0].rfind("frames[0].yaw_deg: ", 0), 0u) << errors[0];
+  EXPECT_EQ(errors[1].rfind("frames[0].position_m: the camera's height", 0), 0u) << errors[1];
+}
+
+TEST_F(CaptureFileTest, UnknownKindIsRefused) {
+  auto errors = Errors(R"({"version": 1, "kind": "fisheye"})");
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0], "kind: unknown kind \"fisheye\", expected stereo, mono or panorama");
+}
+
 TEST(CaptureFile, ReadsTheBlenderRoomsCaptures) {
   fs::path p = fs::path(ASBUILT_SHARED_DATA_DIR) / "blender-rooms-public/p01_rect_1door_2win/capture.json";
   if (!fs::exists(p)) GTEST_SKIP() << "shared data not present: " << p;

@@ -81,7 +81,6 @@ PanoViewsSummary WritePanoViews(const fs::path& panorama, const fs::path& out_di
   nlohmann::json doc = {
       {"version", 1},
       {"kind", "mono"},
-      {"provisional", true},
       {"camera",
        {{"width", cam.width_px}, {"height", cam.height_px}, {"fx", cam.fx}, {"fy", cam.fy}, {"cx", cam.cx},
         {"cy", cam.cy}}},
@@ -101,7 +100,7 @@ PanoViewsSummary WritePanoViews(const fs::path& panorama, const fs::path& out_di
   PanoViewsSummary summary;
   summary.views = static_cast<int>(views.size());
   summary.labels = zind != nullptr;
-  summary.views_json = out_dir / "views.json";
+  summary.views_json = out_dir / "capture.json";
   WriteFileAtomic(summary.views_json, doc.dump(1) + "\n");
   return summary;
 }

@@ -3,10 +3,11 @@
 
 // `asbuilt pano views`: a panorama turned into the perspective views a
 // camera turning in place at its centre would take, written as a mono
-// capture (views.json, docs/formats.md, provisional): the views, and for a
-// ZInD panorama their layout labels, overlays and the room's truth plan.
+// capture (capture.json, docs/formats.md, `asbuilt survey` reads it): the
+// views, and for a ZInD panorama their layout labels, overlays and the
+// room's truth plan.
 //
-//   OUT/views.json           camera, and per view its image, yaw, pitch, position
+//   OUT/capture.json         kind "mono": camera, and per view its image, yaw, pitch, position
 //   OUT/images/NNN.png       the views (8-bit BGR)
 //   OUT/labels/NNN.png       ZInD only: layout labels (pano/layout_labels.h)
 //   OUT/overlays/NNN.png     ZInD only, with `overlays`: labels over the view
@@ -14,7 +15,7 @@
 //
 // Everything is in the pano frame (formats/zind.h): the camera at
 // (0, 0, camera height), yaw as DESIGN.md. Views derived from ZInD are for
-// research measurement only (kZindNotice, which views.json repeats).
+// research measurement only (kZindNotice, which capture.json repeats).
 
 #include <filesystem>
 #include <optional>
@@ -39,8 +40,8 @@ struct PanoViewsOptions {
 struct PanoViewsSummary {
   int views = 0;
   bool labels = false;  // Labels and truth.json written (a ZInD panorama).
-  std::filesystem::path views_json;
-  std::string BriefReport() const;  // "12 views 640x480 (fx 400, yaw step 30°, pitch 0°) + layout labels → OUT/views.json".
+  std::filesystem::path views_json;  // The mono capture.json.
+  std::string BriefReport() const;  // "12 views 640x480 (fx 400, yaw step 30°, pitch 0°) + layout labels → OUT/capture.json".
 };
 
 // Reads `panorama` (an equirectangular image) and writes its views into

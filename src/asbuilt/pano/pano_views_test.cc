@@ -55,10 +55,10 @@ TEST(WritePanoViews, WritesViewsAndAMonoCapture) {
       pano, dir / "out", {.turn = {.width_px = 160, .height_px = 120, .fx = 100, .views = 4, .yaw_step_deg = 90}});
   EXPECT_EQ(s.views, 4);
   EXPECT_FALSE(s.labels);
-  EXPECT_EQ(s.BriefReport(), "4 views → " + (dir / "out/views.json").string());
-  const nlohmann::json j = nlohmann::json::parse(ReadFile(dir / "out/views.json"));
+  EXPECT_EQ(s.BriefReport(), "4 views → " + (dir / "out/capture.json").string());
+  const nlohmann::json j = nlohmann::json::parse(ReadFile(dir / "out/capture.json"));
   EXPECT_EQ(j["kind"], "mono");
-  EXPECT_EQ(j["provisional"], true);
+  EXPECT_FALSE(j.contains("provisional"));
   EXPECT_EQ(j["camera"]["width"], 160);
   EXPECT_EQ(j["camera"]["cx"], 79.5);
   ASSERT_EQ(j["frames"].size(), 4u);
@@ -81,7 +81,7 @@ TEST(WritePanoViews, WritesLabelsOverlaysAndTruthForAnAnnotatedPanorama) {
   const PanoViewsSummary s = WritePanoViews(pano, dir / "out", {.turn = {.views = 2, .yaw_step_deg = 180}, .overlays = true},
                                             &room);
   EXPECT_TRUE(s.labels);
-  const nlohmann::json j = nlohmann::json::parse(ReadFile(dir / "out/views.json"));
+  const nlohmann::json j = nlohmann::json::parse(ReadFile(dir / "out/capture.json"));
   EXPECT_EQ(j["notice"], kZindNotice);
   EXPECT_EQ(j["source"]["zind"]["pano"], "floor_01/complete_room_01/partial_room_01/pano_1");
   EXPECT_EQ(j["frames"][1]["position_m"], nlohmann::json({0.0, 0.0, 1.4}));

@@ -177,6 +177,11 @@ std::string SurveyReportHtml(const SurveyReport& r) {
                                           s.ceiling_height_sigma_m)
                             : "");
   }
+  if (!s.wall_cues.empty()) {
+    html += "<details open><summary>Which cue placed each wall</summary><ul>";
+    for (const std::string& c : s.wall_cues) html += fmt::format("<li>{}</li>", HtmlEscape(c));
+    html += "</ul></details>";
+  }
   if (!s.notes.empty()) {
     html += "<ul class=\"notes\">";
     for (const std::string& n : s.notes) html += fmt::format("<li class=\"warn\">{}</li>", HtmlEscape(n));

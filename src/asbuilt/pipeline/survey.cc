@@ -14,6 +14,7 @@
 #include <opencv2/imgproc.hpp>
 #include <spdlog/spdlog.h>
 
+#include "asbuilt/pano/pano_views.h"
 #include "asbuilt/pipeline/report.h"
 #include "asbuilt/plan/drawing.h"
 #include "asbuilt/seg/seg_data.h"
@@ -122,16 +123,76 @@ std::string PointsPlotPng(const std::vector<ClassPoint>& points, const Plan& pla
 
 // Degrees of the full turn about the rig that at least one frame's horizontal
 // field of view covers (1° bins).
-double YawCoverageDeg(const Capture& capture, const PinholeCamera& camera) {
+double YawCoverageDeg(const std::vector<CaptureFrame>& frames, const PinholeCamera& camera) {
   const double half_fov_deg = RadToDeg(std::atan2(0.5 * camera.width_px, camera.fx));
   std::vector<bool> seen(360, false);
-  for (const CaptureFrame& f : capture.frames) {
+  for (const CaptureFrame& f : frames) {
     for (int d = static_cast<int>(std::floor(f.yaw_deg - half_fov_deg));
          d < static_cast<int>(std::ceil(f.yaw_deg + half_fov_deg)); ++d) {
       seen[((d % 360) + 360) % 360] = true;
     }
   }
   return static_cast<double>(std::count(seen.begin(), seen.end(), true));
+}
+
+// What every capture kind hands to the common tail (plan → outputs).
+struct SurveyState {
+  Clock::time_point start;
+  std::map<std::string, double> stage_seconds;
+  std::vector<std::string> stage_order;
+  std::optional<Plan> truth;
+  std::vector<ClassPoint> points;
+  std::vector<ReportFrame> report_frames;
+  std::vector<Vec2> rigs;
+  std::optional<Vec3> viewpoint_m;  // Mean camera / rig position.
+  double coverage_deg = 360.0;      // Of the turn around the camera.
+
+  void AddStage(const std::string& stage, double seconds) {
+    if (!stage_seconds.count(stage)) stage_order.push_back(stage);
+    stage_seconds[stage] += seconds;
+  }
+};
+
+std::optional<Plan> ReadTruth(const SurveyOptions& options, const fs::path& capture_json) {
+  if (options.truth_path) return ReadPlan(*options.truth_path);
+  if (fs::path beside = capture_json.parent_path() / "truth.json"; fs::exists(beside)) return ReadPlan(beside);
+  return std::nullopt;
+}
+
+// Per wall of the plan: the points within kNearM of it (projecting inside
+// it), by cue, and the fraction of its length they cover in 10 cm bins.
+struct WallEvidence {
+  int floor_contacts = 0, ceiling_contacts = 0, stereo = 0, vertices = 0, openings = 0;
+  double seen_fraction = 0.0;
+};
+std::vector<WallEvidence> EvidencePerWall(const Plan& plan, const std::vector<ClassPoint>& points) {
+  constexpr double kNearM = 0.1, kBinM = 0.1;
+  std::vector<WallEvidence> out(plan.walls.size());
+  for (std::size_t w = 0; w < plan.walls.size(); ++w) {
+    const Vec2 a = plan.walls[w].start, d = plan.walls[w].end - a;
+    const double length = d.norm();
+    if (length <= 0) continue;
+    const Vec2 dir = d / length, normal(-dir.y(), dir.x());
+    std::vector<bool> bins(static_cast<std::size_t>(std::ceil(length / kBinM)), false);
+    WallEvidence& e = out[w];
+    for (const ClassPoint& p : points) {
+      const Vec2 q = p.position_m.head<2>() - a;
+      const double t = q.dot(dir);
+      if (t < 0 || t > length || std::abs(q.dot(normal)) > kNearM) continue;
+      bins[std::min(bins.size() - 1, static_cast<std::size_t>(t / kBinM))] = true;
+      if (p.label != LabelClass::kWall) {
+        ++e.openings;
+      } else if (p.source == PointSource::kContact) {
+        (p.position_m.z() < 0.01 ? e.floor_contacts : e.ceiling_contacts)++;
+      } else if (p.source == PointSource::kVertex) {
+        ++e.vertices;
+      } else {
+        ++e.stereo;
+      }
+    }
+    e.seen_fraction = bins.empty() ? 0.0 : double(std::count(bins.begin(), bins.end(), true)) / bins.size();
+  }
+  return out;
 }
 
 fs::path ExecutableDir() {
@@ -148,11 +209,21 @@ void SurveyOptions::Check() const {
                 fmt::format("SurveyOptions.contact_snap_px = {}, must be >= 0", contact_snap_px.value_or(0)));
   plan.Check();
   CheckArgument(report_frames >= 0, fmt::format("SurveyOptions.report_frames = {}, must be >= 0", report_frames));
+  panorama_views.Check();
+  CheckArgument(std::abs(panorama_views.pitch_deg) < 1e-9,
+                fmt::format("SurveyOptions.panorama_views.pitch_deg = {}, must be 0: contacts need level views",
+                            panorama_views.pitch_deg));
+  CheckArgument(min_seen_fraction >= 0 && min_seen_fraction <= 1,
+                fmt::format("SurveyOptions.min_seen_fraction = {}, must be in [0, 1]", min_seen_fraction));
   if (segment_scale_px) {
     SegmentOptions{.scale_width_px = segment_scale_px->first, .scale_height_px = segment_scale_px->second}.Check();
   }
   CheckArgument(!(labels_dir && use_capture_labels),
                 "SurveyOptions: give either labels_dir or use_capture_labels, not both");
+}
+
+std::vector<PanoView> PanoramaSurveyViews(const TurnInPlaceOptions& options) {
+  return TurnInPlaceViews(options);
 }
 
 fs::path DefaultModelPath() {
@@ -182,35 +253,37 @@ std::string SurveySummary::BriefReport() const {
                        score->doors.truth + score->windows.truth);
     if (auto m = score->opening_width.Median()) out += fmt::format(", width err median {:.1f} %", 100 * *m);
   }
+  if (room_overlap) out += fmt::format(", room IoU {:.3f}", room_overlap->Iou());
   out += fmt::format("; {:.1f} s", seconds);
   if (!out_dir.empty()) out += fmt::format(" → {}", (out_dir / "report.html").string());
   return out;
 }
 
+namespace {
+
+SurveyResult FinishSurvey(const fs::path& capture_json, const fs::path& out_dir, const SurveyOptions& options,
+                          SurveyState& st, CapturePoints::Result gathered_points, SurveyResult result);
+SurveyResult RunMonoSurvey(const Capture& capture, const fs::path& capture_json, const fs::path& out_dir,
+                           const SurveyOptions& options, const ProgressCallback& progress, SurveyState& st);
+
+}  // namespace
+
 SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, const SurveyOptions& options,
                        const ProgressCallback& progress) {
   options.Check();
-  const Clock::time_point start = Clock::now();
+  SurveyState st{.start = Clock::now()};
   SurveyResult result;
   SurveySummary& summary = result.summary;
   summary.out_dir = out_dir;
-  std::map<std::string, double> stage_seconds;
-  std::vector<std::string> stage_order;
-  auto add_stage = [&](const std::string& stage, double seconds) {
-    if (!stage_seconds.count(stage)) stage_order.push_back(stage);
-    stage_seconds[stage] += seconds;
-  };
+  auto add_stage = [&](const std::string& stage, double seconds) { st.AddStage(stage, seconds); };
+  auto& stage_seconds = st.stage_seconds;
 
   // Capture, truth, rectifier.
   Clock::time_point t = Clock::now();
   const Capture capture = ReadCapture(capture_json);
+  if (capture.kind != CaptureKind::kStereo) return RunMonoSurvey(capture, capture_json, out_dir, options, progress, st);
   summary.frames = static_cast<int>(capture.frames.size());
-  std::optional<Plan> truth;
-  if (options.truth_path) {
-    truth = ReadPlan(*options.truth_path);
-  } else if (fs::path beside = capture_json.parent_path() / "truth.json"; fs::exists(beside)) {
-    truth = ReadPlan(beside);
-  }
+  st.truth = ReadTruth(options, capture_json);
   std::optional<StereoRectifier> rectifier;
   if (!capture.rectified) {
     const fs::path calibration_path = capture.Resolve(*capture.calibration);
@@ -285,9 +358,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   }
 
   // Per frame: load (rectify), labels, disparity, points.
-  std::vector<ClassPoint> points;
   std::vector<ReportFrame> report_frames;
-  std::vector<Vec2> rigs;
   FramePointsOptions point_options = options.points;
   point_options.contact_snap_px =
       FramePointsOptions::ContactSnapPxFor(options.contact_snap_px, options.use_capture_labels);
@@ -309,7 +380,6 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
     add_stage("disparity", r.disparity.seconds);
     add_stage("corners + points", std::max(0.0, frame_seconds - r.disparity.seconds));
     gathered.Add(r);
-    rigs.push_back(frame.position_m.head<2>());
     rig_sum += frame.position_m;
     if (options.report_frames == 0 || static_cast<int>(report_frames.size()) < options.report_frames) {
       t = Clock::now();
@@ -334,11 +404,27 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
     stage_seconds["load + rectify"] = std::max(0.0, stage_seconds["load + rectify"] - stage_seconds["segment"]);
   }
   ReportProgress(progress, {.stage = "survey", .done = done, .total = total});
+  for (const CaptureFrame& frame : capture.frames) st.rigs.push_back(frame.position_m.head<2>());
+  if (total > 0) st.viewpoint_m = rig_sum / total;
+  st.coverage_deg = YawCoverageDeg(capture.frames, rectifier ? rectifier->camera : capture.camera.Pinhole());
+  st.report_frames = std::move(report_frames);
+  return FinishSurvey(capture_json, out_dir, options, st, gathered.Finish(), std::move(result));
+}
+
+namespace {
+
+SurveyResult FinishSurvey(const fs::path& capture_json, const fs::path& out_dir, const SurveyOptions& options,
+                          SurveyState& st, CapturePoints::Result gathered_points, SurveyResult result) {
+  SurveySummary& summary = result.summary;
+  std::vector<ClassPoint>& points = st.points;
+  std::vector<ReportFrame>& report_frames = st.report_frames;
+  const std::optional<Plan>& truth = st.truth;
+  auto add_stage = [&](const std::string& stage, double seconds) { st.AddStage(stage, seconds); };
+  Clock::time_point t;
   // The wall cue for the whole capture (stereo, or floor/ceiling contacts
   // where the walls' stereo disagrees with them); wall–ceiling contacts become
   // points once the ceiling's height is known from the columns that saw both
   // of a wall's edges (all frames together).
-  CapturePoints::Result gathered_points = gathered.Finish();
   points = std::move(gathered_points.points);
   summary.wall_cue = gathered_points.decision;
   if (!summary.wall_cue.empty()) spdlog::info("survey: {}", summary.wall_cue);
@@ -367,7 +453,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   // Plan.
   t = Clock::now();
   PlanOptions plan_options = options.plan;
-  if (!plan_options.viewpoint_m && total > 0) plan_options.viewpoint_m = rig_sum / total;
+  if (!plan_options.viewpoint_m) plan_options.viewpoint_m = st.viewpoint_m;
   try {
     PlanResult plan = ReconstructPlan(points, plan_options, capture_json.string());
     result.plan = std::move(plan.plan);
@@ -383,8 +469,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   if (result.plan.walls.empty()) summary.notes.push_back("no walls could be measured from this capture");
   // Views that do not go round the room cannot close it (a real capture of
   // one direction, e.g. EuRoC): say what the closed polygon rests on.
-  if (const double coverage_deg = YawCoverageDeg(capture, rectifier ? rectifier->camera : capture.camera.Pinhole());
-      coverage_deg < 359.5 && !result.plan.walls.empty()) {
+  if (const double coverage_deg = st.coverage_deg; coverage_deg < 359.5 && !result.plan.walls.empty()) {
     std::string note = fmt::format("the views cover {:.0f}° of the turn around the rig: walls outside them are not measured",
                                    coverage_deg);
     if (summary.plan.closed) {
@@ -393,11 +478,48 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
     }
     summary.notes.push_back(note);
   }
+  // Which cue placed each wall, and where the room is larger than the
+  // capture saw (a wall seen along little of its length, or inferred).
+  {
+    const std::vector<WallEvidence> evidence = EvidencePerWall(result.plan, points);
+    std::vector<std::string> unseen;
+    for (std::size_t w = 0; w < evidence.size(); ++w) {
+      const WallEvidence& e = evidence[w];
+      const double length = (result.plan.walls[w].end - result.plan.walls[w].start).norm();
+      std::vector<std::string> cues;
+      if (e.floor_contacts > 0) cues.push_back(fmt::format("floor contacts {}", e.floor_contacts));
+      if (e.ceiling_contacts > 0) cues.push_back(fmt::format("ceiling contacts {}", e.ceiling_contacts));
+      if (e.stereo > 0) cues.push_back(fmt::format("stereo points {}", e.stereo));
+      if (e.vertices > 0) cues.push_back(fmt::format("corner columns {}", e.vertices));
+      if (e.openings > 0) cues.push_back(fmt::format("door/window points {}", e.openings));
+      std::string line = fmt::format("wall {}, {:.2f} m: ", w, length);
+      if (cues.empty()) {
+        line += "inferred: no point of it was seen (it closes the room between the walls beside it)";
+      } else {
+        for (std::size_t k = 0; k < cues.size(); ++k) line += (k ? ", " : "") + cues[k];
+        line += fmt::format("; seen along {:.0f} % of its length", 100 * e.seen_fraction);
+      }
+      summary.wall_cues.push_back(line);
+      if (e.seen_fraction < options.min_seen_fraction) {
+        ++summary.walls_unseen;
+        unseen.push_back(fmt::format("wall {} ({:.2f} m, seen along {:.0f} %)", w, length, 100 * e.seen_fraction));
+      }
+    }
+    if (!unseen.empty()) {
+      std::string list;
+      for (std::size_t k = 0; k < unseen.size(); ++k) list += (k ? ", " : "") + unseen[k];
+      summary.notes.push_back(fmt::format(
+          "the room is larger than what this capture sees: {} {} mostly or wholly unseen, so {} length{} and "
+          "the room's area rest on walls inferred across what was not seen — survey from another spot to measure them",
+          list, unseen.size() == 1 ? "is" : "are", unseen.size() == 1 ? "its" : "their", unseen.size() == 1 ? "" : "s"));
+    }
+  }
   add_stage("plan", Since(t));
 
   // Score.
   if (truth) {
     summary.score = ScorePlan(result.plan, *truth);
+    summary.room_overlap = RoomPolygonOverlap(result.plan, *truth);
   }
 
   // Outputs.
@@ -414,8 +536,8 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   if (summary.score) WriteFileAtomic(out_dir / "score.json", PlanScoreToJson(*summary.score).dump(2) + "\n");
   add_stage("write outputs", Since(t));
 
-  summary.seconds = Since(start);
-  for (const std::string& s : stage_order) summary.stages.push_back({s, stage_seconds[s]});
+  summary.seconds = Since(st.start);
+  for (const std::string& s : st.stage_order) summary.stages.push_back({s, st.stage_seconds[s]});
 
   if (options.write_report) {
     t = Clock::now();
@@ -425,24 +547,185 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
                         .plan = result.plan,
                         .truth = truth,
                         .frames = std::move(report_frames),
-                        .points_plot_png = PointsPlotPng(points, result.plan, truth, rigs),
+                        .points_plot_png = PointsPlotPng(points, result.plan, truth, st.rigs),
                         .plan_svg = plan_svg};
     double report_seconds = Since(t);
     report.summary.stages.push_back({"report", report_seconds});
     WriteSurveyReport(report, out_dir / "report.html");
   }
-  nlohmann::json js = {{"brief", summary.BriefReport()}, {"frames", summary.frames}, {"points", summary.points},
+  nlohmann::json js = {{"brief", summary.BriefReport()}, {"capture_kind", summary.capture_kind},
+                       {"frames", summary.frames}, {"points", summary.points},
                        {"labels_source", summary.labels_source}, {"plan", summary.plan.BriefReport()},
                        {"notes", summary.notes}, {"seconds", summary.seconds}};
   if (!summary.wall_cue.empty()) js["wall_cue"] = summary.wall_cue;
+  js["wall_cues"] = summary.wall_cues;
+  js["walls_unseen"] = summary.walls_unseen;
   for (const StageTiming& s : summary.stages) js["stages"][s.stage] = s.seconds;
   if (std::isfinite(summary.ceiling_height_m)) {
     js["ceiling_height_m"] = summary.ceiling_height_m;
     js["ceiling_height_sigma_m"] = summary.ceiling_height_sigma_m;
   }
   if (summary.score) js["score"] = PlanScoreToJson(*summary.score);
+  if (summary.room_overlap) {
+    js["room_iou"] = summary.room_overlap->Iou();
+    js["room_intersection_m2"] = summary.room_overlap->intersection_m2;
+    js["room_union_m2"] = summary.room_overlap->union_m2;
+  }
   WriteFileAtomic(out_dir / "summary.json", js.dump(2) + "\n");
   return result;
 }
+
+
+// Mono and panorama captures: level views of one camera, walls placed by
+// their floor/ceiling contacts (no second view, so no stereo).
+SurveyResult RunMonoSurvey(const Capture& capture, const fs::path& capture_json, const fs::path& out_dir,
+                           const SurveyOptions& options, const ProgressCallback& progress, SurveyState& st) {
+  SurveyResult result;
+  SurveySummary& summary = result.summary;
+  summary.out_dir = out_dir;
+  summary.capture_kind = CaptureKindName(capture.kind);
+  Clock::time_point t = Clock::now();
+  st.truth = ReadTruth(options, capture_json);
+
+  // The frames: the capture's own views, or the panorama resampled.
+  std::vector<CaptureFrame> frames;
+  std::vector<cv::Mat> images;  // Panorama views (in memory), by frame.
+  PinholeCamera camera;
+  if (capture.kind == CaptureKind::kPanorama) {
+    const CapturePanorama& pano = *capture.panorama;
+    const fs::path pano_path = capture.Resolve(pano.image);
+    const cv::Mat equirect = ReadEquirect(pano_path);
+    const std::vector<PanoView> views = PanoramaSurveyViews(options.panorama_views);
+    camera = views.front().camera;
+    for (std::size_t i = 0; i < views.size(); ++i) {
+      CaptureFrame f{.index = static_cast<int>(i), .left = fmt::format("{}#view{:03d}", pano.image, i),
+                     .yaw_deg = pano.yaw_deg + views[i].yaw_deg, .position_m = pano.position_m};
+      frames.push_back(std::move(f));
+      images.push_back(RenderPanoView(equirect, views[i]));
+    }
+    if (options.use_capture_labels) {
+      throw InvalidArgument("a panorama capture has no labels of its own: give --labels DIR (NNN.png per view)");
+    }
+  } else {
+    camera = capture.camera.Pinhole();
+    for (std::size_t i = 0; i < capture.frames.size(); ++i) {
+      const CaptureFrame& f = capture.frames[i];
+      if (std::abs(f.pitch_deg) > 0.01) {
+        throw InputError(capture_json.string(), fmt::format("frames[{}].pitch_deg", i),
+                         fmt::format("{}: a mono survey places walls from a level camera (pitch 0)", f.pitch_deg));
+      }
+    }
+    frames = capture.frames;
+  }
+  summary.frames = static_cast<int>(frames.size());
+  st.AddStage("read capture", Since(t));
+
+  auto image_of = [&](std::size_t i) -> cv::Mat {
+    cv::Mat image = images.empty() ? ReadColourImage(capture.Resolve(frames[i].left)) : images[i];
+    if (image.cols != camera.width_px || image.rows != camera.height_px) {
+      throw InputError(capture.Resolve(frames[i].left).string(), "",
+                       fmt::format("image is {}x{}, capture.json's camera is {}x{}", image.cols, image.rows,
+                                   camera.width_px, camera.height_px));
+    }
+    return image;
+  };
+
+  // Labels: given, the capture's own, or the segmenter (a few views a pass).
+  std::function<std::vector<cv::Mat>(std::size_t first, const std::vector<cv::Mat>& batch)> label_batch;
+  if (options.labels_dir || options.use_capture_labels) {
+    const LabelProvider provider =
+        options.labels_dir ? LabelsFromDirectory(*options.labels_dir) : LabelsFromCapture(capture);
+    summary.labels_source = options.labels_dir ? fmt::format("label images in {}", options.labels_dir->string())
+                                               : "the capture's own labels";
+    label_batch = [&, provider](std::size_t first, const std::vector<cv::Mat>& batch) {
+      std::vector<cv::Mat> out;
+      for (std::size_t k = 0; k < batch.size(); ++k) out.push_back(provider(frames[first + k], StereoEye::kLeft));
+      return out;
+    };
+  } else {
+    t = Clock::now();
+    fs::path model = options.model_path.empty() ? DefaultModelPath() : options.model_path;
+    if (!SegmenterAvailable()) {
+      throw Error("this build has no segmenter (built without LibTorch): pass --labels DIR");
+    }
+    SegmentOptions segment;
+    if (options.segment_scale_px) {
+      std::tie(segment.scale_width_px, segment.scale_height_px) = *options.segment_scale_px;
+    } else {
+      const SegmenterInfo info = ReadSegmenterInfo(model);
+      const cv::Size image(camera.width_px, camera.height_px);
+      const cv::Size twice = FitSize(image, 2 * info.scale_width_px, 2 * info.scale_height_px);
+      const cv::Size scale = twice.width < image.width ? twice : image;
+      segment.scale_width_px = scale.width;
+      segment.scale_height_px = scale.height;
+    }
+    auto segmenter = std::shared_ptr<Segmenter>(LoadSegmenter(model, segment));
+    summary.labels_source =
+        fmt::format("segmenter {} ({}) at {}x{}", model.filename().string(), segmenter->info().ToString(),
+                    segment.scale_width_px, segment.scale_height_px);
+    st.AddStage("load model", Since(t));
+    label_batch = [segmenter](std::size_t, const std::vector<cv::Mat>& batch) {
+      return segmenter->SegmentBatch(batch);
+    };
+  }
+
+  FramePointsOptions point_options = options.points;
+  point_options.contacts = ContactUse::kAlways;
+  point_options.contact_snap_px =
+      FramePointsOptions::ContactSnapPxFor(options.contact_snap_px, options.use_capture_labels);
+  CapturePoints gathered(point_options);
+  constexpr std::size_t kBatch = 4;
+  Vec3 camera_sum = Vec3::Zero();
+  for (std::size_t first = 0; first < frames.size(); first += kBatch) {
+    ReportProgress(progress, {.stage = "survey", .done = static_cast<std::int64_t>(first),
+                              .total = static_cast<std::int64_t>(frames.size())});
+    t = Clock::now();
+    std::vector<cv::Mat> batch;
+    for (std::size_t i = first; i < std::min(frames.size(), first + kBatch); ++i) batch.push_back(image_of(i));
+    st.AddStage("load images", Since(t));
+    t = Clock::now();
+    std::vector<cv::Mat> labels = label_batch(first, batch);
+    st.AddStage(options.labels_dir || options.use_capture_labels ? "load labels" : "segment", Since(t));
+    for (std::size_t k = 0; k < batch.size(); ++k) {
+      const CaptureFrame& frame = frames[first + k];
+      if (labels[k].size() != batch[k].size()) {
+        throw InputError(options.labels_dir ? (*options.labels_dir / fmt::format("{:03d}.png", frame.index)).string()
+                                            : capture_json.string(),
+                         "", fmt::format("labels are {}x{}, the view is {}x{}", labels[k].cols, labels[k].rows,
+                                         batch[k].cols, batch[k].rows));
+      }
+      t = Clock::now();
+      MonoFrame mono{.image = batch[k], .labels = labels[k], .camera = camera,
+                     .pose = {frame.position_m, DegToRad(frame.yaw_deg)}, .index = frame.index};
+      FramePointsResult r = ComputeMonoFramePoints(mono, point_options);
+      st.AddStage("contacts", Since(t));
+      if (r.cues.CarriedBy() == "none") {
+        summary.notes.push_back(fmt::format("view {}: no floor or ceiling contact of a wall", frame.index));
+      }
+      gathered.Add(r);
+      camera_sum += frame.position_m;
+      if (options.report_frames == 0 || static_cast<int>(st.report_frames.size()) < options.report_frames) {
+        t = Clock::now();
+        ReportFrame rf{.index = frame.index, .yaw_deg = frame.yaw_deg};
+        rf.left_jpeg = EncodeJpeg(batch[k]);
+        rf.overlay_jpeg = EncodeJpeg(LabelOverlay(batch[k], labels[k]));
+        st.report_frames.push_back(std::move(rf));
+        st.AddStage("report pictures", Since(t));
+      }
+    }
+  }
+  ReportProgress(progress, {.stage = "survey", .done = static_cast<std::int64_t>(frames.size()),
+                            .total = static_cast<std::int64_t>(frames.size())});
+  for (const CaptureFrame& f : frames) st.rigs.push_back(f.position_m.head<2>());
+  if (!frames.empty()) st.viewpoint_m = camera_sum / static_cast<double>(frames.size());
+  st.coverage_deg = YawCoverageDeg(frames, camera);
+  CapturePoints::Result gathered_points = gathered.Finish();
+  gathered_points.decision = fmt::format(
+      "walls placed by their floor/ceiling contacts from a level camera {:.3f} m above the floor ({} capture: one "
+      "camera, no stereo)",
+      frames.empty() ? 0.0 : camera_sum.z() / static_cast<double>(frames.size()), summary.capture_kind);
+  return FinishSurvey(capture_json, out_dir, options, st, std::move(gathered_points), std::move(result));
+}
+}  // namespace
 
 }  // namespace asbuilt

@@ -1,10 +1,15 @@
 #ifndef ASBUILT_PIPELINE_SURVEY_H_
 #define ASBUILT_PIPELINE_SURVEY_H_
 
-// `asbuilt survey`: a stereo capture in, a dimensioned floor plan and a
-// report out. Stages: (rectify) → segment both views → disparity → corners,
-// edges and dense points → world points → plan → drawings → report, and a
-// score when a truth plan is given or lies beside the capture.
+// `asbuilt survey`: a capture in, a dimensioned floor plan and a report
+// out. Stereo captures: (rectify) → segment both views → disparity →
+// corners, edges and dense points → world points → plan → drawings →
+// report, and a score when a truth plan is given or lies beside the capture.
+// Mono and panorama captures (formats/capture.h): a panorama is first
+// resampled into level perspective views turning in place at its centre
+// (`panorama_views`); each view is segmented and its walls' floor and
+// ceiling label edges (contacts) place them from the camera height — the
+// cue that needs no second view (docs/survey.md "Survey from a 360° photo").
 //
 // A synthetic capture's per-frame `labels`/`depth` and its truth.json are
 // ground truth for scoring only: they are read as input only when asked
@@ -18,7 +23,9 @@
 #include <vector>
 
 #include "asbuilt/formats/plan_file.h"
+#include "asbuilt/pano/perspective.h"
 #include "asbuilt/plan/reconstruct.h"
+#include "asbuilt/plan/room_iou.h"
 #include "asbuilt/plan/score.h"
 #include "asbuilt/stereo/frame_points.h"
 #include "asbuilt/util/progress.h"
@@ -51,6 +58,16 @@ struct SurveyOptions {
   // exact ones.
   std::optional<int> contact_snap_px;
   PlanOptions plan;
+  // Panorama captures: the level views it is resampled into (and that
+  // --labels DIR gives labels for, NNN.png per view). Wide and tall, so one
+  // view sees a wall's base and its ceiling edge at once: 90° across, ±63°
+  // up and down — a floor edge from 0.72 m and a ceiling edge 0.9 m above
+  // the camera from 0.45 m away (640×480 at fx 400 sees ±31°: no floor edge
+  // nearer than 2.4 m at a 1.435 m camera height, most of a small room).
+  TurnInPlaceOptions panorama_views = {.width_px = 512, .height_px = 1024, .fx = 256.0};
+  // Per-wall cues: a wall seen (points within 0.1 m of it) along less than
+  // this fraction of its length is reported as partly unseen.
+  double min_seen_fraction = 0.5;
   bool write_report = true;
   // Frames shown in the report (thumbnails, overlays, disparity); the rest
   // are summarised in the table. 0 = all.
@@ -69,13 +86,22 @@ struct SurveySummary {
   int frames = 0;
   int points = 0;
   std::vector<FrameCues> frame_cues;
+  std::string capture_kind = "stereo";  // CaptureKindName().
   // Which cue placed the walls, and why (CapturePoints::Result::decision).
   std::string wall_cue;
+  // Per plan wall: the points that placed it, by cue, and how much of its
+  // length they cover ("wall 2, 3.41 m: floor contacts 210, ceiling
+  // contacts 180; seen along 96 %"; "… inferred: no point of it was seen").
+  std::vector<std::string> wall_cues;
+  // Walls seen along less than SurveyOptions::min_seen_fraction of their
+  // length, or inferred: the room is larger than the capture saw there.
+  int walls_unseen = 0;
   // From the wall–ceiling/floor contacts (NaN: not measured).
   double ceiling_height_m = NAN;
   double ceiling_height_sigma_m = NAN;
   PlanSummary plan;
   std::optional<PlanScore> score;
+  std::optional<RoomOverlap> room_overlap;  // With a truth: the rooms' 2D IoU.
   std::vector<StageTiming> stages;
   double seconds = 0.0;
   std::filesystem::path out_dir;
@@ -91,13 +117,20 @@ struct SurveyResult {
   SurveySummary summary;
 };
 
-// Runs the whole survey and writes into `out_dir`: plan.json, plan.svg,
+// Runs the whole survey (any capture kind) and writes into `out_dir`: plan.json, plan.svg,
 // plan.dxf, plan.pdf, plan.png, plan.ifc, points.txt, points.ply, score.json (with a
 // truth), summary.json and report.html. Every file is written atomically.
-// Throws InputError for bad captures, images or models (naming the file).
+// Throws InputError for bad captures, images or models (naming the file);
+// nothing is written then.
 SurveyResult RunSurvey(const std::filesystem::path& capture_json,
                        const std::filesystem::path& out_dir, const SurveyOptions& options = {},
                        const ProgressCallback& progress = {});
+
+// The level views a panorama capture is resampled into: `options`'s views,
+// turned by the panorama's yaw. Each view's world yaw is
+// capture.panorama->yaw_deg + view.yaw_deg. Frame i of a panorama survey is
+// view i (its labels: DIR/NNN.png with --labels DIR).
+std::vector<PanoView> PanoramaSurveyViews(const TurnInPlaceOptions& options);
 
 // The shipped segmentation model: $ASBUILT_MODEL if set, else the first of
 // <exe>/../models/, <exe>/../share/asbuilt/models/ and the source tree's

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <iterator>
 #include <numeric>
@@ -1271,6 +1272,112 @@ std::string CapturePointsResult::BriefReport() const {
       frames.size(), carried, points.size(), by_class[1], by_class[2], by_class[3], by_source[0], by_source[2],
       by_source[1], by_source[4], by_source[5],
       ceiling ? fmt::format(", ceiling {:.3f} ± {:.3f} m", ceiling->height_m, ceiling->sigma_m) : "", seconds);
+}
+
+namespace {
+
+// Door and window pixels of a mono frame placed on their wall's plane: a
+// level camera sees a vertical wall at one depth down each column, and its
+// inverse depth is affine in the column (1/z = a + b·u for any vertical
+// plane). The floor contacts give 1/z per column; across an opening's run of
+// columns along a row, bordered by wall on both sides, it is interpolated
+// linearly between the nearest contact columns on either side (or taken
+// from the column's own contact: a window above a wall base). What a stereo
+// frame's dense points do for an opening's interior — without them the plan
+// sees only the opening's two label edges and no opening between them.
+// Every dense_stride_px-th row and column; source kDense, σ of the contacts.
+void AddMonoOpeningPoints(const MonoFrame& frame, const FramePointsOptions& options, FramePointsResult* result) {
+  const PinholeCamera& cam = frame.camera;
+  const double h = frame.pose.position_m.z();
+  if (!(h > 0.05)) return;
+  const int rows = frame.labels.rows, cols = frame.labels.cols;
+  const Mat3 world_from_cam = WorldFromCameraRotation(frame.pose.yaw_rad);
+  const Vec3 origin = frame.pose.position_m;
+  // Inverse depth per column from every floor contact of this frame.
+  std::vector<double> inv_z(cols, NAN), sigma(cols, NAN);
+  auto take = [&](const ClassPoint& p) {
+    if (p.source != PointSource::kContact || p.frame != frame.index || std::abs(p.position_m.z()) > 1e-6) return;
+    const Vec3 q = world_from_cam.transpose() * (p.position_m - origin);
+    if (q.z() <= 0) return;
+    const int u = static_cast<int>(std::lround(cam.fx * q.x() / q.z() + cam.cx));
+    if (u < 0 || u >= cols) return;
+    for (int x = u; x < std::min(cols, u + options.contact_col_step_px); ++x) {
+      inv_z[x] = 1.0 / q.z();
+      sigma[x] = p.sigma_m;
+    }
+  };
+  for (const ClassPoint& p : result->points) take(p);
+  for (const auto& f : result->contacts.paired_floor) take(f.point);
+  for (const auto& f : result->contacts.topped_floor) take(f.point);
+  const int stride = std::max(1, options.dense_stride_px);
+  for (int v = 0; v < rows; v += stride) {
+    const unsigned char* lab = frame.labels.ptr<unsigned char>(v);
+    for (int u0 = 1; u0 < cols - 1; ++u0) {
+      const unsigned char c = lab[u0];
+      if ((c != 2 && c != 3) || lab[u0 - 1] != 1) continue;
+      int u1 = u0;
+      while (u1 + 1 < cols && lab[u1 + 1] == c) ++u1;
+      if (u1 + 1 >= cols || lab[u1 + 1] != 1) {
+        u0 = u1;
+        continue;
+      }
+      // The nearest contact columns beside the run (at most a run's width away).
+      const int reach = u1 - u0 + 1;
+      int left = -1, right = -1;
+      for (int x = u0 - 1; x >= std::max(0, u0 - reach) && left < 0; --x) left = std::isfinite(inv_z[x]) ? x : -1;
+      for (int x = u1 + 1; x <= std::min(cols - 1, u1 + reach) && right < 0; ++x) right = std::isfinite(inv_z[x]) ? x : -1;
+      for (int u = u0; u <= u1; u += stride) {
+        double iz = inv_z[u], s = sigma[u];
+        if (!std::isfinite(iz)) {
+          if (left < 0 || right < 0) continue;
+          const double w = double(u - left) / (right - left);
+          iz = (1 - w) * inv_z[left] + w * inv_z[right];
+          s = std::max(sigma[left], sigma[right]);
+        }
+        if (!(iz > 0)) continue;
+        const double z = 1.0 / iz;
+        if (z < options.min_depth_m || z > options.max_depth_m) continue;
+        const Vec3 p = origin + world_from_cam * UnprojectToCamera(cam, Vec2(u, v), z);
+        result->points.push_back({static_cast<LabelClass>(c), p, s, PointSource::kDense, frame.index});
+        ++result->cues.dense_points;
+      }
+      u0 = u1;
+    }
+  }
+}
+
+}  // namespace
+
+FramePointsResult ComputeMonoFramePoints(const MonoFrame& frame, const FramePointsOptions& options) {
+  options.Check();
+  frame.camera.Check();
+  CheckArgument(!frame.image.empty() && frame.image.cols == frame.camera.width_px &&
+                    frame.image.rows == frame.camera.height_px,
+                fmt::format("ComputeMonoFramePoints: frame {}: the image must be non-empty and of the camera's size",
+                            frame.index));
+  CheckArgument(frame.labels.type() == CV_8UC1 && frame.labels.size() == frame.image.size(),
+                fmt::format("ComputeMonoFramePoints: frame {}: labels must be CV_8UC1 of the image size", frame.index));
+  // The stereo pass with a nominal 1 m "baseline" whose disparities are all
+  // invalid: it then adds contacts and boundaries at the contacts' depth
+  // (disparity and depth convert through the same f·B both ways, so B
+  // cancels) and nothing that needs a match. The rig centre is moved by
+  // half that baseline so the left camera sits at the frame's position.
+  constexpr double kNominalBaselineM = 1.0;
+  const double yaw = frame.pose.yaw_rad;
+  StereoFrame stereo{.left = frame.image, .right = frame.image, .labels_left = frame.labels,
+                     .camera = frame.camera, .baseline_m = kNominalBaselineM,
+                     .pose = {frame.pose.position_m + 0.5 * kNominalBaselineM * Vec3(std::cos(yaw), std::sin(yaw), 0),
+                              yaw},
+                     .index = frame.index};
+  DisparityResult none;
+  none.disparity_px = cv::Mat(frame.labels.size(), CV_32F, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
+  none.valid = cv::Mat::zeros(frame.labels.size(), CV_8U);
+  none.num_disparities_px = 16;
+  FramePointsOptions mono = options;
+  mono.use_corners = mono.use_edges = mono.use_dense = mono.use_vertices = false;
+  FramePointsResult result = FramePointsPass(stereo, mono, /*contacts=*/true, /*wall_stereo=*/false, &none);
+  if (options.use_dense) AddMonoOpeningPoints(frame, options, &result);
+  return result;
 }
 
 void CapturePoints::Add(FramePointsResult& r) {

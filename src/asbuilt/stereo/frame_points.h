@@ -364,6 +364,26 @@ std::vector<ClassPoint> CeilingContactPoints(const std::vector<ContactRay>& rays
 // Points of one frame. Throws InvalidArgument on inconsistent sizes/types.
 FramePointsResult ComputeFramePoints(const StereoFrame& frame, const FramePointsOptions& options);
 
+// One level view of a single camera (a mono capture, or a view resampled
+// from a panorama): no second image, so no disparity. Its optical centre is
+// at pose.position_m (not offset by half a baseline), level (pitch 0).
+struct MonoFrame {
+  cv::Mat image;   // CV_8UC3 or CV_8UC1 (ceiling contacts snap to its edges).
+  cv::Mat labels;  // CV_8UC1 label ids, the image's size.
+  PinholeCamera camera;
+  RigPose pose;
+  int index = -1;
+};
+
+// Points of one mono frame: only what needs no stereo — floor and ceiling
+// contacts (ContactUse::kAlways semantics, without the floor disparity
+// check), and door/window boundary points at the contacts' depth. Gather
+// them with a CapturePoints whose options say ContactUse::kAlways (the
+// ceiling's height then comes from all frames). Corner, edge, dense and
+// vertex points need a second view and are never produced. Throws
+// InvalidArgument on inconsistent sizes/types.
+FramePointsResult ComputeMonoFramePoints(const MonoFrame& frame, const FramePointsOptions& options);
+
 // Labels for a frame's view: empty Mat when there are none (for the right
 // view, "none" is normal). Images are as the capture's images (unrectified
 // when the capture is); they are rectified with nearest-neighbour lookup.

@@ -1,0 +1,149 @@
+// Surveys of mono and panorama captures (issue 22) on a synthetic box room
+// whose labels are drawn exactly from its geometry: the contact cue's
+// geometry end to end, with no segmenter.
+
+#include <cmath>
+#include <filesystem>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "asbuilt/formats/plan_file.h"
+#include "asbuilt/pipeline/survey.h"
+#include "asbuilt/util/error.h"
+#include "asbuilt/util/file.h"
+
+namespace asbuilt {
+namespace {
+namespace fs = std::filesystem;
+
+// A 4.0 × 3.0 m room, 2.5 m high, the camera at (0.4, −0.3, 1.4); a 0.9 m
+// door (2.0 m high) on the north wall (y = 1.5) from x = −0.6 to 0.3.
+constexpr double kX0 = -2.0, kX1 = 2.0, kY0 = -1.5, kY1 = 1.5, kCeiling = 2.5;
+const Vec3 kCamera(0.4, -0.3, 1.4);
+
+unsigned char LabelOfRay(const Vec3& ray) {
+  double best = INFINITY;
+  Vec3 hit;
+  for (int axis = 0; axis < 2; ++axis) {
+    for (double plane : axis == 0 ? std::array{kX0, kX1} : std::array{kY0, kY1}) {
+      if (std::abs(ray[axis]) < 1e-12) continue;
+      const double t = (plane - kCamera[axis]) / ray[axis];
+      if (t > 0 && t < best) best = t, hit = kCamera + t * ray;
+    }
+  }
+  if (!std::isfinite(best) || hit.z() < 0 || hit.z() > kCeiling) return 0;
+  if (std::abs(hit.y() - kY1) < 1e-9 && hit.x() > -0.6 && hit.x() < 0.3 && hit.z() < 2.0) return 2;
+  return 1;
+}
+
+Plan TruthPlan() {
+  Plan p;
+  const std::vector<Vec2> c = {{kX0, kY0}, {kX1, kY0}, {kX1, kY1}, {kX0, kY1}};
+  for (int i = 0; i < 4; ++i) p.walls.push_back({.start = c[i], .end = c[(i + 1) % 4], .height = kCeiling});
+  p.openings.push_back({.kind = OpeningKind::kDoor, .wall = 2, .start = {0.3, kY1}, .end = {-0.6, kY1},
+                        .width = 0.9, .height = 2.0, .sill = 0.0});
+  p.rooms.push_back({.polygon = c, .area_m2 = 12.0});
+  return p;
+}
+
+fs::path Fresh(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("asbuilt_pano_survey_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// A grey 2:1 panorama, the capture beside it, and exact labels for the views
+// survey cuts (PanoramaSurveyViews).
+fs::path WritePanoramaCapture(const fs::path& dir, const SurveyOptions& options) {
+  cv::imwrite((dir / "pano.png").string(), cv::Mat(256, 512, CV_8UC3, cv::Scalar(128, 128, 128)));
+  const nlohmann::json capture = {{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"},
+                                  {"position_m", {kCamera.x(), kCamera.y(), kCamera.z()}}};
+  WriteFileAtomic(dir / "capture.json", capture.dump());
+  const std::vector<PanoView> views = PanoramaSurveyViews(options.panorama_views);
+  fs::create_directories(dir / "labels");
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const PanoView& view = views[i];
+    cv::Mat labels(view.camera.height_px, view.camera.width_px, CV_8U);
+    for (int v = 0; v < labels.rows; ++v) {
+      for (int u = 0; u < labels.cols; ++u) labels.at<unsigned char>(v, u) = LabelOfRay(view.RayInWorld(Vec2(u, v)));
+    }
+    cv::imwrite((dir / "labels" / fmt::format("{:03d}.png", i)).string(), labels);
+  }
+  WritePlan(TruthPlan(), dir / "truth.json");
+  return dir / "capture.json";
+}
+
+SurveyOptions SmallViews() {
+  SurveyOptions o{.write_report = false};
+  o.panorama_views = {.width_px = 128, .height_px = 256, .fx = 64.0};
+  o.plan.door_casing_m = 0.0;  // Exact labels mark the clear opening.
+  return o;
+}
+
+TEST(RunSurvey, PanoramaCaptureWithExactLabelsRecoversTheBoxRoom) {
+  const fs::path dir = Fresh("box");
+  SurveyOptions options = SmallViews();
+  const fs::path capture = WritePanoramaCapture(dir, options);
+  options.labels_dir = dir / "labels";
+  const SurveyResult r = RunSurvey(capture, dir / "out", options);
+  ASSERT_TRUE(r.summary.score) << r.summary.BriefReport();
+  const PlanScore& s = *r.summary.score;
+  EXPECT_EQ(r.summary.capture_kind, "panorama");
+  EXPECT_EQ(s.walls.matched, 4) << s.Table();
+  EXPECT_LE(s.wall_length.Max().value_or(1), 0.02) << s.Table();
+  EXPECT_EQ(s.doors.matched, 1) << s.Table();
+  EXPECT_LE(s.opening_width.Max().value_or(1), 0.05) << s.Table();
+  ASSERT_TRUE(r.summary.room_overlap);
+  EXPECT_GE(r.summary.room_overlap->Iou(), 0.98) << r.summary.room_overlap->ToString();
+  EXPECT_NEAR(r.summary.ceiling_height_m, kCeiling, 0.03);
+  EXPECT_NE(r.summary.wall_cue.find("floor/ceiling contacts"), std::string::npos) << r.summary.wall_cue;
+  ASSERT_EQ(r.summary.wall_cues.size(), 4u);
+  for (const std::string& c : r.summary.wall_cues) {
+    EXPECT_NE(c.find("floor contacts"), std::string::npos) << c;
+    EXPECT_NE(c.find("ceiling contacts"), std::string::npos) << c;
+  }
+  EXPECT_EQ(r.summary.walls_unseen, 0);
+  const nlohmann::json summary = nlohmann::json::parse(ReadFile(dir / "out/summary.json"));
+  EXPECT_EQ(summary["capture_kind"], "panorama");
+  EXPECT_GE(summary["room_iou"].get<double>(), 0.98);
+}
+
+TEST(RunSurvey, PanoramaCaptureSaysWhenPartOfTheRoomWasNotSeen) {
+  // The same room, but views 3–8 (the half behind the camera) see nothing
+  // labelled: the walls there are unseen or inferred, and a note says so.
+  const fs::path dir = Fresh("half");
+  SurveyOptions options = SmallViews();
+  const fs::path capture = WritePanoramaCapture(dir, options);
+  for (int i = 3; i <= 8; ++i) {
+    cv::imwrite((dir / "labels" / fmt::format("{:03d}.png", i)).string(), cv::Mat::zeros(256, 128, CV_8U));
+  }
+  options.labels_dir = dir / "labels";
+  const SurveyResult r = RunSurvey(capture, dir / "out", options);
+  EXPECT_GE(r.summary.walls_unseen, 1) << r.summary.BriefReport();
+  bool noted = false;
+  for (const std::string& n : r.summary.notes) noted |= n.find("larger than what this capture sees") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
+TEST(RunSurvey, MonoCaptureWithATiltedViewIsRefusedAndWritesNothing) {
+  const fs::path dir = Fresh("tilted");
+  cv::imwrite((dir / "v.png").string(), cv::Mat(48, 64, CV_8UC3, cv::Scalar(128, 128, 128)));
+  WriteFileAtomic(dir / "capture.json", R"({"version": 1, "kind": "mono",
+      "camera": {"width": 64, "height": 48, "fx": 40, "fy": 40, "cx": 31.5, "cy": 23.5},
+      "frames": [{"index": 0, "image": "v.png", "yaw_deg": 0, "pitch_deg": 10, "position_m": [0, 0, 1.4]}]})");
+  try {
+    RunSurvey(dir / "capture.json", dir / "out", {.labels_dir = dir, .write_report = false});
+    FAIL() << "a tilted mono view was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("frames[0].pitch_deg"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+}  // namespace
+}  // namespace asbuilt
