@@ -42,7 +42,7 @@ ABL_ITEMS=${ABL_ITEMS:-1500}
 ABL_STEPS=${ABL_STEPS:-1500}
 ZIND=${ZIND:-$HERE/../shared/data/zind_sample_tour}
 SMOKE=${SMOKE:-0}
-LEVERS=(photo_textures outside_photos next_rooms door_leaves sunlight kitchens wall_details window_dressing
+LEVERS=(photo_textures outside_photos next_rooms door_leaves home_palette sunlight kitchens wall_details window_dressing
   phone_camera)
 mkdir -p "$WORK"
 has() { [[ ",$STAGES," == *",$1,"* ]]; }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "asbuilt/cli/command.h"
 #include "asbuilt/render/dataset_synth.h"
@@ -43,9 +44,9 @@ CLI::App* AddDatasetSynthSubcommand(CLI::App& dataset_app) {
   synth->add_option("--items-per-scene", flags->options.items_per_scene, "consecutive items per room")
       ->capture_default_str();
   synth->add_option("--levers", flags->levers,
-                    "realism levers: all, none or a comma list of photo_textures, outside_photos, next_rooms,\n"
-                    "door_leaves, sunlight, kitchens, wall_details, window_dressing, phone_camera\n"
-                    "(\"all,-sunlight\" turns one off); docs/render.md \"Realism levers\"")
+                    fmt::format("realism levers: all, none or a comma list of {}\n(\"all,-sunlight\" turns "
+                                "one off); docs/render.md \"Realism levers\"",
+                                fmt::join(SynthLeverNames(), ", ")))
       ->default_str("none");
   synth->add_option("--photo-dir", flags->photo_dirs,
                     "folder of photos for photo_textures/outside_photos (repeatable; replaces the Debian\n"

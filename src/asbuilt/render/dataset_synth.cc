@@ -70,7 +70,8 @@ const T& PickOne(SceneRng& rng, const std::vector<T>& items) {
 std::vector<std::pair<std::string, bool SynthLevers::*>> LeverFields() {
   return {{"photo_textures", &SynthLevers::photo_textures}, {"outside_photos", &SynthLevers::outside_photos},
           {"next_rooms", &SynthLevers::next_rooms},         {"door_leaves", &SynthLevers::door_leaves},
-          {"sunlight", &SynthLevers::sunlight},             {"kitchens", &SynthLevers::kitchens},
+          {"home_palette", &SynthLevers::home_palette},     {"sunlight", &SynthLevers::sunlight},
+          {"kitchens", &SynthLevers::kitchens},
           {"wall_details", &SynthLevers::wall_details},     {"window_dressing", &SynthLevers::window_dressing},
           {"phone_camera", &SynthLevers::phone_camera}};
 }
@@ -137,6 +138,7 @@ RandomSceneOptions LeveredSceneOptions(const DatasetSynthOptions& options) {
   const SynthLevers& l = options.levers;
   auto at_least = [](double& field, double value) { field = std::max(field, value); };
   if (l.door_leaves) at_least(o.styled_door_probability, 0.8);
+  if (l.home_palette) at_least(o.neutral_wall_probability, 0.65);
   if (l.next_rooms) at_least(o.open_door_probability, 0.45);
   if (l.sunlight) at_least(o.window_sun_probability, 0.5);
   if (l.kitchens) at_least(o.kitchen_probability, 0.35);
@@ -151,6 +153,13 @@ SceneLook MakeSceneLook(const SynthLevers& levers, const PhotoLibrary& photos, S
   if (levers.photo_textures && !photos.empty()) {
     const auto wood = photos.OfKind(PhotoKind::kWood), stone = photos.OfKind(PhotoKind::kStone),
                fabric = photos.OfKind(PhotoKind::kFabric), paper = photos.OfKind(PhotoKind::kPaper);
+    // Doors, cabinets and furniture take plain grain, not parquet or burl.
+    std::vector<std::shared_ptr<const Photo>> grain;
+    for (const auto& p : wood) {
+      const std::string name = std::filesystem::path(p->path).stem().string();
+      if (name.find("parque") == std::string::npos && name.find("burl") == std::string::npos) grain.push_back(p);
+    }
+    if (grain.empty()) grain = wood;
     // `choices` empty: the material keeps its procedural texture.
     auto assign = [&](const std::string& material, const std::vector<std::shared_ptr<const Photo>>& choices,
                       double chance, double min_size_m, double max_size_m, double colour, double detail,
@@ -172,19 +181,22 @@ SceneLook MakeSceneLook(const SynthLevers& levers, const PhotoLibrary& photos, S
       switch (floor->texture) {
         case TextureKind::kWood: assign("floor", wood, 0.9, 0.6, 2.0, rng.Uniform(0.6, 1.0), 1.0); break;
         case TextureKind::kTiles: assign("floor", stone, 0.8, 0.3, 1.0, rng.Uniform(0.5, 1.0), 1.0, true); break;
-        case TextureKind::kCarpet: assign("floor", fabric, 0.8, 0.2, 0.6, 0.2, rng.Uniform(0.3, 0.8)); break;
+        case TextureKind::kCarpet: assign("floor", fabric, 0.8, 0.2, 0.6, 0.2, rng.Uniform(0.3, 0.6)); break;
         default: assign("floor", stone, 0.6, 0.5, 1.5, 0.4, 0.8); break;
       }
     }
-    assign("door_wood", wood, 0.9, 0.5, 1.2, 1.0, 1.0);
+    assign("door_wood", grain, 0.9, 0.5, 1.2, rng.Uniform(0.6, 1.0), 1.0);
     assign("door_white", paper, 0.5, 0.5, 1.0, 0.0, 0.1);
     if (const Material* cabinet = FindMaterial(scene, "cabinet"); cabinet && cabinet->base_color.minCoeff() < 0.6) {
-      assign("cabinet", wood, 0.9, 0.5, 1.2, 1.0, 1.0, true);
+      assign("cabinet", grain, 0.9, 0.5, 1.2, rng.Uniform(0.6, 1.0), 1.0, true);
     }
     assign("worktop", stone, 0.8, 0.6, 1.5, rng.Uniform(0.5, 1.0), 1.0);
-    const bool wooden_furniture = rng.Chance(0.6);
-    assign("furniture", wooden_furniture ? wood : fabric, 0.7, 0.4, 1.2, rng.Uniform(0.5, 1.0), 1.0);
-    assign("curtain", fabric, 0.7, 0.3, 0.8, 0.3, 0.8);
+    if (rng.Chance(0.6)) {
+      assign("furniture", grain, 0.7, 0.4, 1.2, rng.Uniform(0.3, 0.8), 1.0);
+    } else {
+      assign("furniture", fabric, 0.7, 0.2, 0.6, 0.2, 0.5);  // Upholstery: the weave's relief, not its colours.
+    }
+    assign("curtain", fabric, 0.7, 0.3, 0.8, 0.2, 0.5);
   }
   if (levers.outside_photos) {
     auto outside = photos.OfKind(PhotoKind::kEnvironment);

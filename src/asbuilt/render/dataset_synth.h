@@ -45,6 +45,7 @@ struct SynthLevers {
   bool next_rooms = false;       // Doors open onto a lit room (2.5–5 m deep) instead of a dark 1.2 m
                                  // closet, and 45 % of closed doors swing open. Door label over the opening.
   bool door_leaves = false;      // 80 % of doors white-painted or wooden (leaf, lining, casing).
+  bool home_palette = false;     // 65 % of rooms: white or off-white walls and ceiling, as most homes.
   bool sunlight = false;         // Half the rooms: a low strong sun in through a window (sunlit patches).
   bool kitchens = false;         // 35 % of rooms: kitchen units, worktops, wall units, white appliances (label 0).
   bool wall_details = false;     // 70 % of rooms: radiators, sockets, switches (label 0).

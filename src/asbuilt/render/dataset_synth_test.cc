@@ -102,10 +102,11 @@ TEST(SynthesizeDataset, ShardUnionEqualsTheWholeRunAndResumes) {
 TEST(ParseSynthLevers, ReadsAllNoneAndListsAndNamesAnUnknownLever) {
   EXPECT_EQ(ParseSynthLevers("none").ToString(), "none");
   EXPECT_EQ(ParseSynthLevers("all").ToString(),
-            "photo_textures,outside_photos,next_rooms,door_leaves,sunlight,kitchens,wall_details,"
+            "photo_textures,outside_photos,next_rooms,door_leaves,home_palette,sunlight,kitchens,wall_details,"
             "window_dressing,phone_camera");
   EXPECT_EQ(ParseSynthLevers("all,-sunlight,-phone_camera").ToString(),
-            "photo_textures,outside_photos,next_rooms,door_leaves,kitchens,wall_details,window_dressing");
+            "photo_textures,outside_photos,next_rooms,door_leaves,home_palette,kitchens,wall_details,"
+            "window_dressing");
   EXPECT_EQ(ParseSynthLevers("kitchens,door_leaves").ToString(), "door_leaves,kitchens");
   try {
     ParseSynthLevers("kitchens,skylights");

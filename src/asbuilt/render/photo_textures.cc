@@ -166,8 +166,7 @@ std::optional<PhotoKind> ClassifyPhoto(const fs::path& path) {
   if (ext == ".pat") {
     const std::string folder = Lower(path.parent_path().filename().string());
     if (folder == "wood") {
-      if (Contains(name, {"bark"})) return std::nullopt;
-      if (Contains(name, {"cork"})) return PhotoKind::kPaper;
+      if (Contains(name, {"bark", "cork"})) return std::nullopt;  // Not a room surface; cork is blotchy.
       return PhotoKind::kWood;
     }
     if (folder == "stone") {

@@ -78,6 +78,7 @@ TEST(ReadGimpPattern, RejectsAWrongMagicNamingTheField) {
 TEST(ClassifyPhoto, SortsDebianCollectionsByUse) {
   EXPECT_EQ(ClassifyPhoto("/usr/share/gimp/2.0/patterns/Wood/parque1.pat"), PhotoKind::kWood);
   EXPECT_EQ(ClassifyPhoto("/usr/share/gimp/2.0/patterns/Wood/bark.pat"), std::nullopt);
+  EXPECT_EQ(ClassifyPhoto("/usr/share/gimp/2.0/patterns/Wood/corkboard.pat"), std::nullopt);
   EXPECT_EQ(ClassifyPhoto("/usr/share/gimp/2.0/patterns/Stone/marble1.pat"), PhotoKind::kStone);
   EXPECT_EQ(ClassifyPhoto("/usr/share/gimp/2.0/patterns/Stone/Craters.pat"), std::nullopt);
   EXPECT_EQ(ClassifyPhoto("/usr/share/gimp/2.0/patterns/Paper/paper.pat"), PhotoKind::kPaper);

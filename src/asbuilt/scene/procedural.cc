@@ -212,6 +212,21 @@ void StyleDoors(SceneRng& rng, const RandomSceneOptions& o, Scene& scene) {
   if (used_wood) AddMaterialOnce(scene, wood);
 }
 
+void PaintWallsNeutral(SceneRng& rng, Scene& scene) {
+  // Warm white, cool white, off-white, greige: the walls of most homes.
+  const std::vector<Vec3> whites = {Vec3(0.9, 0.89, 0.86), Vec3(0.86, 0.87, 0.88), Vec3(0.88, 0.85, 0.79),
+                                    Vec3(0.8, 0.78, 0.74)};
+  for (Material& m : scene.materials) {
+    if (m.name == "wall") {
+      m.base_color = Jitter(rng, Pick(rng, whites), 0.02);
+      m.secondary_color = 0.95 * m.base_color;
+      if (m.texture == TextureKind::kWallpaper || m.texture == TextureKind::kConcrete) m.texture = TextureKind::kPaint;
+    } else if (m.name == "ceiling") {
+      m.base_color = Jitter(rng, Vec3(0.92, 0.92, 0.9), 0.015);
+    }
+  }
+}
+
 void AddWindowSun(SceneRng& rng, Scene& scene) {
   const Room& room = scene.rooms[0];
   std::vector<const Opening*> windows;
@@ -399,6 +414,7 @@ void RandomSceneOptions::Check() const {
                             min_furniture, max_furniture));
   for (auto [name, p] : {std::pair{"styled_door_probability", styled_door_probability},
                          {"open_door_probability", open_door_probability},
+                         {"neutral_wall_probability", neutral_wall_probability},
                          {"window_sun_probability", window_sun_probability},
                          {"kitchen_probability", kitchen_probability},
                          {"wall_details_probability", wall_details_probability},
@@ -499,6 +515,9 @@ Scene RandomScene(const RandomSceneOptions& options, std::uint64_t seed) {
   if (options.styled_door_probability > 0 || options.open_door_probability > 0) {
     SceneRng r = stream(1);
     StyleDoors(r, options, scene);
+  }
+  if (SceneRng r = stream(6); options.neutral_wall_probability > 0 && r.Chance(options.neutral_wall_probability)) {
+    PaintWallsNeutral(r, scene);
   }
   if (SceneRng r = stream(2); options.window_sun_probability > 0 && r.Chance(options.window_sun_probability)) {
     AddWindowSun(r, scene);

@@ -123,6 +123,7 @@ RandomSceneOptions AllLevers() {
   RandomSceneOptions o;
   o.styled_door_probability = 1.0;
   o.open_door_probability = 0.5;
+  o.neutral_wall_probability = 1.0;
   o.window_sun_probability = 1.0;
   o.kitchen_probability = 1.0;
   o.wall_details_probability = 1.0;
