@@ -7,6 +7,10 @@
 #   scripts/install-deps.sh          build + test dependencies
 #   scripts/install-deps.sh --bench  also what `make bench` compares against
 #                                    (Python PyTorch, hyperfine)
+#   scripts/install-deps.sh --photos also gimp-data, whose patterns (1.4 MB of
+#                                    the package's 14 MB download, 87 MB installed)
+#                                    `dataset synth --levers photo_textures` reads;
+#                                    blender (above) brings the HDR skies
 set -euo pipefail
 
 packages=(
@@ -23,9 +27,12 @@ packages=(
   blender
   chromium
 )
-if [[ "${1:-}" == "--bench" ]]; then
-  packages+=(python3-torch hyperfine)
-fi
+for flag in "$@"; do
+  case "$flag" in
+    --bench) packages+=(python3-torch hyperfine) ;;
+    --photos) packages+=(gimp-data) ;;
+  esac
+done
 # Node.js (for the MCP SDK client test). Some images ship nodesource's nodejs,
 # which bundles npm and conflicts with Debian's npm package: only ask for
 # Debian's when no npm is on the PATH.

@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "asbuilt/cli/command.h"
 #include "asbuilt/render/dataset_synth.h"
@@ -20,7 +22,8 @@ CLI::App* AddDatasetSynthSubcommand(CLI::App& dataset_app) {
       "random rooms rendered as labelled training items: images/ labels/ idmaps/ depth/ meta/ (NNNNNN);\n"
       "deterministic per item, so shards never overlap; re-running skips finished items");
   struct Flags {
-    std::string out, shard, size;
+    std::string out, shard, size, levers;
+    std::vector<std::string> photo_dirs;
     DatasetSynthOptions options;
     bool no_resume = false, no_indirect = false;
   };
@@ -40,6 +43,14 @@ CLI::App* AddDatasetSynthSubcommand(CLI::App& dataset_app) {
       ->capture_default_str();
   synth->add_option("--items-per-scene", flags->options.items_per_scene, "consecutive items per room")
       ->capture_default_str();
+  synth->add_option("--levers", flags->levers,
+                    fmt::format("realism levers: all, none or a comma list of {}\n(\"all,-sunlight\" turns "
+                                "one off); docs/render.md \"Realism levers\"",
+                                fmt::join(SynthLeverNames(), ", ")))
+      ->default_str("none");
+  synth->add_option("--photo-dir", flags->photo_dirs,
+                    "folder of photos for photo_textures/outside_photos (repeatable; replaces the Debian\n"
+                    "defaults: /usr/share/gimp/2.0/patterns, /usr/share/blender/datafiles/studiolights/world)");
   synth->add_flag("--no-indirect", flags->no_indirect, "direct light only (faster)");
   synth->add_flag("--no-resume", flags->no_resume, "re-render items that already exist");
   synth->callback([synth, flags] {
@@ -52,6 +63,8 @@ CLI::App* AddDatasetSynthSubcommand(CLI::App& dataset_app) {
                                  o.width_px <= 0 || o.height_px <= 0)) {
       throw CLI::ValidationError("--size", fmt::format("'{}' is not WxH (e.g. 320x240)", flags->size));
     }
+    if (!flags->levers.empty()) o.levers = ParseSynthLevers(flags->levers);
+    if (!flags->photo_dirs.empty()) o.photo_dirs.assign(flags->photo_dirs.begin(), flags->photo_dirs.end());
     o.resume = !flags->no_resume;
     o.render.indirect_light = !flags->no_indirect;
     o.Check();

@@ -40,10 +40,14 @@ std::string ViewEffects::ToString() const {
       "ViewEffects(exposure={:.3f} white_balance=[{:.3f}, {:.3f}, {:.3f}] vignetting={:.3f} "
       "blur_sigma_px={:.3f} noise_sigma={:.4f} jpeg_quality={})",
       exposure, white_balance.x(), white_balance.y(), white_balance.z(), vignetting, blur_sigma_px,
-      noise_sigma, jpeg_quality);
+      noise_sigma, jpeg_quality) +
+         (chromatic_aberration_px == 0 && sharpen == 0 && saturation == 1
+              ? std::string()
+              : fmt::format(" phone(chromatic_aberration_px={:.3f} sharpen={:.3f} saturation={:.3f})",
+                            chromatic_aberration_px, sharpen, saturation));
 }
 
-ViewEffects RandomViewEffects(double strength, std::uint64_t seed) {
+ViewEffects RandomViewEffects(double strength, std::uint64_t seed, bool phone) {
   ViewEffects e;
   if (strength <= 0) return e;
   std::mt19937_64 rng(SplitMix64(seed ^ 0xEFFEC75ULL));
@@ -57,6 +61,16 @@ ViewEffects RandomViewEffects(double strength, std::uint64_t seed) {
   e.noise_sigma = strength * 0.02 * (0.5 + 0.5 * u(rng));
   double q = 0.5 + 0.5 * u(rng);
   e.jpeg_quality = q < 1.0 - strength * 0.8 ? 0 : 60 + static_cast<int>(35 * (0.5 + 0.5 * u(rng)));
+  if (!phone) return e;
+  // A phone's processing: drawn after the others, which stay as they were.
+  auto u01 = [&] { return 0.5 + 0.5 * u(rng); };
+  e.exposure *= std::exp(strength * 0.35 * u(rng));
+  e.noise_sigma *= 1.0 + 1.5 * u01();
+  if (u01() < 0.85 * strength) e.jpeg_quality = 35 + static_cast<int>(60 * u01());
+  e.chromatic_aberration_px = strength * 1.2 * u01();
+  e.sharpen = strength * 0.8 * u01();
+  const bool more_colour = u(rng) > 0;
+  e.saturation = 1.0 + strength * (more_colour ? 0.3 : -0.25) * u01();
   return e;
 }
 
@@ -95,8 +109,35 @@ cv::Mat DevelopImage(const cv::Mat& linear_rgb, const ViewEffects& effects, std:
       }
     }
   }
+  if (effects.saturation != 1.0) {
+    const float k = static_cast<float>(effects.saturation);
+    for (int y = 0; y < h; ++y) {
+      auto* row = srgb.ptr<cv::Vec3f>(y);
+      for (int x = 0; x < w; ++x) {
+        float grey = 0.0722f * row[x][0] + 0.7152f * row[x][1] + 0.2126f * row[x][2];  // BGR.
+        for (int c = 0; c < 3; ++c) row[x][c] = grey + k * (row[x][c] - grey);
+      }
+    }
+  }
+  if (effects.chromatic_aberration_px > 0.01) {
+    // Lateral chromatic aberration: red magnified, blue shrunk about the
+    // centre so that they move ±chromatic_aberration_px at the corner.
+    const double k = effects.chromatic_aberration_px / std::max(1.0, std::sqrt(static_cast<double>(r2max)));
+    std::vector<cv::Mat> channels;
+    cv::split(srgb, channels);
+    for (auto [c, scale] : {std::pair{2, 1.0 + k}, std::pair{0, 1.0 - k}}) {
+      cv::Mat m = (cv::Mat_<double>(2, 3) << scale, 0, cx * (1 - scale), 0, scale, cy * (1 - scale));
+      cv::warpAffine(channels[c], channels[c], m, channels[c].size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+    }
+    cv::merge(channels, srgb);
+  }
   if (effects.blur_sigma_px > 0.05) {
     cv::GaussianBlur(srgb, srgb, cv::Size(0, 0), effects.blur_sigma_px);
+  }
+  if (effects.sharpen > 0.01) {
+    cv::Mat soft;
+    cv::GaussianBlur(srgb, soft, cv::Size(0, 0), 1.0);
+    cv::addWeighted(srgb, 1.0 + effects.sharpen, soft, -effects.sharpen, 0.0, srgb);
   }
   cv::Mat out(h, w, CV_8UC3);
   const float sigma = static_cast<float>(effects.noise_sigma);

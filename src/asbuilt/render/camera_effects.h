@@ -21,13 +21,23 @@ struct ViewEffects {
   double blur_sigma_px = 0.0;              // Gaussian blur (defocus, lens softness).
   double noise_sigma = 0.0;                // Sensor noise at mid-grey, in [0, 1] units.
   int jpeg_quality = 0;                    // 0: none; else JPEG round trip at this quality.
+  // A phone's processing (RandomViewEffects with phone = true):
+  double chromatic_aberration_px = 0.0;    // Lateral: red and blue scaled about the centre, shifted
+                                           // this far at the image corner (sub-pixel colour fringes,
+                                           // geometry of green, hence labels, unchanged).
+  double sharpen = 0.0;                    // Unsharp-mask amount (σ 1 px).
+  double saturation = 1.0;                 // Colour saturation multiplier.
 
   std::string ToString() const;
 };
 
 // Effects drawn from `seed`; `strength` ∈ [0, 1] scales how far they stray
-// from a clean image (0 gives ViewEffects{}).
-ViewEffects RandomViewEffects(double strength, std::uint64_t seed);
+// from a clean image (0 gives ViewEffects{}). `phone` adds a phone's
+// processing after the same draws (so phone = false is exactly as before):
+// exposure ±0.8 stops instead of ±0.45, noise up to 2.5× stronger, JPEG
+// quality 35–95 on 85 % of views, chromatic aberration up to 1.2 px,
+// sharpening up to 0.8, saturation 0.75–1.3.
+ViewEffects RandomViewEffects(double strength, std::uint64_t seed, bool phone = false);
 
 // Linear-RGB float image (CV_32FC3, channels R, G, B; already exposed) →
 // 8-bit BGR with the effects applied. `noise_seed` makes the noise

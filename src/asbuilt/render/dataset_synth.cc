@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
 
 #include "asbuilt/imageio/image_io.h"
 #include "asbuilt/scene/furnish.h"
@@ -60,7 +61,174 @@ Vec2 Centroid(const std::vector<Vec2>& poly) {
 
 nlohmann::json Vec3Json(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
+template <typename T>
+const T& PickOne(SceneRng& rng, const std::vector<T>& items) {
+  return items[rng.UniformInt(0, static_cast<int>(items.size()) - 1)];
+}
+
+// The levers as (name, member) pairs, in declaration order.
+std::vector<std::pair<std::string, bool SynthLevers::*>> LeverFields() {
+  return {{"photo_textures", &SynthLevers::photo_textures}, {"outside_photos", &SynthLevers::outside_photos},
+          {"next_rooms", &SynthLevers::next_rooms},         {"door_leaves", &SynthLevers::door_leaves},
+          {"home_palette", &SynthLevers::home_palette},     {"sunlight", &SynthLevers::sunlight},
+          {"kitchens", &SynthLevers::kitchens},
+          {"wall_details", &SynthLevers::wall_details},     {"window_dressing", &SynthLevers::window_dressing},
+          {"phone_camera", &SynthLevers::phone_camera}};
+}
+
 }  // namespace
+
+bool SynthLevers::Any() const {
+  for (const auto& [name, field] : LeverFields()) {
+    if (this->*field) return true;
+  }
+  return false;
+}
+
+std::string SynthLevers::ToString() const {
+  std::string s;
+  for (const auto& [name, field] : LeverFields()) {
+    if (this->*field) s += (s.empty() ? "" : ",") + name;
+  }
+  return s.empty() ? "none" : s;
+}
+
+const std::vector<std::string>& SynthLeverNames() {
+  static const std::vector<std::string> kNames = [] {
+    std::vector<std::string> names;
+    for (const auto& [name, field] : LeverFields()) names.push_back(name);
+    return names;
+  }();
+  return kNames;
+}
+
+SynthLevers ParseSynthLevers(std::string_view list) {
+  SynthLevers levers;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    std::size_t end = list.find(',', start);
+    if (end == std::string_view::npos) end = list.size();
+    std::string_view word = list.substr(start, end - start);
+    start = end + 1;
+    if (word.empty()) continue;
+    const bool on = word.front() != '-';
+    if (!on) word.remove_prefix(1);
+    bool known = false;
+    for (const auto& [name, field] : LeverFields()) {
+      if (word == "all" || word == name) {
+        levers.*field = on;
+        known = true;
+      }
+    }
+    if (word == "none") {
+      levers = SynthLevers{};
+      known = true;
+    }
+    if (!known) {
+      std::string names = "all, none";
+      for (const std::string& n : SynthLeverNames()) names += ", " + n;
+      throw InvalidArgument(fmt::format("lever \"{}\": expected one of {}", word, names));
+    }
+  }
+  return levers;
+}
+
+RandomSceneOptions LeveredSceneOptions(const DatasetSynthOptions& options) {
+  RandomSceneOptions o = options.scene;
+  const SynthLevers& l = options.levers;
+  auto at_least = [](double& field, double value) { field = std::max(field, value); };
+  if (l.door_leaves) at_least(o.styled_door_probability, 0.8);
+  if (l.home_palette) at_least(o.neutral_wall_probability, 0.65);
+  if (l.next_rooms) at_least(o.open_door_probability, 0.45);
+  if (l.sunlight) at_least(o.window_sun_probability, 0.5);
+  if (l.kitchens) at_least(o.kitchen_probability, 0.35);
+  if (l.wall_details) at_least(o.wall_details_probability, 0.7);
+  if (l.window_dressing) at_least(o.window_dressing_probability, 0.5);
+  return o;
+}
+
+SceneLook MakeSceneLook(const SynthLevers& levers, const PhotoLibrary& photos, Scene& scene, std::uint64_t seed) {
+  SceneLook look;
+  SceneRng rng(SplitMix64(seed ^ 0x1005C0DEULL));
+  if (levers.photo_textures && !photos.empty()) {
+    const auto wood = photos.OfKind(PhotoKind::kWood), stone = photos.OfKind(PhotoKind::kStone),
+               fabric = photos.OfKind(PhotoKind::kFabric), paper = photos.OfKind(PhotoKind::kPaper);
+    // Doors, cabinets and furniture take plain grain, not parquet or burl.
+    std::vector<std::shared_ptr<const Photo>> grain;
+    for (const auto& p : wood) {
+      const std::string name = std::filesystem::path(p->path).stem().string();
+      if (name.find("parque") == std::string::npos && name.find("burl") == std::string::npos) grain.push_back(p);
+    }
+    if (grain.empty()) grain = wood;
+    // `choices` empty: the material keeps its procedural texture.
+    auto assign = [&](const std::string& material, const std::vector<std::shared_ptr<const Photo>>& choices,
+                      double chance, double min_size_m, double max_size_m, double colour, double detail,
+                      bool keep_procedural = false) {
+      if (choices.empty() || FindMaterial(scene, material) == nullptr || !rng.Chance(chance)) return;
+      // One draw per statement: argument evaluation order is unspecified.
+      PhotoAlbedo pa{.photo = PickOne(rng, choices), .colour = colour, .detail = detail,
+                     .keep_procedural = keep_procedural};
+      pa.size_m = rng.Uniform(min_size_m, max_size_m);
+      pa.swap_uv = rng.Chance(0.5);
+      pa.offset_m.x() = rng.Uniform(0, 5);
+      pa.offset_m.y() = rng.Uniform(0, 5);
+      look.albedo[material] = pa;
+    };
+    // Painted walls and ceilings: only the paper's relief, faint.
+    assign("wall", paper, 0.7, 0.4, 1.5, 0.0, rng.Uniform(0.1, 0.45));
+    assign("ceiling", paper, 0.5, 0.4, 1.5, 0.0, rng.Uniform(0.05, 0.25));
+    if (const Material* floor = FindMaterial(scene, "floor")) {
+      switch (floor->texture) {
+        case TextureKind::kWood: assign("floor", wood, 0.9, 0.6, 2.0, rng.Uniform(0.6, 1.0), 1.0); break;
+        case TextureKind::kTiles: assign("floor", stone, 0.8, 0.3, 1.0, rng.Uniform(0.5, 1.0), 1.0, true); break;
+        case TextureKind::kCarpet: assign("floor", fabric, 0.8, 0.2, 0.6, 0.2, rng.Uniform(0.3, 0.6)); break;
+        default: assign("floor", stone, 0.6, 0.5, 1.5, 0.4, 0.8); break;
+      }
+    }
+    assign("door_wood", grain, 0.9, 0.5, 1.2, rng.Uniform(0.6, 1.0), 1.0);
+    assign("door_white", paper, 0.5, 0.5, 1.0, 0.0, 0.1);
+    if (const Material* cabinet = FindMaterial(scene, "cabinet"); cabinet && cabinet->base_color.minCoeff() < 0.6) {
+      assign("cabinet", grain, 0.9, 0.5, 1.2, rng.Uniform(0.6, 1.0), 1.0, true);
+    }
+    assign("worktop", stone, 0.8, 0.6, 1.5, rng.Uniform(0.5, 1.0), 1.0);
+    if (rng.Chance(0.6)) {
+      assign("furniture", grain, 0.7, 0.4, 1.2, rng.Uniform(0.3, 0.8), 1.0);
+    } else {
+      assign("furniture", fabric, 0.7, 0.2, 0.6, 0.2, 0.5);  // Upholstery: the weave's relief, not its colours.
+    }
+    assign("curtain", fabric, 0.7, 0.3, 0.8, 0.2, 0.5);
+  }
+  if (levers.outside_photos) {
+    auto outside = photos.OfKind(PhotoKind::kEnvironment);
+    auto views = photos.OfKind(PhotoKind::kView);
+    outside.insert(outside.end(), views.begin(), views.end());
+    if (!outside.empty()) {
+      look.outside = PickOne(rng, outside);
+      look.outside_yaw_deg = rng.Uniform(0, 360);
+      look.outside_gain = std::exp(rng.Uniform(std::log(0.7), std::log(5.0)));
+    }
+  }
+  if (levers.next_rooms) {
+    const std::vector<Vec3> walls = {Vec3(0.9, 0.9, 0.88), Vec3(0.86, 0.82, 0.72), Vec3(0.8, 0.8, 0.78),
+                                     Vec3(0.75, 0.8, 0.85), Vec3(0.92, 0.85, 0.7)};
+    Material next_wall{.name = "next_wall", .base_color = PickOne(rng, walls), .roughness = 0.9,
+                       .texture = TextureKind::kPlaster, .texture_scale_m = 0.4};
+    next_wall.secondary_color = 0.9 * next_wall.base_color;
+    const Material* floor = FindMaterial(scene, "floor");
+    Material next_floor = floor ? *floor : Material{};
+    next_floor.name = "next_floor";
+    if (rng.Chance(0.5)) next_floor.base_color = (0.8 * next_floor.base_color).cwiseMin(Vec3::Ones());
+    scene.materials.push_back(next_wall);
+    scene.materials.push_back(next_floor);
+    look.mesh.next_room_depth_m = rng.Uniform(2.5, 5.0);
+    look.mesh.next_room_side_m = rng.Uniform(0.8, 2.5);
+    look.mesh.next_room_light = rng.Uniform(0.4, 1.5);
+    look.mesh.next_room_wall_material = "next_wall";
+    look.mesh.next_room_floor_material = "next_floor";
+    if (auto it = look.albedo.find("floor"); it != look.albedo.end()) look.albedo["next_floor"] = it->second;
+  }
+  return look;
+}
 
 void DatasetSynthOptions::Check() const {
   CheckArgument(count >= 1, fmt::format("DatasetSynthOptions.count = {}, must be >= 1", count));
@@ -180,6 +348,20 @@ DatasetSynthSummary SynthesizeDataset(const fs::path& dir, const DatasetSynthOpt
   std::uint64_t current_seed = 0;
   std::unique_ptr<Scene> scene;
   std::unique_ptr<SceneRenderer> renderer;
+  SceneLook look;
+  const RandomSceneOptions scene_options_levered = LeveredSceneOptions(options);
+  RenderOptions render_options = options.render;
+  render_options.phone_camera = render_options.phone_camera || options.levers.phone_camera;
+  PhotoLibrary photos;
+  if (options.levers.photo_textures || options.levers.outside_photos) {
+    photos = LoadPhotoLibrary({.dirs = options.photo_dirs});
+    if (photos.empty()) {
+      spdlog::warn("dataset synth: no photos found in the photo folders (--photo-dir; Debian: gimp-data, "
+                   "blender); procedural textures and the sky gradient only");
+    } else {
+      spdlog::info("dataset synth: {}", photos.ToString());
+    }
+  }
   for (int i = begin; i < end; ++i) {
     const std::string stem = fmt::format("{:06d}", i);
     const fs::path meta_path = dir / "meta" / (stem + ".json");
@@ -193,16 +375,17 @@ DatasetSynthSummary SynthesizeDataset(const fs::path& dir, const DatasetSynthOpt
       std::uint64_t scene_seed = SynthSceneSeed(options, i);
       if (!renderer || scene_seed != current_seed) {
         renderer.reset();  // Free the old BVH first: memory stays flat.
-        RandomSceneOptions scene_options = options.scene;
+        RandomSceneOptions scene_options = scene_options_levered;
         scene_options.rig.width_px = options.width_px;
         scene_options.rig.height_px = options.height_px;
         scene = std::make_unique<Scene>(RandomScene(scene_options, scene_seed));
-        renderer = std::make_unique<SceneRenderer>(*scene);
+        look = MakeSceneLook(options.levers, photos, *scene, scene_seed);
+        renderer = std::make_unique<SceneRenderer>(*scene, look);
         current_seed = scene_seed;
         ++summary.scenes;
       }
       SynthItem item = PlanSynthItem(options, *scene, i);
-      RenderedView view = renderer->Render(item.camera, options.render, static_cast<std::uint64_t>(i), false);
+      RenderedView view = renderer->Render(item.camera, render_options, static_cast<std::uint64_t>(i), false);
       std::array<std::int64_t, 4> counts{};
       for (int y = 0; y < view.labels.rows; ++y) {
         const auto* row = view.labels.ptr<std::uint8_t>(y);
@@ -229,6 +412,10 @@ DatasetSynthSummary SynthesizeDataset(const fs::path& dir, const DatasetSynthOpt
           {"effects", view.effects.ToString()},
           {"class_fraction", {counts[0] / total, counts[1] / total, counts[2] / total, counts[3] / total}},
       };
+      if (options.levers.Any()) {
+        meta["levers"] = options.levers.ToString();
+        meta["look"] = look.ToString();
+      }
       WriteFileAtomic(meta_path, meta.dump(1) + "\n");  // Last: marks the item complete.
       ++summary.rendered;
     }

@@ -22,13 +22,47 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <utility>
+#include <vector>
 
+#include "asbuilt/render/photo_textures.h"
 #include "asbuilt/render/renderer.h"
 #include "asbuilt/scene/procedural.h"
 #include "asbuilt/util/progress.h"
 
 namespace asbuilt {
+
+// Realism levers (issue 21: real photos; docs/render.md "Realism levers").
+// All off by default, so a seed gives the items it always gave (the shipped
+// model's data, MODEL_CARD.md, stays reproducible). Each lever changes what
+// the scene holds or how it looks, never a label convention.
+struct SynthLevers {
+  bool photo_textures = false;   // Photos (photo_textures.h) as albedo of walls, ceilings, floors, doors,
+                                 // cabinets, worktops, furniture, curtains.
+  bool outside_photos = false;   // An outdoor HDR panorama seen through windows instead of the sky
+                                 // gradient and boxes; often brighter than the room (blown out).
+  bool next_rooms = false;       // Doors open onto a lit room (2.5–5 m deep) instead of a dark 1.2 m
+                                 // closet, and 45 % of closed doors swing open. Door label over the opening.
+  bool door_leaves = false;      // 80 % of doors white-painted or wooden (leaf, lining, casing).
+  bool home_palette = false;     // 65 % of rooms: white or off-white walls and ceiling, as most homes.
+  bool sunlight = false;         // Half the rooms: a low strong sun in through a window (sunlit patches).
+  bool kitchens = false;         // 35 % of rooms: kitchen units, worktops, wall units, white appliances (label 0).
+  bool wall_details = false;     // 70 % of rooms: radiators, sockets, switches (label 0).
+  bool window_dressing = false;  // Half the windows: curtains (label 0) or a roller blind in the opening (window).
+  bool phone_camera = false;     // RenderOptions::phone_camera: wider exposure/noise/JPEG, chromatic
+                                 // aberration, sharpening, saturation.
+
+  bool Any() const;
+  // Comma-separated names of the levers that are on, or "none".
+  std::string ToString() const;
+};
+// The lever names, in SynthLevers' order ("photo_textures", …, "phone_camera").
+const std::vector<std::string>& SynthLeverNames();
+// "all", "none", or comma-separated names (each optionally prefixed by "-"
+// to turn it off after "all": "all,-sunlight"). Throws InvalidArgument
+// naming an unknown lever.
+SynthLevers ParseSynthLevers(std::string_view list);
 
 struct DatasetSynthOptions {
   int count = 100;                 // Items in the whole dataset (all shards).
@@ -44,6 +78,10 @@ struct DatasetSynthOptions {
   RenderOptions render = {.samples_per_pixel = 2, .camera_effects = 1.0};
   RandomSceneOptions scene;        // The random rooms.
   bool resume = true;              // Skip items already written.
+  SynthLevers levers;              // Realism levers (all off: the items as before).
+  std::vector<std::filesystem::path> photo_dirs = DefaultPhotoDirs();  // Where photo_textures and
+                                   // outside_photos look (absent folders skipped; none found:
+                                   // procedural textures and the sky gradient, with a warning).
 
   void Check() const;
 };
@@ -72,6 +110,13 @@ struct SynthItem {
   StereoCamera camera;
 };
 SynthItem PlanSynthItem(const DatasetSynthOptions& options, const Scene& scene, int index);
+// The scene options with the scene-side levers turned on (door_leaves,
+// next_rooms' open doors, sunlight, kitchens, wall_details, window_dressing).
+RandomSceneOptions LeveredSceneOptions(const DatasetSynthOptions& options);
+// The look of a scene under the render-side levers (photo_textures,
+// outside_photos, next_rooms), drawn from `seed`; may add materials to
+// `scene` (the next room's walls and floor). Empty when those levers are off.
+SceneLook MakeSceneLook(const SynthLevers& levers, const PhotoLibrary& photos, Scene& scene, std::uint64_t seed);
 std::uint64_t SynthSceneSeed(const DatasetSynthOptions& options, int index);
 
 DatasetSynthSummary SynthesizeDataset(const std::filesystem::path& dir, const DatasetSynthOptions& options,

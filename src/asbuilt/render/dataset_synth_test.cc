@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
+
+#include <opencv2/imgcodecs.hpp>
 
 #include <fmt/format.h>
 
@@ -93,6 +97,76 @@ TEST(SynthesizeDataset, ShardUnionEqualsTheWholeRunAndResumes) {
   EXPECT_EQ(again.rendered, 1);
   EXPECT_EQ(again.skipped, 5);
   EXPECT_NE(again.BriefReport().find("rendered 1 of 6 items"), std::string::npos);
+}
+
+TEST(ParseSynthLevers, ReadsAllNoneAndListsAndNamesAnUnknownLever) {
+  EXPECT_EQ(ParseSynthLevers("none").ToString(), "none");
+  EXPECT_EQ(ParseSynthLevers("all").ToString(),
+            "photo_textures,outside_photos,next_rooms,door_leaves,home_palette,sunlight,kitchens,wall_details,"
+            "window_dressing,phone_camera");
+  EXPECT_EQ(ParseSynthLevers("all,-sunlight,-phone_camera").ToString(),
+            "photo_textures,outside_photos,next_rooms,door_leaves,home_palette,kitchens,wall_details,"
+            "window_dressing");
+  EXPECT_EQ(ParseSynthLevers("kitchens,door_leaves").ToString(), "door_leaves,kitchens");
+  try {
+    ParseSynthLevers("kitchens,skylights");
+    FAIL() << "expected InvalidArgument";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("\"skylights\""), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(SynthLevers{}.Any());
+}
+
+TEST(SynthesizeDataset, LeversRenderValidItemsWithPhotosFromAFolder) {
+  const fs::path photos = fs::temp_directory_path() / fmt::format("asbuilt_synth_photos_{}", ::getpid());
+  const fs::path dir = fs::temp_directory_path() / fmt::format("asbuilt_synth_levers_{}", ::getpid());
+  fs::remove_all(photos);
+  fs::remove_all(dir);
+  fs::create_directories(photos / "backgrounds");
+  // Tiny generated textures (never real photos in tests): stripes for wood, noise for paper.
+  cv::Mat wood(32, 32, CV_8UC3), paper(32, 32, CV_8UC3);
+  for (int y = 0; y < 32; ++y) {
+    for (int x = 0; x < 32; ++x) {
+      wood.at<cv::Vec3b>(y, x) = cv::Vec3b(40, 80 + 4 * (y % 8), 140 + 6 * (y % 8));
+      paper.at<cv::Vec3b>(y, x) = cv::Vec3b::all(static_cast<std::uint8_t>(200 + (x * 7 + y * 13) % 40));
+    }
+  }
+  cv::imwrite((photos / "oak_wood.png").string(), wood);
+  cv::imwrite((photos / "paper.png").string(), paper);
+  cv::imwrite((photos / "backgrounds" / "garden.png").string(), cv::Mat(16, 32, CV_8UC3, cv::Scalar(60, 160, 90)));
+  DatasetSynthOptions o = TinyOptions();
+  o.levers = ParseSynthLevers("all");
+  o.photo_dirs = {photos};
+  DatasetSynthSummary summary = SynthesizeDataset(dir, o);
+  EXPECT_EQ(summary.rendered, 6);
+  for (int i = 0; i < 6; ++i) {
+    cv::Mat labels = cv::imread((dir / "labels" / fmt::format("{:06d}.png", i)).string(), cv::IMREAD_UNCHANGED);
+    ASSERT_FALSE(labels.empty());
+    double lo, hi;
+    cv::minMaxLoc(labels, &lo, &hi);
+    EXPECT_LE(hi, 3.0);
+    std::string meta = ReadFile(dir / "meta" / fmt::format("{:06d}.json", i));
+    EXPECT_NE(meta.find("\"levers\""), std::string::npos);
+    EXPECT_NE(meta.find("garden.png"), std::string::npos) << meta;  // The view outside.
+  }
+  fs::remove_all(photos);
+  fs::remove_all(dir);
+}
+
+TEST(SynthesizeDataset, LeversOffWriteTheItemsAsBefore) {
+  // Same options, levers off, photo folders irrelevant: identical bytes.
+  const fs::path a = fs::temp_directory_path() / fmt::format("asbuilt_synth_off_a_{}", ::getpid());
+  const fs::path b = fs::temp_directory_path() / fmt::format("asbuilt_synth_off_b_{}", ::getpid());
+  DatasetSynthOptions o = TinyOptions();
+  o.count = 2;
+  SynthesizeDataset(a, o);
+  o.photo_dirs = {};
+  SynthesizeDataset(b, o);
+  for (const char* file : {"images/000001.png", "labels/000001.png", "meta/000001.json"}) {
+    EXPECT_EQ(ReadFile(a / file), ReadFile(b / file)) << file;
+  }
+  fs::remove_all(a);
+  fs::remove_all(b);
 }
 
 }  // namespace

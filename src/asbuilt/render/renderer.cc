@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <filesystem>
 
 #include <fmt/format.h>
 #include <tbb/blocked_range2d.h>
@@ -77,12 +78,61 @@ struct AuxBuffers {
   cv::Mat labels, depth_mm, normals, instance_ids;
 };
 
+// The albedo of a photo-textured material at a surface point (PhotoAlbedo).
+Vec3f PhotoAlbedoAt(const PhotoAlbedo& pa, const Material& m, const Vec3f& point, const Vec3f& normal) {
+  const Photo& photo = *pa.photo;
+  // Surface coordinates as TextureAlbedo's: the plane most aligned with the surface.
+  float ax = std::abs(normal.x()), ay = std::abs(normal.y()), az = std::abs(normal.z());
+  float u, v;
+  if (az >= ax && az >= ay) {
+    u = point.x();
+    v = point.y();
+  } else if (ax >= ay) {
+    u = point.y();
+    v = point.z();
+  } else {
+    u = point.x();
+    v = point.z();
+  }
+  if (pa.swap_uv) std::swap(u, v);
+  const float width_m = static_cast<float>(pa.size_m);
+  const float height_m = width_m * static_cast<float>(photo.linear_rgb.rows) / static_cast<float>(photo.linear_rgb.cols);
+  Vec3f c = photo.Sample((u + static_cast<float>(pa.offset_m.x())) / width_m,
+                         -(v + static_cast<float>(pa.offset_m.y())) / height_m);
+  const Vec3f base = m.base_color.cast<float>();
+  const float base_lum = std::max(Luminance(base), 1e-3f);
+  const float ratio = Luminance(c) / photo.mean_luminance;
+  Vec3f detailed = base * std::max(0.0f, 1.0f + static_cast<float>(pa.detail) * (ratio - 1.0f));
+  Vec3f coloured = c * (base_lum / photo.mean_luminance);
+  const float k = static_cast<float>(pa.colour);
+  return (detailed * (1.0f - k) + coloured * k).cwiseMin(0.95f);
+}
+
 }  // namespace
+
+std::string SceneLook::ToString() const {
+  std::string s = "SceneLook(albedo";
+  for (const auto& [name, pa] : albedo) {
+    s += fmt::format(" {}={}", name, pa.photo ? std::filesystem::path(pa.photo->path).filename().string() : "none");
+  }
+  s += fmt::format(", outside={}, next_room_depth_m={:.2f})",
+                   outside ? std::filesystem::path(outside->path).filename().string() : "sky", mesh.next_room_depth_m);
+  return s;
+}
 
 struct SceneRenderer::Impl {
   SceneMesh mesh;
   std::unique_ptr<RayTracer> tracer;
   std::uint32_t texture_seed = 0;
+  SceneLook look;
+  std::vector<const PhotoAlbedo*> photo_of_material;  // Per mesh material; null: procedural.
+  float outside_scale = 1.0f;                          // Photo radiance → scene radiance.
+
+  // What a ray that leaves the building sees: the sky gradient, or the photo.
+  Vec3f Outside(const Vec3f& d) const {
+    if (!look.outside) return Sky(d);
+    return outside_scale * look.outside->Outside(d, static_cast<float>(DegToRad(look.outside_yaw_deg)));
+  }
 
   Vec3f Sky(const Vec3f& d) const {
     const Environment& env = mesh.environment;
@@ -94,6 +144,14 @@ struct SceneRenderer::Impl {
   }
 
   Vec3f Albedo(const MeshObject& o, const Vec3f& p, const Vec3f& n) const {
+    if (const PhotoAlbedo* pa = photo_of_material[o.material]) {
+      const Material& m = mesh.materials[o.material];
+      Vec3f a = PhotoAlbedoAt(*pa, m, p, n);
+      if (pa->keep_procedural) {
+        a *= Luminance(TextureAlbedo(m, p, n, texture_seed)) / std::max(Luminance(m.base_color.cast<float>()), 1e-3f);
+      }
+      return a.cwiseMin(0.95f);
+    }
     return TextureAlbedo(mesh.materials[o.material], p, n, texture_seed);
   }
 
@@ -211,10 +269,26 @@ Eigen::Isometry3d WorldFromStereoEye(const Viewpoint& viewpoint, double baseline
   return world_from_cam;
 }
 
-SceneRenderer::SceneRenderer(const Scene& scene) : impl_(std::make_unique<Impl>()) {
-  impl_->mesh = BuildSceneMesh(scene);
+SceneRenderer::SceneRenderer(const Scene& scene, SceneLook look) : impl_(std::make_unique<Impl>()) {
+  impl_->mesh = BuildSceneMesh(scene, look.mesh);
   impl_->tracer = std::make_unique<RayTracer>(impl_->mesh);
   impl_->texture_seed = static_cast<std::uint32_t>(SplitMix64(scene.seed));
+  impl_->look = std::move(look);
+  const SceneLook& lk = impl_->look;
+  impl_->photo_of_material.assign(impl_->mesh.materials.size(), nullptr);
+  for (std::size_t i = 0; i < impl_->mesh.materials.size(); ++i) {
+    auto it = lk.albedo.find(impl_->mesh.materials[i].name);
+    if (it != lk.albedo.end() && it->second.photo) {
+      CheckArgument(it->second.size_m > 0, fmt::format("PhotoAlbedo.size_m = {} for material '{}', must be > 0",
+                                                       it->second.size_m, it->first));
+      impl_->photo_of_material[i] = &it->second;
+    }
+  }
+  if (lk.outside) {
+    // Match the photo's mean to the sky gradient a little above the horizon.
+    const float sky = Luminance(impl_->Sky(Vec3f(1.0f, 0.0f, 0.4f).normalized()));
+    impl_->outside_scale = static_cast<float>(lk.outside_gain) * sky / lk.outside->mean_luminance;
+  }
 }
 
 SceneRenderer::~SceneRenderer() = default;
@@ -278,7 +352,7 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
   const std::uint64_t view_seed = SplitMix64(options.seed ^ SplitMix64(view_key + 0x5EED));
 
   RenderedView out;
-  out.effects = RandomViewEffects(options.camera_effects, view_seed);
+  out.effects = RandomViewEffects(options.camera_effects, view_seed, options.phone_camera);
 
   AuxBuffers aux;
   aux.labels = cv::Mat(H, W, CV_8U, cv::Scalar(0));
@@ -356,10 +430,14 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
               }
               first = false;
               if (!found) {
-                extra_sum += throughput.cwiseProduct(im.Sky(dir));
+                extra_sum += throughput.cwiseProduct(im.Outside(dir));
                 break;
               }
               const MeshObject& o = im.mesh.objects[hit.object];
+              if (im.look.outside && (o.role == SurfaceRole::kGround || o.role == SurfaceRole::kExterior)) {
+                extra_sum += throughput.cwiseProduct(im.Outside(dir));  // The photo stands for the outside.
+                break;
+              }
               Vec3f p = origin + dir * hit.t;
               travelled += hit.t;
               Vec3f n = hit.geometric_normal.dot(dir) > 0 ? Vec3f(-hit.geometric_normal) : hit.geometric_normal;

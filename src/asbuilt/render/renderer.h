@@ -19,12 +19,14 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 
 #include <opencv2/core.hpp>
 
 #include "asbuilt/render/camera_effects.h"
+#include "asbuilt/render/photo_textures.h"
 #include "asbuilt/render/scene_mesh.h"
 #include "asbuilt/scene/scene.h"
 
@@ -47,6 +49,9 @@ struct RenderOptions {
   int denoise_passes = 3;         // Edge-aware à-trous passes over the lighting; 0 = raw.
   double id_drift = 0.15;         // [0, 1]: how much ID-map colours follow the light (0 = flat colours).
   double camera_effects = 1.0;    // [0, 1]: strength of the randomised camera effects (0 = clean).
+  bool phone_camera = false;      // Also a phone's processing (camera_effects.h RandomViewEffects):
+                                  // wider exposure, noise and JPEG ranges, chromatic aberration,
+                                  // sharpening, saturation. Off: effects exactly as before.
   bool normals = false;           // Also produce camera-frame normals.
   bool instance_ids = false;      // Also produce per-object instance ids.
   std::uint64_t seed = 0;         // Sampling and effects; same seed → identical images.
@@ -75,11 +80,42 @@ struct RenderedView {
   std::int64_t rays_traced = 0;  // Every ray cast (primary, shadow, bounce), both eyes.
 };
 
+// A photograph as the albedo of a material (photo_textures.h). The photo is
+// laid out like the procedural textures (in the plane most aligned with the
+// surface) and tiles every size_m metres.
+struct PhotoAlbedo {
+  std::shared_ptr<const Photo> photo;
+  double size_m = 0.5;     // Real-world width of one tile of the photo (its height keeps the aspect).
+  double colour = 1.0;     // [0, 1]: 1 = the photo's colours, brightness matched to the material's
+                           // base colour; 0 = only its light/dark detail on the base colour.
+  double detail = 1.0;     // [0, 2]: strength of the photo's light/dark detail (colour < 1).
+  bool swap_uv = false;    // Turn the photo 90° (grain direction).
+  bool keep_procedural = false;  // Also keep the material's procedural pattern's light/dark (panel gaps, joints).
+  Vec2 offset_m = Vec2::Zero();  // Shift of the tiling.
+};
+
+// How a scene looks beyond its model: photographic albedo, the view outside,
+// rooms behind doors. dataset synth's realism levers fill it; the default
+// (empty) renders the scene exactly as before.
+struct SceneLook {
+  std::map<std::string, PhotoAlbedo> albedo;  // By material name.
+  // Seen through windows (and wherever a ray leaves the building) instead of
+  // the sky gradient and the ground and exterior boxes; lighting still comes
+  // from the scene's sky and sun. Null: the sky gradient.
+  std::shared_ptr<const Photo> outside;
+  double outside_yaw_deg = 0.0;   // Turns the panorama about +Z.
+  double outside_gain = 1.0;      // Radiance scale of the photo relative to the sky gradient's mean.
+  SceneMeshOptions mesh;          // Rooms behind doors.
+
+  // "SceneLook(albedo wall=paper.pat floor=parque1.pat, outside=city.exr, next_room_depth_m=3.2)".
+  std::string ToString() const;
+};
+
 // A scene prepared for rendering (triangles + Embree BVH), reused across views.
 class SceneRenderer {
  public:
   // Throws InputError for unknown material names (see BuildSceneMesh).
-  explicit SceneRenderer(const Scene& scene);
+  explicit SceneRenderer(const Scene& scene, SceneLook look = {});
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;

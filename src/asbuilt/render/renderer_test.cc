@@ -240,5 +240,84 @@ TEST(RenderCapture, RejectsPitchedViewsNamingTheViewpoint) {
   }
 }
 
+// A 16 × 16 photo: a checkerboard of two colours, for photo albedo tests.
+std::shared_ptr<const Photo> CheckerPhoto(PhotoKind kind) {
+  auto p = std::make_shared<Photo>();
+  p->kind = kind;
+  p->path = "checker";
+  p->linear_rgb = cv::Mat(16, 16, CV_32FC3);
+  for (int y = 0; y < 16; ++y) {
+    for (int x = 0; x < 16; ++x) {
+      p->linear_rgb.at<cv::Vec3f>(y, x) = ((x / 4 + y / 4) % 2) ? cv::Vec3f(0.6f, 0.3f, 0.1f) : cv::Vec3f(0.2f, 0.1f, 0.05f);
+    }
+  }
+  p->mean = Vec3f(0.4f, 0.2f, 0.075f);
+  p->mean_luminance = 0.2126f * 0.4f + 0.7152f * 0.2f + 0.0722f * 0.075f;
+  return p;
+}
+
+TEST(Render, AnEmptySceneLookRendersExactlyAsBefore) {
+  Scene scene = TestRoom();
+  SceneRenderer plain(scene), looked(scene, SceneLook{});
+  StereoCamera cam = SmallCamera({Vec3(2.0, 1.5, 1.3), 0.0, 0.0}, 70.0);
+  RenderedView a = plain.Render(cam, FastOptions(), 4, false), b = looked.Render(cam, FastOptions(), 4, false);
+  EXPECT_EQ(cv::norm(a.left, b.left, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(a.labels, b.labels, cv::NORM_INF), 0.0);
+}
+
+TEST(Render, PhotosAndANextRoomChangeColoursNotLabels) {
+  Scene scene = TestRoom();
+  scene.rooms[0].openings[0].open_deg = 80.0;  // The door (to the outside) stands open.
+  SceneLook look;
+  look.albedo["wall"] = {.photo = CheckerPhoto(PhotoKind::kPaper), .size_m = 0.4, .colour = 1.0};
+  look.outside = CheckerPhoto(PhotoKind::kEnvironment);
+  look.outside_gain = 3.0;
+  look.mesh.next_room_depth_m = 3.0;
+  SceneRenderer plain(scene), looked(scene, look);
+  for (double yaw : {0.0, -90.0}) {  // The door, the window.
+    StereoCamera cam = SmallCamera({Vec3(2.0, 1.5, 1.3), yaw, 0.0}, 70.0);
+    RenderedView a = plain.Render(cam, FastOptions(), 1, false), b = looked.Render(cam, FastOptions(), 1, false);
+    EXPECT_EQ(cv::norm(a.labels, b.labels, cv::NORM_INF), 0.0) << "yaw " << yaw;
+    EXPECT_GT(cv::norm(a.left, b.left, cv::NORM_L1) / (160.0 * 120.0), 5.0) << "yaw " << yaw;
+    if (yaw == 0.0) {
+      // Through the doorway the next room's far wall (3 m behind the 0.2 m
+      // wall) is farther than the closet's back (1.2 m).
+      auto centre = ProjectLeft(cam, Vec3(2.35, 3.0, 1.0));
+      ASSERT_TRUE(centre.has_value());
+      int u = static_cast<int>(std::lround(centre->x())), v = static_cast<int>(std::lround(centre->y()));
+      EXPECT_EQ(b.labels.at<std::uint8_t>(v, u), kLabelDoor);
+      EXPECT_GT(b.depth_mm.at<std::uint16_t>(v, u), a.depth_mm.at<std::uint16_t>(v, u) + 1000);
+    }
+  }
+}
+
+TEST(RandomViewEffects, PhoneProcessingLeavesTheOtherDrawsAlone) {
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    ViewEffects plain = RandomViewEffects(1.0, seed), phone = RandomViewEffects(1.0, seed, true);
+    EXPECT_EQ(plain.chromatic_aberration_px, 0.0);
+    EXPECT_EQ(plain.sharpen, 0.0);
+    EXPECT_EQ(plain.saturation, 1.0);
+    EXPECT_EQ(plain.white_balance, phone.white_balance);
+    EXPECT_EQ(plain.vignetting, phone.vignetting);
+    EXPECT_EQ(plain.blur_sigma_px, phone.blur_sigma_px);
+    EXPECT_GT(phone.chromatic_aberration_px, 0.0);
+    EXPECT_NE(phone.ToString().find("phone("), std::string::npos);
+    EXPECT_EQ(plain.ToString().find("phone("), std::string::npos);
+  }
+}
+
+TEST(DevelopImage, ChromaticAberrationKeepsGreenInPlace) {
+  cv::Mat linear(40, 60, CV_32FC3, cv::Scalar(0.05, 0.05, 0.05));
+  cv::rectangle(linear, cv::Rect(10, 10, 10, 10), cv::Scalar(0.5, 0.5, 0.5), cv::FILLED);
+  ViewEffects clean, fringed;
+  fringed.chromatic_aberration_px = 2.0;
+  cv::Mat a = DevelopImage(linear, clean, 1), b = DevelopImage(linear, fringed, 1);
+  std::vector<cv::Mat> ca, cb;
+  cv::split(a, ca);
+  cv::split(b, cb);
+  EXPECT_EQ(cv::norm(ca[1], cb[1], cv::NORM_INF), 0.0);  // Green (BGR index 1).
+  EXPECT_GT(cv::norm(ca[2], cb[2], cv::NORM_INF), 20.0);  // Red moved.
+}
+
 }  // namespace
 }  // namespace asbuilt

@@ -89,7 +89,7 @@ bool PointInPolygon(const std::vector<Vec2>& poly, const Vec2& p) {
 
 class MeshBuilder {
  public:
-  explicit MeshBuilder(const Scene& scene) : scene_(scene) {
+  MeshBuilder(const Scene& scene, const SceneMeshOptions& options) : scene_(scene), options_(options) {
     for (const Material& m : scene.materials) AddMaterial(m);
     for (const Material& m : RenderDefaultMaterials()) {
       if (!index_.contains(m.name)) AddMaterial(m);
@@ -283,7 +283,9 @@ class MeshBuilder {
 
     // A small closed space behind a door that leads outside.
     Vec3 behind = w.At(0.5 * (a + b), t + 0.5, 0);
-    if (!InsideAnyRoom(behind.head<2>())) {
+    if (!InsideAnyRoom(behind.head<2>()) && options_.next_room_depth_m > 0) {
+      BuildNextRoom(w, a, b, top, field, room);
+    } else if (!InsideAnyRoom(behind.head<2>())) {
       int wall_mat = MaterialIndex(room.wall_material, field);
       int floor_mat = MaterialIndex(room.floor_material, field);
       MeshObject& closet = NewObject(name + "/closet", SurfaceRole::kCloset, kLabelBackground, wall_mat);
@@ -298,6 +300,50 @@ class MeshBuilder {
       AddQuad(closet, w.At(s0, n0 + 1e-3, top + kLiningM), (s1 - s0) * w.along, Vec3(0, 0, z1 - top));
       AddQuad(closet, w.At(s0, n0 + 1e-3, 0), (a - kLiningM - s0) * w.along, Vec3(0, 0, z1));
       AddQuad(closet, w.At(b + kLiningM, n0 + 1e-3, 0), (s1 - b - kLiningM) * w.along, Vec3(0, 0, z1));
+    }
+  }
+
+  // A lit room behind a door (SceneMeshOptions::next_room_depth_m): floor,
+  // ceiling, three walls and the wall face around the doorway, facing in.
+  void BuildNextRoom(const WallFrame& w, double a, double b, double top, const std::string& field, const Room& room) {
+    const std::string& wall_name =
+        options_.next_room_wall_material.empty() ? room.wall_material : options_.next_room_wall_material;
+    const std::string& floor_name =
+        options_.next_room_floor_material.empty() ? room.floor_material : options_.next_room_floor_material;
+    int wall_mat = MaterialIndex(wall_name, field + ".next_room_wall_material");
+    int floor_mat = MaterialIndex(floor_name, field + ".next_room_floor_material");
+    int ceiling_mat = MaterialIndex(room.ceiling_material, field);
+    const double t = w.thickness;
+    const double s0 = a - options_.next_room_side_m, s1 = b + options_.next_room_side_m;
+    const double n0 = t, n1 = t + options_.next_room_depth_m, z1 = std::max(room.height_m, top + 0.3);
+    MeshObject& walls = NewObject("next_room/walls", SurfaceRole::kCloset, kLabelBackground, wall_mat);
+    AddQuad(walls, w.At(s0, n1, 0), (s1 - s0) * w.along, Vec3(0, 0, z1));  // Far wall.
+    AddQuad(walls, w.At(s0, n0, 0), (n1 - n0) * w.out, Vec3(0, 0, z1));   // Sides.
+    AddQuad(walls, w.At(s1, n0, 0), (n1 - n0) * w.out, Vec3(0, 0, z1));
+    AddQuad(walls, w.At(s0, n0 + 1e-3, top + kLiningM), (s1 - s0) * w.along, Vec3(0, 0, z1 - top));
+    AddQuad(walls, w.At(s0, n0 + 1e-3, 0), (a - kLiningM - s0) * w.along, Vec3(0, 0, z1));
+    AddQuad(walls, w.At(b + kLiningM, n0 + 1e-3, 0), (s1 - b - kLiningM) * w.along, Vec3(0, 0, z1));
+    MeshObject& floor = NewObject("next_room/floor", SurfaceRole::kCloset, kLabelBackground, floor_mat);
+    AddQuad(floor, w.At(s0, n0, 0), (s1 - s0) * w.along, (n1 - n0) * w.out);
+    MeshObject& ceiling = NewObject("next_room/ceiling", SurfaceRole::kCloset, kLabelBackground, ceiling_mat);
+    AddQuad(ceiling, w.At(s0, n0, z1), (s1 - s0) * w.along, (n1 - n0) * w.out);
+    // A door-sized darker rectangle on the far wall: another doorway.
+    MeshObject& far_door = NewObject("next_room/far_door", SurfaceRole::kCloset, kLabelBackground,
+                                     MaterialIndex("door", field));
+    const double c = 0.5 * (s0 + s1) + 0.25 * (s1 - s0) * std::sin(7.0 * a + 3.0 * n1);
+    AddQuad(far_door, w.At(c - 0.42, n1 - 2e-3, 0), 0.84 * w.along, Vec3(0, 0, std::min(2.05, z1 - 0.1)));
+    if (options_.next_room_light > 0) {
+      AreaLight light;
+      light.centre = w.At(0.5 * (s0 + s1), 0.5 * (n0 + n1), z1 - 0.031);
+      light.half_u = 0.25 * w.along;
+      light.half_v = 0.25 * w.out;
+      light.area_m2 = 0.25;
+      light.radiance = Vec3(1.0, 0.93, 0.85) * (options_.next_room_light * 8.0 * 0.36 / light.area_m2);
+      mesh_.area_lights.push_back(light);
+      MeshObject& o = NewObject("next_room/light", SurfaceRole::kLight, kLabelBackground, ceiling_mat);
+      o.emission = F(light.radiance);
+      AddBox(o, light.centre - light.half_u - light.half_v + Vec3(0, 0, 0.001), 2 * light.half_u, 2 * light.half_v,
+             Vec3(0, 0, 0.03));
     }
   }
 
@@ -445,6 +491,7 @@ class MeshBuilder {
   }
 
   const Scene& scene_;
+  const SceneMeshOptions& options_;
   SceneMesh mesh_;
   std::deque<MeshObject> objects_;
   std::vector<Material> materials_;
@@ -501,7 +548,19 @@ const std::vector<Material>& RenderDefaultMaterials() {
   return kMaterials;
 }
 
-SceneMesh BuildSceneMesh(const Scene& scene) { return MeshBuilder(scene).Build(); }
+void SceneMeshOptions::Check() const {
+  CheckArgument(std::isfinite(next_room_depth_m) && next_room_depth_m >= 0 && next_room_depth_m <= 50,
+                fmt::format("SceneMeshOptions.next_room_depth_m = {}, must be in [0, 50]", next_room_depth_m));
+  CheckArgument(std::isfinite(next_room_side_m) && next_room_side_m >= 0 && next_room_side_m <= 20,
+                fmt::format("SceneMeshOptions.next_room_side_m = {}, must be in [0, 20]", next_room_side_m));
+  CheckArgument(std::isfinite(next_room_light) && next_room_light >= 0,
+                fmt::format("SceneMeshOptions.next_room_light = {}, must be >= 0", next_room_light));
+}
+
+SceneMesh BuildSceneMesh(const Scene& scene, const SceneMeshOptions& options) {
+  options.Check();
+  return MeshBuilder(scene, options).Build();
+}
 
 std::vector<Eigen::Vector3i> TriangulatePolygon(const std::vector<Vec2>& polygon) {
   std::vector<Eigen::Vector3i> out;

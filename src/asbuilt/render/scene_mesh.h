@@ -98,9 +98,26 @@ struct SceneMesh {
 // "ground", "exterior"), used when the scene does not define them.
 const std::vector<Material>& RenderDefaultMaterials();
 
+// What is built beyond the scene model (dataset synth's realism levers; the
+// defaults build exactly what the scene describes, as `asbuilt render` does).
+struct SceneMeshOptions {
+  // Behind a door that leads outside: 0 builds the small closed space (1.2 m
+  // deep, unlit); > 0 builds a room this deep instead (metres), wider than
+  // the door by next_room_side_m on each side, as high as the room, lit by a
+  // ceiling panel — what an open door shows in a home. Seen only through the
+  // doorway, so it is labelled door there (label portal), background nowhere.
+  double next_room_depth_m = 0.0;
+  double next_room_side_m = 1.5;
+  double next_room_light = 1.0;           // Intensity of its ceiling panel (as Light::intensity).
+  std::string next_room_wall_material;    // Empty: the room's wall material.
+  std::string next_room_floor_material;   // Empty: the room's floor material.
+
+  void Check() const;
+};
+
 // Builds the triangles. Throws InputError (file "scene") for a material name
 // that resolves nowhere. Deterministic: exterior objects come from scene.seed.
-SceneMesh BuildSceneMesh(const Scene& scene);
+SceneMesh BuildSceneMesh(const Scene& scene, const SceneMeshOptions& options = {});
 
 // Triangulates a simple counter-clockwise polygon (ear clipping); returns
 // index triples. Empty for fewer than 3 points.

@@ -152,6 +152,232 @@ bool IsRotated(const Room& room) {
   return std::abs(d.x()) > 1e-9 && std::abs(d.y()) > 1e-9;
 }
 
+
+// --- Realism levers (RandomSceneOptions, issue 21) ---------------------------
+
+// A box against wall `wall` of the room: `s` along the wall to its centre,
+// `gap_m` between its back and the wall's inner face (negative: inside the
+// wall), size width (along), depth, height, bottom at `elevation_m`.
+Furniture WallBox(const Room& room, int wall, double s, double gap_m, const Vec3& size, double elevation_m,
+                  const std::string& name, const std::string& material) {
+  Vec2 a = WallStart(room, wall);
+  Vec2 d = (WallEnd(room, wall) - a).normalized();
+  Vec2 inward(-d.y(), d.x());
+  return {.name = name,
+          .centre_m = a + s * d + (gap_m + 0.5 * size.y()) * inward,
+          .yaw_deg = RadToDeg(std::atan2(d.y(), d.x())),
+          .size_m = size,
+          .elevation_m = elevation_m,
+          .material = material};
+}
+
+// True when [s0, s1] on `wall` keeps `margin_m` from every opening's casing.
+bool ClearOfOpenings(const Room& room, int wall, double s0, double s1, double margin_m) {
+  for (const Opening& o : room.openings) {
+    if (o.wall == wall && s0 < o.offset_m + o.width_m + 0.1 + margin_m && s1 > o.offset_m - 0.1 - margin_m) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void AddMaterialOnce(Scene& scene, const Material& m) {
+  for (const Material& existing : scene.materials) {
+    if (existing.name == m.name) return;
+  }
+  scene.materials.push_back(m);
+}
+
+void StyleDoors(SceneRng& rng, const RandomSceneOptions& o, Scene& scene) {
+  const std::vector<Vec3> woods = {Vec3(0.55, 0.3, 0.13), Vec3(0.62, 0.4, 0.2), Vec3(0.42, 0.24, 0.12),
+                                   Vec3(0.3, 0.17, 0.09), Vec3(0.7, 0.5, 0.3)};
+  Material white{.name = "door_white", .base_color = Jitter(rng, Vec3(0.88, 0.87, 0.84), 0.03), .roughness = 0.35,
+                 .texture = TextureKind::kPaint, .texture_scale_m = 0.3};
+  white.secondary_color = 0.95 * white.base_color;
+  Material wood{.name = "door_wood", .base_color = Jitter(rng, Pick(rng, woods), 0.04),
+                .roughness = rng.Uniform(0.35, 0.7), .texture = TextureKind::kWood,
+                .texture_scale_m = rng.Uniform(0.6, 1.0)};
+  wood.secondary_color = 0.75 * wood.base_color;
+  bool used_white = false, used_wood = false;
+  for (Opening& op : scene.rooms[0].openings) {
+    if (op.kind != OpeningKind::kDoor) continue;
+    if (rng.Chance(o.styled_door_probability)) {
+      bool is_wood = rng.Chance(0.55);
+      op.material = is_wood ? "door_wood" : "door_white";
+      (is_wood ? used_wood : used_white) = true;
+    }
+    if (op.open_deg == 0.0 && rng.Chance(o.open_door_probability)) op.open_deg = rng.Uniform(60.0, 110.0);
+  }
+  if (used_white) AddMaterialOnce(scene, white);
+  if (used_wood) AddMaterialOnce(scene, wood);
+}
+
+void PaintWallsNeutral(SceneRng& rng, Scene& scene) {
+  // Warm white, cool white, off-white, greige: the walls of most homes.
+  const std::vector<Vec3> whites = {Vec3(0.9, 0.89, 0.86), Vec3(0.86, 0.87, 0.88), Vec3(0.88, 0.85, 0.79),
+                                    Vec3(0.8, 0.78, 0.74)};
+  for (Material& m : scene.materials) {
+    if (m.name == "wall") {
+      m.base_color = Jitter(rng, Pick(rng, whites), 0.02);
+      m.secondary_color = 0.95 * m.base_color;
+      if (m.texture == TextureKind::kWallpaper || m.texture == TextureKind::kConcrete) m.texture = TextureKind::kPaint;
+    } else if (m.name == "ceiling") {
+      m.base_color = Jitter(rng, Vec3(0.92, 0.92, 0.9), 0.015);
+    }
+  }
+}
+
+void AddWindowSun(SceneRng& rng, Scene& scene) {
+  const Room& room = scene.rooms[0];
+  std::vector<const Opening*> windows;
+  for (const Opening& op : room.openings) {
+    if (op.kind == OpeningKind::kWindow && op.glass) windows.push_back(&op);
+  }
+  if (windows.empty()) return;
+  const Opening* w = Pick(rng, windows);
+  Vec2 out = WallOutwardNormal(room, w->wall);
+  Light sun{.kind = LightKind::kSun,
+            .color = Jitter(rng, Vec3(1.0, 0.93, 0.82), 0.04),
+            .intensity = rng.Uniform(2.0, 4.5),
+            .azimuth_deg = RadToDeg(std::atan2(out.y(), out.x())) + rng.Uniform(-50.0, 50.0),
+            .elevation_deg = rng.Uniform(12.0, 45.0)};
+  std::erase_if(scene.lights, [](const Light& l) { return l.kind == LightKind::kSun; });
+  scene.lights.push_back(sun);
+}
+
+void AddKitchen(SceneRng& rng, Scene& scene) {
+  const Room& room = scene.rooms[0];
+  const bool white_units = rng.Chance(0.45);
+  const std::vector<Vec3> woods = {Vec3(0.6, 0.36, 0.16), Vec3(0.5, 0.3, 0.15), Vec3(0.7, 0.52, 0.32)};
+  Material cabinet{.name = "cabinet",
+                   .base_color = white_units ? Jitter(rng, Vec3(0.86, 0.86, 0.83), 0.03) : Jitter(rng, Pick(rng, woods), 0.04),
+                   .roughness = rng.Uniform(0.3, 0.6),
+                   .texture = TextureKind::kTiles,  // Tiles of door size: the gaps between fronts.
+                   .texture_scale_m = rng.Uniform(0.4, 0.6)};
+  cabinet.secondary_color = 0.45 * cabinet.base_color;
+  Material worktop{.name = "worktop", .base_color = Jitter(rng, Pick(rng, std::vector<Vec3>{Vec3(0.8, 0.78, 0.72), Vec3(0.2, 0.2, 0.2), Vec3(0.55, 0.5, 0.45)}), 0.04),
+                   .roughness = 0.3, .texture = TextureKind::kConcrete, .texture_scale_m = 0.3};
+  worktop.secondary_color = 0.8 * worktop.base_color;
+  Material appliance{.name = "appliance", .base_color = Jitter(rng, Vec3(0.9, 0.9, 0.88), 0.02), .roughness = 0.2};
+  AddMaterialOnce(scene, cabinet);
+  AddMaterialOnce(scene, worktop);
+  AddMaterialOnce(scene, appliance);
+
+  const std::size_t first = scene.furniture.size();
+  const double fridge_width = rng.Uniform(0.6, 0.9);
+  const double fridge_height = rng.Uniform(1.65, 1.85);
+  std::vector<FurnitureSpec> pieces = {
+      {"kitchen units", Vec3(rng.Uniform(1.2, 3.2), 0.6, 0.88), true, "cabinet"},
+      {"fridge", Vec3(fridge_width, 0.7, fridge_height), true, "appliance"},
+      {"range", Vec3(0.76, 0.65, 0.92), true, "appliance"}};
+  if (rng.Chance(0.5)) pieces.push_back({"dishwasher", Vec3(0.6, 0.6, 0.85), true, "appliance"});
+  if (rng.Chance(0.5)) pieces.push_back({"kitchen units", Vec3(rng.Uniform(0.8, 2.0), 0.6, 0.88), true, "cabinet"});
+  PlaceFurnitureOptions placing;
+  placing.piece_gap_m = 0.0;
+  PlaceFurniture(scene, 0, pieces, rng.Next(), placing);
+  // Worktops on the units, wall units above them (clear of windows).
+  const std::size_t placed = scene.furniture.size();
+  for (std::size_t i = first; i < placed; ++i) {
+    const Furniture base = scene.furniture[i];
+    if (base.name != "kitchen units") continue;
+    const double yaw = DegToRad(base.yaw_deg);
+    const Vec2 ex(std::cos(yaw), std::sin(yaw)), ey(-std::sin(yaw), std::cos(yaw));
+    scene.furniture.push_back({.name = "worktop", .centre_m = base.centre_m - 0.015 * ey, .yaw_deg = base.yaw_deg,
+                               .size_m = Vec3(base.size_m.x() + 0.02, 0.63, 0.04), .elevation_m = base.size_m.z(),
+                               .material = "worktop"});
+    const double bottom = rng.Uniform(1.4, 1.55);
+    const double height = std::min(rng.Uniform(0.6, 0.8), room.height_m - bottom - 0.05);
+    bool clear = height > 0.3 && rng.Chance(0.75);
+    for (const Opening& op : room.openings) {
+      Vec2 a = WallStart(room, op.wall), d = (WallEnd(room, op.wall) - a).normalized();
+      Vec2 c = a + (op.offset_m + 0.5 * op.width_m) * d;
+      Vec2 r = c - base.centre_m;
+      if (std::abs(r.dot(ey)) < 0.8 && std::abs(r.dot(ex)) < 0.5 * (base.size_m.x() + op.width_m) + 0.15 &&
+          op.sill_m + op.height_m > bottom) {
+        clear = false;
+      }
+    }
+    if (clear) {
+      scene.furniture.push_back({.name = "wall units", .centre_m = base.centre_m - (0.3 - 0.18) * ey,
+                                 .yaw_deg = base.yaw_deg, .size_m = Vec3(base.size_m.x(), 0.34, height),
+                                 .elevation_m = bottom, .material = "cabinet"});
+    }
+  }
+}
+
+void AddWallDetails(SceneRng& rng, Scene& scene) {
+  const Room& room = scene.rooms[0];
+  Material fitting{.name = "fitting", .base_color = Jitter(rng, Vec3(0.88, 0.88, 0.85), 0.03), .roughness = 0.4};
+  AddMaterialOnce(scene, fitting);
+  // Radiators under windows.
+  for (const Opening& op : room.openings) {
+    if (op.kind != OpeningKind::kWindow || op.sill_m < 0.65 || !rng.Chance(0.6)) continue;
+    double width = std::clamp(op.width_m * rng.Uniform(0.6, 1.0), 0.4, 1.8);
+    double height = std::min(rng.Uniform(0.4, 0.65), op.sill_m - 0.25);
+    scene.furniture.push_back(WallBox(room, op.wall, op.offset_m + 0.5 * op.width_m, 0.04,
+                                      Vec3(width, 0.09, height), 0.12, "radiator", "fitting"));
+  }
+  // Sockets near the floor (or above a worktop's height), switches by doors.
+  const int walls = WallCount(room);
+  const int sockets = rng.UniformInt(2, 6);
+  for (int k = 0; k < sockets; ++k) {
+    int wall = rng.UniformInt(0, walls - 1);
+    double len = WallLength(room, wall);
+    if (len < 0.8) continue;
+    double s = rng.Uniform(0.3, len - 0.3);
+    if (!ClearOfOpenings(room, wall, s - 0.05, s + 0.05, 0.1)) continue;
+    double z = rng.Chance(0.8) ? rng.Uniform(0.2, 0.4) : rng.Uniform(1.0, 1.15);
+    Vec3 size = rng.Chance(0.5) ? Vec3(0.08, 0.012, 0.08) : Vec3(0.15, 0.012, 0.08);
+    scene.furniture.push_back(WallBox(room, wall, s, 0.0, size, z, "socket", "fitting"));
+  }
+  for (const Opening& op : room.openings) {
+    if (op.kind != OpeningKind::kDoor || !rng.Chance(0.8)) continue;
+    double len = WallLength(room, op.wall);
+    bool before = rng.Chance(0.5);
+    double s = before ? op.offset_m - 0.1 - rng.Uniform(0.1, 0.25) : op.offset_m + op.width_m + 0.1 + rng.Uniform(0.1, 0.25);
+    if (s < 0.08 || s > len - 0.08 || !ClearOfOpenings(room, op.wall, s - 0.04, s + 0.04, -0.09)) continue;
+    scene.furniture.push_back(WallBox(room, op.wall, s, 0.0, Vec3(0.08, 0.012, 0.12), rng.Uniform(1.0, 1.2),
+                                      "switch", "fitting"));
+  }
+}
+
+void DressWindows(SceneRng& rng, const RandomSceneOptions& o, Scene& scene) {
+  const Room& room = scene.rooms[0];
+  const std::vector<Vec3> fabrics = {Vec3(0.85, 0.82, 0.75), Vec3(0.6, 0.55, 0.45), Vec3(0.4, 0.45, 0.55),
+                                     Vec3(0.7, 0.6, 0.5), Vec3(0.3, 0.3, 0.3), Vec3(0.75, 0.7, 0.72)};
+  Material curtain{.name = "curtain", .base_color = Jitter(rng, Pick(rng, fabrics), 0.05), .roughness = 1.0,
+                   .texture = TextureKind::kCarpet, .texture_scale_m = 0.15};
+  curtain.secondary_color = 0.7 * curtain.base_color;
+  Material blind{.name = "blind", .base_color = Jitter(rng, Vec3(0.85, 0.84, 0.8), 0.05), .roughness = 0.8,
+                 .texture = TextureKind::kPaint, .texture_scale_m = 0.2};
+  bool used_curtain = false, used_blind = false;
+  for (const Opening& op : room.openings) {
+    if (op.kind != OpeningKind::kWindow || !rng.Chance(o.window_dressing_probability)) continue;
+    const double top = op.sill_m + op.height_m;
+    if (rng.Chance(0.55)) {
+      // Two curtains drawn aside, hanging from above the opening in front of the wall.
+      const double hang_top = std::min(room.height_m - 0.02, top + rng.Uniform(0.1, 0.3));
+      const double bottom = rng.Chance(0.5) ? 0.02 : std::max(0.02, op.sill_m - rng.Uniform(0.1, 0.3));
+      for (int side = 0; side < 2; ++side) {
+        double width = rng.Uniform(0.25, 0.55);
+        double cover = rng.Uniform(0.0, 0.45) * width;  // How far it reaches over the opening.
+        double s = side == 0 ? op.offset_m - 0.5 * width + cover : op.offset_m + op.width_m + 0.5 * width - cover;
+        scene.furniture.push_back(WallBox(room, op.wall, s, rng.Uniform(0.06, 0.12),
+                                          Vec3(width, 0.06, hang_top - bottom), bottom, "curtain", "curtain"));
+      }
+      used_curtain = true;
+    } else if (op.glass) {
+      // A roller blind in the opening, between the inner face and the glass.
+      double drop = op.height_m * rng.Uniform(0.1, 0.75);
+      scene.furniture.push_back(WallBox(room, op.wall, op.offset_m + 0.5 * op.width_m, -0.045,
+                                        Vec3(op.width_m - 0.01, 0.02, drop), top - drop, "blind", "blind"));
+      used_blind = true;
+    }
+  }
+  if (used_curtain) AddMaterialOnce(scene, curtain);
+  if (used_blind) AddMaterialOnce(scene, blind);
+}
+
 }  // namespace
 
 const char* RigSpotName(RigSpot spot) { return spot == RigSpot::kSurvey ? "survey" : "random"; }
@@ -186,6 +412,15 @@ void RandomSceneOptions::Check() const {
   CheckArgument(min_furniture >= 0 && max_furniture >= min_furniture,
                 fmt::format("RandomSceneOptions.min_furniture/max_furniture = {}/{}, need 0 <= min <= max",
                             min_furniture, max_furniture));
+  for (auto [name, p] : {std::pair{"styled_door_probability", styled_door_probability},
+                         {"open_door_probability", open_door_probability},
+                         {"neutral_wall_probability", neutral_wall_probability},
+                         {"window_sun_probability", window_sun_probability},
+                         {"kitchen_probability", kitchen_probability},
+                         {"wall_details_probability", wall_details_probability},
+                         {"window_dressing_probability", window_dressing_probability}}) {
+    CheckArgument(p >= 0 && p <= 1, fmt::format("RandomSceneOptions.{} = {}, must be in [0, 1]", name, p));
+  }
   CheckArgument(turn_step_deg > 0 && turn_step_deg <= 360,
                 fmt::format("RandomSceneOptions.turn_step_deg = {}, must be in (0, 360]", turn_step_deg));
   rig.Camera().Check();
@@ -271,6 +506,32 @@ Scene RandomScene(const RandomSceneOptions& options, std::uint64_t seed) {
   scene.environment.ground_color = Jitter(rng, Vec3(0.35, 0.4, 0.3), 0.08);
   scene.environment.exterior_objects = rng.Chance(0.7);
   scene.environment.ambient = rng.Uniform(0.05, 0.3);
+
+  // Realism levers: each its own stream, so the room above stays as it was
+  // and turning one lever on or off leaves the others' choices alone.
+  auto stream = [seed](std::uint64_t lever) {
+    return SceneRng(seed * 0xD1B54A32D192ED03ull + lever * 0x8CB92BA72F3D8DD7ull + 0x2545F4914F6CDD1Dull);
+  };
+  if (options.styled_door_probability > 0 || options.open_door_probability > 0) {
+    SceneRng r = stream(1);
+    StyleDoors(r, options, scene);
+  }
+  if (SceneRng r = stream(6); options.neutral_wall_probability > 0 && r.Chance(options.neutral_wall_probability)) {
+    PaintWallsNeutral(r, scene);
+  }
+  if (SceneRng r = stream(2); options.window_sun_probability > 0 && r.Chance(options.window_sun_probability)) {
+    AddWindowSun(r, scene);
+  }
+  if (SceneRng r = stream(3); options.kitchen_probability > 0 && r.Chance(options.kitchen_probability)) {
+    AddKitchen(r, scene);
+  }
+  if (SceneRng r = stream(4); options.wall_details_probability > 0 && r.Chance(options.wall_details_probability)) {
+    AddWallDetails(r, scene);
+  }
+  if (options.window_dressing_probability > 0) {
+    SceneRng r = stream(5);
+    DressWindows(r, options, scene);
+  }
 
   std::vector<Problem> problems = ValidateScene(scene, scene.name);
   if (!problems.empty()) {

@@ -45,6 +45,19 @@ struct RandomSceneOptions {
   RigSpot rig_spot = RigSpot::kRandom;  // The same seed gives the same room either way.
   StereoRigSpec rig;                  // Image size, FOV, baseline of every scene.
 
+  // Realism levers (issue 21; docs/render.md "Realism levers"). All 0 by
+  // default: the scene of a seed is then exactly what it always was. They
+  // draw from their own random stream after the room is complete, so turning
+  // one on adds to the same room rather than making another one.
+  double styled_door_probability = 0.0;  // Per door: a white-painted or a wooden (oak, pine, walnut) leaf and casing.
+  double open_door_probability = 0.0;    // Per closed door: swung wide open (60–110°).
+  double neutral_wall_probability = 0.0; // White or off-white walls and ceiling (most homes).
+  double window_sun_probability = 0.0;   // A low, strong sun shining in through a window (sunlit patches).
+  double kitchen_probability = 0.0;      // Kitchen units with worktop and wall units, white appliances (label 0).
+  double wall_details_probability = 0.0; // Radiators under windows, sockets, light switches by doors (label 0).
+  double window_dressing_probability = 0.0;  // Per window: curtains in the room (label 0) or a roller
+                                             // blind inside the opening (label window: it is in the opening).
+
   void Check() const;
 };
 

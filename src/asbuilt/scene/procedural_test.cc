@@ -119,5 +119,67 @@ TEST(WriteRandomScenes, WritesOneValidFilePerSeed) {
   EXPECT_THROW(WriteRandomScenes({}, 0, 0, dir), InvalidArgument);
 }
 
+RandomSceneOptions AllLevers() {
+  RandomSceneOptions o;
+  o.styled_door_probability = 1.0;
+  o.open_door_probability = 0.5;
+  o.neutral_wall_probability = 1.0;
+  o.window_sun_probability = 1.0;
+  o.kitchen_probability = 1.0;
+  o.wall_details_probability = 1.0;
+  o.window_dressing_probability = 1.0;
+  return o;
+}
+
+TEST(RandomScene, LeversAddToTheSameRoomAndStayValid) {
+  std::set<std::string> added;
+  int suns_through_windows = 0;
+  for (std::uint64_t seed = 0; seed < 40; ++seed) {
+    Scene plain = RandomScene({}, seed);
+    Scene levered;
+    ASSERT_NO_THROW(levered = RandomScene(AllLevers(), seed)) << "seed " << seed;
+    EXPECT_TRUE(ValidateScene(levered).empty()) << "seed " << seed;
+    const Room &a = plain.rooms[0], &b = levered.rooms[0];
+    ASSERT_EQ(a.polygon, b.polygon) << "seed " << seed;
+    ASSERT_EQ(a.openings.size(), b.openings.size());
+    for (std::size_t k = 0; k < a.openings.size(); ++k) {
+      EXPECT_EQ(a.openings[k].offset_m, b.openings[k].offset_m);
+      EXPECT_EQ(a.openings[k].width_m, b.openings[k].width_m);
+      EXPECT_EQ(a.openings[k].height_m, b.openings[k].height_m);
+    }
+    ASSERT_GE(levered.furniture.size(), plain.furniture.size());
+    for (std::size_t k = 0; k < plain.furniture.size(); ++k) {
+      EXPECT_EQ(plain.furniture[k].centre_m, levered.furniture[k].centre_m) << "seed " << seed;
+    }
+    for (std::size_t k = plain.furniture.size(); k < levered.furniture.size(); ++k) {
+      added.insert(levered.furniture[k].name);
+    }
+    for (const Light& l : levered.lights) suns_through_windows += l.kind == LightKind::kSun && l.intensity >= 2.0;
+    for (const Opening& o : b.openings) {
+      if (o.kind == OpeningKind::kDoor) {
+        EXPECT_THAT(o.material, testing::AnyOf("door_white", "door_wood"));
+      }
+    }
+  }
+  for (const char* name : {"kitchen units", "worktop", "wall units", "fridge", "radiator", "socket", "switch",
+                           "curtain", "blind"}) {
+    EXPECT_TRUE(added.contains(name)) << name;
+  }
+  EXPECT_GT(suns_through_windows, 10);
+}
+
+TEST(RandomScene, LeversOffLeaveTheSceneAsItWas) {
+  RandomSceneOptions off;  // Every lever at its default, 0.
+  EXPECT_EQ(off.kitchen_probability, 0.0);
+  Scene scene = RandomScene(off, 7);
+  for (const Furniture& f : scene.furniture) {
+    EXPECT_THAT(f.name, testing::Not(testing::AnyOf("kitchen units", "socket", "curtain", "radiator")));
+  }
+  for (const Material& m : scene.materials) EXPECT_THAT(m.name, testing::AnyOf("wall", "floor", "ceiling", "furniture"));
+  RandomSceneOptions bad;
+  bad.kitchen_probability = 1.5;
+  EXPECT_THROW(bad.Check(), InvalidArgument);
+}
+
 }  // namespace
 }  // namespace asbuilt
