@@ -21,20 +21,6 @@ torch::Tensor Resize(const torch::Tensor& logits, int64_t h, int64_t w) {
                                     .align_corners(false));
 }
 
-// Logits (B, C, H, W) resampled at (x + offset, y + offset): label edges the
-// model put `offset` pixels right of and below the image's edges move back
-// onto them. 0 ≤ offset ≤ 1; the last row and column repeat at the border.
-torch::Tensor ShiftUpLeft(const torch::Tensor& logits, double offset) {
-  if (offset <= 0.0) return logits;
-  const torch::Tensor padded = F::pad(logits, F::PadFuncOptions({0, 1, 0, 1}).mode(torch::kReplicate));
-  using torch::indexing::Slice;
-  const int64_t h = logits.size(2), w = logits.size(3);
-  const torch::Tensor rows = (1.0 - offset) * padded.index({Slice(), Slice(), Slice(0, h), Slice()}) +
-                             offset * padded.index({Slice(), Slice(), Slice(1, h + 1), Slice()});
-  return (1.0 - offset) * rows.index({Slice(), Slice(), Slice(), Slice(0, w)}) +
-         offset * rows.index({Slice(), Slice(), Slice(), Slice(1, w + 1)});
-}
-
 class TorchSegmenter : public Segmenter {
  public:
   TorchSegmenter(Segformer model, SegmenterInfo info, SegmentOptions options)
@@ -105,7 +91,7 @@ class TorchSegmenter : public Segmenter {
       torch::Tensor x = ImagesToTensor(resized);
       logits = Resize(model_->forward(x), scaled.height, scaled.width);
     }
-    logits = Resize(ShiftUpLeft(logits, info_.label_offset_px), h, w);
+    logits = Resize(logits, h, w);
     if (was_training) model_->train();
     return logits;
   }
@@ -169,7 +155,6 @@ SegmenterInfo InfoFromMeta(const nlohmann::json& meta, const std::string& file) 
     info.crop_height_px = meta.at("crop").at(1).get<int>();
     info.epoch = meta.value("epoch", 0);
     info.parameters = meta.value("parameters", int64_t{0});
-    info.label_offset_px = meta.value("label_resize", std::string("nearest")) == "nearest_exact" ? 0.0 : 0.5;
   } catch (const nlohmann::json::exception& e) {
     throw InputError(file, "asbuilt_meta", e.what());
   }

@@ -39,13 +39,6 @@ struct SegmenterInfo {
   int crop_width_px = 0, crop_height_px = 0;
   int epoch = 0;                 // Epochs trained.
   std::int64_t parameters = 0;   // Trainable parameter count.
-  // How far right of and below the image's own edges the model puts label
-  // edges, in pixels of its input: 0.5 for a model whose training resized
-  // labels with OpenCV's INTER_NEAREST (which picks the source pixel left of
-  // and above the target's centre), as every model trained before
-  // 2026-12-03 did; 0 for one whose metadata says `"label_resize":
-  // "nearest_exact"`. Segment shifts its logits back by this much.
-  double label_offset_px = 0.0;
   nlohmann::json metadata;       // Everything stored in the checkpoint.
   std::string ToString() const;  // "SegFormer b0 (3.7M params), trained 12 epochs at 256x192".
 };
