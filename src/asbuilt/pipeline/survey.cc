@@ -261,6 +261,32 @@ std::string SurveySummary::BriefReport() const {
 
 namespace {
 
+// The segmenter a survey uses (SurveyOptions::model_path or the shipped
+// model) at SurveyOptions::segment_scale_px, or else at the images' own
+// size up to twice the model's training scale; `source` says which.
+std::unique_ptr<Segmenter> LoadSurveySegmenter(const SurveyOptions& options, cv::Size image, std::string* source) {
+  const fs::path model = options.model_path.empty() ? DefaultModelPath() : options.model_path;
+  if (!SegmenterAvailable()) {
+    throw Error("this build has no segmenter (built without LibTorch): pass --labels DIR");
+  }
+  SegmentOptions segment;
+  if (options.segment_scale_px) {
+    std::tie(segment.scale_width_px, segment.scale_height_px) = *options.segment_scale_px;
+  } else {
+    const SegmenterInfo info = ReadSegmenterInfo(model);
+    const cv::Size twice = FitSize(image, 2 * info.scale_width_px, 2 * info.scale_height_px);
+    const cv::Size scale = twice.width < image.width ? twice : image;
+    segment.scale_width_px = scale.width;
+    segment.scale_height_px = scale.height;
+  }
+  std::unique_ptr<Segmenter> segmenter = LoadSegmenter(model, segment);
+  *source = fmt::format("segmenter {} ({}) at {}", model.filename().string(), segmenter->info().ToString(),
+                        segment.scale_width_px > 0
+                            ? fmt::format("{}x{}", segment.scale_width_px, segment.scale_height_px)
+                            : std::string("its training scale"));
+  return segmenter;
+}
+
 SurveyResult FinishSurvey(const fs::path& capture_json, const fs::path& out_dir, const SurveyOptions& options,
                           SurveyState& st, CapturePoints::Result gathered_points, SurveyResult result);
 SurveyResult RunMonoSurvey(const Capture& capture, const fs::path& capture_json, const fs::path& out_dir,
@@ -310,26 +336,8 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
     summary.labels_source = "the capture's own exact labels (upper bound, not a real-camera result)";
   } else {
     t = Clock::now();
-    fs::path model = options.model_path.empty() ? DefaultModelPath() : options.model_path;
-    if (!SegmenterAvailable()) {
-      throw Error("this build has no segmenter (built without LibTorch): pass --labels DIR");
-    }
-    SegmentOptions segment;
-    if (options.segment_scale_px) {
-      std::tie(segment.scale_width_px, segment.scale_height_px) = *options.segment_scale_px;
-    } else {
-      const SegmenterInfo info = ReadSegmenterInfo(model);
-      const cv::Size image(capture.camera.width, capture.camera.height);
-      const cv::Size twice = FitSize(image, 2 * info.scale_width_px, 2 * info.scale_height_px);
-      const cv::Size scale = twice.width < image.width ? twice : image;
-      segment.scale_width_px = scale.width;
-      segment.scale_height_px = scale.height;
-    }
-    segmenter = LoadSegmenter(model, segment);
-    summary.labels_source =
-        fmt::format("segmenter {} ({}) at {}", model.filename().string(), segmenter->info().ToString(),
-                    segment.scale_width_px > 0 ? fmt::format("{}x{}", segment.scale_width_px, segment.scale_height_px)
-                                               : std::string("its training scale"));
+    segmenter = LoadSurveySegmenter(options, cv::Size(capture.camera.width, capture.camera.height),
+                                    &summary.labels_source);
     add_stage("load model", Since(t));
     labels = [&](const CaptureFrame& frame, StereoEye eye) -> cv::Mat {
       auto key = std::pair(frame.index, eye == StereoEye::kLeft ? 0 : 1);
@@ -644,25 +652,8 @@ SurveyResult RunMonoSurvey(const Capture& capture, const fs::path& capture_json,
     };
   } else {
     t = Clock::now();
-    fs::path model = options.model_path.empty() ? DefaultModelPath() : options.model_path;
-    if (!SegmenterAvailable()) {
-      throw Error("this build has no segmenter (built without LibTorch): pass --labels DIR");
-    }
-    SegmentOptions segment;
-    if (options.segment_scale_px) {
-      std::tie(segment.scale_width_px, segment.scale_height_px) = *options.segment_scale_px;
-    } else {
-      const SegmenterInfo info = ReadSegmenterInfo(model);
-      const cv::Size image(camera.width_px, camera.height_px);
-      const cv::Size twice = FitSize(image, 2 * info.scale_width_px, 2 * info.scale_height_px);
-      const cv::Size scale = twice.width < image.width ? twice : image;
-      segment.scale_width_px = scale.width;
-      segment.scale_height_px = scale.height;
-    }
-    auto segmenter = std::shared_ptr<Segmenter>(LoadSegmenter(model, segment));
-    summary.labels_source =
-        fmt::format("segmenter {} ({}) at {}x{}", model.filename().string(), segmenter->info().ToString(),
-                    segment.scale_width_px, segment.scale_height_px);
+    auto segmenter = std::shared_ptr<Segmenter>(
+        LoadSurveySegmenter(options, cv::Size(camera.width_px, camera.height_px), &summary.labels_source));
     st.AddStage("load model", Since(t));
     label_batch = [segmenter](std::size_t, const std::vector<cv::Mat>& batch) {
       return segmenter->SegmentBatch(batch);

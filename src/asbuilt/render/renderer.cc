@@ -81,19 +81,8 @@ struct AuxBuffers {
 // The albedo of a photo-textured material at a surface point (PhotoAlbedo).
 Vec3f PhotoAlbedoAt(const PhotoAlbedo& pa, const Material& m, const Vec3f& point, const Vec3f& normal) {
   const Photo& photo = *pa.photo;
-  // Surface coordinates as TextureAlbedo's: the plane most aligned with the surface.
-  float ax = std::abs(normal.x()), ay = std::abs(normal.y()), az = std::abs(normal.z());
   float u, v;
-  if (az >= ax && az >= ay) {
-    u = point.x();
-    v = point.y();
-  } else if (ax >= ay) {
-    u = point.y();
-    v = point.z();
-  } else {
-    u = point.x();
-    v = point.z();
-  }
+  PlaneCoordinates(point, normal, &u, &v);  // As TextureAlbedo's.
   if (pa.swap_uv) std::swap(u, v);
   const float width_m = static_cast<float>(pa.size_m);
   const float height_m = width_m * static_cast<float>(photo.linear_rgb.rows) / static_cast<float>(photo.linear_rgb.cols);

@@ -52,24 +52,24 @@ float FractalNoise(const Vec3f& p, int octaves, std::uint32_t seed) {
   return sum / norm;
 }
 
+void PlaneCoordinates(const Vec3f& point, const Vec3f& normal, float* u, float* v) {
+  const float ax = std::abs(normal.x()), ay = std::abs(normal.y()), az = std::abs(normal.z());
+  if (az >= ax && az >= ay) {
+    *u = point.x(), *v = point.y();
+  } else if (ax >= ay) {
+    *u = point.y(), *v = point.z();
+  } else {
+    *u = point.x(), *v = point.z();
+  }
+}
+
 Vec3f TextureAlbedo(const Material& material, const Vec3f& point, const Vec3f& normal,
                     std::uint32_t seed) {
   const Vec3f base = material.base_color.cast<float>();
   const Vec3f second = material.secondary_color.cast<float>();
   const float scale = static_cast<float>(std::max(material.texture_scale_m, 1e-3));
-  // Surface coordinates (u, v) in the plane most aligned with the surface.
-  float ax = std::abs(normal.x()), ay = std::abs(normal.y()), az = std::abs(normal.z());
   float u, v;
-  if (az >= ax && az >= ay) {
-    u = point.x();
-    v = point.y();
-  } else if (ax >= ay) {
-    u = point.y();
-    v = point.z();
-  } else {
-    u = point.x();
-    v = point.z();
-  }
+  PlaneCoordinates(point, normal, &u, &v);
   switch (material.texture) {
     case TextureKind::kNone:
       return base;

@@ -19,6 +19,10 @@ float FractalNoise(const Vec3f& p, int octaves, std::uint32_t seed);
 // unit `normal`. The texture is laid out in the plane most aligned with the
 // surface (floor: x–y; walls: along the wall and z). `seed` varies the
 // pattern between scenes.
+// Surface coordinates (u, v) of `point` in the world plane most aligned with
+// a surface of unit `normal` (x–y for floors, y–z or x–z for walls), metres.
+void PlaneCoordinates(const Vec3f& point, const Vec3f& normal, float* u, float* v);
+
 Vec3f TextureAlbedo(const Material& material, const Vec3f& point, const Vec3f& normal,
                     std::uint32_t seed);
 
