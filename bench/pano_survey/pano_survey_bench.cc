@@ -202,6 +202,9 @@ int main(int argc, char** argv) {
     // casing to take off, unlike rendered or segmented labels.
     with_labels.plan.door_casing_m = with_labels.plan.window_casing_m = 0.0;
     with_labels.contact_snap_px = 0;  // Exact edges: nothing to snap (FramePointsOptions::contact_snap_px).
+    // Layout labels put each wall's foot on its face, not on a skirting in
+    // front of it (FramePointsOptions::skirting_depth_m): nothing to move back.
+    with_labels.points.skirting_depth_m = 0.0;
     by_labels.push_back(run("survey_labels", with_labels));
     if (with_model) {
       const auto t0 = std::chrono::steady_clock::now();

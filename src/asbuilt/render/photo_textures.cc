@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
+#include <numbers>
 
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
@@ -17,8 +18,6 @@
 namespace asbuilt {
 namespace fs = std::filesystem;
 namespace {
-
-constexpr float kPiF = 3.14159265f;
 
 std::string Lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -125,16 +124,16 @@ Vec3f Photo::Outside(const Vec3f& dir, float yaw_rad) const {
   const float elevation = std::asin(std::clamp(dir.z(), -1.0f, 1.0f));
   if (kind == PhotoKind::kEnvironment) {
     // Equirectangular: u grows clockwise seen from above, v = 0 at the zenith.
-    float u = 0.5f - azimuth / (2 * kPiF);
-    float v = 0.5f - elevation / kPiF;
+    float u = 0.5f - azimuth / (2 * std::numbers::pi_v<float>);
+    float v = 0.5f - elevation / std::numbers::pi_v<float>;
     return Sample(u, v, true);
   }
   // A flat photo over 120° of azimuth, mirrored (ping-pong) round the circle.
-  constexpr float kSpanRad = 120.0f * kPiF / 180.0f;
+  constexpr float kSpanRad = 120.0f * std::numbers::pi_v<float> / 180.0f;
   float s = azimuth / kSpanRad;
   float f = s - 2.0f * std::floor(0.5f * s);  // [0, 2)
   float u = f < 1.0f ? f : 2.0f - f;
-  constexpr float kLow = -25.0f * kPiF / 180.0f, kHigh = 45.0f * kPiF / 180.0f;
+  constexpr float kLow = -25.0f * std::numbers::pi_v<float> / 180.0f, kHigh = 45.0f * std::numbers::pi_v<float> / 180.0f;
   float v = (kHigh - elevation) / (kHigh - kLow);
   return Sample(std::clamp(u, 0.0f, 0.999f), v, true);
 }
