@@ -164,7 +164,7 @@ int main(int argc, char** argv) {
     int w = 0, h = 0;
     if (std::sscanf(seg, "%dx%d", &w, &h) == 2 && w > 0 && h > 0) base.segment_scale_px = std::pair{w, h};
   }
-  const std::vector<PanoView> views = PanoramaSurveyViews(base.panorama_views);
+  const std::vector<PanoView> views = TurnInPlaceViews(base.panorama_views);
   double load[1] = {0};
   const bool have_load = ::getloadavg(load, 1) == 1;
   const auto start = std::chrono::steady_clock::now();

@@ -23,7 +23,7 @@ Mat3 PanoView::WorldFromCamera() const {
 }
 
 Vec3 PanoView::RayInWorld(const Vec2& pixel) const {
-  return WorldFromCamera() * Vec3((pixel.x() - camera.cx) / camera.fx, (pixel.y() - camera.cy) / camera.fy, 1.0);
+  return WorldFromCamera() * UnprojectToCamera(camera, pixel, 1.0);
 }
 
 void PanoView::Check() const {

@@ -58,13 +58,13 @@ fs::path Fresh(const std::string& name) {
 }
 
 // A grey 2:1 panorama, the capture beside it, and exact labels for the views
-// survey cuts (PanoramaSurveyViews).
+// survey cuts (TurnInPlaceViews(SurveyOptions::panorama_views)).
 fs::path WritePanoramaCapture(const fs::path& dir, const SurveyOptions& options) {
   cv::imwrite((dir / "pano.png").string(), cv::Mat(256, 512, CV_8UC3, cv::Scalar(128, 128, 128)));
   const nlohmann::json capture = {{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"},
                                   {"position_m", {kCamera.x(), kCamera.y(), kCamera.z()}}};
   WriteFileAtomic(dir / "capture.json", capture.dump());
-  const std::vector<PanoView> views = PanoramaSurveyViews(options.panorama_views);
+  const std::vector<PanoView> views = TurnInPlaceViews(options.panorama_views);
   fs::create_directories(dir / "labels");
   for (std::size_t i = 0; i < views.size(); ++i) {
     const PanoView& view = views[i];

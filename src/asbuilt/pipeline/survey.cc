@@ -222,10 +222,6 @@ void SurveyOptions::Check() const {
                 "SurveyOptions: give either labels_dir or use_capture_labels, not both");
 }
 
-std::vector<PanoView> PanoramaSurveyViews(const TurnInPlaceOptions& options) {
-  return TurnInPlaceViews(options);
-}
-
 fs::path DefaultModelPath() {
   constexpr char kName[] = "segformer_b0_asbuilt.pt";
   if (const char* env = std::getenv("ASBUILT_MODEL"); env != nullptr && *env != '\0') return env;
@@ -603,7 +599,7 @@ SurveyResult RunMonoSurvey(const Capture& capture, const fs::path& capture_json,
     const CapturePanorama& pano = *capture.panorama;
     const fs::path pano_path = capture.Resolve(pano.image);
     const cv::Mat equirect = ReadEquirect(pano_path);
-    const std::vector<PanoView> views = PanoramaSurveyViews(options.panorama_views);
+    const std::vector<PanoView> views = TurnInPlaceViews(options.panorama_views);
     camera = views.front().camera;
     for (std::size_t i = 0; i < views.size(); ++i) {
       CaptureFrame f{.index = static_cast<int>(i), .left = fmt::format("{}#view{:03d}", pano.image, i),

@@ -58,8 +58,9 @@ struct SurveyOptions {
   // exact ones.
   std::optional<int> contact_snap_px;
   PlanOptions plan;
-  // Panorama captures: the level views it is resampled into (and that
-  // --labels DIR gives labels for, NNN.png per view). Wide and tall, so one
+  // Panorama captures: the level views it is resampled into,
+  // TurnInPlaceViews(panorama_views); frame i is view i (its labels:
+  // DIR/NNN.png with --labels DIR), at world yaw panorama yaw + view yaw. Wide and tall, so one
   // view sees a wall's base and its ceiling edge at once: 90° across, ±63°
   // up and down — a floor edge from 0.72 m and a ceiling edge 0.9 m above
   // the camera from 0.45 m away (640×480 at fx 400 sees ±31°: no floor edge
@@ -125,12 +126,6 @@ struct SurveyResult {
 SurveyResult RunSurvey(const std::filesystem::path& capture_json,
                        const std::filesystem::path& out_dir, const SurveyOptions& options = {},
                        const ProgressCallback& progress = {});
-
-// The level views a panorama capture is resampled into: `options`'s views,
-// turned by the panorama's yaw. Each view's world yaw is
-// capture.panorama->yaw_deg + view.yaw_deg. Frame i of a panorama survey is
-// view i (its labels: DIR/NNN.png with --labels DIR).
-std::vector<PanoView> PanoramaSurveyViews(const TurnInPlaceOptions& options);
 
 // The shipped segmentation model: $ASBUILT_MODEL if set, else the first of
 // <exe>/../models/, <exe>/../share/asbuilt/models/ and the source tree's
