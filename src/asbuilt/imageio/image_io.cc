@@ -2,11 +2,92 @@
 
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
 
 namespace asbuilt {
+namespace fs = std::filesystem;
+namespace {
+
+const char* DepthName(int depth) {
+  switch (depth) {
+    case CV_8U: return "8-bit";
+    case CV_16U: return "16-bit";
+    case CV_32F: return "32-bit float";
+    default: return "unusual depth";
+  }
+}
+
+cv::Mat Decode(const fs::path& path, const std::string& field, int flags) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw InputError(path.string(), field, "cannot read image: no such file");
+  cv::Mat image;
+  try {
+    image = cv::imread(path.string(), flags);
+  } catch (const cv::Exception& e) {
+    throw InputError(path.string(), field, fmt::format("cannot decode image: {}", e.what()));
+  }
+  if (image.empty()) throw InputError(path.string(), field, "cannot decode image (not a PNG/JPEG/… or corrupt)");
+  return image;
+}
+
+}  // namespace
+
+cv::Mat ReadColourImage(const fs::path& path, const std::string& field) {
+  cv::Mat image = Decode(path, field, cv::IMREAD_UNCHANGED);
+  if (image.depth() != CV_8U) {
+    throw InputError(path.string(), field,
+                     fmt::format("expected an 8-bit colour image, got {}", DepthName(image.depth())));
+  }
+  if (image.channels() == 3) return image;
+  cv::Mat bgr;
+  if (image.channels() == 1) {
+    cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR);
+  } else if (image.channels() == 4) {
+    cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
+  } else {
+    throw InputError(path.string(), field, fmt::format("unsupported channel count {}", image.channels()));
+  }
+  return bgr;
+}
+
+cv::Mat ReadGrayImage(const fs::path& path, const std::string& field) {
+  return Decode(path, field, cv::IMREAD_GRAYSCALE);
+}
+
+cv::Mat ReadLabelImage(const fs::path& path, const std::string& field) {
+  cv::Mat image = Decode(path, field, cv::IMREAD_UNCHANGED);
+  if (image.type() != CV_8UC1) {
+    throw InputError(path.string(), field,
+                     fmt::format("expected a single-channel 8-bit label PNG, got {} channel{}, {}",
+                                 image.channels(), image.channels() == 1 ? "" : "s", DepthName(image.depth())));
+  }
+  return image;
+}
+
+cv::Mat ReadDepthImage(const fs::path& path, const std::string& field) {
+  cv::Mat image = Decode(path, field, cv::IMREAD_ANYDEPTH);
+  if (image.type() != CV_16UC1 && image.type() != CV_32FC1) {
+    throw InputError(path.string(), field,
+                     fmt::format("expected a single-channel 16-bit (mm) or 32-bit float (m) depth image, got {} "
+                                 "channel{}, {}", image.channels(), image.channels() == 1 ? "" : "s",
+                                 DepthName(image.depth())));
+  }
+  return image;
+}
+
+cv::Mat ReadImageAsStored(const fs::path& path, const std::string& field) {
+  return Decode(path, field, cv::IMREAD_UNCHANGED);
+}
+
+void CheckImageSize(const cv::Mat& image, int width_px, int height_px, const fs::path& path,
+                    const std::string& field, const std::string& what) {
+  if (image.cols == width_px && image.rows == height_px) return;
+  throw InputError(path.string(), field,
+                   fmt::format("image is {}x{}, {} is {}x{}", image.cols, image.rows, what, width_px, height_px));
+}
 
 void WriteImageAtomic(const std::filesystem::path& path, const cv::Mat& image) {
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());

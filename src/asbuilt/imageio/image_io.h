@@ -1,14 +1,45 @@
 #ifndef ASBUILT_IMAGEIO_IMAGE_IO_H_
 #define ASBUILT_IMAGEIO_IMAGE_IO_H_
 
-// Image files written atomically (temp file + rename), so a killed run never
-// leaves a broken image under its final name.
+// The image layer: every image file asbuilt reads goes through one of the
+// Read* functions (one error wording: the file, then what is wrong with it),
+// and every image it writes is written atomically (temp file + rename), so a
+// killed run never leaves a broken image under its final name.
 
 #include <filesystem>
+#include <string>
 
 #include <opencv2/core.hpp>
 
 namespace asbuilt {
+
+// Reads a colour image as CV_8UC3 in OpenCV's BGR order (grey images are
+// expanded, alpha dropped; 16-bit files are refused). Every reader throws
+// InputError(path, field, …) when the file is missing, cannot be decoded or
+// has the wrong type; `field` names where the path came from (e.g.
+// "frames[3].left") and may be empty.
+cv::Mat ReadColourImage(const std::filesystem::path& path, const std::string& field = "");
+
+// Reads an image as 8-bit grey (CV_8UC1); colour files are converted.
+cv::Mat ReadGrayImage(const std::filesystem::path& path, const std::string& field = "");
+
+// Reads a label map as stored: single-channel 8-bit label ids (CV_8UC1),
+// refused otherwise ("expected a single-channel 8-bit label PNG, got 3
+// channels, 8-bit"); palette-coloured masks are the labels module's import.
+cv::Mat ReadLabelImage(const std::filesystem::path& path, const std::string& field = "");
+
+// Reads a depth image as stored: 16-bit millimetres (CV_16UC1) or 32-bit float
+// metres (CV_32FC1); any other type is refused.
+cv::Mat ReadDepthImage(const std::filesystem::path& path, const std::string& field = "");
+
+// Reads an image as stored (any depth, any channel count). For tools that
+// inspect or convert images; the pipeline uses the typed readers above.
+cv::Mat ReadImageAsStored(const std::filesystem::path& path, const std::string& field = "");
+
+// Throws InputError(path, field, "image is WxH, <what> is W'xH'") unless
+// `image` has the size `width_px` × `height_px`.
+void CheckImageSize(const cv::Mat& image, int width_px, int height_px, const std::filesystem::path& path,
+                    const std::string& field, const std::string& what);
 
 // Writes `image` in the format of the path's extension (.png: 8/16-bit,
 // lossless). Creates missing folders. Throws Error on failure.

@@ -11,6 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
 
@@ -92,15 +93,6 @@ cv::Mat ToGray8(const cv::Mat& image) {
   cv::Mat gray;
   cv::cvtColor(image, gray, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
   return gray;
-}
-
-cv::Mat ReadLabelImage(const fs::path& path) {
-  cv::Mat labels = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
-  if (labels.empty()) throw InputError(path.string(), "", "cannot read the label image");
-  if (labels.type() != CV_8UC1) {
-    throw InputError(path.string(), "", "labels must be a single-channel 8-bit image of label ids");
-  }
-  return labels;
 }
 
 // Depth σ of a point on a horizontal plane `dh` metres from the camera, at
