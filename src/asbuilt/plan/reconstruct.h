@@ -1,32 +1,38 @@
 #ifndef ASBUILT_PLAN_RECONSTRUCT_H_
 #define ASBUILT_PLAN_RECONSTRUCT_H_
 
-// Floor plan from labelled class points (PAPER.md §8, issue 8):
+// Floor plan from labelled class points (PAPER.md §8, issue 8), in stages
+// (each stage's header, in this folder, states its contract; docs/plan.md
+// describes them):
 //
-//  1. Planarize: wall points → (x, y); each point weighted by 1/σ².
-//  2. Lines: sequential RANSAC with a per-point inlier band
-//     max(ε, k·σ) (capped), hypotheses scored by the inliers' votes (precise
-//     points count more), weighted total least squares on the inliers,
-//     split at gaps along the line; points in no line are outliers.
-//     A final competitive assignment (each point to the line it fits best,
-//     within that line's extent) and refit removes corner bias.
-//  3. Dominant directions from the lines themselves (any angle), paired into
-//     a Manhattan frame when two are 90° apart within the data's
-//     uncertainty; a line is snapped to its dominant direction only when its
-//     own fitted direction agrees within `snap_sigmas` standard errors.
-//  4. Closing the room: lines ordered by angle around the viewpoint (the
-//     capture centre, or the wall points' centroid), collinear neighbours
-//     merged, neighbours intersected into corners; parallel or implausible
-//     neighbours get an inferred connecting wall. Walls run corner to corner,
-//     counter-clockwise (room on the left), so the polygon is the room.
-//  5. Openings: door/window points within `opening_band_m` of a wall are
-//     projected onto it (along the viewing ray when the viewpoint is known),
-//     grouped along the wall, their label extent taken from the binned
-//     density (partly occluded stretches count, strays do not) and the
-//     casing removed to give the clear opening; height and sill from z.
-//  6. ± (1σ) for every dimension from the line fits' covariances (scaled by
-//     the fit residuals) propagated to corners, lengths and area, and from
-//     the opening points' spread.
+//  1. Planarize (plan_points.h): wall points → (x, y); each point weighted
+//     by 1/σ², with its own inlier band max(ε, k·σ) (capped) and vote.
+//  2. Lines (plan_lines.h): sequential RANSAC, hypotheses scored by the
+//     inliers' votes (precise points count more), weighted total least
+//     squares on the inliers, split at gaps along the line; points in no
+//     line are outliers. A final competitive assignment (each point to the
+//     line it fits best, within that line's extent) and refit removes
+//     corner bias.
+//  3. Directions (plan_directions.h): dominant directions from the lines
+//     themselves (any angle), paired into a Manhattan frame when two are 90°
+//     apart within the data's uncertainty; a line is snapped to its dominant
+//     direction only when its own fitted direction agrees within
+//     `snap_sigmas` standard errors.
+//  4. Closing the room (plan_ring.h): lines ordered by angle around the
+//     viewpoint (the capture centre, or the wall points' centroid), collinear
+//     neighbours merged, neighbours intersected into corners; parallel or
+//     implausible neighbours get an inferred connecting wall. Walls run
+//     corner to corner, counter-clockwise (room on the left), so the polygon
+//     is the room.
+//  5. ± (plan_uncertainty.h): 1σ of every wall length and of the area from
+//     the line fits' covariances (scaled by the fit residuals) propagated to
+//     the corners.
+//  6. Openings (plan_openings.h): door/window points within `opening_band_m`
+//     of a wall are projected onto it (along the viewing ray when the
+//     viewpoint is known), grouped along the wall, their label extent taken
+//     from the binned density (partly occluded stretches count, strays do
+//     not) and the casing removed to give the clear opening; height and sill
+//     from z; ± from the opening points' spread.
 
 #include <optional>
 #include <string>

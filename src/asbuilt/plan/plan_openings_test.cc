@@ -1,0 +1,173 @@
+// Plan stage 6, openings (plan_openings.h), on their own and through
+// ReconstructPlan.
+#include "asbuilt/plan/plan_openings.h"
+
+#include <gtest/gtest.h>
+
+#include "asbuilt/plan/plan_test_rooms.h"
+#include "asbuilt/plan/reconstruct.h"
+#include "asbuilt/plan/sample.h"
+#include "asbuilt/plan/score.h"
+
+namespace asbuilt {
+namespace {
+
+// A window's label on a wall's face, 1.2 m wide from 0.85 to 2.35 m up,
+// casing included: the opening is the clear one inside the casing.
+TEST(FindOpenings, GivesTheClearOpeningInsideTheLabel) {
+  std::vector<ClassPoint> points;
+  for (int i = 0; i <= 120; ++i) {
+    for (int k = 0; k <= 30; ++k) {
+      points.push_back({LabelClass::kWindow, Vec3(1.0 + 0.01 * i, 0.0, 0.85 + 0.05 * k), 0.005, PointSource::kDense, 0});
+    }
+  }
+  std::vector<const ClassPoint*> pointers;
+  for (const ClassPoint& p : points) pointers.push_back(&p);
+  const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}, {.start = {4, 0}, .end = {4, 3}}};
+  const PlanOptions o;
+  const FoundOpenings found = FindOpenings(pointers, walls, Vec2(2, 1.5), o);
+  EXPECT_EQ(found.door_leaves, 0);
+  ASSERT_EQ(found.openings.size(), 1u);
+  const PlanOpening& w = found.openings[0];
+  EXPECT_EQ(w.kind, OpeningKind::kWindow);
+  EXPECT_EQ(w.wall, 0);
+  EXPECT_NEAR(w.start.x(), 1.0 + o.window_casing_m, 1e-9);
+  EXPECT_NEAR(w.end.x(), 2.2 - o.window_casing_m, 1e-9);
+  EXPECT_NEAR(w.width, 1.2 - 2 * o.window_casing_m, 1e-9);
+  EXPECT_NEAR(w.sill.value_or(0), 0.85 + o.window_casing_m, 1e-9);
+  EXPECT_NEAR(w.height.value_or(0), 1.5 - 2 * o.window_casing_m, 1e-9);
+  EXPECT_GT(w.width_sigma_m.value_or(0), 0.0);
+}
+
+// Fewer than min_opening_points points are no opening.
+TEST(FindOpenings, NeedsEnoughPoints) {
+  std::vector<ClassPoint> points;
+  for (int i = 0; i <= 10; ++i) {
+    for (const double z : {1.0, 1.5}) {
+      points.push_back({LabelClass::kDoor, Vec3(1.0 + 0.1 * i, 0.0, z), 0.005, PointSource::kDense, 0});
+    }
+  }
+  std::vector<const ClassPoint*> pointers;
+  for (const ClassPoint& p : points) pointers.push_back(&p);
+  const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}};
+  EXPECT_TRUE(FindOpenings(pointers, walls, Vec2(2, 1.5), {.min_opening_points = 23}).openings.empty());
+  EXPECT_EQ(FindOpenings(pointers, walls, Vec2(2, 1.5), {.min_opening_points = 22}).openings.size(), 1u);
+}
+
+TEST(PlanOpenings, OpeningWidthsComeFromLabelEdgesOnTheWall) {
+  const Plan truth = RectangleRoom();
+  SampleOptions sample{.outlier_fraction = 0};
+  std::vector<ClassPoint> points = SamplePointsFromPlan(truth, sample, 4);
+  const Vec3 view = SampleViewpoint(truth, sample);
+  // Stray opening points 12 cm beyond each label edge on the face (frames
+  // and casings seen past the edge, depth noise): they stretch the extent.
+  for (const PlanOpening& o : truth.openings) {
+    const bool door = o.kind == OpeningKind::kDoor;
+    const Vec2 along = (o.end - o.start).normalized();
+    const double casing = door ? 0.07 : 0.05;
+    for (double z = 1.0; z < 1.5; z += 0.02) {
+      for (const Vec2& xy : {Vec2(o.start - (casing + 0.12) * along), Vec2(o.end + (casing + 0.12) * along)}) {
+        points.push_back({door ? LabelClass::kDoor : LabelClass::kWindow, Vec3(xy.x(), xy.y(), z), 0.005,
+                          PointSource::kDense, 0});
+      }
+    }
+  }
+  const PlanOptions options{.viewpoint_m = view};
+  const PlanScore without = ScorePlan(ReconstructPlan(points, options).plan, truth);
+  const std::vector<ClassPoint> edges = BoundaryPoints(truth, view, 0.08);
+  points.insert(points.end(), edges.begin(), edges.end());
+  const PlanResult r = ReconstructPlan(points, options);
+  const PlanScore with = ScorePlan(r.plan, truth);
+  EXPECT_EQ(with.doors.matched + with.windows.matched, 3) << with.Table();
+  EXPECT_GT(without.opening_width.Median().value_or(0), 0.1) << without.Table();
+  EXPECT_LE(with.opening_width.Max().value_or(1), 0.005) << with.Table();
+  for (const PlanOpening& o : r.plan.openings) EXPECT_LT(o.width_sigma_m.value_or(1), 0.03);
+}
+
+TEST(PlanOpenings, TwoWindowsEitherSideOfANarrowPierStayTwo) {
+  // Clear openings 0.25 m apart: their labels (casings included) 0.15 m,
+  // closer than the gap that splits openings.
+  Plan truth = PolygonPlan({{0, 0}, {4.5, 0}, {4.5, 3.6}, {0, 3.6}});
+  AddPlanOpening(truth, OpeningKind::kWindow, 2, 0.8, 1.3, 1.4, 0.9);
+  AddPlanOpening(truth, OpeningKind::kWindow, 2, 2.35, 1.2, 1.4, 0.9);
+  SampleOptions sample{.outlier_fraction = 0};
+  const Vec3 view = SampleViewpoint(truth, sample);
+  std::vector<ClassPoint> points = SamplePointsFromPlan(truth, sample, 5);
+  const PlanOptions options{.viewpoint_m = view};
+  // Without the label edges at the pier, the windows' points alone cannot
+  // tell a pier from something standing in front of one wide window.
+  const PlanScore merged = ScorePlan(ReconstructPlan(points, options).plan, truth);
+  EXPECT_LT(merged.windows.matched, 2) << merged.Table();
+  const std::vector<ClassPoint> edges = BoundaryPoints(truth, view, 0.08);
+  points.insert(points.end(), edges.begin(), edges.end());
+  const PlanScore split = ScorePlan(ReconstructPlan(points, options).plan, truth);
+  EXPECT_EQ(split.windows.predicted, 2) << split.Table();
+  EXPECT_EQ(split.windows.matched, 2) << split.Table();
+  EXPECT_LE(split.opening_width.Max().value_or(1), 0.01) << split.Table();
+}
+
+TEST(PlanOpenings, AnOpenLeafDoesNotWidenTheDoor) {
+  const Plan truth = RectangleRoom();
+  SampleOptions sample{.outlier_fraction = 0};
+  std::vector<ClassPoint> points = SamplePointsFromPlan(truth, sample, 5);
+  const Vec3 view = SampleViewpoint(truth, sample);
+  const double before = ScorePlan(ReconstructPlan(points, {.viewpoint_m = view}).plan, truth).door_width.Max().value();
+  // The leaf, 0.9 m wide, hinged at the door's start and swung 70° into the
+  // room; noisy points (σ 10 cm, as stereo gives them at 3 m).
+  const PlanOpening& door = truth.openings[0];
+  const PlanWall& wall = truth.walls[door.wall];
+  const Vec2 along = (wall.end - wall.start).normalized(), inward(-along.y(), along.x());
+  const Vec2 leaf = std::cos(DegToRad(70.0)) * along + std::sin(DegToRad(70.0)) * inward;
+  for (double s = 0.02; s < 0.9; s += 0.01) {
+    for (double z = 0.1; z < 2.0; z += 0.1) {
+      const Vec2 xy = door.start + s * leaf;
+      points.push_back({LabelClass::kDoor, Vec3(xy.x(), xy.y(), z), 0.1, PointSource::kDense, 0});
+    }
+  }
+  const PlanScore s = ScorePlan(ReconstructPlan(points, {.viewpoint_m = view}).plan, truth);
+  EXPECT_EQ(s.doors.matched, 1) << s.Table();
+  EXPECT_EQ(s.doors.predicted, 1) << s.Table();
+  EXPECT_LE(s.door_width.Max().value_or(1), before + 0.02) << s.Table();
+}
+
+// An open leaf hides its hinge-side jamb from the rig: no label edge is seen
+// there and the door's points stop short. A leaf is as wide as its clear
+// opening, so the width is the leaf's, measured from the edge that is seen.
+TEST(PlanOpenings, AnOpenLeafHidingTheHingeSideGivesTheDoorItsWidth) {
+  const Plan truth = RectangleRoom();
+  const PlanOpening& door = truth.openings[0];
+  const PlanWall& wall = truth.walls[door.wall];
+  const Vec2 along = (wall.end - wall.start).normalized(), inward(-along.y(), along.x());
+  SampleOptions sample{.outlier_fraction = 0};
+  const Vec3 view = SampleViewpoint(truth, sample);
+  std::vector<ClassPoint> points = SamplePointsFromPlan(truth, sample, 6);
+  // Hidden by the leaf: the door's points within 35 cm of the hinge (at the
+  // door's start), and that side's label edge.
+  std::erase_if(points, [&](const ClassPoint& p) {
+    return p.label == LabelClass::kDoor && along.dot(p.position_m.head<2>() - door.start) < 0.35;
+  });
+  for (const ClassPoint& p : BoundaryPoints(truth, view, 0.02)) {
+    const double t = along.dot(p.position_m.head<2>() - door.start);
+    if (p.label != LabelClass::kDoor || t > 0.5) points.push_back(p);
+  }
+  const PlanScore hidden = ScorePlan(ReconstructPlan(points, {.viewpoint_m = view}).plan, truth);
+  // The leaf: as wide as the opening, hinged at its start, swung 70° into the
+  // room; points σ 1 cm, 1.2 m tall.
+  const double width = (door.end - door.start).norm();
+  const Vec2 leaf = std::cos(DegToRad(70.0)) * along + std::sin(DegToRad(70.0)) * inward;
+  for (double s = 0.03; s < width; s += 0.01) {
+    for (double z = 0.1; z < 1.3; z += 0.1) {
+      const Vec2 xy = door.start + s * leaf + 0.01 * std::sin(37 * s + 11 * z) * Vec2(-leaf.y(), leaf.x());
+      points.push_back({LabelClass::kDoor, Vec3(xy.x(), xy.y(), z), 0.01, PointSource::kDense, 0});
+    }
+  }
+  const PlanResult r = ReconstructPlan(points, {.viewpoint_m = view});
+  const PlanScore s = ScorePlan(r.plan, truth);
+  EXPECT_GT(hidden.door_width.Max().value_or(1), 0.2) << hidden.Table();
+  EXPECT_EQ(r.summary.door_leaves, 1);
+  EXPECT_EQ(s.doors.matched, 1) << s.Table();
+  EXPECT_LE(s.door_width.Max().value_or(1), 0.03) << s.Table();
+}
+
+}  // namespace
+}  // namespace asbuilt
