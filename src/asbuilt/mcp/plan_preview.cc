@@ -2,44 +2,56 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
+#include "asbuilt/plan/sheet.h"
+#include "asbuilt/plan/sheet_cairo.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt::mcp {
 namespace {
 
-// Colours (BGR).
-const cv::Scalar kBackground(250, 250, 250);
-const cv::Scalar kFloor(232, 238, 242);
-const cv::Scalar kWall(55, 55, 55);
-const cv::Scalar kWindowFill(240, 215, 160);
-const cv::Scalar kWindowLine(150, 90, 30);
-const cv::Scalar kDoor(40, 100, 190);
-const cv::Scalar kFurnitureFill(170, 200, 225);
-const cv::Scalar kFurnitureLine(80, 110, 140);
-const cv::Scalar kRig(30, 30, 210);
-const cv::Scalar kLight(0, 190, 250);
-const cv::Scalar kText(40, 40, 40);
+SheetColour Rgb(int r, int g, int b) { return {r / 255.0, g / 255.0, b / 255.0}; }
+const SheetColour kBackground = Rgb(250, 250, 250);
+const SheetColour kFloor = Rgb(242, 238, 232);
+const SheetColour kWall = Rgb(55, 55, 55);
+const SheetColour kWindowFill = Rgb(160, 215, 240);
+const SheetColour kWindowLine = Rgb(30, 90, 150);
+const SheetColour kDoor = Rgb(190, 100, 40);
+const SheetColour kFurnitureFill = Rgb(225, 200, 170);
+const SheetColour kFurnitureLine = Rgb(140, 110, 80);
+const SheetColour kRig = Rgb(210, 30, 30);
+const SheetColour kLight = Rgb(250, 190, 0);
+const SheetColour kText = Rgb(40, 40, 40);
 
-// World (x, y) metres → pixel, +Y up on the picture.
-struct Mapping {
-  double min_x = 0, max_y = 0, scale = 1;  // Pixels per metre.
-  int margin = 0;
-  cv::Point2d operator()(const Vec2& p) const {
-    return {margin + (p.x() - min_x) * scale, margin + (max_y - p.y()) * scale};
+// The preview's sheet: sizes in pixels (1 paper mm = 1 px), `px_per_m`
+// pixels per world metre; primitives on the overlay layer, paper view.
+struct Canvas {
+  PlanSheet sheet;
+  double px_per_m = 1;
+
+  // World point at pixel (x right, y down from the top-left corner).
+  Vec2 AtPx(double x, double y) const { return {sheet.lo.x() + x / px_per_m, sheet.hi.y() - y / px_per_m}; }
+  void Add(decltype(SheetPrimitive::shape) shape) {
+    sheet.Add(SheetLayer::kOverlay, SheetView::kPaper, std::move(shape));
   }
-  cv::Point Px(const Vec2& p) const {
-    cv::Point2d q = (*this)(p);
-    return {static_cast<int>(std::lround(q.x * 16)), static_cast<int>(std::lround(q.y * 16))};
+  void Fill(std::vector<Vec2> polygon, const SheetColour& colour) {
+    if (polygon.size() >= 3) Add(SheetPath{.points = std::move(polygon), .closed = true, .fill = colour});
+  }
+  void Line(std::vector<Vec2> points, const SheetColour& colour, double width_px = 1) {
+    Add(SheetPath{.points = std::move(points), .stroke = SheetStroke{.colour = colour, .width_mm = width_px}});
+  }
+  // Text centred on `centre` (world), `height_px` capitals.
+  void Text(const std::string& text, const Vec2& centre, double height_px) {
+    Add(SheetText{.at = centre - Vec2(0, 0.5 * height_px / px_per_m),
+                  .height_m = height_px / px_per_m,
+                  .text = text,
+                  .colour = kText});
   }
 };
-
-constexpr int kShift = 4;  // Sub-pixel bits for OpenCV drawing (×16 above).
 
 Vec2 Rotate(const Vec2& v, double rad) {
   return {std::cos(rad) * v.x() - std::sin(rad) * v.y(), std::sin(rad) * v.x() + std::cos(rad) * v.y()};
@@ -77,27 +89,14 @@ std::vector<Vec2> Offset(const std::vector<Vec2>& poly, double t) {
   return out;
 }
 
-void FillPoly(cv::Mat& img, const Mapping& m, const std::vector<Vec2>& poly, const cv::Scalar& c) {
-  std::vector<cv::Point> pts;
-  for (const Vec2& p : poly) pts.push_back(m.Px(p));
-  if (pts.size() >= 3) cv::fillPoly(img, std::vector<std::vector<cv::Point>>{pts}, c, cv::LINE_AA, kShift);
+// A circle as a closed polygon of 32 sides.
+std::vector<Vec2> Circle(const Vec2& centre, double radius) {
+  std::vector<Vec2> points;
+  for (int k = 0; k < 32; ++k) points.push_back(centre + radius * Vec2(std::cos(k * kPi / 16), std::sin(k * kPi / 16)));
+  return points;
 }
 
-void Line(cv::Mat& img, const Mapping& m, const Vec2& a, const Vec2& b, const cv::Scalar& c,
-          int thickness = 1) {
-  cv::line(img, m.Px(a), m.Px(b), c, thickness, cv::LINE_AA, kShift);
-}
-
-void Text(cv::Mat& img, const std::string& s, cv::Point2d centre, double scale = 0.42,
-          const cv::Scalar& c = kText) {
-  int baseline = 0;
-  cv::Size size = cv::getTextSize(s, cv::FONT_HERSHEY_SIMPLEX, scale, 1, &baseline);
-  cv::Point origin(static_cast<int>(centre.x - size.width / 2.0),
-                   static_cast<int>(centre.y + size.height / 2.0));
-  cv::putText(img, s, origin, cv::FONT_HERSHEY_SIMPLEX, scale, c, 1, cv::LINE_AA);
-}
-
-void DrawOpening(cv::Mat& img, const Mapping& m, const Room& room, const Opening& o) {
+void DrawOpening(Canvas& canvas, const Room& room, const Opening& o) {
   const int n = static_cast<int>(room.polygon.size());
   if (o.wall < 0 || o.wall >= n) return;
   Vec2 a = room.polygon[o.wall], b = room.polygon[(o.wall + 1) % n];
@@ -106,16 +105,13 @@ void DrawOpening(cv::Mat& img, const Mapping& m, const Room& room, const Opening
   Vec2 out = Outward(a, b);
   double t = std::max(room.wall_thickness_m, 0.02);
   Vec2 p0 = a + d * o.offset_m, p1 = a + d * (o.offset_m + o.width_m);
-  std::vector<Vec2> gap = {p0 - out * 0.01, p1 - out * 0.01, p1 + out * (t + 0.01),
-                           p0 + out * (t + 0.01)};
+  std::vector<Vec2> gap = {p0 - out * 0.01, p1 - out * 0.01, p1 + out * (t + 0.01), p0 + out * (t + 0.01)};
   if (o.kind == OpeningKind::kWindow) {
-    FillPoly(img, m, gap, kWindowFill);
-    Line(img, m, p0, p1, kWindowLine);
-    Line(img, m, p0 + out * (t / 2), p1 + out * (t / 2), kWindowLine);
-    Line(img, m, p0 + out * t, p1 + out * t, kWindowLine);
+    canvas.Fill(gap, kWindowFill);
+    for (double across : {0.0, t / 2, t}) canvas.Line({p0 + out * across, p1 + out * across}, kWindowLine);
     return;
   }
-  FillPoly(img, m, gap, kBackground);
+  canvas.Fill(gap, kBackground);
   // Hinge on the right seen from inside (looking along `out`, right is −d):
   // the opening's start end; on the left, its far end. The leaf swings in.
   bool right = o.hinge == HingeSide::kRight;
@@ -124,22 +120,23 @@ void DrawOpening(cv::Mat& img, const Mapping& m, const Room& room, const Opening
   double open = DegToRad(o.open_deg > 0 ? o.open_deg : 90.0);
   // Rotate the closed leaf towards the inside (−out).
   double sign = Rotate(closed, 0.1).dot(-out) > 0 ? 1.0 : -1.0;
-  Vec2 leaf = Rotate(closed, sign * open);
-  Line(img, m, hinge, hinge + leaf, kDoor, 2);
-  std::vector<cv::Point> arc;
-  for (int i = 0; i <= 24; ++i) arc.push_back(m.Px(hinge + Rotate(closed, sign * open * i / 24.0)));
-  cv::polylines(img, arc, false, kDoor, 1, cv::LINE_AA, kShift);
+  canvas.Line({hinge, hinge + Rotate(closed, sign * open)}, kDoor, 2);
+  std::vector<Vec2> arc;
+  for (int i = 0; i <= 24; ++i) arc.push_back(hinge + Rotate(closed, sign * open * i / 24.0));
+  canvas.Line(std::move(arc), kDoor);
 }
 
-void DrawFurniture(cv::Mat& img, const Mapping& m, const Furniture& f) {
+void DrawFurniture(Canvas& canvas, const Furniture& f) {
   double yaw = DegToRad(f.yaw_deg);
   double hx = f.size_m.x() / 2, hy = f.size_m.y() / 2;
   std::vector<Vec2> box;
   for (Vec2 c : {Vec2(-hx, -hy), Vec2(hx, -hy), Vec2(hx, hy), Vec2(-hx, hy)}) {
     box.push_back(f.centre_m + Rotate(c, yaw));
   }
-  FillPoly(img, m, box, kFurnitureFill);
-  for (int i = 0; i < 4; ++i) Line(img, m, box[i], box[(i + 1) % 4], kFurnitureLine);
+  canvas.Add(SheetPath{.points = box,
+                       .closed = true,
+                       .fill = kFurnitureFill,
+                       .stroke = SheetStroke{.colour = kFurnitureLine, .width_mm = 1}});
 }
 
 // A "nice" scale bar length (1, 2 or 5 × 10^k metres) near `target_m`.
@@ -149,6 +146,23 @@ double NiceLength(double target_m) {
     if (k * p >= target_m) return k * p;
   }
   return 10 * p;
+}
+
+// North arrow (top right) and scale bar (bottom left), placed in pixels.
+void DrawNorthAndScaleBar(Canvas& canvas, int width_px, int height_px, double span_x) {
+  const double nx = width_px - 22.0;
+  const Vec2 tail = canvas.AtPx(nx, 54), tip = canvas.AtPx(nx, 26);
+  canvas.Line({tail, tip}, kText, 2);
+  const double head = 0.35 * (tail - tip).norm();
+  for (double side : {-1.0, 1.0}) {
+    canvas.Line({tip, tip + head * Vec2(side * std::sqrt(0.5), -std::sqrt(0.5))}, kText, 2);
+  }
+  canvas.Text("N", canvas.AtPx(nx, 16), 10);
+  const double bar_m = NiceLength(span_x / 5);
+  const double y = height_px - 14.0, x0 = 12, x1 = 12 + bar_m * canvas.px_per_m;
+  canvas.Line({canvas.AtPx(x0, y), canvas.AtPx(x1, y)}, kText, 2);
+  for (double x : {x0, x1}) canvas.Line({canvas.AtPx(x, y - 4), canvas.AtPx(x, y + 4)}, kText);
+  canvas.Text(fmt::format("{:g} m", bar_m), canvas.AtPx((x0 + x1) / 2, height_px - 26.0), 9);
 }
 
 }  // namespace
@@ -192,42 +206,50 @@ std::string RenderPlanPreviewPng(const Scene& scene, const PlanPreviewOptions& o
   double cx = (min_x + max_x) / 2, cy = (min_y + max_y) / 2;
   min_x = cx - span_x / 2, max_y = cy + span_y / 2;
 
-  Mapping m;
-  m.margin = options.margin_px;
-  m.min_x = min_x;
-  m.max_y = max_y;
-  m.scale = (options.width_px - 2.0 * options.margin_px) / span_x;
-  int height = static_cast<int>(std::ceil(span_y * m.scale)) + 2 * options.margin_px;
+  // Pixels per metre, image height; the sheet is the image.
+  double scale = (options.width_px - 2.0 * options.margin_px) / span_x;
+  int height = static_cast<int>(std::ceil(span_y * scale)) + 2 * options.margin_px;
   if (height > options.max_height_px) {
-    m.scale = (options.max_height_px - 2.0 * options.margin_px) / span_y;
+    scale = (options.max_height_px - 2.0 * options.margin_px) / span_y;
     height = options.max_height_px;
   }
-  cv::Mat img(height, options.width_px, CV_8UC3, kBackground);
+  Canvas canvas;
+  canvas.px_per_m = scale;
+  canvas.sheet.scale = 1000.0 / scale;  // 1 paper mm = 1 px.
+  canvas.sheet.lo = Vec2(min_x - options.margin_px / scale, max_y + options.margin_px / scale - height / scale);
+  canvas.sheet.hi = Vec2(canvas.sheet.lo.x() + options.width_px / scale, max_y + options.margin_px / scale);
+  canvas.Fill({canvas.sheet.lo, Vec2(canvas.sheet.hi.x(), canvas.sheet.lo.y()), canvas.sheet.hi,
+               Vec2(canvas.sheet.lo.x(), canvas.sheet.hi.y())},
+              kBackground);
 
   // Rooms: walls as the band between the inner polygon and its offset.
   for (const Room& r : scene.rooms) {
     if (r.polygon.size() < 3) continue;
-    FillPoly(img, m, Offset(r.polygon, std::max(r.wall_thickness_m, 0.02)), kWall);
-    FillPoly(img, m, r.polygon, kFloor);
+    canvas.Fill(Offset(r.polygon, std::max(r.wall_thickness_m, 0.02)), kWall);
+    canvas.Fill(r.polygon, kFloor);
   }
   for (const Room& r : scene.rooms) {
-    for (const Opening& o : r.openings) DrawOpening(img, m, r, o);
+    for (const Opening& o : r.openings) DrawOpening(canvas, r, o);
   }
-  for (const Furniture& f : scene.furniture) DrawFurniture(img, m, f);
+  for (const Furniture& f : scene.furniture) DrawFurniture(canvas, f);
   for (const Light& l : scene.lights) {
     if (l.kind == LightKind::kSun) continue;
-    cv::circle(img, m.Px(l.position_m.head<2>()), 5 * 16, kLight, 2, cv::LINE_AA, kShift);
+    canvas.Add(SheetPath{.points = Circle(l.position_m.head<2>(), 5 / scale),
+                         .closed = true,
+                         .stroke = SheetStroke{.colour = kLight, .width_mm = 2}});
   }
 
   // The rig: a dot per position, a short ray per view direction.
   const std::size_t max_rays = 360;
+  SheetDots rig{.radius_mm = 4, .colour = kRig};
   for (std::size_t i = 0; i < views.size() && i < max_rays; ++i) {
     Vec2 p = views[i].position_m.head<2>();
     double yaw = DegToRad(views[i].yaw_deg);
     Vec2 forward(-std::sin(yaw), std::cos(yaw));
-    if (options.view_rays) Line(img, m, p, p + forward * (28.0 / m.scale), kRig, 1);
-    cv::circle(img, m.Px(p), 4 * 16, kRig, cv::FILLED, cv::LINE_AA, kShift);
+    if (options.view_rays) canvas.Line({p, p + forward * (28.0 / scale)}, kRig);
+    rig.centres.push_back(p);
   }
+  canvas.Add(std::move(rig));
 
   // Wall numbers and lengths, outside each wall.
   if (options.wall_labels) {
@@ -237,31 +259,16 @@ std::string RenderPlanPreviewPng(const Scene& scene, const PlanPreviewOptions& o
       for (int w = 0; w < n; ++w) {
         Vec2 a = r.polygon[w], b = r.polygon[(w + 1) % n];
         if ((b - a).norm() < 1e-9) continue;
-        Vec2 mid = (a + b) / 2 + Outward(a, b) * (r.wall_thickness_m + 16.0 / m.scale);
-        Text(img, fmt::format("{}: {:.2f} m", w, (b - a).norm()), m(mid));
+        Vec2 mid = (a + b) / 2 + Outward(a, b) * (r.wall_thickness_m + 16.0 / scale);
+        canvas.Text(fmt::format("{}: {:.2f} m", w, (b - a).norm()), mid, 9);
       }
     }
   }
-
-  // North arrow (top right) and scale bar (bottom left).
-  cv::Point2d north(options.width_px - 22.0, 36.0);
-  cv::arrowedLine(img, north + cv::Point2d(0, 18), north - cv::Point2d(0, 10), kText, 2,
-                  cv::LINE_AA, 0, 0.35);
-  Text(img, "N", north - cv::Point2d(0, 20), 0.45);
-  double bar_m = NiceLength(span_x / 5);
-  double bar_px = bar_m * m.scale;
-  cv::Point2d bar0(12, height - 14.0), bar1(12 + bar_px, height - 14.0);
-  cv::line(img, bar0, bar1, kText, 2, cv::LINE_AA);
-  cv::line(img, bar0 - cv::Point2d(0, 4), bar0 + cv::Point2d(0, 4), kText, 1, cv::LINE_AA);
-  cv::line(img, bar1 - cv::Point2d(0, 4), bar1 + cv::Point2d(0, 4), kText, 1, cv::LINE_AA);
-  Text(img, fmt::format("{:g} m", bar_m), cv::Point2d((bar0.x + bar1.x) / 2, height - 26.0), 0.4);
+  DrawNorthAndScaleBar(canvas, options.width_px, height, span_x);
   if (scene.rooms.empty()) {
-    Text(img, "no rooms yet: call add_room", cv::Point2d(options.width_px / 2.0, height / 2.0), 0.6);
+    canvas.Text("no rooms yet: call add_room", canvas.AtPx(options.width_px / 2.0, height / 2.0), 13);
   }
-
-  std::vector<unsigned char> png;
-  if (!cv::imencode(".png", img, png)) throw Error("plan preview: PNG encoding failed");
-  return std::string(png.begin(), png.end());
+  return SheetToPng(canvas.sheet, {.px_per_m = scale, .px_per_mm = 1.0, .max_side_px = 4096});
 }
 
 }  // namespace asbuilt::mcp

@@ -5,7 +5,10 @@
 // thickness, doors (gap, leaf and swing), windows (glazing lines), furniture
 // footprints, lights, the stereo rig and the direction of each view, wall
 // numbers with lengths, a north arrow and a scale bar. Lets an LLM (or a
-// person) check a scene at a glance before rendering anything.
+// person) check a scene at a glance before rendering anything. Drawn as
+// overlay primitives on a plan sheet of its own (plan/sheet.h; a scene is
+// more than a plan: hinge sides, furniture, lights) and rasterised by the
+// drawings' PNG serialiser (plan/sheet_cairo.h).
 
 #include <string>
 

@@ -10,9 +10,10 @@
 // uncertainty is significant); overall dimensions for rooms that are not
 // rectangles; the room area; a scale bar.
 //
-// SVG is written as text; PDF and PNG through cairo; DXF by asbuilt's own
-// writer (dxf.h). Every file is written atomically: on failure nothing
-// appears under the final name.
+// Each writer lays the plan out once as a plan sheet (sheet.h) and
+// serialises it: SVG as text (sheet_svg.h), PDF and PNG through cairo
+// (sheet_cairo.h), DXF by asbuilt's own writer (dxf.h). Every file is
+// written atomically: on failure nothing appears under the final name.
 //
 // Any plan with finite coordinates can be drawn, however large or bad: when
 // the sheet would not fit the page (SVG, PDF) or image (PNG) limit at
@@ -78,7 +79,7 @@ void WritePlanFiles(const Plan& plan, const std::filesystem::path& folder, const
 // with " ±5" appended when `sigma_m` is significant for the options.
 std::string DimensionText(double length_m, std::optional<double> sigma_m, const DrawingOptions& options);
 
-// Shared by the drawings and the DXF writer: a wall's drawn thickness (its
+// Used by the sheet's layout (sheet.h): a wall's drawn thickness (its
 // own, or the options' nominal one), and a text angle (radians) turned by π
 // where needed so that it reads left-to-right or bottom-to-top.
 double DrawnThickness(const PlanWall& wall, const DrawingOptions& options);

@@ -1,16 +1,17 @@
 #include "asbuilt/plan/dxf.h"
 
 #include <cmath>
+#include <iterator>
+#include <variant>
 #include <vector>
 
 #include <fmt/format.h>
 
-#include "asbuilt/plan/reconstruct.h"
+#include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
 
 namespace asbuilt {
 namespace {
-
 
 // Group-code writer with a handle allocator.
 class DxfOut {
@@ -44,7 +45,9 @@ struct Entity {
   double radius = 0, start_deg = 0, end_deg = 0;  // Arc.
   double height = 0.13, angle_deg = 0;  // Text.
   std::string text;
-  std::vector<Vec2> points;  // Hatch / closed polyline.
+  std::vector<Vec2> points;  // Hatch / polyline.
+  bool closed = true;        // Polyline.
+  int anchor = 1;            // Text: 0 left, 1 centre, 2 right.
   int colour = 256;          // BYLAYER.
 };
 
@@ -101,7 +104,7 @@ void WriteEntity(DxfOut& o, const Entity& e, const std::string& owner) {
       o.Real(40, e.height);
       o.Code(1, e.text);
       o.Real(50, e.angle_deg);
-      o.Code(72, 1);  // Centred…
+      o.Code(72, e.anchor);  // Left, centred or right…
       o.Point(11, e.a);
       o.Code(100, "AcDbText");
       o.Code(73, 0);  // …on the baseline.
@@ -132,7 +135,7 @@ void WriteEntity(DxfOut& o, const Entity& e, const std::string& owner) {
     case Entity::kPolyline:
       o.Code(100, "AcDbPolyline");
       o.Code(90, static_cast<int>(e.points.size()));
-      o.Code(70, 1);  // Closed.
+      o.Code(70, e.closed ? 1 : 0);
       for (const Vec2& p : e.points) {
         o.Real(10, p.x());
         o.Real(20, p.y());
@@ -141,163 +144,121 @@ void WriteEntity(DxfOut& o, const Entity& e, const std::string& owner) {
   }
 }
 
-Entity Line(const std::string& layer, const Vec2& a, const Vec2& b) {
-  Entity e;
-  e.kind = Entity::kLine;
-  e.layer = layer;
-  e.a = a;
-  e.b = b;
-  return e;
+Entity DxfText(const std::string& layer, const SheetText& text) {
+  return {.kind = Entity::kText,
+          .layer = layer,
+          .a = text.at,
+          .height = text.height_m,
+          .angle_deg = RadToDeg(text.angle_rad),
+          .text = text.text,
+          .anchor = text.anchor < 0.25 ? 0 : (text.anchor > 0.75 ? 2 : 1)};
 }
 
-Dimension MakeDimension(const Vec2& a, const Vec2& b, const Vec2& out, double offset, const std::string& text,
-                        const DrawingOptions& opt) {
+// The DXF entity of a model-view primitive other than a dimension: LINE (a
+// two-point path), LWPOLYLINE (a longer path, or a closed one's outline),
+// HATCH (a closed path's fill, grey), ARC, TEXT.
+void AddDxfEntities(std::vector<Entity>& entities, const SheetPrimitive& primitive) {
+  const std::string layer = SheetLayerName(primitive.layer);
+  if (const auto* path = std::get_if<SheetPath>(&primitive.shape)) {
+    Entity e{.layer = layer, .points = path->points};
+    if (!path->closed && path->points.size() == 2) {
+      e.kind = Entity::kLine;
+      e.a = path->points[0];
+      e.b = path->points[1];
+      entities.push_back(e);
+      return;
+    }
+    if (path->closed && path->fill) {
+      e.kind = Entity::kHatch;
+      e.colour = 8;
+      entities.push_back(e);
+    }
+    if (path->stroke) {
+      e.kind = Entity::kPolyline;
+      e.closed = path->closed;
+      e.colour = 256;
+      entities.push_back(e);
+    }
+  } else if (const auto* arc = std::get_if<SheetArc>(&primitive.shape)) {
+    entities.push_back({.kind = Entity::kArc,
+                        .layer = layer,
+                        .a = arc->centre,
+                        .radius = arc->radius_m,
+                        .start_deg = std::fmod(RadToDeg(arc->from_rad) + 360.0, 360.0),
+                        .end_deg = std::fmod(RadToDeg(arc->to_rad) + 360.0, 360.0)});
+  } else if (const auto* text = std::get_if<SheetText>(&primitive.shape)) {
+    entities.push_back(DxfText(layer, *text));
+  } else {
+    throw InvalidArgument(fmt::format("SheetToDxf: the model view has dots on layer {}; the DXF draws none", layer));
+  }
+}
+
+// A dimension: its rendered block (extension and dimension lines, ticks,
+// text) and the DIMENSION entity's points.
+Dimension MakeDxfDimension(const SheetDimension& dim, const SheetDimensionStyle& style) {
+  const SheetDimensionGeometry g = DimensionGeometry(dim, style);
   Dimension d;
-  d.p1 = a;
-  d.p2 = b;
-  d.line1 = a + offset * out;
-  d.line2 = b + offset * out;
-  d.text = text;
-  Vec2 dir = (b - a).normalized();
-  double angle = ReadableTextAngle(std::atan2(dir.y(), dir.x()));
-  Vec2 up = Perp(Vec2(std::cos(angle), std::sin(angle)));
-  d.text_at = 0.5 * (d.line1 + d.line2) + 0.04 * up;
-  d.text_angle_deg = RadToDeg(angle);
-  // Block geometry: extension lines, dimension line, ticks, text.
-  const double gap = 0.05, over = 0.08, tick = 0.07;
-  d.geometry.push_back(Line("DIMENSIONS", a + gap * out, d.line1 + over * out));
-  d.geometry.push_back(Line("DIMENSIONS", b + gap * out, d.line2 + over * out));
-  d.geometry.push_back(Line("DIMENSIONS", d.line1 - over * dir, d.line2 + over * dir));
-  Vec2 slash = (dir + out).normalized() * tick;
-  d.geometry.push_back(Line("DIMENSIONS", d.line1 - slash, d.line1 + slash));
-  d.geometry.push_back(Line("DIMENSIONS", d.line2 - slash, d.line2 + slash));
-  Entity t;
-  t.kind = Entity::kText;
-  t.layer = "DIMENSIONS";
-  t.a = d.text_at;
-  t.height = opt.text_height_m;
-  t.angle_deg = d.text_angle_deg;
-  t.text = text;
-  d.geometry.push_back(t);
+  d.p1 = dim.p1;
+  d.p2 = dim.p2;
+  d.line1 = g.line1;
+  d.line2 = g.line2;
+  d.text = "<>" + dim.tolerance_text;  // "<>": the measurement, in the style's units.
+  d.text_at = g.text_at;
+  d.text_angle_deg = RadToDeg(g.text_angle_rad);
+  for (const auto& lines : {g.extension_and_dimension_lines, g.ticks}) {
+    for (const auto& [a, b] : lines) {
+      d.geometry.push_back({.kind = Entity::kLine, .layer = "DIMENSIONS", .a = a, .b = b});
+    }
+  }
+  d.geometry.push_back(DxfText("DIMENSIONS", {.at = g.text_at,
+                                              .angle_rad = g.text_angle_rad,
+                                              .height_m = style.text_height_m,
+                                              .text = d.text}));
   return d;
 }
 
-
-}  // namespace
-
-std::string PlanToDxf(const Plan& plan, const DrawingOptions& opt) {
-  opt.Check();
+// The model view: entities in list order, dimensions (numbered *D1, *D2, …)
+// in list order.
+struct DxfModel {
   std::vector<Entity> entities;
   std::vector<Dimension> dims;
-  const int n = static_cast<int>(plan.walls.size());
-  auto outward = [&](int i) -> Vec2 { return -Perp((plan.walls[i].end - plan.walls[i].start).normalized()); };
-
-  // Walls: the measured inner face, and each piece between openings.
-  for (int i = 0; i < n; ++i) {
-    const PlanWall& w = plan.walls[i];
-    double len = w.Length();
-    if (len <= 0) continue;
-    Vec2 d = (w.end - w.start) / len, out = outward(i);
-    double th = DrawnThickness(w, opt);
-    entities.push_back(Line("WALLS", w.start, w.end));
-    for (auto [t0, t1] : WallPiecesBetweenOpenings(plan, i)) {
-      Vec2 i0 = w.start + t0 * d, i1 = w.start + t1 * d;
-      Entity hatch;
-      hatch.kind = Entity::kHatch;
-      hatch.layer = "WALLS";
-      hatch.colour = 8;
-      hatch.points = {i0, i1, i1 + th * out, i0 + th * out};
-      entities.push_back(hatch);
-      Entity outline = hatch;
-      outline.kind = Entity::kPolyline;
-      outline.colour = 256;
-      entities.push_back(outline);
-    }
-    // Dimension of the inner length.
-    std::string text = "<>";
-    std::string sigma_text = DimensionText(len, w.length_sigma_m, opt);
-    if (auto pm = sigma_text.find(" ±"); pm != std::string::npos) text += sigma_text.substr(pm);
-    dims.push_back(MakeDimension(w.start, w.end, out, th + 0.85, text, opt));
-  }
-  // Openings.
-  for (const PlanOpening& op : plan.openings) {
-    const PlanWall& w = plan.walls[op.wall];
-    Vec2 d = (w.end - w.start).normalized(), out = outward(op.wall), in = -out;
-    double th = DrawnThickness(w, opt);
-    Vec2 a = op.start, b = op.end;
-    if (d.dot(b - a) < 0) std::swap(a, b);
-    const std::string layer = op.kind == OpeningKind::kDoor ? "DOORS" : "WINDOWS";
-    entities.push_back(Line(layer, a, a + th * out));
-    entities.push_back(Line(layer, b, b + th * out));
-    double width = (b - a).norm();
-    if (op.kind == OpeningKind::kDoor) {
-      entities.push_back(Line(layer, a, a + width * in));
-      Entity arc;
-      arc.kind = Entity::kArc;
-      arc.layer = layer;
-      arc.a = a;
-      arc.radius = width;
-      double from = RadToDeg(std::atan2(d.y(), d.x())), to = RadToDeg(std::atan2(in.y(), in.x()));
-      if (std::fmod(to - from + 720.0, 360.0) > 180.0) std::swap(from, to);
-      arc.start_deg = std::fmod(from + 360.0, 360.0);
-      arc.end_deg = std::fmod(to + 360.0, 360.0);
-      entities.push_back(arc);
+};
+DxfModel CollectDxfModel(const PlanSheet& sheet) {
+  DxfModel model;
+  for (const SheetPrimitive& primitive : sheet.primitives) {
+    if (!InView(primitive.views, SheetView::kModel)) continue;
+    CheckArgument(primitive.layer != SheetLayer::kOverlay,
+                  "SheetToDxf: an OVERLAY primitive is in the model view; overlays are paper only");
+    if (const auto* dim = std::get_if<SheetDimension>(&primitive.shape)) {
+      model.dims.push_back(MakeDxfDimension(*dim, sheet.dimension_style));
+      model.dims.back().block = fmt::format("*D{}", model.dims.size());
     } else {
-      entities.push_back(Line(layer, a, b));
-      entities.push_back(Line(layer, a + th * out, b + th * out));
-      entities.push_back(Line(layer, a + (0.5 * th - 0.015) * out, b + (0.5 * th - 0.015) * out));
-      entities.push_back(Line(layer, a + (0.5 * th + 0.015) * out, b + (0.5 * th + 0.015) * out));
+      AddDxfEntities(model.entities, primitive);
     }
-    std::string text = "<>";
-    std::string sigma_text = DimensionText(width, op.width_sigma_m, opt);
-    if (auto pm = sigma_text.find(" ±"); pm != std::string::npos) text += sigma_text.substr(pm);
-    dims.push_back(MakeDimension(a, b, out, th + 0.4, text, opt));
   }
-  // Room area and title.
-  for (const PlanRoom& room : plan.rooms) {
-    if (room.polygon.size() < 3) continue;
-    Vec2 c = Vec2::Zero();
-    double a2 = 0;
-    for (size_t k = 0; k < room.polygon.size(); ++k) {
-      const Vec2& p = room.polygon[k];
-      const Vec2& q = room.polygon[(k + 1) % room.polygon.size()];
-      double cr = p.x() * q.y() - p.y() * q.x();
-      a2 += cr;
-      c += cr * (p + q);
-    }
-    c /= 3 * a2;
-    Entity t;
-    t.kind = Entity::kText;
-    t.layer = "TEXT";
-    t.a = c;
-    t.height = 1.2 * opt.text_height_m;
-    t.text = fmt::format("{:.2f} m2", room.area_m2);
-    if (opt.show_uncertainty && room.area_sigma_m2) {
-      t.text = fmt::format("{:.2f} +/- {:.2f} m2", room.area_m2, std::max(0.01, *room.area_sigma_m2));
-    }
-    entities.push_back(t);
-  }
+  return model;
+}
 
-  // Assign blocks to dimensions.
-  for (size_t k = 0; k < dims.size(); ++k) dims[k].block = fmt::format("*D{}", k + 1);
-
-  DxfOut o;
-  // Handles fixed up front so tables and blocks can refer to each other.
-  const std::string h_vport_table = o.NewHandle(), h_ltype_table = o.NewHandle(), h_layer_table = o.NewHandle(),
-                    h_style_table = o.NewHandle(), h_view_table = o.NewHandle(), h_ucs_table = o.NewHandle(),
-                    h_appid_table = o.NewHandle(), h_dimstyle_table = o.NewHandle(),
-                    h_block_table = o.NewHandle(), h_style_standard = o.NewHandle(),
-                    h_model_record = o.NewHandle(), h_paper_record = o.NewHandle(), h_root_dict = o.NewHandle(),
-                    h_group_dict = o.NewHandle();
+// Handles fixed up front so that tables and blocks can refer to each other.
+struct DxfHandles {
+  std::string vport_table, ltype_table, layer_table, style_table, view_table, ucs_table, appid_table,
+      dimstyle_table, block_table, style_standard, model_record, paper_record, root_dict, group_dict;
   std::vector<std::string> dim_records;
-  for (size_t k = 0; k < dims.size(); ++k) dim_records.push_back(o.NewHandle());
+};
+DxfHandles AllocateDxfHandles(DxfOut& o, size_t dims) {
+  DxfHandles h;
+  for (std::string* handle : {&h.vport_table, &h.ltype_table, &h.layer_table, &h.style_table, &h.view_table,
+                              &h.ucs_table, &h.appid_table, &h.dimstyle_table, &h.block_table, &h.style_standard,
+                              &h.model_record, &h.paper_record, &h.root_dict, &h.group_dict}) {
+    *handle = o.NewHandle();
+  }
+  for (size_t k = 0; k < dims; ++k) h.dim_records.push_back(o.NewHandle());
+  return h;
+}
 
-  std::string body;
-  DxfOut& b = o;
-  // Everything below is appended in order; the header (with $HANDSEED) is
-  // prepended at the end once all handles are known.
-
-  // TABLES.
+// TABLES: one viewport, line types, the layers, the text and dimension
+// styles (from the sheet's dimension style), and the block records.
+void WriteDxfTables(DxfOut& b, const DxfHandles& h, const SheetDimensionStyle& style, const DxfModel& model) {
   b.Code(0, "SECTION");
   b.Code(2, "TABLES");
   auto table = [&](const char* name, const std::string& handle, int count) {
@@ -310,14 +271,14 @@ std::string PlanToDxf(const Plan& plan, const DrawingOptions& opt) {
   };
   auto record = [&](const char* type, const std::string& owner, const char* subclass) {
     b.Code(0, type);
-    std::string h = b.Handle(std::string(type) == "DIMSTYLE" ? 105 : 5);
+    std::string handle = b.Handle(std::string(type) == "DIMSTYLE" ? 105 : 5);
     b.Code(330, owner);
     b.Code(100, "AcDbSymbolTableRecord");
     b.Code(100, subclass);
-    return h;
+    return handle;
   };
-  table("VPORT", h_vport_table, 1);
-  record("VPORT", h_vport_table, "AcDbViewportTableRecord");
+  table("VPORT", h.vport_table, 1);
+  record("VPORT", h.vport_table, "AcDbViewportTableRecord");
   b.Code(2, "*Active");
   b.Code(70, 0);
   b.Point(10, Vec2(0, 0));
@@ -326,9 +287,9 @@ std::string PlanToDxf(const Plan& plan, const DrawingOptions& opt) {
   b.Real(41, 1.5);
   b.Code(0, "ENDTAB");
 
-  table("LTYPE", h_ltype_table, 3);
+  table("LTYPE", h.ltype_table, 3);
   for (const char* name : {"ByBlock", "ByLayer", "Continuous"}) {
-    record("LTYPE", h_ltype_table, "AcDbLinetypeTableRecord");
+    record("LTYPE", h.ltype_table, "AcDbLinetypeTableRecord");
     b.Code(2, name);
     b.Code(70, 0);
     b.Code(3, std::string(name) == "Continuous" ? "Solid line" : "");
@@ -343,11 +304,15 @@ std::string PlanToDxf(const Plan& plan, const DrawingOptions& opt) {
     int colour;
     int lineweight;  // 1/100 mm.
   };
-  const LayerDef layers[] = {{"0", 7, -3},         {"WALLS", 7, 50},   {"DOORS", 3, 25},
-                             {"WINDOWS", 5, 25},   {"DIMENSIONS", 1, 13}, {"TEXT", 7, 18}};
-  table("LAYER", h_layer_table, static_cast<int>(std::size(layers)));
+  const LayerDef layers[] = {{"0", 7, -3},
+                             {SheetLayerName(SheetLayer::kWalls), 7, 50},
+                             {SheetLayerName(SheetLayer::kDoors), 3, 25},
+                             {SheetLayerName(SheetLayer::kWindows), 5, 25},
+                             {SheetLayerName(SheetLayer::kDimensions), 1, 13},
+                             {SheetLayerName(SheetLayer::kText), 7, 18}};
+  table("LAYER", h.layer_table, static_cast<int>(std::size(layers)));
   for (const LayerDef& l : layers) {
-    record("LAYER", h_layer_table, "AcDbLayerTableRecord");
+    record("LAYER", h.layer_table, "AcDbLayerTableRecord");
     b.Code(2, l.name);
     b.Code(70, 0);
     b.Code(62, l.colour);
@@ -357,10 +322,10 @@ std::string PlanToDxf(const Plan& plan, const DrawingOptions& opt) {
   }
   b.Code(0, "ENDTAB");
 
-  table("STYLE", h_style_table, 1);
+  table("STYLE", h.style_table, 1);
   b.Code(0, "STYLE");
-  b.Code(5, h_style_standard);
-  b.Code(330, h_style_table);
+  b.Code(5, h.style_standard);
+  b.Code(330, h.style_table);
   b.Code(100, "AcDbSymbolTableRecord");
   b.Code(100, "AcDbTextStyleTableRecord");
   b.Code(2, "Standard");
@@ -369,59 +334,61 @@ std::string PlanToDxf(const Plan& plan, const DrawingOptions& opt) {
   b.Real(41, 1.0);
   b.Real(50, 0.0);
   b.Code(71, 0);
-  b.Real(42, opt.text_height_m);
+  b.Real(42, style.text_height_m);
   b.Code(3, "txt");
   b.Code(4, "");
   b.Code(0, "ENDTAB");
 
-  table("VIEW", h_view_table, 0);
+  table("VIEW", h.view_table, 0);
   b.Code(0, "ENDTAB");
-  table("UCS", h_ucs_table, 0);
+  table("UCS", h.ucs_table, 0);
   b.Code(0, "ENDTAB");
 
-  table("APPID", h_appid_table, 1);
-  record("APPID", h_appid_table, "AcDbRegAppTableRecord");
+  table("APPID", h.appid_table, 1);
+  record("APPID", h.appid_table, "AcDbRegAppTableRecord");
   b.Code(2, "ACAD");
   b.Code(70, 0);
   b.Code(0, "ENDTAB");
 
-  table("DIMSTYLE", h_dimstyle_table, 1);
+  table("DIMSTYLE", h.dimstyle_table, 1);
   b.Code(100, "AcDbDimStyleTable");
-  record("DIMSTYLE", h_dimstyle_table, "AcDbDimStyleTableRecord");
+  record("DIMSTYLE", h.dimstyle_table, "AcDbDimStyleTableRecord");
   b.Code(2, "Standard");
   b.Code(70, 0);
-  b.Real(40, 1.0);                 // DIMSCALE
-  b.Real(41, 0.07);                // DIMASZ
-  b.Real(42, 0.05);                // DIMEXO
-  b.Real(43, 0.4);                 // DIMDLI
-  b.Real(44, 0.08);                // DIMEXE
-  b.Real(140, opt.text_height_m);  // DIMTXT
-  b.Real(141, 0.0);                // DIMCEN
-  b.Real(142, 0.07);               // DIMTSZ: architectural ticks
-  b.Real(144, 1000.0);             // DIMLFAC: show millimetres
-  b.Real(147, 0.04);               // DIMGAP
-  b.Code(77, 1);                   // DIMTAD: text above the line
-  b.Code(78, 8);                   // DIMZIN
-  b.Code(271, 0);                  // DIMDEC
-  b.Code(340, h_style_standard);   // DIMTXSTY
+  b.Real(40, 1.0);                    // DIMSCALE
+  b.Real(41, style.tick_m);           // DIMASZ
+  b.Real(42, style.extension_gap_m);  // DIMEXO
+  b.Real(43, 0.4);                    // DIMDLI
+  b.Real(44, style.overshoot_m);      // DIMEXE
+  b.Real(140, style.text_height_m);   // DIMTXT
+  b.Real(141, 0.0);                   // DIMCEN
+  b.Real(142, style.tick_m);          // DIMTSZ: architectural ticks
+  b.Real(144, 1000.0);                // DIMLFAC: show millimetres
+  b.Real(147, style.text_gap_m);      // DIMGAP
+  b.Code(77, 1);                      // DIMTAD: text above the line
+  b.Code(78, 8);                      // DIMZIN
+  b.Code(271, 0);                     // DIMDEC
+  b.Code(340, h.style_standard);      // DIMTXSTY
   b.Code(0, "ENDTAB");
 
-  table("BLOCK_RECORD", h_block_table, static_cast<int>(2 + dims.size()));
+  table("BLOCK_RECORD", h.block_table, static_cast<int>(2 + model.dims.size()));
   auto block_record = [&](const std::string& handle, const std::string& name) {
     b.Code(0, "BLOCK_RECORD");
     b.Code(5, handle);
-    b.Code(330, h_block_table);
+    b.Code(330, h.block_table);
     b.Code(100, "AcDbSymbolTableRecord");
     b.Code(100, "AcDbBlockTableRecord");
     b.Code(2, name);
   };
-  block_record(h_model_record, "*Model_Space");
-  block_record(h_paper_record, "*Paper_Space");
-  for (size_t k = 0; k < dims.size(); ++k) block_record(dim_records[k], dims[k].block);
+  block_record(h.model_record, "*Model_Space");
+  block_record(h.paper_record, "*Paper_Space");
+  for (size_t k = 0; k < model.dims.size(); ++k) block_record(h.dim_records[k], model.dims[k].block);
   b.Code(0, "ENDTAB");
   b.Code(0, "ENDSEC");
+}
 
-  // BLOCKS.
+// BLOCKS: model and paper space (empty) and each dimension's rendering.
+void WriteDxfBlocks(DxfOut& b, const DxfHandles& h, const DxfModel& model) {
   b.Code(0, "SECTION");
   b.Code(2, "BLOCKS");
   auto block = [&](const std::string& record_handle, const std::string& name, const std::vector<Entity>& content) {
@@ -444,19 +411,21 @@ std::string PlanToDxf(const Plan& plan, const DrawingOptions& opt) {
     b.Code(8, "0");
     b.Code(100, "AcDbBlockEnd");
   };
-  block(h_model_record, "*Model_Space", {});
-  block(h_paper_record, "*Paper_Space", {});
-  for (size_t k = 0; k < dims.size(); ++k) block(dim_records[k], dims[k].block, dims[k].geometry);
+  block(h.model_record, "*Model_Space", {});
+  block(h.paper_record, "*Paper_Space", {});
+  for (size_t k = 0; k < model.dims.size(); ++k) block(h.dim_records[k], model.dims[k].block, model.dims[k].geometry);
   b.Code(0, "ENDSEC");
+}
 
-  // ENTITIES.
+// ENTITIES: the drawing, then the DIMENSION entities.
+void WriteDxfEntities(DxfOut& b, const DxfHandles& h, const DxfModel& model) {
   b.Code(0, "SECTION");
   b.Code(2, "ENTITIES");
-  for (const Entity& e : entities) WriteEntity(b, e, h_model_record);
-  for (const Dimension& d : dims) {
+  for (const Entity& e : model.entities) WriteEntity(b, e, h.model_record);
+  for (const Dimension& d : model.dims) {
     b.Code(0, "DIMENSION");
     b.Handle();
-    b.Code(330, h_model_record);
+    b.Code(330, h.model_record);
     b.Code(100, "AcDbEntity");
     b.Code(8, "DIMENSIONS");
     b.Code(100, "AcDbDimension");
@@ -479,26 +448,30 @@ std::string PlanToDxf(const Plan& plan, const DrawingOptions& opt) {
     b.Code(100, "AcDbRotatedDimension");
   }
   b.Code(0, "ENDSEC");
+}
 
-  // OBJECTS: the root dictionary with the (empty) group dictionary.
+// OBJECTS: the root dictionary with the (empty) group dictionary.
+void WriteDxfObjects(DxfOut& b, const DxfHandles& h) {
   b.Code(0, "SECTION");
   b.Code(2, "OBJECTS");
   b.Code(0, "DICTIONARY");
-  b.Code(5, h_root_dict);
+  b.Code(5, h.root_dict);
   b.Code(330, "0");
   b.Code(100, "AcDbDictionary");
   b.Code(281, 1);
   b.Code(3, "ACAD_GROUP");
-  b.Code(350, h_group_dict);
+  b.Code(350, h.group_dict);
   b.Code(0, "DICTIONARY");
-  b.Code(5, h_group_dict);
-  b.Code(330, h_root_dict);
+  b.Code(5, h.group_dict);
+  b.Code(330, h.root_dict);
   b.Code(100, "AcDbDictionary");
   b.Code(281, 1);
   b.Code(0, "ENDSEC");
   b.Code(0, "EOF");
+}
 
-  body = std::move(b.text());
+// HEADER (with $HANDSEED, the next free handle) and the empty CLASSES.
+std::string DxfHeader(int handle_seed) {
   DxfOut header;
   header.Code(999, "asbuilt as-built floor plan (metres; dimensions shown in mm)");
   header.Code(0, "SECTION");
@@ -506,7 +479,7 @@ std::string PlanToDxf(const Plan& plan, const DrawingOptions& opt) {
   header.Code(9, "$ACADVER");
   header.Code(1, "AC1015");
   header.Code(9, "$HANDSEED");
-  header.Code(5, fmt::format("{:X}", o.next()));
+  header.Code(5, fmt::format("{:X}", handle_seed));
   header.Code(9, "$INSUNITS");
   header.Code(70, 6);  // Metres.
   header.Code(9, "$MEASUREMENT");
@@ -523,10 +496,29 @@ std::string PlanToDxf(const Plan& plan, const DrawingOptions& opt) {
   header.Code(0, "SECTION");
   header.Code(2, "CLASSES");
   header.Code(0, "ENDSEC");
-  return header.text() + body;
+  return header.text();
+}
+
+}  // namespace
+
+std::string SheetToDxf(const PlanSheet& sheet) {
+  const DxfModel model = CollectDxfModel(sheet);
+  DxfOut body;
+  const DxfHandles handles = AllocateDxfHandles(body, model.dims.size());
+  WriteDxfTables(body, handles, sheet.dimension_style, model);
+  WriteDxfBlocks(body, handles, model);
+  WriteDxfEntities(body, handles, model);
+  WriteDxfObjects(body, handles);
+  return DxfHeader(body.next()) + body.text();
+}
+
+std::string PlanToDxf(const Plan& plan, const DrawingOptions& options) {
+  return SheetToDxf(LayOutPlanSheet(plan, options));
 }
 
 void WritePlanDxf(const Plan& plan, const std::filesystem::path& path, const DrawingOptions& options) {
+  options.Check();
+  CheckPlanDrawable(plan, path.string());
   WriteFileAtomic(path, PlanToDxf(plan, options));
 }
 
