@@ -111,13 +111,6 @@ FieldFlags::FieldFlags(CLI::App& app, std::vector<Field> fields, std::vector<Fla
   }
 }
 
-bool FieldFlags::Given(std::string_view field_name) const {
-  for (std::size_t i = 0; i < fields_.size(); ++i) {
-    if (fields_[i].name == field_name) return options_[i]->count() > 0;
-  }
-  return false;
-}
-
 FieldArgs FieldFlags::Args() const {
   nlohmann::json given = nlohmann::json::object();
   std::size_t text_index = 0, flag_index = 0;

@@ -62,9 +62,6 @@ class FieldFlags {
     list.Read(Args(), into);
   }
 
-  // Whether the flag of `field_name` (or one of its aliases) was given.
-  bool Given(std::string_view field_name) const;
-
   const std::vector<Field>& fields() const { return fields_; }
 
  private:

@@ -39,7 +39,8 @@ int RunSurveyCommand(int argc, char** argv) {
       "A synthetic capture's own labels are never used unless --labels or --capture-labels says so.\n"
       "A mono capture (level views of one camera) or a panorama capture (one 2:1 equirectangular\n"
       "photo, resampled into --pano-views level views) places the walls from their floor and\n"
-      "ceiling edges and the camera height in position_m (docs/survey.md).",
+      "ceiling edges and the camera height in position_m (docs/survey.md).\n"
+      "Every PlanOptions field is a flag --plan.NAME, every FramePointsOptions field --points.NAME.",
       "asbuilt survey");
   AddCommonFlags(app);
   std::string capture, out_dir, model, labels_dir, truth;
