@@ -201,7 +201,7 @@ int main(int argc, char** argv) {
     // Layout labels mark the clear opening (ZInD's annotated ends): no
     // casing to take off, unlike rendered or segmented labels.
     with_labels.plan.door_casing_m = with_labels.plan.window_casing_m = 0.0;
-    with_labels.contact_snap_px = 0;  // Exact edges: nothing to snap (FramePointsOptions::contact_snap_px).
+    with_labels.points.contact_snap_px = 0;  // Exact edges: nothing to snap (FramePointsOptions::contact_snap_px).
     // Layout labels put each wall's foot on its face, not on a skirting in
     // front of it (FramePointsOptions::skirting_depth_m): nothing to move back.
     with_labels.points.skirting_depth_m = 0.0;

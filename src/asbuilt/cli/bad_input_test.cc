@@ -224,7 +224,7 @@ std::vector<Case> Cases() {
       {"DatasetSynthNegativeCount", {}, "dataset synth -o {d}/out --count -1", 2, {"count"}},
       {"McpZeroViews", {}, "mcp --workspace {d}/ws --max-views 0", 2, {"max_views"}},
       {"DemoZeroViews", {}, "demo -o {d}/out --views 0", 2, {"views"}},
-      {"PlanNegativeEpsilon", {{"p.txt", Lines("wall 0 0 1", 3)}}, "plan {d}/p.txt -o {d}/out --epsilon-m -1", 2, {"epsilon_m"}},
+      {"PlanNegativeEpsilon", {{"p.txt", Lines("wall 0 0 1", 3)}}, "plan {d}/p.txt -o {d}/out --epsilon-m -1", 2, {"--epsilon-m: must be > 0"}},
       {"TrainBadArch", {}, "train --images {d}/img -o {d}/out --arch b9", 2, {"b9"}},
       {"ToyRoomsZeroCount", {}, "experiment toy-rooms -o {d}/out --count 0", 2, {"count"}},
 

@@ -68,25 +68,6 @@ void AddCommonFlags(CLI::App& app) {
                         "print debug messages");
 }
 
-void AddContactsOption(CLI::App& app, ContactUse* use) {
-  app.add_option_function<std::string>(
-         "--contacts", [use](const std::string& name) { *use = ParseContactUse(name); },
-         "walls placed from their floor/ceiling label edges (level rig at the capture's height): auto = only "
-         "where the walls' stereo fails its check (plain walls), always, off")
-      ->check(CLI::IsMember({"auto", "always", "off"}))
-      ->default_str(ContactUseName(*use));
-}
-
-void AddContactSnapOption(CLI::App& app, std::optional<int>* px) {
-  app.add_option_function<int>(
-         "--snap-contacts-px", [px](int n) { *px = n; },
-         fmt::format("move each ceiling contact to the image's strongest edge within N rows of the label edge "
-                     "(0 = off); auto = {} for segmented or given labels, 0 for a capture's exact labels",
-                     FramePointsOptions::kDefaultContactSnapPx))
-      ->check(CLI::Range(0, 64))
-      ->default_str("auto");
-}
-
 void AddTurnInPlaceFlags(CLI::App& app, TurnInPlaceOptions* turn, std::string* size) {
   app.add_option("--size", *size, "view size WIDTHxHEIGHT")->default_str(fmt::format("{}x{}", turn->width_px, turn->height_px));
   app.add_option("--fx", turn->fx, "focal length, pixels")->capture_default_str();

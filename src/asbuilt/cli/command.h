@@ -10,7 +10,6 @@
 // command.cc. Errors are thrown (STYLE.md 7); main() maps them to exit codes.
 
 #include <filesystem>
-#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -19,7 +18,6 @@
 #include <CLI/CLI.hpp>
 
 #include "asbuilt/pano/perspective.h"
-#include "asbuilt/stereo/frame_points.h"
 
 namespace asbuilt::cli {
 
@@ -39,15 +37,6 @@ const Command* FindCommand(std::string_view name);
 // A CLI11 app for a command, with the common flags (--quiet, --verbose)
 // already added and wired to the logger.
 void AddCommonFlags(CLI::App& app);
-
-// --contacts auto|always|off (FramePointsOptions::contacts), shared by
-// survey and points.
-void AddContactsOption(CLI::App& app, ContactUse* use);
-
-// --snap-contacts-px N (FramePointsOptions::contact_snap_px), shared by
-// survey and points; unset means "auto" (the command decides by the labels'
-// origin).
-void AddContactSnapOption(CLI::App& app, std::optional<int>* px);
 
 // WIDTHxHEIGHT of `flag` into w and h (left alone when `text` is empty);
 // throws CLI::ValidationError naming the flag otherwise.

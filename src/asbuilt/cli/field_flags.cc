@@ -1,6 +1,7 @@
 #include "asbuilt/cli/field_flags.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string_view>
 
 #include <fmt/format.h>
@@ -9,30 +10,28 @@
 namespace asbuilt::cli {
 namespace {
 
-using mcp::ArgType;
-using mcp::ToolField;
 
-std::string TypeName(ArgType type) {
+std::string TypeName(FieldKind type) {
   switch (type) {
-    case ArgType::kInteger: return "INT";
-    case ArgType::kNumber: return "FLOAT";
-    case ArgType::kString: return "TEXT";
-    case ArgType::kEnum: return "CHOICE";
-    case ArgType::kPoint2: return "X,Y";
-    case ArgType::kPoint3: return "X,Y,Z";
-    case ArgType::kColor: return "R,G,B";
-    case ArgType::kNumberList: return "N,...";
-    case ArgType::kPolygon: return "JSON";
-    case ArgType::kBool: return "";
+    case FieldKind::kInteger: return "INT";
+    case FieldKind::kNumber: return "FLOAT";
+    case FieldKind::kString: return "TEXT";
+    case FieldKind::kEnum: return "CHOICE";
+    case FieldKind::kPoint2: return "X,Y";
+    case FieldKind::kPoint3: return "X,Y,Z";
+    case FieldKind::kColor: return "R,G,B";
+    case FieldKind::kNumberList: return "N,...";
+    case FieldKind::kPolygon: return "JSON";
+    case FieldKind::kBool: return "";
   }
   return "";
 }
 
 // The help line: description, then range and default.
-std::string HelpText(const ToolField& f) {
+std::string HelpText(const Field& f) {
   std::string text(f.description);
   std::vector<std::string> notes;
-  if (f.type == ArgType::kEnum) notes.push_back(fmt::format("one of {}", fmt::join(f.choices, ", ")));
+  if (f.kind == FieldKind::kEnum) notes.push_back(fmt::format("one of {}", fmt::join(f.choices, ", ")));
   if (f.exclusive_minimum) notes.push_back(fmt::format("> {}", *f.exclusive_minimum));
   if (f.minimum) notes.push_back(fmt::format(">= {}", *f.minimum));
   if (f.maximum) notes.push_back(fmt::format("<= {}", *f.maximum));
@@ -43,18 +42,18 @@ std::string HelpText(const ToolField& f) {
 
 // A flag's text as the JSON value ParseToolArgs checks; a text that is not
 // even of the right shape becomes a string, so the check names the flag.
-nlohmann::json ToJson(const ToolField& f, const std::string& text) {
+nlohmann::json ToJson(const Field& f, const std::string& text) {
   auto number = [](std::string_view s) -> nlohmann::json {
     nlohmann::json v = nlohmann::json::parse(s.begin(), s.end(), nullptr, false);
     return v.is_number() ? v : nlohmann::json(std::string(s));
   };
-  switch (f.type) {
-    case ArgType::kNumber:
-    case ArgType::kInteger: return number(text);
-    case ArgType::kPoint2:
-    case ArgType::kPoint3:
-    case ArgType::kColor:
-    case ArgType::kNumberList: {
+  switch (f.kind) {
+    case FieldKind::kNumber:
+    case FieldKind::kInteger: return number(text);
+    case FieldKind::kPoint2:
+    case FieldKind::kPoint3:
+    case FieldKind::kColor:
+    case FieldKind::kNumberList: {
       nlohmann::json list = nlohmann::json::array();
       std::string_view rest = text;
       while (true) {
@@ -65,7 +64,7 @@ nlohmann::json ToJson(const ToolField& f, const std::string& text) {
       }
       return list;
     }
-    case ArgType::kPolygon: {
+    case FieldKind::kPolygon: {
       nlohmann::json v = nlohmann::json::parse(text, nullptr, false);
       return v.is_discarded() ? nlohmann::json(text) : v;
     }
@@ -81,38 +80,51 @@ std::string FieldFlagName(std::string_view field_name) {
   return flag;
 }
 
-FieldFlags::FieldFlags(CLI::App& app, std::vector<ToolField> fields) : fields_(std::move(fields)) {
-  for (const ToolField& f : fields_) {
+FieldFlags::FieldFlags(CLI::App& app, std::vector<Field> fields, std::vector<FlagAlias> aliases,
+                       std::string_view group)
+    : fields_(std::move(fields)) {
+  for (const FlagAlias& a : aliases) {
+    if (std::none_of(fields_.begin(), fields_.end(), [&](const Field& f) { return f.name == a.field; })) {
+      throw std::logic_error(fmt::format("FlagAlias {}: no field {}", a.names, a.field));
+    }
+  }
+  CLI::App* target = group.empty() ? &app : app.add_option_group(std::string(group));
+  for (const Field& f : fields_) {
     std::string names = FieldFlagName(f.name);
-    if (f.type == ArgType::kBool) {
-      names += ",!--no-" + names.substr(2);
-      if (!f.cli_names.empty()) names += "," + std::string(f.cli_names);
+    std::string extra;
+    for (const FlagAlias& a : aliases) {
+      if (a.field == f.name) extra += "," + std::string(a.names);
+    }
+    if (f.kind == FieldKind::kBool) {
+      // "--points.use-corners" → "--points.no-use-corners".
+      const std::size_t leaf = names.rfind('.') == std::string::npos ? 2 : names.rfind('.') + 1;
+      names += ",!" + names.substr(0, leaf) + "no-" + names.substr(leaf) + extra;
       bool& value = flag_.emplace_back(f.default_value.is_boolean() && f.default_value.get<bool>());
-      options_.push_back(app.add_flag(names, value, HelpText(f)));
+      options_.push_back(target->add_flag(names, value, HelpText(f)));
     } else {
-      if (!f.cli_names.empty()) names += "," + std::string(f.cli_names);
+      names += extra;
       std::string& value = text_.emplace_back();
-      CLI::Option* option = app.add_option(names, value, HelpText(f))->type_name(TypeName(f.type));
+      CLI::Option* option = target->add_option(names, value, HelpText(f))->type_name(TypeName(f.kind));
       if (f.required) option->required();
       options_.push_back(option);
     }
   }
 }
 
-mcp::ToolArgs FieldFlags::Args() const {
+FieldArgs FieldFlags::Args() const {
   nlohmann::json given = nlohmann::json::object();
   std::size_t text_index = 0, flag_index = 0;
   for (std::size_t i = 0; i < fields_.size(); ++i) {
-    const ToolField& f = fields_[i];
-    bool is_bool = f.type == ArgType::kBool;
+    const Field& f = fields_[i];
+    bool is_bool = f.kind == FieldKind::kBool;
     const std::size_t at = is_bool ? flag_index++ : text_index++;
     if (options_[i]->count() == 0) continue;
-    given[std::string(f.name)] = is_bool ? nlohmann::json(flag_[at]) : ToJson(f, text_[at]);
+    given[f.name] = is_bool ? nlohmann::json(flag_[at]) : ToJson(f, text_[at]);
   }
   try {
-    return mcp::ParseToolArgs(fields_, given);
-  } catch (const mcp::ToolArgsError& e) {
-    // "arguments.samples_per_pixel: …" → "--samples-per-pixel: …".
+    return ParseFieldArgs(fields_, given);
+  } catch (const FieldArgsError& e) {
+    // "arguments.plan.epsilon_m: …" → "--plan.epsilon-m: …".
     std::vector<std::string> lines;
     for (std::string problem : e.problems()) {
       if (problem.starts_with("arguments.")) {

@@ -1,48 +1,71 @@
 #ifndef ASBUILT_CLI_FIELD_FLAGS_H_
 #define ASBUILT_CLI_FIELD_FLAGS_H_
 
-// CLI flags built from a field list (STYLE.md 13; mcp/option_fields.h), so a
-// command and the MCP tool sharing an Options struct take the same options
-// with the same bounds, defaults and descriptions:
+// CLI flags built from a field list (STYLE.md 13; util/fields.h), so a
+// command takes every option of its Options struct with the bounds, defaults
+// and descriptions of the list, and a command and the MCP tool sharing an
+// Options struct take the same options:
 //
-//   field `samples_per_pixel` → --samples-per-pixel N (+ field.cli_names, e.g. --spp)
-//   kBool field `normals`     → --normals / --no-normals
-//   kPoint2/3, kColor, kNumberList → comma-separated numbers ("1.2,0.3")
+//   field `samples_per_pixel`          → --samples-per-pixel N
+//   nested `plan.epsilon_m`            → --plan.epsilon-m X
+//   kBool field `normals`              → --normals / --no-normals
+//   kBool `points.use_corners`         → --points.use-corners / --points.no-use-corners
+//   kPoint2/3, kColor, kNumberList     → comma-separated numbers ("1.2,0.3")
 //
-//   FieldFlags flags(*app, mcp::CaptureRenderOptionFields());
+//   FieldFlags flags(app, CaptureRenderOptionFields().Fields(), {{"samples_per_pixel", "--spp"}});
 //   Parse(app, argc, argv);
-//   CaptureRenderOptions options = mcp::CaptureRenderOptionsFromArgs(flags.Args());
+//   CaptureRenderOptions options;
+//   flags.Read(CaptureRenderOptionFields(), options);
 
 #include <deque>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
-#include "asbuilt/mcp/tool_args.h"
+#include "asbuilt/util/fields.h"
 
 namespace asbuilt::cli {
 
-// The flag name of a field: "--" + name with '_' → '-'.
+// The flag name of a field: "--" + name with '_' → '-' ("--plan.epsilon-m").
 std::string FieldFlagName(std::string_view field_name);
+
+// An extra CLI name of a field's flag, kept for shorter or older spellings
+// that scripts use: {"samples_per_pixel", "--spp"}; for a kBool field,
+// "!--no-indirect" sets it false. Several names: "--a,--b".
+struct FlagAlias {
+  std::string_view field;
+  std::string_view names;
+};
 
 class FieldFlags {
  public:
-  // Adds one flag per field to `app`, which must outlive this object's use.
-  FieldFlags(CLI::App& app, std::vector<mcp::ToolField> fields);
+  // Adds one flag per field to `app` (to an option group of that title when
+  // `group` is not empty, so --help lists them together); `app` must outlive
+  // this object's use. Throws std::logic_error for an alias of no field.
+  FieldFlags(CLI::App& app, std::vector<Field> fields, std::vector<FlagAlias> aliases = {},
+             std::string_view group = {});
   FieldFlags(const FieldFlags&) = delete;
   FieldFlags& operator=(const FieldFlags&) = delete;
 
   // After parsing: the given flags plus defaults, validated against the
   // fields. Throws CLI::ValidationError naming every bad flag
-  // ("--samples-per-pixel: must be >= 1, got 0"), which main() reports as a
+  // ("--plan.epsilon-m: must be > 0, got -1"), which main() reports as a
   // usage error.
-  mcp::ToolArgs Args() const;
+  FieldArgs Args() const;
 
-  const std::vector<mcp::ToolField>& fields() const { return fields_; }
+  // After parsing: writes the given flags (and the defaults of the others)
+  // of `list`'s fields into `into`. Throws like Args().
+  template <class T>
+  void Read(const FieldList<T>& list, T& into) const {
+    list.Read(Args(), into);
+  }
+
+  const std::vector<Field>& fields() const { return fields_; }
 
  private:
-  std::vector<mcp::ToolField> fields_;
+  std::vector<Field> fields_;
   std::vector<CLI::Option*> options_;
   std::deque<std::string> text_;  // Non-bool values as typed.
   std::deque<bool> flag_;         // Bool values.

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "asbuilt/cli/command.h"
+#include "asbuilt/cli/field_flags.h"
 #include "asbuilt/formats/capture.h"
 #include "asbuilt/formats/points_file.h"
 #include "asbuilt/plan/drawing.h"
@@ -37,22 +38,8 @@ int RunPlanCommand(int argc, char** argv) {
   int stride_px = 2;
   app.add_option("input", input, "points.txt, or capture.json with labels + depth")->required();
   app.add_option("-o,--output", out_dir, "output folder")->required();
-  app.add_option("--epsilon-m", options.epsilon_m, "collinearity tolerance ε (base inlier band), m")
-      ->capture_default_str();
-  app.add_option("--max-inlier-distance-m", options.max_inlier_distance_m,
-                 "cap on a wall's inlier band for noisy points, m")->capture_default_str();
-  app.add_option("--min-wall-points", options.min_wall_points, "fewer points are not a wall")
-      ->capture_default_str();
-  app.add_option("--min-wall-length-m", options.min_wall_length_m, "shorter point runs are not walls, m")
-      ->capture_default_str();
-  app.add_option("--max-gap-m", options.max_gap_m, "split a line into separate walls at longer gaps, m")
-      ->capture_default_str();
-  app.add_option("--door-casing-m", options.door_casing_m,
-                 "door labels extend this far beyond the clear opening (0 if labels mark the clear opening)")
-      ->capture_default_str();
-  app.add_option("--window-casing-m", options.window_casing_m, "same for windows, m")->capture_default_str();
-  app.add_option("--viewpoint", viewpoint, "capture centre X Y Z (world m); improves openings")->expected(3);
-  app.add_option("--seed", options.seed, "RANSAC seed")->capture_default_str();
+  app.add_option("--viewpoint", viewpoint, "capture centre X Y Z (world m): --viewpoint-m as three values")
+      ->expected(3);
   app.add_option("--stride-px", stride_px, "capture.json input: use every n-th pixel")->capture_default_str();
   app.add_option("--scale", drawing.scale, "paper scale 1:N of SVG and PDF")->capture_default_str();
   app.add_option("--png-px-per-m", drawing.png_px_per_m, "PNG resolution")->capture_default_str();
@@ -63,7 +50,9 @@ int RunPlanCommand(int argc, char** argv) {
                  "plan.ifc: height of walls whose height is unknown (marked as a default)")->capture_default_str();
   bool no_uncertainty = false;
   app.add_flag("--no-uncertainty", no_uncertainty, "do not print ± on the drawings");
+  FieldFlags plan_flags(app, PlanOptionFields().Fields(options), {}, "Plan options (PlanOptions, docs/plan.md)");
   Parse(app, argc, argv);
+  plan_flags.Read(PlanOptionFields(), options);
   drawing.show_uncertainty = !no_uncertainty;
   ifc.default_wall_thickness_m = drawing.nominal_thickness_m;
   if (viewpoint.size() == 3) options.viewpoint_m = Vec3(viewpoint[0], viewpoint[1], viewpoint[2]);

@@ -9,6 +9,7 @@
 #include <spdlog/spdlog.h>
 
 #include "asbuilt/cli/command.h"
+#include "asbuilt/cli/field_flags.h"
 #include "asbuilt/formats/capture.h"
 #include "asbuilt/formats/points_file.h"
 #include "asbuilt/stereo/frame_points.h"
@@ -27,34 +28,30 @@ int RunPointsCommand(int argc, char** argv) {
       "asbuilt points");
   AddCommonFlags(app);
   std::string capture_path, labels_dir, out_dir;
-  bool use_capture_labels = false, no_corners = false, no_edges = false, no_dense = false, no_vertices = false;
+  bool use_capture_labels = false;
   FramePointsOptions options;
   app.add_option("capture", capture_path, "capture.json")->required();
   app.add_option("--labels", labels_dir, "folder of label images NNN.png (left view)");
   app.add_flag("--use-capture-labels", use_capture_labels, "use each frame's `labels` key of capture.json");
   app.add_option("-o,--out", out_dir, "output folder")->required();
-  app.add_option("--num-disparities", options.disparity.num_disparities_px, "disparity range, multiple of 16")
-      ->capture_default_str();
-  app.add_option("--dense-stride", options.dense_stride_px, "keep every n-th dense pixel")->capture_default_str();
-  app.add_option("--row-tolerance", options.match.row_tolerance_px, "search rows v +- n (imperfect rectification)")
-      ->capture_default_str();
-  app.add_flag("--wls", options.disparity.wls_filter, "WLS-filter the dense disparity guide");
-  app.add_flag("--no-corners", no_corners, "skip contour corners");
-  app.add_flag("--no-edges", no_edges, "skip edge points");
-  app.add_flag("--no-dense", no_dense, "skip dense points");
-  app.add_flag("--no-vertices", no_vertices, "skip wall-wall corner columns (vertex points)");
-  AddContactsOption(app, &options.contacts);
-  std::optional<int> snap_px;
-  AddContactSnapOption(app, &snap_px);
+  // The short spellings are older flags that scripts use.
+  FieldFlags point_flags(app, FramePointsOptionFields().Fields(options),
+                         {{"disparity.num_disparities_px", "--num-disparities"},
+                          {"dense_stride_px", "--dense-stride"},
+                          {"match.row_tolerance_px", "--row-tolerance"},
+                          {"disparity.wls_filter", "--wls"},
+                          {"use_corners", "!--no-corners"},
+                          {"use_edges", "!--no-edges"},
+                          {"use_dense", "!--no-dense"},
+                          {"use_vertices", "!--no-vertices"},
+                          {"contact_snap_px", "--snap-contacts-px"}},
+                         "Points options (FramePointsOptions, docs/stereo.md)");
   Parse(app, argc, argv);
+  point_flags.Read(FramePointsOptionFields(), options);
   if (labels_dir.empty() == !use_capture_labels) {
     throw CLI::ValidationError("--labels", "give exactly one of --labels DIR or --use-capture-labels");
   }
-  options.use_corners = !no_corners;
-  options.use_edges = !no_edges;
-  options.use_dense = !no_dense;
-  options.use_vertices = !no_vertices;
-  options.contact_snap_px = FramePointsOptions::ContactSnapPxFor(snap_px, use_capture_labels);
+  options.contact_snap_px = options.ContactSnapPx(use_capture_labels);
   options.Check();
 
   const Capture capture = ReadCapture(capture_path);

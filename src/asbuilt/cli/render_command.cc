@@ -9,7 +9,6 @@
 
 #include "asbuilt/cli/command.h"
 #include "asbuilt/cli/field_flags.h"
-#include "asbuilt/mcp/option_fields.h"
 #include "asbuilt/render/capture_render.h"
 #include "asbuilt/scene/scene_json.h"
 #include "asbuilt/util/progress.h"
@@ -29,10 +28,13 @@ int RunRenderCommand(int argc, char** argv) {
   app.add_option("-o,--out", out_dir, "output folder")->required();
   app.add_option("--size", size, "image size WxH, short for --width-px W --height-px H");
   app.add_flag("--no-resume", no_resume, "re-render views that already exist");
-  FieldFlags flags(app, mcp::CaptureRenderOptionFields());  // = MCP render_capture.
+  CaptureRenderOptions options;
+  FieldFlags flags(app, CaptureRenderOptionFields().Fields(options),  // = MCP render_capture.
+                   {{"samples_per_pixel", "--spp"}, {"camera_effects", "--effects"},
+                    {"indirect_light", "!--no-indirect"}, {"instance_ids", "--instances"}});
   Parse(app, argc, argv);
 
-  CaptureRenderOptions options = mcp::CaptureRenderOptionsFromArgs(flags.Args());
+  flags.Read(CaptureRenderOptionFields(), options);
   if (!size.empty()) {
     if (std::sscanf(size.c_str(), "%dx%d", &options.width_px, &options.height_px) != 2 || options.width_px <= 0 ||
         options.height_px <= 0) {

@@ -11,7 +11,6 @@
 #include "asbuilt/cli/command.h"
 #include "asbuilt/cli/field_flags.h"
 #include "asbuilt/formats/plan_file.h"
-#include "asbuilt/mcp/option_fields.h"
 #include "asbuilt/scene/blender_export.h"
 #include "asbuilt/scene/llm.h"
 #include "asbuilt/scene/procedural.h"
@@ -44,7 +43,9 @@ int RunSceneCommand(int argc, char** argv) {
   text_cmd->add_option("description", text, "the room in words, e.g. \"a 6 by 8 m classroom, 3 m high, ...\"")
       ->required();
   text_cmd->add_option("-o,--output", text_out, "scene file to write")->required();
-  FieldFlags text_flags(*text_cmd, mcp::SceneTextOptionFields());  // = MCP scene_from_text.
+  FieldFlags text_flags(*text_cmd, SceneTextOptionFields().Fields(),  // = MCP scene_from_text.
+                        {{"furnish", "!--no-furniture"}, {"add_door_if_none", "!--no-default-door"},
+                         {"rig_height_m", "--rig-height"}, {"turn_step_deg", "--step"}});
   text_cmd->add_option("--llm", llm_url,
                        "OpenAI-compatible base URL (e.g. http://localhost:8080/v1); key from ASBUILT_LLM_API_KEY");
   text_cmd->add_option("--llm-model", llm_options.model, "model name sent to the endpoint")->capture_default_str();
@@ -60,7 +61,10 @@ int RunSceneCommand(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   random_cmd->add_option("-o,--output", random_out, "output folder")->required();
-  FieldFlags random_flags(*random_cmd, mcp::RandomSceneOptionFields());  // = MCP random_scene.
+  std::vector<Field> random_fields = RandomSceneOptionFields().Fields();  // = MCP random_scene.
+  random_fields.insert(random_fields.begin(), RandomSceneSeedField());
+  FieldFlags random_flags(*random_cmd, std::move(random_fields),
+                          {{"min_side_m", "--min-side"}, {"max_side_m", "--max-side"}, {"turn_step_deg", "--step"}});
 
   // truth / describe / export-blender / schema
   CLI::App* truth_cmd = app.add_subcommand("truth", "scene.json → truth.json (exact floor plan)");
@@ -93,7 +97,7 @@ int RunSceneCommand(int argc, char** argv) {
       result.scene = SceneFromLlm(text, llm_options, &summary);
       spdlog::info("{}", summary.BriefReport());
     } else {
-      result = SceneFromText(text, mcp::SceneTextOptionsFromArgs(text_flags.Args()));
+      result = SceneFromText(text, SceneTextOptionFields().FromArgs(text_flags.Args()));
       for (const std::string& a : result.assumptions) spdlog::info("assumed: {}", a);
     }
     WriteScene(result.scene, text_out);
@@ -101,10 +105,10 @@ int RunSceneCommand(int argc, char** argv) {
     return 0;
   }
   if (random_cmd->parsed()) {
-    mcp::ToolArgs args = random_flags.Args();
+    FieldArgs args = random_flags.Args();
     ProgressPrinter printer;
     RandomScenesSummary summary =
-        WriteRandomScenes(mcp::RandomSceneOptionsFromArgs(args),
+        WriteRandomScenes(RandomSceneOptionFields().FromArgs(args),
                           static_cast<std::uint64_t>(args.Integer("seed")), count, random_out,
                           StderrIsTerminal() ? printer.Callback() : ProgressCallback{});
     printer.Finish();

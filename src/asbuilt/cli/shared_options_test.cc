@@ -1,7 +1,8 @@
 // STYLE.md 13: a CLI command and the MCP tool that share an Options struct
-// take the same options, both built from one field list
-// (mcp/option_fields.h). These tests read the real `asbuilt … --help` and the
-// real tools/list schema, so a flag added by hand on either side fails them.
+// take the same options, both built from one field list (util/fields.h,
+// declared beside each struct). These tests read the real `asbuilt … --help`
+// and the real tools/list schema, so a flag added by hand on either side
+// fails them.
 
 #include <algorithm>
 #include <filesystem>
@@ -13,8 +14,10 @@
 #include <gtest/gtest.h>
 
 #include "asbuilt/cli/cli_test_util.h"
-#include "asbuilt/mcp/option_fields.h"
 #include "asbuilt/mcp/tools.h"
+#include "asbuilt/render/capture_render.h"
+#include "asbuilt/scene/procedural.h"
+#include "asbuilt/scene/scene_text.h"
 
 namespace asbuilt::cli {
 namespace {
@@ -29,7 +32,7 @@ Names HelpFlags(const std::string& command) {
   RunResult r = RunAsbuilt(command + " --help");
   EXPECT_EQ(r.exit_code, 0) << r.out;
   Names flags;
-  std::regex flag("--[a-z][a-z0-9-]*");
+  std::regex flag("--[a-z][a-z0-9.-]*[a-z0-9]");
   for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), flag); it != std::sregex_iterator(); ++it) {
     flags.insert(it->str());
   }
@@ -42,25 +45,26 @@ std::string Dashed(std::string_view name) {
   return s;
 }
 
-// The flags a field list makes (cli/field_flags.h): --name, --no-name for
-// booleans, and the field's extra CLI names.
-Names FlagsOf(const std::vector<mcp::ToolField>& fields) {
+// The flags a field list makes (cli/field_flags.h): --name, and for booleans
+// the negation with "no-" before the last name part (--no-normals,
+// --points.no-use-corners).
+Names FlagsOf(const std::vector<Field>& fields) {
   Names flags;
-  for (const mcp::ToolField& f : fields) {
-    flags.insert(Dashed(f.name));
-    if (f.type == mcp::ArgType::kBool) flags.insert("--no-" + Dashed(f.name).substr(2));
-    std::string extra(f.cli_names);
-    std::regex flag("--[a-z][a-z0-9-]*");
-    for (auto it = std::sregex_iterator(extra.begin(), extra.end(), flag); it != std::sregex_iterator(); ++it) {
-      flags.insert(it->str());
+  for (const Field& f : fields) {
+    const std::string dashed = Dashed(f.name);
+    flags.insert(dashed);
+    if (f.kind == FieldKind::kBool) {
+      const std::size_t dot = dashed.rfind('.');
+      const std::size_t leaf = dot == std::string::npos ? 2 : dot + 1;
+      flags.insert(dashed.substr(0, leaf) + "no-" + dashed.substr(leaf));
     }
   }
   return flags;
 }
 
-Names NamesOf(const std::vector<mcp::ToolField>& fields) {
+Names NamesOf(const std::vector<Field>& fields) {
   Names names;
-  for (const mcp::ToolField& f : fields) names.insert(std::string(f.name));
+  for (const Field& f : fields) names.insert(std::string(f.name));
   return names;
 }
 
@@ -87,24 +91,30 @@ const Names kCommon = {"--help", "--quiet", "--verbose"};
 const Names kSubcommand = {"--help"};  // --quiet/--verbose belong to `asbuilt scene`.
 
 TEST(SharedOptions, RenderAndRenderCaptureTakeTheSameFields) {
-  auto fields = mcp::CaptureRenderOptionFields();
+  auto fields = CaptureRenderOptionFields().Fields();
   EXPECT_EQ(ToolProperties("render_capture"), Union(NamesOf(fields), {"output", "overwrite"}));
-  // CLI-only: the output folder, --size WxH (short for --width-px/--height-px), --no-resume.
-  EXPECT_EQ(HelpFlags("render"), Union(Union(FlagsOf(fields), kCommon), {"--out", "--size", "--no-resume"}));
+  // CLI-only: the output folder, --size WxH (short for --width-px/--height-px), --no-resume; and
+  // the older spellings kept as aliases.
+  EXPECT_EQ(HelpFlags("render"), Union(Union(FlagsOf(fields), kCommon),
+                                       {"--out", "--size", "--no-resume", "--spp", "--effects", "--no-indirect",
+                                        "--instances"}));
 }
 
 TEST(SharedOptions, SceneTextAndSceneFromTextTakeTheSameFields) {
-  auto fields = mcp::SceneTextOptionFields();
+  auto fields = SceneTextOptionFields().Fields();
   EXPECT_EQ(ToolProperties("scene_from_text"), Union(NamesOf(fields), {"text"}));
-  // CLI-only: the output file and the LLM front end.
+  // CLI-only: the output file and the LLM front end; aliases.
   EXPECT_EQ(HelpFlags("scene text"), Union(Union(FlagsOf(fields), kSubcommand),
-                                           {"--output", "--llm", "--llm-model", "--llm-rounds", "--llm-timeout"}));
+                                           {"--output", "--llm", "--llm-model", "--llm-rounds", "--llm-timeout",
+                                            "--no-furniture", "--no-default-door", "--rig-height", "--step"}));
 }
 
 TEST(SharedOptions, SceneRandomAndRandomSceneTakeTheSameFields) {
-  auto fields = mcp::RandomSceneOptionFields();
+  auto fields = RandomSceneOptionFields().Fields();
+  fields.push_back(RandomSceneSeedField());
   EXPECT_EQ(ToolProperties("random_scene"), NamesOf(fields));
-  EXPECT_EQ(HelpFlags("scene random"), Union(Union(FlagsOf(fields), kSubcommand), {"--output", "--count"}));
+  EXPECT_EQ(HelpFlags("scene random"), Union(Union(FlagsOf(fields), kSubcommand),
+                                             {"--output", "--count", "--min-side", "--max-side", "--step"}));
 }
 
 TEST(SharedOptions, CliChecksBoundsLikeTheTool) {

@@ -8,10 +8,27 @@
 #include <fmt/format.h>
 
 #include "asbuilt/cli/command.h"
+#include "asbuilt/cli/field_flags.h"
 #include "asbuilt/pipeline/survey.h"
 #include "asbuilt/util/progress.h"
 
 namespace asbuilt::cli {
+namespace {
+
+// Every PlanOptions field as --plan.NAME and every FramePointsOptions field
+// as --points.NAME (nested: --points.disparity.block-size-px).
+const FieldList<SurveyOptions>& SurveyPlanFields() {
+  static const FieldList<SurveyOptions> kList =
+      FieldList<SurveyOptions>().Nest("plan", &SurveyOptions::plan, PlanOptionFields());
+  return kList;
+}
+const FieldList<SurveyOptions>& SurveyPointsFields() {
+  static const FieldList<SurveyOptions> kList =
+      FieldList<SurveyOptions>().Nest("points", &SurveyOptions::points, FramePointsOptionFields());
+  return kList;
+}
+
+}  // namespace
 
 int RunSurveyCommand(int argc, char** argv) {
   CLI::App app(
@@ -22,7 +39,8 @@ int RunSurveyCommand(int argc, char** argv) {
       "A synthetic capture's own labels are never used unless --labels or --capture-labels says so.\n"
       "A mono capture (level views of one camera) or a panorama capture (one 2:1 equirectangular\n"
       "photo, resampled into --pano-views level views) places the walls from their floor and\n"
-      "ceiling edges and the camera height in position_m (docs/survey.md).",
+      "ceiling edges and the camera height in position_m (docs/survey.md).\n"
+      "Every PlanOptions field is a flag --plan.NAME, every FramePointsOptions field --points.NAME.",
       "asbuilt survey");
   AddCommonFlags(app);
   std::string capture, out_dir, model, labels_dir, truth;
@@ -40,10 +58,6 @@ int RunSurveyCommand(int argc, char** argv) {
   app.add_flag("--capture-labels", options.use_capture_labels,
                "use the capture's own exact labels (synthetic captures; the method's upper bound)");
   app.add_option("--truth", truth, "truth plan to score against (default: truth.json beside the capture)");
-  app.add_option("--epsilon-m", options.plan.epsilon_m, "wall collinearity tolerance ε (m)")->capture_default_str();
-  app.add_option("--dense-stride", options.points.dense_stride_px, "keep every n-th dense pixel")->capture_default_str();
-  AddContactsOption(app, &options.points.contacts);
-  AddContactSnapOption(app, &options.contact_snap_px);
   app.add_option("--report-frames", options.report_frames, "frames pictured in the report (0 = all)")
       ->capture_default_str();
   app.add_flag("--no-report", no_report, "skip report.html");
@@ -56,7 +70,17 @@ int RunSurveyCommand(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--pano-yaw-step", options.panorama_views.yaw_step_deg, "panorama captures: yaw step (deg)")
       ->capture_default_str();
+  // The short spellings are older flags that scripts use.
+  FieldFlags plan_flags(app, SurveyPlanFields().Fields(options), {{"plan.epsilon_m", "--epsilon-m"}},
+                        "Plan options (PlanOptions, docs/plan.md)");
+  FieldFlags points_flags(app, SurveyPointsFields().Fields(options),
+                          {{"points.dense_stride_px", "--dense-stride"},
+                           {"points.contacts", "--contacts"},
+                           {"points.contact_snap_px", "--snap-contacts-px"}},
+                          "Points options (FramePointsOptions, docs/stereo.md)");
   Parse(app, argc, argv);
+  plan_flags.Read(SurveyPlanFields(), options);
+  points_flags.Read(SurveyPointsFields(), options);
   if (!model.empty()) options.model_path = model;
   if (seg_scale == "model") {
     options.segment_scale_px = std::pair{0, 0};

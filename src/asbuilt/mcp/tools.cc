@@ -15,7 +15,6 @@
 
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/mcp/jsonrpc.h"
-#include "asbuilt/mcp/option_fields.h"
 #include "asbuilt/mcp/plan_preview.h"
 #include "asbuilt/render/capture_render.h"
 #include "asbuilt/render/renderer.h"
@@ -113,56 +112,68 @@ int WallFacing(const Room& room, std::string_view side) {
 }
 
 // A tool's own fields followed by a shared Options field list.
-std::vector<ToolField> Concat(std::vector<ToolField> own, std::vector<ToolField> shared) {
+std::vector<Field> Concat(std::vector<Field> own, std::vector<Field> shared) {
   own.insert(own.end(), shared.begin(), shared.end());
   return own;
 }
 
+// render_capture's options: CaptureRenderOptions' field list with the view
+// count and image size capped by the server's limits.
+std::vector<Field> CaptureRenderToolFields(const ToolLimits& limits) {
+  std::vector<Field> fields = CaptureRenderOptionFields().Fields();
+  for (Field& f : fields) {
+    if (f.name == "views") f.maximum = limits.max_views;
+    if (f.name == "width_px") f.maximum = limits.max_image_width_px;
+    if (f.name == "height_px") f.maximum = limits.max_image_height_px;
+  }
+  return fields;
+}
+
 // Tool fields shared by add_door and add_window.
-std::vector<ToolField> OpeningFields(OpeningKind kind, const ToolLimits& limits) {
+std::vector<Field> OpeningFields(OpeningKind kind, const ToolLimits& limits) {
   bool door = kind == OpeningKind::kDoor;
-  std::vector<ToolField> f = {
-      {.name = "room", .type = ArgType::kInteger,
+  std::vector<Field> f = {
+      {.name = "room", .kind = FieldKind::kInteger,
        .description = "Room index (0 = first room added).", .minimum = 0.0,
        .maximum = limits.max_rooms - 1.0, .default_value = 0},
-      {.name = "wall", .type = ArgType::kInteger,
+      {.name = "wall", .kind = FieldKind::kInteger,
        .description = "Wall number (see add_room's reply or describe_scene). Give wall or side.",
        .minimum = 0.0, .maximum = limits.max_polygon_points - 1.0},
-      {.name = "side", .type = ArgType::kEnum,
+      {.name = "side", .kind = FieldKind::kEnum,
        .description = "Compass side instead of a wall number: the wall facing that way "
                       "(north = +y, east = +x).",
        .choices = kCompass},
-      {.name = "offset_m", .type = ArgType::kNumber,
+      {.name = "offset_m", .kind = FieldKind::kNumber,
        .description = "Distance along the wall from its start corner to the near edge of the "
                       "opening. Omit to centre it (or to space several evenly).",
        .minimum = 0.0, .maximum = 1000.0},
-      {.name = "width_m", .type = ArgType::kNumber, .description = "Clear opening width.",
+      {.name = "width_m", .kind = FieldKind::kNumber, .description = "Clear opening width.",
        .exclusive_minimum = 0.0, .maximum = 20.0, .default_value = door ? 0.9 : 1.2},
-      {.name = "height_m", .type = ArgType::kNumber, .description = "Clear opening height.",
+      {.name = "height_m", .kind = FieldKind::kNumber, .description = "Clear opening height.",
        .exclusive_minimum = 0.0, .maximum = 20.0, .default_value = door ? 2.1 : 1.2},
-      {.name = "count", .type = ArgType::kInteger,
+      {.name = "count", .kind = FieldKind::kInteger,
        .description = door ? "How many identical doors to space evenly along the wall."
                            : "How many identical windows to space evenly along the wall.",
        .minimum = 1.0, .maximum = 8.0, .default_value = 1},
-      {.name = "material", .type = ArgType::kString,
+      {.name = "material", .kind = FieldKind::kString,
        .description = "Material name (set_material); default: the built-in door/window look.",
        .max_length = 64},
   };
   if (door) {
-    f.push_back({.name = "open_deg", .type = ArgType::kNumber,
+    f.push_back({.name = "open_deg", .kind = FieldKind::kNumber,
                  .description = "Door leaf angle: 0 closed, 90 wide open; swings into the room.",
                  .minimum = 0.0, .maximum = 180.0, .default_value = 0.0});
-    f.push_back({.name = "hinge", .type = ArgType::kEnum,
+    f.push_back({.name = "hinge", .kind = FieldKind::kEnum,
                  .description = "Hinge side seen from inside the room.",
                  .choices = {"left", "right"}, .default_value = "left"});
   } else {
-    f.push_back({.name = "sill_m", .type = ArgType::kNumber,
+    f.push_back({.name = "sill_m", .kind = FieldKind::kNumber,
                  .description = "Height of the bottom of the opening above the floor.",
                  .minimum = 0.0, .maximum = 20.0, .default_value = 0.9});
-    f.push_back({.name = "frame_width_m", .type = ArgType::kNumber,
+    f.push_back({.name = "frame_width_m", .kind = FieldKind::kNumber,
                  .description = "Width of the window frame profile.", .minimum = 0.0,
                  .maximum = 0.5, .default_value = 0.05});
-    f.push_back({.name = "glass", .type = ArgType::kBool,
+    f.push_back({.name = "glass", .kind = FieldKind::kBool,
                  .description = "Whether the window is glazed.", .default_value = true});
   }
   return f;
@@ -225,7 +236,7 @@ nlohmann::json ToolSpec::ToJson() const {
   return {{"name", name},
           {"title", title},
           {"description", description},
-          {"inputSchema", ToolInputSchema(fields)},
+          {"inputSchema", FieldsSchema(fields)},
           {"annotations",
            {{"title", title},
             {"readOnlyHint", read_only},
@@ -265,17 +276,23 @@ std::string DescribeWalls(const Room& room) {
 SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
     : workspace_(std::move(workspace)), limits_(limits) {
   limits_.Check();
-  const ToolLimits& L = limits_;
-  const ToolField path_field_required = {
-      .name = "path", .type = ArgType::kString, .required = true, .max_length = 512};
+  // In tools/list order.
+  RegisterBuildTools();
+  RegisterStyleTools();
+  RegisterWholeSceneTools();
+  RegisterOutputTools();
+}
 
+// new_scene, add_room, add_door, add_window, add_furniture.
+void SceneTools::RegisterBuildTools() {
+  const ToolLimits& L = limits_;
   ToolSpec s;
   s = {.name = "new_scene", .title = "New scene",
        .description = "Start a new, empty scene (discards the current one). Then add rooms "
                       "with add_room." + std::string(kConventions),
-       .fields = {{.name = "name", .type = ArgType::kString, .description = "Scene name.",
+       .fields = {{.name = "name", .kind = FieldKind::kString, .description = "Scene name.",
                    .max_length = 128, .default_value = "room"},
-                  {.name = "seed", .type = ArgType::kInteger,
+                  {.name = "seed", .kind = FieldKind::kInteger,
                    .description = "Seed for procedural textures and exterior objects.",
                    .minimum = 0.0, .maximum = 4294967295.0, .default_value = 0}},
        .destructive = true};
@@ -289,30 +306,30 @@ SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
            "and the compass direction each faces, for add_door/add_window." +
            std::string(kConventions),
        .fields = {
-           {.name = "width_m", .type = ArgType::kNumber,
+           {.name = "width_m", .kind = FieldKind::kNumber,
             .description = "Rectangle size along x (east-west). Give with depth_m, or give polygon.",
             .exclusive_minimum = 0.0, .maximum = 200.0},
-           {.name = "depth_m", .type = ArgType::kNumber,
+           {.name = "depth_m", .kind = FieldKind::kNumber,
             .description = "Rectangle size along y (north-south).", .exclusive_minimum = 0.0,
             .maximum = 200.0},
-           {.name = "polygon", .type = ArgType::kPolygon,
+           {.name = "polygon", .kind = FieldKind::kPolygon,
             .description = "Corners [[x, y], ...] of the inner wall faces, in order around the "
                            "room, not repeating the first (counter-clockwise preferred; "
                            "clockwise is reversed).",
             .min_items = 3, .max_items = static_cast<std::size_t>(L.max_polygon_points)},
-           {.name = "origin", .type = ArgType::kPoint2,
+           {.name = "origin", .kind = FieldKind::kPoint2,
             .description = "Where the rectangle's south-west corner goes; for a polygon, added to "
                            "every corner.",
             .default_value = {0.0, 0.0}},
-           {.name = "rotation_deg", .type = ArgType::kNumber,
+           {.name = "rotation_deg", .kind = FieldKind::kNumber,
             .description = "Counter-clockwise rotation about origin.", .minimum = -360.0,
             .maximum = 360.0, .default_value = 0.0},
-           {.name = "height_m", .type = ArgType::kNumber, .description = "Floor to ceiling.",
+           {.name = "height_m", .kind = FieldKind::kNumber, .description = "Floor to ceiling.",
             .exclusive_minimum = 0.0, .maximum = 20.0, .default_value = 2.7},
-           {.name = "wall_thickness_m", .type = ArgType::kNumber,
+           {.name = "wall_thickness_m", .kind = FieldKind::kNumber,
             .description = "Wall thickness outwards from the inner face.",
             .exclusive_minimum = 0.0, .maximum = 2.0, .default_value = 0.2},
-           {.name = "name", .type = ArgType::kString, .description = "Room name.",
+           {.name = "name", .kind = FieldKind::kString, .description = "Room name.",
             .max_length = 128},
        }};
   Register(s, &SceneTools::AddRoom);
@@ -336,51 +353,56 @@ SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
                       "renders, like real furniture). Pick a kind for typical sizes, or give "
                       "size_m." + std::string(kConventions),
        .fields = {
-           {.name = "centre", .type = ArgType::kPoint2, .description = "Footprint centre [x, y].",
+           {.name = "centre", .kind = FieldKind::kPoint2, .description = "Footprint centre [x, y].",
             .required = true, .minimum = -1000.0, .maximum = 1000.0},
-           {.name = "kind", .type = ArgType::kEnum,
+           {.name = "kind", .kind = FieldKind::kEnum,
             .description = "Preset that sets a typical size (size_m overrides it).",
             .choices = FurnitureKinds(), .default_value = "box"},
-           {.name = "size_m", .type = ArgType::kPoint3,
+           {.name = "size_m", .kind = FieldKind::kPoint3,
             .description = "[width (local x), depth (local y), height], each > 0.",
             .exclusive_minimum = 0.0, .maximum = 20.0},
-           {.name = "yaw_deg", .type = ArgType::kNumber,
+           {.name = "yaw_deg", .kind = FieldKind::kNumber,
             .description = "Counter-clockwise rotation of the footprint.", .minimum = -360.0,
             .maximum = 360.0, .default_value = 0.0},
-           {.name = "elevation_m", .type = ArgType::kNumber,
+           {.name = "elevation_m", .kind = FieldKind::kNumber,
             .description = "Bottom above the floor (wall shelves).", .minimum = 0.0,
             .maximum = 20.0, .default_value = 0.0},
-           {.name = "material", .type = ArgType::kString, .description = "Material name.",
+           {.name = "material", .kind = FieldKind::kString, .description = "Material name.",
             .max_length = 64, .default_value = "furniture"},
-           {.name = "name", .type = ArgType::kString, .description = "Name; default: the kind.",
+           {.name = "name", .kind = FieldKind::kString, .description = "Name; default: the kind.",
             .max_length = 128},
        }};
   Register(s, &SceneTools::AddFurniture);
+}
 
+// set_material, set_lighting, place_rig, remove_item.
+void SceneTools::RegisterStyleTools() {
+  const ToolLimits& L = limits_;
+  ToolSpec s;
   s = {.name = "set_material", .title = "Set material",
        .description = "Define or change a material (colour, roughness, procedural texture) and "
                       "optionally apply it to walls, floors, ceilings, furniture, doors or "
                       "windows. Built-in names: wall, floor, ceiling, door, window_frame, glass, "
                       "furniture, skirting; changing one of these restyles everything using it.",
        .fields = {
-           {.name = "name", .type = ArgType::kString, .description = "Material name.",
+           {.name = "name", .kind = FieldKind::kString, .description = "Material name.",
             .required = true, .max_length = 64},
-           {.name = "base_color", .type = ArgType::kColor,
+           {.name = "base_color", .kind = FieldKind::kColor,
             .description = "Linear RGB, each 0..1 (e.g. [0.8, 0.8, 0.75] off-white)."},
-           {.name = "roughness", .type = ArgType::kNumber,
+           {.name = "roughness", .kind = FieldKind::kNumber,
             .description = "0 glossy … 1 matte.", .minimum = 0.0, .maximum = 1.0},
-           {.name = "texture", .type = ArgType::kEnum, .description = "Procedural texture.",
+           {.name = "texture", .kind = FieldKind::kEnum, .description = "Procedural texture.",
             .choices = TextureNames()},
-           {.name = "texture_scale_m", .type = ArgType::kNumber,
+           {.name = "texture_scale_m", .kind = FieldKind::kNumber,
             .description = "Feature size of the texture (tile size, plank width…).",
             .exclusive_minimum = 0.0, .maximum = 10.0},
-           {.name = "secondary_color", .type = ArgType::kColor,
+           {.name = "secondary_color", .kind = FieldKind::kColor,
             .description = "Second colour (grout, wood grain), each 0..1."},
-           {.name = "apply_to", .type = ArgType::kEnum,
+           {.name = "apply_to", .kind = FieldKind::kEnum,
             .description = "Also assign the material to these surfaces.",
             .choices = {"none", "walls", "floor", "ceiling", "furniture", "doors", "windows"},
             .default_value = "none"},
-           {.name = "room", .type = ArgType::kInteger,
+           {.name = "room", .kind = FieldKind::kInteger,
             .description = "With apply_to walls/floor/ceiling/doors/windows: only this room "
                            "(default: every room).",
             .minimum = 0.0, .maximum = L.max_rooms - 1.0},
@@ -393,31 +415,31 @@ SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
                       "ambient level and sky. kind none with mode replace removes all lights." +
                       std::string(kConventions),
        .fields = {
-           {.name = "mode", .type = ArgType::kEnum, .description = "Replace all lights or add one.",
+           {.name = "mode", .kind = FieldKind::kEnum, .description = "Replace all lights or add one.",
             .choices = {"replace", "add"}, .default_value = "replace"},
-           {.name = "kind", .type = ArgType::kEnum, .description = "Light type.",
+           {.name = "kind", .kind = FieldKind::kEnum, .description = "Light type.",
             .choices = {"area", "point", "sun", "none"}, .default_value = "area"},
-           {.name = "position_m", .type = ArgType::kPoint3,
+           {.name = "position_m", .kind = FieldKind::kPoint3,
             .description = "[x, y, z]; default: above the first room's centre, just under the "
                            "ceiling. Ignored for the sun.",
             .minimum = -1000.0, .maximum = 1000.0},
-           {.name = "size_m", .type = ArgType::kPoint2,
+           {.name = "size_m", .kind = FieldKind::kPoint2,
             .description = "Area light panel size [x, y].", .exclusive_minimum = 0.0,
             .maximum = 20.0, .default_value = {1.2, 0.3}},
-           {.name = "color", .type = ArgType::kColor, .description = "Linear RGB, each 0..1.",
+           {.name = "color", .kind = FieldKind::kColor, .description = "Linear RGB, each 0..1.",
             .default_value = {1.0, 0.95, 0.9}},
-           {.name = "intensity", .type = ArgType::kNumber,
+           {.name = "intensity", .kind = FieldKind::kNumber,
             .description = "Relative brightness (1 = typical).", .exclusive_minimum = 0.0,
             .maximum = 100.0, .default_value = 1.0},
-           {.name = "azimuth_deg", .type = ArgType::kNumber,
+           {.name = "azimuth_deg", .kind = FieldKind::kNumber,
             .description = "Sun: direction it shines from, counter-clockwise from east.",
             .minimum = -360.0, .maximum = 360.0, .default_value = 135.0},
-           {.name = "elevation_deg", .type = ArgType::kNumber,
+           {.name = "elevation_deg", .kind = FieldKind::kNumber,
             .description = "Sun: height above the horizon.", .minimum = 0.0, .maximum = 90.0,
             .default_value = 35.0},
-           {.name = "ambient", .type = ArgType::kNumber,
+           {.name = "ambient", .kind = FieldKind::kNumber,
             .description = "Ambient fill light, 0..1.", .minimum = 0.0, .maximum = 1.0},
-           {.name = "sky", .type = ArgType::kBool,
+           {.name = "sky", .kind = FieldKind::kBool,
             .description = "Whether a sky is seen through windows."},
        }};
   Register(s, &SceneTools::SetLighting);
@@ -430,32 +452,32 @@ SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
            "baseline. Limits: at most {} views, images at most {}×{} px.",
            L.max_views, L.max_image_width_px, L.max_image_height_px),
        .fields = {
-           {.name = "position", .type = ArgType::kPoint2,
+           {.name = "position", .kind = FieldKind::kPoint2,
             .description = "Rig centre [x, y]; default: the centre of the room.",
             .minimum = -1000.0, .maximum = 1000.0},
-           {.name = "room", .type = ArgType::kInteger,
+           {.name = "room", .kind = FieldKind::kInteger,
             .description = "Room whose centre is the default position.", .minimum = 0.0,
             .maximum = L.max_rooms - 1.0, .default_value = 0},
-           {.name = "height_m", .type = ArgType::kNumber,
+           {.name = "height_m", .kind = FieldKind::kNumber,
             .description = "Camera height above the floor.", .exclusive_minimum = 0.0,
             .maximum = 20.0, .default_value = 1.5},
-           {.name = "yaws_deg", .type = ArgType::kNumberList,
+           {.name = "yaws_deg", .kind = FieldKind::kNumberList,
             .description = "Explicit view directions (instead of a turn).", .minimum = -360.0,
             .maximum = 360.0, .min_items = 1, .max_items = static_cast<std::size_t>(L.max_views)},
-           {.name = "step_deg", .type = ArgType::kNumber, .description = "Turn step.",
+           {.name = "step_deg", .kind = FieldKind::kNumber, .description = "Turn step.",
             .exclusive_minimum = 0.0, .maximum = 360.0, .default_value = 30.0},
-           {.name = "start_deg", .type = ArgType::kNumber, .description = "Yaw of the first view.",
+           {.name = "start_deg", .kind = FieldKind::kNumber, .description = "Yaw of the first view.",
             .minimum = -360.0, .maximum = 360.0, .default_value = 0.0},
-           {.name = "count", .type = ArgType::kInteger,
+           {.name = "count", .kind = FieldKind::kInteger,
             .description = "Views in the turn; 0 = a full turn (360 / step_deg).",
             .minimum = 0.0, .maximum = static_cast<double>(L.max_views), .default_value = 0},
-           {.name = "width_px", .type = ArgType::kInteger, .description = "Image width.",
+           {.name = "width_px", .kind = FieldKind::kInteger, .description = "Image width.",
             .minimum = 16.0, .maximum = static_cast<double>(L.max_image_width_px)},
-           {.name = "height_px", .type = ArgType::kInteger, .description = "Image height.",
+           {.name = "height_px", .kind = FieldKind::kInteger, .description = "Image height.",
             .minimum = 16.0, .maximum = static_cast<double>(L.max_image_height_px)},
-           {.name = "hfov_deg", .type = ArgType::kNumber,
+           {.name = "hfov_deg", .kind = FieldKind::kNumber,
             .description = "Horizontal field of view.", .minimum = 10.0, .maximum = 150.0},
-           {.name = "baseline_m", .type = ArgType::kNumber,
+           {.name = "baseline_m", .kind = FieldKind::kNumber,
             .description = "Distance between the two cameras.", .minimum = 0.01, .maximum = 2.0},
        }};
   Register(s, &SceneTools::PlaceRig);
@@ -464,17 +486,23 @@ SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
        .description = "Remove a room, an opening (door/window) of a room, a piece of furniture, a "
                       "light or a scene material, by index (describe_scene lists them).",
        .fields = {
-           {.name = "what", .type = ArgType::kEnum, .description = "What to remove.",
+           {.name = "what", .kind = FieldKind::kEnum, .description = "What to remove.",
             .required = true, .choices = {"room", "opening", "furniture", "light", "material"}},
-           {.name = "index", .type = ArgType::kInteger,
+           {.name = "index", .kind = FieldKind::kInteger,
             .description = "Index of the item (openings: within the room).", .required = true,
             .minimum = 0.0, .maximum = 100000.0},
-           {.name = "room", .type = ArgType::kInteger, .description = "Room of the opening.",
+           {.name = "room", .kind = FieldKind::kInteger, .description = "Room of the opening.",
             .minimum = 0.0, .maximum = L.max_rooms - 1.0, .default_value = 0},
        },
        .destructive = true};
   Register(s, &SceneTools::RemoveItem);
+}
 
+// scene_from_text, random_scene, describe_scene, validate_scene, get_scene,
+// render_preview.
+void SceneTools::RegisterWholeSceneTools() {
+  const ToolLimits& L = limits_;
+  ToolSpec s;
   s = {.name = "scene_from_text", .title = "Scene from text",
        .description = fmt::format(
            "Build a whole scene from an English description with the built-in parser (no "
@@ -482,10 +510,10 @@ SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
            "door on the east wall and two 1.5 m windows on the north wall\". The reply says which "
            "words were not used. At most {} characters.",
            L.max_text_chars),
-       .fields = Concat({{.name = "text", .type = ArgType::kString,
+       .fields = Concat({{.name = "text", .kind = FieldKind::kString,
                           .description = "The description.", .required = true,
                           .max_length = L.max_text_chars}},
-                        SceneTextOptionFields()),
+                        SceneTextOptionFields().Fields()),
        .destructive = true};
   Register(s, &SceneTools::SceneFromText);
 
@@ -494,7 +522,7 @@ SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
                       "`asbuilt scene random`): rectangular, L-shaped or rotated, 1-4 doors and "
                       "windows, furniture, random materials and lights, a turn-in-place rig. "
                       "Deterministic per seed.",
-       .fields = RandomSceneOptionFields(),
+       .fields = Concat({RandomSceneSeedField()}, RandomSceneOptionFields().Fields()),
        .destructive = true};
   Register(s, &SceneTools::RandomSceneTool);
 
@@ -527,18 +555,25 @@ SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
            "{} px (camera).",
            L.max_preview_width_px, L.max_image_width_px),
        .fields = {
-           {.name = "view", .type = ArgType::kEnum, .description = "plan (top-down) or camera.",
+           {.name = "view", .kind = FieldKind::kEnum, .description = "plan (top-down) or camera.",
             .choices = {"plan", "camera"}, .default_value = "plan"},
-           {.name = "width_px", .type = ArgType::kInteger, .description = "Image width.",
+           {.name = "width_px", .kind = FieldKind::kInteger, .description = "Image width.",
             .minimum = 64.0, .maximum = static_cast<double>(L.max_preview_width_px),
             .default_value = 768},
-           {.name = "view_index", .type = ArgType::kInteger,
+           {.name = "view_index", .kind = FieldKind::kInteger,
             .description = "Camera view: which viewpoint (place_rig).", .minimum = 0.0,
             .maximum = L.max_views - 1.0, .default_value = 0},
        },
        .read_only = true};
   Register(s, &SceneTools::RenderPreview);
+}
 
+// render_capture, export_plan, save_scene, load_scene.
+void SceneTools::RegisterOutputTools() {
+  const ToolLimits& L = limits_;
+  const Field path_field_required = {
+      .name = "path", .kind = FieldKind::kString, .required = true, .max_length = 512};
+  ToolSpec s;
   s = {.name = "render_capture", .title = "Render capture",
        .description = fmt::format(
            "Render a labelled stereo capture of every viewpoint (left/right images, labels, "
@@ -547,26 +582,26 @@ SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
            "only when complete. At most {} views.",
            L.max_views),
        .fields = Concat(
-           {{.name = "output", .type = ArgType::kString,
+           {{.name = "output", .kind = FieldKind::kString,
              .description = "Folder to create, relative to the workspace (e.g. \"captures/a\").",
              .required = true, .max_length = 512},
-            {.name = "overwrite", .type = ArgType::kBool,
+            {.name = "overwrite", .kind = FieldKind::kBool,
              .description = "Replace the folder if it exists.", .default_value = false}},
-           CaptureRenderOptionFields(&L))};
+           CaptureRenderToolFields(L))};
   Register(s, &SceneTools::RenderCapture);
 
   s = {.name = "export_plan", .title = "Export plan",
        .description = "The exact floor plan of the scene as plan JSON (version, units, walls "
                       "as inner-face lines, openings with width/height/sill on their wall, "
                       "rooms with area); with path, also written into the workspace.",
-       .fields = {{.name = "path", .type = ArgType::kString,
+       .fields = {{.name = "path", .kind = FieldKind::kString,
                    .description = "Optional file to write, ending in .json (e.g. "
                                   "\"plans/truth.json\").",
                    .max_length = 512}},
        .read_only = false};
   Register(s, &SceneTools::ExportPlan);
 
-  ToolField save_path = path_field_required;
+  Field save_path = path_field_required;
   save_path.description = "File to write, relative to the workspace, ending in .json.";
   s = {.name = "save_scene", .title = "Save scene",
        .description = "Write the current scene as scene JSON into the workspace (replacing the "
@@ -574,7 +609,7 @@ SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
        .fields = {save_path}};
   Register(s, &SceneTools::SaveScene);
 
-  ToolField load_path = path_field_required;
+  Field load_path = path_field_required;
   load_path.description = "Scene JSON file relative to the workspace.";
   s = {.name = "load_scene", .title = "Load scene",
        .description = fmt::format("Replace the current scene with a scene JSON file from the "
@@ -612,7 +647,7 @@ std::string SceneTools::ToolsMarkdown() const {
       description.erase(at, kConventions.size());
     }
     out += fmt::format("### `{}` — {}\n\n{}\n\n{}\n", s.name, s.title, description,
-                       ToolFieldsMarkdown(s.fields));
+                       FieldsMarkdown(s.fields));
   }
   return out;
 }
@@ -626,11 +661,11 @@ ToolResult SceneTools::Call(std::string_view name, const nlohmann::json& argumen
   }
   const ToolSpec& spec = specs_[index];
   try {
-    ToolArgs args = ParseToolArgs(spec.fields, arguments);
+    FieldArgs args = ParseFieldArgs(spec.fields, arguments);
     return (this->*handlers_[index])(args, ctx);
   } catch (const Cancelled& e) {
     return ToolResult::Failure(e.what());
-  } catch (const ToolArgsError& e) {
+  } catch (const FieldArgsError& e) {
     return ToolResult::Failure(fmt::format("{}: invalid arguments (nothing was changed):{}",
                                            spec.name, Bullets(e.problems())));
   } catch (const InputError& e) {
@@ -705,7 +740,7 @@ void SceneTools::Commit(Scene next, std::string_view what) {
   scene_ = std::move(next);
 }
 
-int SceneTools::RoomArg(const ToolArgs& a) const {
+int SceneTools::RoomArg(const FieldArgs& a) const {
   if (scene_.rooms.empty()) throw InvalidArgument("the scene has no room yet: call add_room first");
   std::int64_t r = a.Integer("room");
   if (r >= static_cast<std::int64_t>(scene_.rooms.size())) {
@@ -717,7 +752,7 @@ int SceneTools::RoomArg(const ToolArgs& a) const {
 
 // ------------------------------------------------------------------ tools
 
-ToolResult SceneTools::NewScene(const ToolArgs& a, const ToolCallContext&) {
+ToolResult SceneTools::NewScene(const FieldArgs& a, const ToolCallContext&) {
   Scene s;
   s.name = a.String("name");
   s.seed = static_cast<std::uint64_t>(a.Integer("seed"));
@@ -725,7 +760,7 @@ ToolResult SceneTools::NewScene(const ToolArgs& a, const ToolCallContext&) {
   return ToolResult::Text(fmt::format("New empty scene \"{}\". Next: add_room.", scene_.name));
 }
 
-ToolResult SceneTools::AddRoom(const ToolArgs& a, const ToolCallContext&) {
+ToolResult SceneTools::AddRoom(const FieldArgs& a, const ToolCallContext&) {
   bool has_rect = a.Has("width_m") || a.Has("depth_m");
   bool has_poly = a.Has("polygon");
   if (has_rect == has_poly) {
@@ -773,15 +808,15 @@ ToolResult SceneTools::AddRoom(const ToolArgs& a, const ToolCallContext&) {
       added.height_m, note, DescribeWalls(added)));
 }
 
-ToolResult SceneTools::AddDoor(const ToolArgs& a, const ToolCallContext&) {
+ToolResult SceneTools::AddDoor(const FieldArgs& a, const ToolCallContext&) {
   return AddOpenings(a, OpeningKind::kDoor);
 }
 
-ToolResult SceneTools::AddWindow(const ToolArgs& a, const ToolCallContext&) {
+ToolResult SceneTools::AddWindow(const FieldArgs& a, const ToolCallContext&) {
   return AddOpenings(a, OpeningKind::kWindow);
 }
 
-ToolResult SceneTools::AddOpenings(const ToolArgs& a, OpeningKind kind) {
+ToolResult SceneTools::AddOpenings(const FieldArgs& a, OpeningKind kind) {
   const char* noun = OpeningKindName(kind);
   int r = RoomArg(a);
   const Room& room = scene_.rooms[r];
@@ -874,7 +909,7 @@ ToolResult SceneTools::AddOpenings(const ToolArgs& a, OpeningKind kind) {
       kind == OpeningKind::kWindow ? fmt::format(", sill {:.2f} m", sill) : ""));
 }
 
-ToolResult SceneTools::AddFurniture(const ToolArgs& a, const ToolCallContext&) {
+ToolResult SceneTools::AddFurniture(const FieldArgs& a, const ToolCallContext&) {
   std::string kind = a.String("kind");
   Furniture f;
   for (const auto& p : kFurniturePresets) {
@@ -901,7 +936,7 @@ ToolResult SceneTools::AddFurniture(const ToolArgs& a, const ToolCallContext&) {
       inside ? "" : " (warning: its centre is outside every room)"));
 }
 
-ToolResult SceneTools::SetMaterial(const ToolArgs& a, const ToolCallContext&) {
+ToolResult SceneTools::SetMaterial(const FieldArgs& a, const ToolCallContext&) {
   Scene next = scene_;
   const std::string name = a.String("name");
   if (name.empty()) throw InvalidArgument("arguments.name: must not be empty");
@@ -958,7 +993,7 @@ ToolResult SceneTools::SetMaterial(const ToolArgs& a, const ToolCallContext&) {
       apply == "none" ? "" : fmt::format("; applied to {} {}", assigned, apply)));
 }
 
-ToolResult SceneTools::SetLighting(const ToolArgs& a, const ToolCallContext&) {
+ToolResult SceneTools::SetLighting(const FieldArgs& a, const ToolCallContext&) {
   Scene next = scene_;
   const std::string kind = a.String("kind");
   if (a.String("mode") == "replace") next.lights.clear();
@@ -1006,7 +1041,7 @@ ToolResult SceneTools::SetLighting(const ToolArgs& a, const ToolCallContext&) {
                                       scene_.environment.sky ? "on" : "off", Bullets(lines)));
 }
 
-ToolResult SceneTools::PlaceRig(const ToolArgs& a, const ToolCallContext&) {
+ToolResult SceneTools::PlaceRig(const FieldArgs& a, const ToolCallContext&) {
   Scene next = scene_;
   Vec2 xy;
   if (a.Has("position")) {
@@ -1060,7 +1095,7 @@ ToolResult SceneTools::PlaceRig(const ToolArgs& a, const ToolCallContext&) {
       scene_.rig.Camera().HorizontalFovDeg(), scene_.rig.baseline_m));
 }
 
-ToolResult SceneTools::RemoveItem(const ToolArgs& a, const ToolCallContext&) {
+ToolResult SceneTools::RemoveItem(const FieldArgs& a, const ToolCallContext&) {
   const std::string what = a.String("what");
   const std::int64_t i = a.Integer("index");
   Scene next = scene_;
@@ -1091,9 +1126,9 @@ ToolResult SceneTools::RemoveItem(const ToolArgs& a, const ToolCallContext&) {
   return ToolResult::Text(fmt::format("Removed {} {}.{}", what, i, warning));
 }
 
-ToolResult SceneTools::SceneFromText(const ToolArgs& a, const ToolCallContext&) {
+ToolResult SceneTools::SceneFromText(const FieldArgs& a, const ToolCallContext&) {
   SceneTextResult result =
-      ::asbuilt::SceneFromText(a.String("text"), SceneTextOptionsFromArgs(a));
+      ::asbuilt::SceneFromText(a.String("text"), SceneTextOptionFields().FromArgs(a));
   CheckSceneLimits(result.scene);
   scene_ = std::move(result.scene);
   std::string out = fmt::format("New scene from the text: {}", DescribeScene(scene_));
@@ -1109,8 +1144,8 @@ ToolResult SceneTools::SceneFromText(const ToolArgs& a, const ToolCallContext&) 
   return ToolResult::Text(out);
 }
 
-ToolResult SceneTools::RandomSceneTool(const ToolArgs& a, const ToolCallContext&) {
-  Scene next = RandomScene(RandomSceneOptionsFromArgs(a), static_cast<std::uint64_t>(a.Integer("seed")));
+ToolResult SceneTools::RandomSceneTool(const FieldArgs& a, const ToolCallContext&) {
+  Scene next = RandomScene(RandomSceneOptionFields().FromArgs(a), static_cast<std::uint64_t>(a.Integer("seed")));
   CheckSceneLimits(next);
   scene_ = std::move(next);
   std::string out = fmt::format("New random scene: {}", DescribeScene(scene_));
@@ -1120,7 +1155,7 @@ ToolResult SceneTools::RandomSceneTool(const ToolArgs& a, const ToolCallContext&
   return ToolResult::Text(out);
 }
 
-ToolResult SceneTools::Describe(const ToolArgs&, const ToolCallContext&) {
+ToolResult SceneTools::Describe(const FieldArgs&, const ToolCallContext&) {
   std::string out = DescribeScene(scene_);
   for (std::size_t r = 0; r < scene_.rooms.size(); ++r) {
     out += fmt::format("\nRoom {} walls:\n{}", r, DescribeWalls(scene_.rooms[r]));
@@ -1141,7 +1176,7 @@ ToolResult SceneTools::Describe(const ToolArgs&, const ToolCallContext&) {
   return ToolResult::Text(out);
 }
 
-ToolResult SceneTools::Validate(const ToolArgs&, const ToolCallContext&) {
+ToolResult SceneTools::Validate(const FieldArgs&, const ToolCallContext&) {
   std::vector<Problem> problems = ValidateScene(scene_);
   nlohmann::json list = nlohmann::json::array();
   std::vector<std::string> lines;
@@ -1157,11 +1192,11 @@ ToolResult SceneTools::Validate(const ToolArgs&, const ToolCallContext&) {
   return r;
 }
 
-ToolResult SceneTools::GetScene(const ToolArgs&, const ToolCallContext&) {
+ToolResult SceneTools::GetScene(const FieldArgs&, const ToolCallContext&) {
   return ToolResult::Text(SceneToJson(scene_).dump(2));
 }
 
-ToolResult SceneTools::RenderPreview(const ToolArgs& a, const ToolCallContext&) {
+ToolResult SceneTools::RenderPreview(const FieldArgs& a, const ToolCallContext&) {
   if (a.String("view") == "camera") return CameraPreview(a);
   PlanPreviewOptions options{.width_px = static_cast<int>(a.Integer("width_px"))};
   options.max_height_px = std::max(options.width_px * 2, 256);
@@ -1175,7 +1210,7 @@ ToolResult SceneTools::RenderPreview(const ToolArgs& a, const ToolCallContext&) 
   return r;
 }
 
-ToolResult SceneTools::RenderCapture(const ToolArgs& a, const ToolCallContext& ctx) {
+ToolResult SceneTools::RenderCapture(const FieldArgs& a, const ToolCallContext& ctx) {
   const std::string output = a.String("output");
   const bool overwrite = a.Bool("overwrite");
   fs::path final_dir = workspace_.Resolve(output, "arguments.output");
@@ -1196,7 +1231,7 @@ ToolResult SceneTools::RenderCapture(const ToolArgs& a, const ToolCallContext& c
   if (CountViews(scene_) == 0) {
     throw InvalidArgument("the scene has no views to render: call place_rig first");
   }
-  CaptureRenderOptions options = CaptureRenderOptionsFromArgs(a);
+  CaptureRenderOptions options = CaptureRenderOptionFields().FromArgs(a);
   options.resume = false;
   options.Check();
 
@@ -1219,7 +1254,7 @@ ToolResult SceneTools::RenderCapture(const ToolArgs& a, const ToolCallContext& c
       workspace_.Display(final_dir)));
 }
 
-ToolResult SceneTools::CameraPreview(const ToolArgs& a) {
+ToolResult SceneTools::CameraPreview(const FieldArgs& a) {
   std::vector<Problem> problems = ValidateScene(scene_);
   if (!problems.empty()) {
     std::vector<std::string> lines;
@@ -1269,7 +1304,7 @@ ToolResult SceneTools::CameraPreview(const ToolArgs& a) {
   return r;
 }
 
-ToolResult SceneTools::ExportPlan(const ToolArgs& a, const ToolCallContext&) {
+ToolResult SceneTools::ExportPlan(const FieldArgs& a, const ToolCallContext&) {
   std::vector<Problem> problems = ValidateScene(scene_);
   if (!problems.empty()) {
     std::vector<std::string> lines;
@@ -1292,7 +1327,7 @@ ToolResult SceneTools::ExportPlan(const ToolArgs& a, const ToolCallContext&) {
   return r;
 }
 
-ToolResult SceneTools::SaveScene(const ToolArgs& a, const ToolCallContext&) {
+ToolResult SceneTools::SaveScene(const FieldArgs& a, const ToolCallContext&) {
   std::string path = a.String("path");
   if (!path.ends_with(".json")) {
     throw InvalidArgument(fmt::format("arguments.path: \"{}\" must end in .json", path));
@@ -1308,7 +1343,7 @@ ToolResult SceneTools::SaveScene(const ToolArgs& a, const ToolCallContext&) {
                : ""));
 }
 
-ToolResult SceneTools::LoadScene(const ToolArgs& a, const ToolCallContext&) {
+ToolResult SceneTools::LoadScene(const FieldArgs& a, const ToolCallContext&) {
   std::string path = a.String("path");
   fs::path source = workspace_.Resolve(path, "arguments.path");
   std::error_code ec;

@@ -20,9 +20,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "asbuilt/mcp/tool_args.h"
 #include "asbuilt/mcp/workspace.h"
 #include "asbuilt/scene/scene.h"
+#include "asbuilt/util/fields.h"
 #include "asbuilt/util/progress.h"
 
 namespace asbuilt::mcp {
@@ -81,7 +81,7 @@ struct ToolSpec {
   std::string name;
   std::string title;
   std::string description;
-  std::vector<ToolField> fields;
+  std::vector<Field> fields;
   bool read_only = false;     // annotations.readOnlyHint
   bool destructive = false;   // annotations.destructiveHint (replaces state or files)
 
@@ -110,30 +110,35 @@ class SceneTools {
   std::string ToolsMarkdown() const;
 
  private:
-  using Handler = ToolResult (SceneTools::*)(const ToolArgs&, const ToolCallContext&);
+  using Handler = ToolResult (SceneTools::*)(const FieldArgs&, const ToolCallContext&);
+  // The table, registered by group (tools.cc).
+  void RegisterBuildTools();
+  void RegisterStyleTools();
+  void RegisterWholeSceneTools();
+  void RegisterOutputTools();
   void Register(ToolSpec spec, Handler handler);
 
-  ToolResult NewScene(const ToolArgs& a, const ToolCallContext&);
-  ToolResult AddRoom(const ToolArgs& a, const ToolCallContext&);
-  ToolResult AddDoor(const ToolArgs& a, const ToolCallContext&);
-  ToolResult AddWindow(const ToolArgs& a, const ToolCallContext&);
-  ToolResult AddOpenings(const ToolArgs& a, OpeningKind kind);
-  ToolResult AddFurniture(const ToolArgs& a, const ToolCallContext&);
-  ToolResult SetMaterial(const ToolArgs& a, const ToolCallContext&);
-  ToolResult SetLighting(const ToolArgs& a, const ToolCallContext&);
-  ToolResult PlaceRig(const ToolArgs& a, const ToolCallContext&);
-  ToolResult RemoveItem(const ToolArgs& a, const ToolCallContext&);
-  ToolResult SceneFromText(const ToolArgs& a, const ToolCallContext&);
-  ToolResult RandomSceneTool(const ToolArgs& a, const ToolCallContext&);
-  ToolResult Describe(const ToolArgs& a, const ToolCallContext&);
-  ToolResult Validate(const ToolArgs& a, const ToolCallContext&);
-  ToolResult GetScene(const ToolArgs& a, const ToolCallContext&);
-  ToolResult RenderPreview(const ToolArgs& a, const ToolCallContext&);
-  ToolResult CameraPreview(const ToolArgs& a);
-  ToolResult RenderCapture(const ToolArgs& a, const ToolCallContext& ctx);
-  ToolResult ExportPlan(const ToolArgs& a, const ToolCallContext&);
-  ToolResult SaveScene(const ToolArgs& a, const ToolCallContext&);
-  ToolResult LoadScene(const ToolArgs& a, const ToolCallContext&);
+  ToolResult NewScene(const FieldArgs& a, const ToolCallContext&);
+  ToolResult AddRoom(const FieldArgs& a, const ToolCallContext&);
+  ToolResult AddDoor(const FieldArgs& a, const ToolCallContext&);
+  ToolResult AddWindow(const FieldArgs& a, const ToolCallContext&);
+  ToolResult AddOpenings(const FieldArgs& a, OpeningKind kind);
+  ToolResult AddFurniture(const FieldArgs& a, const ToolCallContext&);
+  ToolResult SetMaterial(const FieldArgs& a, const ToolCallContext&);
+  ToolResult SetLighting(const FieldArgs& a, const ToolCallContext&);
+  ToolResult PlaceRig(const FieldArgs& a, const ToolCallContext&);
+  ToolResult RemoveItem(const FieldArgs& a, const ToolCallContext&);
+  ToolResult SceneFromText(const FieldArgs& a, const ToolCallContext&);
+  ToolResult RandomSceneTool(const FieldArgs& a, const ToolCallContext&);
+  ToolResult Describe(const FieldArgs& a, const ToolCallContext&);
+  ToolResult Validate(const FieldArgs& a, const ToolCallContext&);
+  ToolResult GetScene(const FieldArgs& a, const ToolCallContext&);
+  ToolResult RenderPreview(const FieldArgs& a, const ToolCallContext&);
+  ToolResult CameraPreview(const FieldArgs& a);
+  ToolResult RenderCapture(const FieldArgs& a, const ToolCallContext& ctx);
+  ToolResult ExportPlan(const FieldArgs& a, const ToolCallContext&);
+  ToolResult SaveScene(const FieldArgs& a, const ToolCallContext&);
+  ToolResult LoadScene(const FieldArgs& a, const ToolCallContext&);
 
   // Replaces the scene with `next` if that adds no validation problem (and
   // keeps within the limits); otherwise throws InvalidArgument listing the
@@ -142,7 +147,7 @@ class SceneTools {
   // Throws InvalidArgument when `scene` exceeds a count limit.
   void CheckSceneLimits(const Scene& scene) const;
   // The room index argument, checked against the scene.
-  int RoomArg(const ToolArgs& a) const;
+  int RoomArg(const FieldArgs& a) const;
 
   Workspace workspace_;
   ToolLimits limits_;

@@ -205,8 +205,6 @@ fs::path ExecutableDir() {
 
 void SurveyOptions::Check() const {
   points.Check();
-  CheckArgument(!contact_snap_px || *contact_snap_px >= 0,
-                fmt::format("SurveyOptions.contact_snap_px = {}, must be >= 0", contact_snap_px.value_or(0)));
   plan.Check();
   CheckArgument(report_frames >= 0, fmt::format("SurveyOptions.report_frames = {}, must be >= 0", report_frames));
   panorama_views.Check();
@@ -364,8 +362,7 @@ SurveyResult RunSurvey(const fs::path& capture_json, const fs::path& out_dir, co
   // Per frame: load (rectify), labels, disparity, points.
   std::vector<ReportFrame> report_frames;
   FramePointsOptions point_options = options.points;
-  point_options.contact_snap_px =
-      FramePointsOptions::ContactSnapPxFor(options.contact_snap_px, options.use_capture_labels);
+  point_options.contact_snap_px = point_options.ContactSnapPx(options.use_capture_labels);
   CapturePoints gathered(point_options);
   Vec3 rig_sum = Vec3::Zero();
   int done = 0;
@@ -658,8 +655,7 @@ SurveyResult RunMonoSurvey(const Capture& capture, const fs::path& capture_json,
 
   FramePointsOptions point_options = options.points;
   point_options.contacts = ContactUse::kAlways;
-  point_options.contact_snap_px =
-      FramePointsOptions::ContactSnapPxFor(options.contact_snap_px, options.use_capture_labels);
+  point_options.contact_snap_px = point_options.ContactSnapPx(options.use_capture_labels);
   CapturePoints gathered(point_options);
   constexpr std::size_t kBatch = 4;
   Vec3 camera_sum = Vec3::Zero();

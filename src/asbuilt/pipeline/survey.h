@@ -52,11 +52,6 @@ struct SurveyOptions {
   // it exists.
   std::optional<std::filesystem::path> truth_path;
   FramePointsOptions points;
-  // Ceiling contact rows snap to the image's own edge within this many rows
-  // (FramePointsOptions::contact_snap_px, which this replaces); unset:
-  // kDefaultContactSnapPx for segmented or given labels, 0 for the capture's
-  // exact ones.
-  std::optional<int> contact_snap_px;
   PlanOptions plan;
   // Panorama captures: the level views it is resampled into,
   // TurnInPlaceViews(panorama_views); frame i is view i (its labels:

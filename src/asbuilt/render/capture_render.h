@@ -19,6 +19,7 @@
 #include "asbuilt/render/renderer.h"
 #include "asbuilt/scene/scene.h"
 #include "asbuilt/util/progress.h"
+#include "asbuilt/util/fields.h"
 
 namespace asbuilt {
 
@@ -34,6 +35,11 @@ struct CaptureRenderOptions {
 
   void Check() const;
 };
+// Its field list: the flags of `asbuilt render` and the arguments of the MCP
+// tool render_capture (capture_render_options.cc). `resume` stays a CLI flag
+// (a tool always renders a fresh folder); the tool caps views and image size
+// by its limits.
+const FieldList<CaptureRenderOptions>& CaptureRenderOptionFields();
 
 struct CaptureRenderSummary {
   int views = 0;        // In the capture.

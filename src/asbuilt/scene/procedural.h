@@ -16,6 +16,7 @@
 
 #include "asbuilt/scene/scene.h"
 #include "asbuilt/util/progress.h"
+#include "asbuilt/util/fields.h"
 
 namespace asbuilt {
 
@@ -55,11 +56,16 @@ struct RandomSceneOptions {
   double window_sun_probability = 0.0;   // A low, strong sun shining in through a window (sunlit patches).
   double kitchen_probability = 0.0;      // Kitchen units with worktop and wall units, white appliances (label 0).
   double wall_details_probability = 0.0; // Radiators under windows, sockets, light switches by doors (label 0).
-  double window_dressing_probability = 0.0;  // Per window: curtains in the room (label 0) or a roller
-                                             // blind inside the opening (label window: it is in the opening).
+  double window_dressing_probability = 0.0;  // Per window: curtains (label 0) or a blind in the opening (window).
 
   void Check() const;
 };
+// Its field list: the flags of `asbuilt scene random` and the arguments of the
+// MCP tool random_scene (random_scene_options.cc). The realism levers and
+// `rig` are not in it. The scene's seed is RandomScene's argument, not an
+// option: both front ends add RandomSceneSeedField() before the list.
+const FieldList<RandomSceneOptions>& RandomSceneOptionFields();
+Field RandomSceneSeedField();
 
 // One random scene. Throws InvalidArgument for bad options.
 Scene RandomScene(const RandomSceneOptions& options, std::uint64_t seed);

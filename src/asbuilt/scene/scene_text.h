@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "asbuilt/scene/scene.h"
+#include "asbuilt/util/fields.h"
 
 namespace asbuilt {
 
@@ -33,6 +34,9 @@ struct SceneTextOptions {
 
   void Check() const;
 };
+// Its field list: the flags of `asbuilt scene text` and the arguments of the
+// MCP tool scene_from_text (scene_text_options.cc).
+const FieldList<SceneTextOptions>& SceneTextOptionFields();
 
 struct SceneTextResult {
   Scene scene;                             // Valid (CheckScene passed).

@@ -15,27 +15,23 @@
 
 #include "asbuilt/formats/points_file.h"
 #include "asbuilt/geometry/rig.h"
+#include "asbuilt/util/fields.h"
 
 namespace asbuilt {
 
 struct CornerOptions {
-  // Regions smaller than this (pixels) are ignored (specks, slivers).
-  int min_region_area_px = 150;
-  // approxPolyDP tolerance: max(approx_epsilon_px, fraction · perimeter).
-  // Larger keeps fewer corners; smaller keeps noise-induced vertices.
-  double approx_epsilon_px = 2.0;
-  double approx_epsilon_fraction = 0.004;
-  // Vertices within this many pixels of the image border are cut-offs by the
-  // frame, not corners of the component, and are dropped.
-  int border_margin_px = 6;
-  // Sub-pixel refinement on the gray image (cornerSubPix) with a window of
-  // (2r+1)²; a refinement that moves farther than max_refine_shift_px is
-  // discarded (the label vertex is kept).
-  int refine_radius_px = 3;
-  double max_refine_shift_px = 1.5;
+  int min_region_area_px = 150;          // Smaller label regions are ignored (specks, slivers), px².
+  double approx_epsilon_px = 2.0;        // approxPolyDP tolerance max(this, fraction · perimeter)…
+  double approx_epsilon_fraction = 0.004;  // …larger keeps fewer corners, smaller keeps noise vertices.
+  int border_margin_px = 6;              // Vertices this near the image border are frame cut-offs, dropped.
+  int refine_radius_px = 3;              // cornerSubPix window (2r+1)² on the gray image (0: no refinement).
+  double max_refine_shift_px = 1.5;      // A refinement moving farther is discarded (the label vertex is kept).
 
   void Check() const;
 };
+
+// Its field list (corner_options.cc), under `corners.` in `asbuilt points`.
+const FieldList<CornerOptions>& CornerOptionFields();
 
 struct ClassCorner {
   LabelClass label = LabelClass::kWall;
@@ -54,27 +50,19 @@ std::vector<ClassCorner> FindClassCorners(const cv::Mat& labels, const cv::Mat& 
                                           const CornerOptions& options);
 
 struct RowMatchOptions {
-  // Patch (2r+1)² compared by zero-mean normalised cross-correlation.
-  int patch_radius_px = 5;
-  // Also search rows v ± tolerance (for imperfect rectification).
-  int row_tolerance_px = 0;
-  // Best correlation must reach min_score, and beat every other peak farther
-  // than 2 px by ambiguity_margin (rejects repeated texture).
-  double min_score = 0.6;
-  double ambiguity_margin = 0.15;
-  // A left patch with a gray-level standard deviation below this has no
-  // texture to match (textureless plaster) and is rejected outright.
-  double min_patch_stddev = 3.0;
-  // Patch must have horizontal structure: the mean |∂I/∂x| over the mean
-  // |∇I| at least this (horizontal edges cannot be located along a row).
-  double min_horizontal_structure = 0.25;
-  // Gauss–Newton steps refining the parabola's sub-pixel disparity on the
-  // normalised patch difference (0 keeps the parabola; it is biased towards
-  // whole pixels by up to ~0.1 px).
-  int gauss_newton_iterations = 5;
+  int patch_radius_px = 5;               // Patch (2r+1)² compared by zero-mean normalised cross-correlation.
+  int row_tolerance_px = 0;              // Also search rows v ± this (imperfect rectification).
+  double min_score = 0.6;                // Best correlation must reach this…
+  double ambiguity_margin = 0.15;        // …and beat every other peak 2 px away or more by this.
+  double min_patch_stddev = 3.0;         // Patches with a smaller gray-level σ have no texture: rejected.
+  double min_horizontal_structure = 0.25;  // Mean |∂I/∂x| over mean |∇I| at least this (row-locatable).
+  int gauss_newton_iterations = 5;       // Sub-pixel refinement steps after the parabola (0: parabola, biased).
 
   void Check() const;
 };
+
+// Its field list (corner_options.cc), under `match.` in `asbuilt points`.
+const FieldList<RowMatchOptions>& RowMatchOptionFields();
 
 struct RowMatch {
   double disparity_px = 0.0;  // u_left − u_right, sub-pixel.

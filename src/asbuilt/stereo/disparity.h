@@ -12,57 +12,42 @@
 
 #include <opencv2/core.hpp>
 
+#include "asbuilt/util/fields.h"
+
 namespace asbuilt {
 
 enum class DisparityMatcher { kSgbm, kBm };
 
 struct DisparityOptions {
-  DisparityMatcher matcher = DisparityMatcher::kSgbm;
-  // Search range [min_disparity_px, min_disparity_px + num_disparities_px);
-  // num must be a multiple of 16. Larger ranges see nearer points, cost time.
-  int min_disparity_px = 0;
-  int num_disparities_px = 64;
-  // Matching window side (odd). Larger: smoother, fewer holes, blurrier edges.
-  int block_size_px = 5;
-  // SGBM smoothness penalties per channel·pixel² of the block (P1 = p1 ·
-  // channels · block², P2 likewise); P2 > P1.
-  int p1_per_block_px = 8;
-  int p2_per_block_px = 32;
-  // SGBM: eight paths (MODE_HH, slow, memory-hungry) instead of the fast
-  // three-way mode.
-  bool full_dp = false;
-  // Reject a match unless its cost beats the second best by this percentage.
-  int uniqueness_percent = 10;
-  // Speckle filter: blobs smaller than the window (px) whose disparity varies
-  // by more than the range are invalidated (0 disables).
-  int speckle_window_px = 100;
-  int speckle_range_px = 2;
-  // Left–right consistency: compute the right view's disparity too and keep a
-  // left pixel only when both agree within max_left_right_diff_px.
-  bool left_right_check = true;
-  double max_left_right_diff_px = 1.0;
-  // Edge-aware, confidence-weighted WLS filter (ximgproc) guided by the left
-  // image: smooths and fills most holes (not the left band where the right
-  // view has no match); `valid` still marks only the raw consistent pixels.
-  bool wls_filter = false;
-  double wls_lambda = 8000.0;  // Smoothness strength.
-  double wls_sigma = 1.5;      // Edge sensitivity (colour distance).
-  // Fill every hole along its row with the smaller (farther) of the valid
-  // disparities bounding it — occlusions belong to the background. No holes
-  // remain; `valid` still marks only the raw consistent pixels. Best measured
-  // accuracy on Middlebury/ETH3D (bench/results/stereo.md) at no extra time.
-  bool fill_holes = false;
-  // Median filter (3 or 5 px; 0 = off) after filling: removes isolated
-  // outliers; applied only when fill_holes is on (holes would spread).
-  int median_px = 0;
-  // Coarse pass at half size; the full-size range becomes the coarse 1st–99th
-  // percentile (× 2, padded by 16 px) when that is narrower.
-  bool multi_scale = false;
+  DisparityMatcher matcher = DisparityMatcher::kSgbm;  // SGBM (semi-global) or BM (block matching, faster).
+  int min_disparity_px = 0;         // Search range start, px.
+  int num_disparities_px = 64;      // Search range width (multiple of 16); larger sees nearer points, slower.
+  int block_size_px = 5;            // Matching window side (odd); larger: smoother, fewer holes, blurrier edges.
+  int p1_per_block_px = 8;          // SGBM smoothness penalty P1 = p1 · channels · block²…
+  int p2_per_block_px = 32;         // …and P2 likewise; P2 > P1.
+  bool full_dp = false;             // SGBM: eight paths (MODE_HH; slow, memory-hungry) instead of three.
+  int uniqueness_percent = 10;      // Reject a match unless its cost beats the second best by this %.
+  int speckle_window_px = 100;      // Speckle filter: invalidate blobs smaller than this (0: off)…
+  int speckle_range_px = 2;         // …whose disparity varies by more than this, px.
+  bool left_right_check = true;     // Keep a left pixel only when the right view's disparity agrees…
+  double max_left_right_diff_px = 1.0;  // …within this, px.
+  bool wls_filter = false;          // Edge-aware WLS filter (ximgproc): smooths, fills most holes.
+  double wls_lambda = 8000.0;       // WLS smoothness strength.
+  double wls_sigma = 1.5;           // WLS edge sensitivity (colour distance).
+  bool fill_holes = false;          // Fill holes along rows with the farther bounding disparity (background).
+  int median_px = 0;                // Median filter after filling (3 or 5; 0: off; only with fill_holes).
+  bool multi_scale = false;         // A half-size pass narrows the full-size range (coarse 1st–99th percentile).
 
   // Throws InvalidArgument naming the field ("DisparityOptions.block_size_px = 4, must be odd").
   void Check() const;
   std::string ToString() const;
 };
+
+// Its field list (disparity_options.cc); `asbuilt points` takes it under
+// `disparity.`, `asbuilt survey` under `points.disparity.`. `valid` of the
+// result marks only raw consistent pixels whatever the filters; docs/stereo.md,
+// "Option notes", says which filters measured best.
+const FieldList<DisparityOptions>& DisparityOptionFields();
 
 struct DisparityResult {
   // CV_32F, left view, pixels. NaN where no disparity (holes, occlusions);

@@ -276,13 +276,13 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
   const int rows = labels.rows, cols = labels.cols, run = options.contact_min_run_px;
   const double fxb = cam.fx * frame.baseline_m;
   const cv::Mat steps =
-      options.contact_snap_px > 0 || options.skirting_depth_m > 0 ? VerticalSteps(frame.left) : cv::Mat();
+      options.contact_snap_px.value_or(0) > 0 || options.skirting_depth_m > 0 ? VerticalSteps(frame.left) : cv::Mat();
   const std::size_t first_point = result->points.size(), first_paired = result->contacts.paired_floor.size(),
                     first_topped = result->contacts.topped_floor.size();
   std::vector<double> skirting_heights;  // Per wall foot: the step above it, in metres above the floor.
   int wall_feet = 0;
   auto snap = [&](int u, double row) {
-    return SnapRowToImageEdge(steps, u, row, options.contact_snap_px, options.contact_snap_min_step);
+    return SnapRowToImageEdge(steps, u, row, options.contact_snap_px.value_or(0), options.contact_snap_min_step);
   };
   auto label_at = [&](int v, int u) { return labels.ptr<unsigned char>(v)[u]; };
   auto runs = [&](int v0, int dir, int n, auto&& pred, int u) {
@@ -315,7 +315,7 @@ void AddContactPoints(const StereoFrame& frame, const FramePointsOptions& option
 
   for (int u = 0; u < cols; u += options.contact_col_step_px) {
     // Floor: scan up from the bottom for the lowest wall/door → background
-    // edge (not snapped: FramePointsOptions::contact_snap_px says why).
+    // edge (not snapped: docs/stereo.md, "Option notes", says why).
     double floor_row = NAN;
     unsigned char floor_label = 0;
     for (int v = rows - 1 - run; v >= run; --v) {
@@ -771,9 +771,9 @@ void FramePointsOptions::Check() const {
                             "need step, run >= 1 and sigmas, tolerance > 0",
                             contact_col_step_px, contact_min_run_px, contact_sigma_px, camera_height_sigma_m,
                             contact_floor_tolerance_px));
-  CheckArgument(contact_snap_px >= 0 && contact_snap_min_step >= 0,
+  CheckArgument(contact_snap_px.value_or(0) >= 0 && contact_snap_min_step >= 0,
                 fmt::format("FramePointsOptions: contact_snap_px = {}, contact_snap_min_step = {}: must be >= 0",
-                            contact_snap_px, contact_snap_min_step));
+                            contact_snap_px.value_or(0), contact_snap_min_step));
   CheckArgument(skirting_depth_m >= 0 && skirting_depth_m < 0.1,
                 fmt::format("FramePointsOptions.skirting_depth_m = {}, must be in [0, 0.1)", skirting_depth_m));
   CheckArgument(stereo_check_tolerance_px > 0 && stereo_check_min_agree >= 0 && stereo_check_min_agree <= 1 &&

@@ -20,6 +20,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "asbuilt/util/fields.h"
+
 namespace asbuilt {
 
 struct WallVertexOptions {
@@ -34,6 +36,9 @@ struct WallVertexOptions {
 
   void Check() const;
 };
+
+// Its field list (wall_vertex_options.cc), under `vertices.` in `asbuilt points`.
+const FieldList<WallVertexOptions>& WallVertexOptionFields();
 
 struct WallVertex {
   double u_left_px = 0;   // Sub-pixel column in the left view (pixel centres).

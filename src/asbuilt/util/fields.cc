@@ -1,11 +1,11 @@
-#include "asbuilt/mcp/tool_args.h"
+#include "asbuilt/util/fields.h"
 
 #include <cmath>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-namespace asbuilt::mcp {
+namespace asbuilt {
 namespace {
 
 std::string Path(std::string_view name) { return fmt::format("arguments.{}", name); }
@@ -25,7 +25,7 @@ std::string Fmt(double v) {
 }
 
 // "a number > 0 and <= 100" from the field's bounds.
-std::string RangeText(const ToolField& f) {
+std::string RangeText(const Field& f) {
   std::vector<std::string> parts;
   if (f.exclusive_minimum) parts.push_back("> " + Fmt(*f.exclusive_minimum));
   if (f.minimum) parts.push_back(">= " + Fmt(*f.minimum));
@@ -33,14 +33,14 @@ std::string RangeText(const ToolField& f) {
   return fmt::format("{}", fmt::join(parts, " and "));
 }
 
-bool InRange(const ToolField& f, double v) {
+bool InRange(const Field& f, double v) {
   if (f.exclusive_minimum && !(v > *f.exclusive_minimum)) return false;
   if (f.minimum && !(v >= *f.minimum)) return false;
   if (f.maximum && !(v <= *f.maximum)) return false;
   return true;
 }
 
-bool HasBounds(const ToolField& f) {
+bool HasBounds(const Field& f) {
   return f.minimum || f.exclusive_minimum || f.maximum;
 }
 
@@ -48,53 +48,53 @@ bool IsFiniteNumber(const nlohmann::json& v) {
   return v.is_number() && std::isfinite(v.get<double>());
 }
 
-void AddBounds(const ToolField& f, nlohmann::json& s) {
+void AddBounds(const Field& f, nlohmann::json& s) {
   if (f.minimum) s["minimum"] = *f.minimum;
   if (f.exclusive_minimum) s["exclusiveMinimum"] = *f.exclusive_minimum;
   if (f.maximum) s["maximum"] = *f.maximum;
 }
 
-nlohmann::json FixedNumberArray(std::size_t n, const ToolField* bounds) {
+nlohmann::json FixedNumberArray(std::size_t n, const Field* bounds) {
   nlohmann::json item = {{"type", "number"}};
   if (bounds) AddBounds(*bounds, item);
   return {{"type", "array"}, {"items", item}, {"minItems", n}, {"maxItems", n}};
 }
 
-nlohmann::json FieldSchema(const ToolField& f) {
+nlohmann::json FieldSchema(const Field& f) {
   nlohmann::json s;
-  switch (f.type) {
-    case ArgType::kNumber:
+  switch (f.kind) {
+    case FieldKind::kNumber:
       s = {{"type", "number"}};
       AddBounds(f, s);
       break;
-    case ArgType::kInteger:
+    case FieldKind::kInteger:
       s = {{"type", "integer"}};
       AddBounds(f, s);
       break;
-    case ArgType::kString:
+    case FieldKind::kString:
       s = {{"type", "string"}};
       if (f.max_length) s["maxLength"] = f.max_length;
       break;
-    case ArgType::kBool: s = {{"type", "boolean"}}; break;
-    case ArgType::kEnum: {
+    case FieldKind::kBool: s = {{"type", "boolean"}}; break;
+    case FieldKind::kEnum: {
       nlohmann::json values = nlohmann::json::array();
       for (auto c : f.choices) values.push_back(c);
       s = {{"type", "string"}, {"enum", values}};
       break;
     }
-    case ArgType::kPoint2: s = FixedNumberArray(2, HasBounds(f) ? &f : nullptr); break;
-    case ArgType::kPoint3: s = FixedNumberArray(3, HasBounds(f) ? &f : nullptr); break;
-    case ArgType::kColor: {
-      ToolField unit{.minimum = 0.0, .maximum = 1.0};
+    case FieldKind::kPoint2: s = FixedNumberArray(2, HasBounds(f) ? &f : nullptr); break;
+    case FieldKind::kPoint3: s = FixedNumberArray(3, HasBounds(f) ? &f : nullptr); break;
+    case FieldKind::kColor: {
+      Field unit{.minimum = 0.0, .maximum = 1.0};
       s = FixedNumberArray(3, &unit);
       break;
     }
-    case ArgType::kPolygon:
+    case FieldKind::kPolygon:
       s = {{"type", "array"}, {"items", FixedNumberArray(2, nullptr)}};
       if (f.min_items) s["minItems"] = f.min_items;
       if (f.max_items) s["maxItems"] = f.max_items;
       break;
-    case ArgType::kNumberList: {
+    case FieldKind::kNumberList: {
       nlohmann::json item = {{"type", "number"}};
       AddBounds(f, item);
       s = {{"type", "array"}, {"items", item}};
@@ -108,34 +108,34 @@ nlohmann::json FieldSchema(const ToolField& f) {
   return s;
 }
 
-const char* TypeWord(ArgType t) {
+const char* TypeWord(FieldKind t) {
   switch (t) {
-    case ArgType::kNumber: return "number";
-    case ArgType::kInteger: return "integer";
-    case ArgType::kString: return "string";
-    case ArgType::kBool: return "boolean";
-    case ArgType::kEnum: return "string (enum)";
-    case ArgType::kPoint2: return "[x, y]";
-    case ArgType::kPoint3: return "[x, y, z]";
-    case ArgType::kColor: return "[r, g, b] in 0..1";
-    case ArgType::kPolygon: return "[[x, y], ...]";
-    case ArgType::kNumberList: return "[number, ...]";
+    case FieldKind::kNumber: return "number";
+    case FieldKind::kInteger: return "integer";
+    case FieldKind::kString: return "string";
+    case FieldKind::kBool: return "boolean";
+    case FieldKind::kEnum: return "string (enum)";
+    case FieldKind::kPoint2: return "[x, y]";
+    case FieldKind::kPoint3: return "[x, y, z]";
+    case FieldKind::kColor: return "[r, g, b] in 0..1";
+    case FieldKind::kPolygon: return "[[x, y], ...]";
+    case FieldKind::kNumberList: return "[number, ...]";
   }
   return "?";
 }
 
 // Checks one argument; appends problems.
-void CheckField(const ToolField& f, const nlohmann::json& v, std::vector<std::string>& problems) {
+void CheckField(const Field& f, const nlohmann::json& v, std::vector<std::string>& problems) {
   std::string path = Path(f.name);
   auto problem = [&](const std::string& msg) { problems.push_back(path + ": " + msg); };
-  auto number_problem = [&](const nlohmann::json& x, const std::string& where, const ToolField& b) {
+  auto number_problem = [&](const nlohmann::json& x, const std::string& where, const Field& b) {
     if (!IsFiniteNumber(x)) {
       problems.push_back(fmt::format("{}: must be a finite number, got {}", where, Short(x)));
     } else if (!InRange(b, x.get<double>())) {
       problems.push_back(fmt::format("{}: must be {}, got {}", where, RangeText(b), Short(x)));
     }
   };
-  auto fixed_array = [&](std::size_t n, const std::string& what, const ToolField* b) {
+  auto fixed_array = [&](std::size_t n, const std::string& what, const Field* b) {
     if (!v.is_array() || v.size() != n) {
       problem(fmt::format("must be {}, got {}", what, Short(v)));
       return;
@@ -161,11 +161,11 @@ void CheckField(const ToolField& f, const nlohmann::json& v, std::vector<std::st
     return true;
   };
 
-  switch (f.type) {
-    case ArgType::kNumber:
+  switch (f.kind) {
+    case FieldKind::kNumber:
       number_problem(v, path, f);
       break;
-    case ArgType::kInteger: {
+    case FieldKind::kInteger: {
       bool whole = v.is_number_integer() ||
                    (v.is_number_float() && std::isfinite(v.get<double>()) &&
                     v.get<double>() == std::floor(v.get<double>()) &&
@@ -178,7 +178,7 @@ void CheckField(const ToolField& f, const nlohmann::json& v, std::vector<std::st
       }
       break;
     }
-    case ArgType::kString:
+    case FieldKind::kString:
       if (!v.is_string()) {
         problem(fmt::format("must be a string, got {}", Short(v)));
       } else if (f.max_length && v.get_ref<const std::string&>().size() > f.max_length) {
@@ -186,10 +186,10 @@ void CheckField(const ToolField& f, const nlohmann::json& v, std::vector<std::st
                             v.get_ref<const std::string&>().size()));
       }
       break;
-    case ArgType::kBool:
+    case FieldKind::kBool:
       if (!v.is_boolean()) problem(fmt::format("must be true or false, got {}", Short(v)));
       break;
-    case ArgType::kEnum: {
+    case FieldKind::kEnum: {
       bool ok = false;
       if (v.is_string()) {
         for (auto c : f.choices) ok = ok || v.get_ref<const std::string&>() == c;
@@ -200,18 +200,18 @@ void CheckField(const ToolField& f, const nlohmann::json& v, std::vector<std::st
       }
       break;
     }
-    case ArgType::kPoint2:
+    case FieldKind::kPoint2:
       fixed_array(2, "[x, y] (two numbers, metres)", HasBounds(f) ? &f : nullptr);
       break;
-    case ArgType::kPoint3:
+    case FieldKind::kPoint3:
       fixed_array(3, "three numbers", HasBounds(f) ? &f : nullptr);
       break;
-    case ArgType::kColor: {
-      ToolField unit{.minimum = 0.0, .maximum = 1.0};
+    case FieldKind::kColor: {
+      Field unit{.minimum = 0.0, .maximum = 1.0};
       fixed_array(3, "[r, g, b] with each value in 0..1", &unit);
       break;
     }
-    case ArgType::kPolygon: {
+    case FieldKind::kPolygon: {
       if (!v.is_array()) {
         problem(fmt::format("must be an array of [x, y] points, got {}", Short(v)));
         break;
@@ -227,7 +227,7 @@ void CheckField(const ToolField& f, const nlohmann::json& v, std::vector<std::st
       }
       break;
     }
-    case ArgType::kNumberList: {
+    case FieldKind::kNumberList: {
       if (!v.is_array()) {
         problem(fmt::format("must be an array of numbers, got {}", Short(v)));
         break;
@@ -243,14 +243,14 @@ void CheckField(const ToolField& f, const nlohmann::json& v, std::vector<std::st
 
 }  // namespace
 
-ToolArgsError::ToolArgsError(std::vector<std::string> problems)
+FieldArgsError::FieldArgsError(std::vector<std::string> problems)
     : InvalidArgument(fmt::format("{}", fmt::join(problems, "\n"))),
       problems_(std::move(problems)) {}
 
-nlohmann::json ToolInputSchema(std::span<const ToolField> fields) {
+nlohmann::json FieldsSchema(std::span<const Field> fields) {
   nlohmann::json properties = nlohmann::json::object();
   nlohmann::json required = nlohmann::json::array();
-  for (const ToolField& f : fields) {
+  for (const Field& f : fields) {
     properties[std::string(f.name)] = FieldSchema(f);
     if (f.required) required.push_back(f.name);
   }
@@ -261,20 +261,20 @@ nlohmann::json ToolInputSchema(std::span<const ToolField> fields) {
   return schema;
 }
 
-ToolArgs ParseToolArgs(std::span<const ToolField> fields, const nlohmann::json& arguments) {
+FieldArgs ParseFieldArgs(std::span<const Field> fields, const nlohmann::json& arguments) {
   std::vector<std::string> problems;
-  ToolArgs args;
+  FieldArgs args;
   if (!arguments.is_null() && !arguments.is_object()) {
-    throw ToolArgsError({fmt::format("arguments: must be an object, got {}", Short(arguments))});
+    throw FieldArgsError({fmt::format("arguments: must be an object, got {}", Short(arguments))});
   }
   const nlohmann::json empty = nlohmann::json::object();
   const nlohmann::json& given = arguments.is_object() ? arguments : empty;
   for (auto it = given.begin(); it != given.end(); ++it) {
     bool known = false;
-    for (const ToolField& f : fields) known = known || f.name == it.key();
+    for (const Field& f : fields) known = known || f.name == it.key();
     if (!known) {
       std::vector<std::string_view> names;
-      for (const ToolField& f : fields) names.push_back(f.name);
+      for (const Field& f : fields) names.push_back(f.name);
       problems.push_back(
           names.empty()
               ? fmt::format("{}: unknown argument; this tool takes no arguments", Path(it.key()))
@@ -282,11 +282,11 @@ ToolArgs ParseToolArgs(std::span<const ToolField> fields, const nlohmann::json& 
                             fmt::join(names, ", ")));
     }
   }
-  for (const ToolField& f : fields) {
+  for (const Field& f : fields) {
     auto it = given.find(f.name);
     if (it == given.end() || it->is_null()) {
       if (f.required) {
-        problems.push_back(fmt::format("{}: required ({}: {})", Path(f.name), TypeWord(f.type),
+        problems.push_back(fmt::format("{}: required ({}: {})", Path(f.name), TypeWord(f.kind),
                                        f.description));
       } else if (!f.default_value.is_null()) {
         args.values_[std::string(f.name)] = f.default_value;
@@ -297,13 +297,13 @@ ToolArgs ParseToolArgs(std::span<const ToolField> fields, const nlohmann::json& 
     CheckField(f, *it, problems);
     if (problems.size() == before) args.values_[std::string(f.name)] = *it;
   }
-  if (!problems.empty()) throw ToolArgsError(std::move(problems));
+  if (!problems.empty()) throw FieldArgsError(std::move(problems));
   return args;
 }
 
-bool ToolArgs::Has(std::string_view name) const { return values_.contains(name); }
+bool FieldArgs::Has(std::string_view name) const { return values_.contains(name); }
 
-const nlohmann::json& ToolArgs::Get(std::string_view name) const {
+const nlohmann::json& FieldArgs::Get(std::string_view name) const {
   auto it = values_.find(name);
   if (it == values_.end()) {
     throw InvalidArgument(fmt::format("{}: missing and has no default", Path(name)));
@@ -311,43 +311,43 @@ const nlohmann::json& ToolArgs::Get(std::string_view name) const {
   return *it;
 }
 
-double ToolArgs::Number(std::string_view name) const { return Get(name).get<double>(); }
-std::optional<double> ToolArgs::OptNumber(std::string_view name) const {
+double FieldArgs::Number(std::string_view name) const { return Get(name).get<double>(); }
+std::optional<double> FieldArgs::OptNumber(std::string_view name) const {
   if (!Has(name)) return std::nullopt;
   return Number(name);
 }
-std::int64_t ToolArgs::Integer(std::string_view name) const {
+std::int64_t FieldArgs::Integer(std::string_view name) const {
   const auto& v = Get(name);
   return v.is_number_integer() ? v.get<std::int64_t>()
                                : static_cast<std::int64_t>(v.get<double>());
 }
-std::optional<std::int64_t> ToolArgs::OptInteger(std::string_view name) const {
+std::optional<std::int64_t> FieldArgs::OptInteger(std::string_view name) const {
   if (!Has(name)) return std::nullopt;
   return Integer(name);
 }
-std::string ToolArgs::String(std::string_view name) const { return Get(name).get<std::string>(); }
-std::optional<std::string> ToolArgs::OptString(std::string_view name) const {
+std::string FieldArgs::String(std::string_view name) const { return Get(name).get<std::string>(); }
+std::optional<std::string> FieldArgs::OptString(std::string_view name) const {
   if (!Has(name)) return std::nullopt;
   return String(name);
 }
-bool ToolArgs::Bool(std::string_view name) const { return Get(name).get<bool>(); }
-std::vector<double> ToolArgs::Numbers(std::string_view name) const {
+bool FieldArgs::Bool(std::string_view name) const { return Get(name).get<bool>(); }
+std::vector<double> FieldArgs::Numbers(std::string_view name) const {
   return Get(name).get<std::vector<double>>();
 }
-std::vector<std::vector<double>> ToolArgs::Points(std::string_view name) const {
+std::vector<std::vector<double>> FieldArgs::Points(std::string_view name) const {
   return Get(name).get<std::vector<std::vector<double>>>();
 }
 
-std::string ToolFieldsMarkdown(std::span<const ToolField> fields) {
+std::string FieldsMarkdown(std::span<const Field> fields) {
   if (fields.empty()) return "No arguments.\n";
   std::string out = "| argument | type | default | description |\n|---|---|---|---|\n";
-  for (const ToolField& f : fields) {
-    std::string type = TypeWord(f.type);
-    if (f.type == ArgType::kEnum) {
+  for (const Field& f : fields) {
+    std::string type = TypeWord(f.kind);
+    if (f.kind == FieldKind::kEnum) {
       type = fmt::format("`{}`", fmt::join(f.choices, "` \\| `"));
     }
     std::string range = RangeText(f);
-    if (!range.empty() && f.type != ArgType::kEnum) type += " " + range;
+    if (!range.empty() && f.kind != FieldKind::kEnum) type += " " + range;
     std::string def = f.required ? "required"
                       : f.default_value.is_null()
                           ? "—"
@@ -357,4 +357,4 @@ std::string ToolFieldsMarkdown(std::span<const ToolField> fields) {
   return out;
 }
 
-}  // namespace asbuilt::mcp
+}  // namespace asbuilt

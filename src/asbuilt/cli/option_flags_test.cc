@@ -1,0 +1,111 @@
+// `asbuilt survey`, `plan` and `points` take every PlanOptions and
+// FramePointsOptions field as a flag, generated from the field lists
+// (cli/field_flags.h): nested names get their prefix, the older spellings
+// stay as aliases of the same field, and bad values are usage errors naming
+// the flag.
+
+#include <algorithm>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "asbuilt/cli/cli_test_util.h"
+#include "asbuilt/plan/plan_options.h"
+#include "asbuilt/stereo/frame_points_options.h"
+
+namespace asbuilt::cli {
+namespace {
+using testing_util::RunAsbuilt;
+using testing_util::RunResult;
+
+std::set<std::string> HelpFlagsOf(const std::string& command) {
+  RunResult r = RunAsbuilt(command + " --help");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  std::set<std::string> flags;
+  std::regex flag("--[a-z][a-z0-9.-]*[a-z0-9]");
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), flag); it != std::sregex_iterator(); ++it) {
+    flags.insert(it->str());
+  }
+  return flags;
+}
+
+// The flag of every field of `fields` under `prefix` ("plan." or "").
+std::vector<std::string> FieldFlagNames(const std::vector<Field>& fields, const std::string& prefix) {
+  std::vector<std::string> out;
+  for (const Field& f : fields) {
+    std::string flag = "--" + prefix + f.name;
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    out.push_back(flag);
+  }
+  return out;
+}
+
+void ExpectEveryFieldHasAFlag(const std::string& command, const std::vector<Field>& fields,
+                              const std::string& prefix) {
+  const std::set<std::string> help = HelpFlagsOf(command);
+  for (const std::string& flag : FieldFlagNames(fields, prefix)) {
+    EXPECT_TRUE(help.contains(flag)) << command << " --help lacks " << flag;
+  }
+}
+
+TEST(OptionFlags, SurveyHasAFlagForEveryPlanAndPointsField) {
+  ExpectEveryFieldHasAFlag("survey", PlanOptionFields().Fields(), "plan.");
+  ExpectEveryFieldHasAFlag("survey", FramePointsOptionFields().Fields(), "points.");
+  const std::set<std::string> help = HelpFlagsOf("survey");
+  for (const char* alias : {"--epsilon-m", "--dense-stride", "--contacts", "--snap-contacts-px"}) {
+    EXPECT_TRUE(help.contains(alias)) << "survey --help lacks the alias " << alias;
+  }
+  EXPECT_TRUE(help.contains("--points.no-use-corners"));
+  EXPECT_GT(PlanOptionFields().size() + FramePointsOptionFields().size(), 100u);
+}
+
+TEST(OptionFlags, PlanHasAFlagForEveryPlanField) {
+  ExpectEveryFieldHasAFlag("plan", PlanOptionFields().Fields(), "");
+}
+
+TEST(OptionFlags, PointsHasAFlagForEveryPointsField) {
+  ExpectEveryFieldHasAFlag("points", FramePointsOptionFields().Fields(), "");
+}
+
+// num_disparities_px = 24 passes the flag's bounds but not
+// DisparityOptions::Check(), whose error names the nested field: so the flag
+// reached it.
+TEST(OptionFlags, NestedFlagSetsTheNestedField) {
+  RunResult r = RunAsbuilt("survey missing.json -o /tmp/x --points.disparity.num-disparities-px 24");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("DisparityOptions.num_disparities_px = 24"), std::string::npos) << r.out;
+}
+
+TEST(OptionFlags, AliasAndItsNewNameSetTheSameField) {
+  for (const char* flag : {"--disparity.num-disparities-px", "--num-disparities"}) {
+    RunResult r = RunAsbuilt(std::string("points missing.json --use-capture-labels -o /tmp/x ") + flag + " 24");
+    EXPECT_EQ(r.exit_code, 2) << flag << ": " << r.out;
+    EXPECT_NE(r.out.find("DisparityOptions.num_disparities_px = 24"), std::string::npos) << flag << ": " << r.out;
+  }
+  for (const char* flag : {"--points.dense-stride-px", "--dense-stride"}) {
+    RunResult r = RunAsbuilt(std::string("survey missing.json -o /tmp/x ") + flag + " 0");
+    EXPECT_EQ(r.exit_code, 2) << flag << ": " << r.out;
+    EXPECT_NE(r.out.find("--points.dense-stride-px: must be an integer >= 1, got 0"), std::string::npos)
+        << flag << ": " << r.out;
+  }
+}
+
+TEST(OptionFlags, BadNestedValueIsAUsageErrorNamingTheFlag) {
+  RunResult r = RunAsbuilt("survey missing.json -o /tmp/x --plan.epsilon-m -1");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("--plan.epsilon-m: must be > 0, got -1"), std::string::npos) << r.out;
+  RunResult c = RunAsbuilt("survey missing.json -o /tmp/x --points.contacts sometimes");
+  EXPECT_EQ(c.exit_code, 2) << c.out;
+  EXPECT_NE(c.out.find("--points.contacts: must be one of \"auto\", \"always\", \"off\""), std::string::npos)
+      << c.out;
+  RunResult p = RunAsbuilt("points missing.json --use-capture-labels -o /tmp/x --disparity.block-size-px 0");
+  EXPECT_EQ(p.exit_code, 2) << p.out;
+  EXPECT_NE(p.out.find("--disparity.block-size-px: must be an integer >= 1 and <= 255, got 0"), std::string::npos)
+      << p.out;
+}
+
+}  // namespace
+}  // namespace asbuilt::cli
