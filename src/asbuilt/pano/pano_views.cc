@@ -4,7 +4,6 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/imageio/image_io.h"
@@ -29,16 +28,7 @@ std::string PanoViewsSummary::BriefReport() const {
 }
 
 cv::Mat ReadEquirect(const fs::path& path) {
-  cv::Mat image;
-  try {
-    image = cv::imread(path.string(), cv::IMREAD_COLOR);
-  } catch (const cv::Exception& e) {
-    throw InputError(path.string(), "", fmt::format("cannot read image: {}", e.what()));
-  }
-  if (image.empty()) {
-    throw InputError(path.string(), "", fs::exists(path) ? "cannot read image (not an image file, or corrupt)"
-                                                         : "no such file");
-  }
+  cv::Mat image = ReadColourImage(path);
   if (std::abs(image.cols - 2 * image.rows) > 1) {
     throw InputError(path.string(), "",
                      fmt::format("{}x{} is not an equirectangular panorama (twice as wide as high)", image.cols,

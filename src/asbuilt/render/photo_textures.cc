@@ -9,10 +9,10 @@
 #include <numbers>
 
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <spdlog/spdlog.h>
 
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
@@ -62,15 +62,12 @@ std::optional<Photo> LoadPhoto(const fs::path& path, PhotoKind kind, int max_sid
     // OpenCV reads OpenEXR only when asked to (CVE history); these are
     // files of a Debian package, and the switch is read once per process.
     setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0);
-    cv::Mat m = cv::imread(path.string(), cv::IMREAD_ANYDEPTH | cv::IMREAD_COLOR);
-    if (m.empty()) return std::nullopt;
+    cv::Mat m = ReadColourImageAnyDepth(path);
     m.convertTo(m, CV_32FC3);
     cv::cvtColor(m, linear, cv::COLOR_BGR2RGB);
     cv::max(linear, 0.0, linear);
   } else {
-    cv::Mat m = cv::imread(path.string(), cv::IMREAD_COLOR);
-    if (m.empty()) return std::nullopt;
-    linear = LinearFromSrgb8(m);
+    linear = LinearFromSrgb8(ReadColourImage(path));
   }
   if (linear.empty()) return std::nullopt;
   const int side = std::max(linear.cols, linear.rows);
@@ -264,7 +261,7 @@ PhotoLibrary LoadPhotoLibrary(const PhotoLibraryOptions& options) {
       if (std::optional<Photo> photo = LoadPhoto(path, kind, options.max_side_px)) {
         library.photos.push_back(std::make_shared<const Photo>(std::move(*photo)));
       } else {
-        spdlog::warn("photo textures: cannot read {}, skipped", path.string());
+        spdlog::warn("photo textures: {} is black or empty, skipped", path.string());
       }
     } catch (const std::exception& e) {
       spdlog::warn("photo textures: {}, skipped", e.what());

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "asbuilt/formats/capture.h"
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/render/capture_render.h"
 #include "asbuilt/util/error.h"
 
@@ -215,10 +216,8 @@ TEST(RenderCapture, WritesACaptureThatValidatesAndResumes) {
   EXPECT_DOUBLE_EQ(c.camera.cx, 47.5);
   EXPECT_DOUBLE_EQ(c.frames[1].yaw_deg, 120.0);
   ASSERT_TRUE(c.frames[0].depth.has_value());
-  cv::Mat depth = cv::imread(c.Resolve(*c.frames[0].depth).string(), cv::IMREAD_UNCHANGED);
-  EXPECT_EQ(depth.type(), CV_16U);
-  cv::Mat labels = cv::imread(c.Resolve(*c.frames[0].labels).string(), cv::IMREAD_UNCHANGED);
-  EXPECT_EQ(labels.type(), CV_8U);
+  EXPECT_EQ(ReadDepthImage(c.Resolve(*c.frames[0].depth)).type(), CV_16U);
+  EXPECT_EQ(ReadLabelImage(c.Resolve(*c.frames[0].labels)).size(), cv::Size(96, 72));
   EXPECT_TRUE(fs::exists(dir / "truth.json"));
   EXPECT_TRUE(fs::exists(dir / "idmap" / "002.png"));
 
