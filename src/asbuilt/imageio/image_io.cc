@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
 
@@ -103,5 +104,7 @@ void WriteImageAtomic(const std::filesystem::path& path, const cv::Mat& image) {
   if (!ok) throw Error(fmt::format("{}: cannot write image", path.string()));
   file.Commit();
 }
+
+void WriteImageAtomic(const fs::path& path, const Image& image) { WriteImageAtomic(path, AsMat(image)); }
 
 }  // namespace asbuilt

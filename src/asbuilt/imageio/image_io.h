@@ -11,6 +11,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "asbuilt/imageio/image.h"
+
 namespace asbuilt {
 
 // Reads a colour image as CV_8UC3 in OpenCV's BGR order (grey images are
@@ -49,6 +51,7 @@ void CheckImageSize(const cv::Mat& image, int width_px, int height_px, const std
 // Writes `image` in the format of the path's extension (.png: 8/16-bit,
 // lossless). Creates missing folders. Throws Error on failure.
 void WriteImageAtomic(const std::filesystem::path& path, const cv::Mat& image);
+void WriteImageAtomic(const std::filesystem::path& path, const Image& image);
 
 }  // namespace asbuilt
 
