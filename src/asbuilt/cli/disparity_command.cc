@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "asbuilt/cli/command.h"
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/stereo/disparity.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
@@ -49,16 +50,8 @@ int RunDisparityCommand(int argc, char** argv) {
   if (std::filesystem::path(out).extension() != ".pfm") {
     throw CLI::ValidationError("--out", fmt::format("'{}': the float disparity is written as .pfm", out));
   }
-  auto read = [](const std::string& p) {
-    cv::Mat m = cv::imread(p, cv::IMREAD_COLOR);
-    if (m.empty()) throw InputError(p, "", "cannot read the image");
-    return m;
-  };
-  const cv::Mat left = read(left_path), right = read(right_path);
-  if (left.size() != right.size()) {
-    throw InputError(right_path, "", fmt::format("is {}x{}, the left image {}x{}", right.cols, right.rows, left.cols,
-                                                 left.rows));
-  }
+  const cv::Mat left = ReadColourImage(left_path), right = ReadColourImage(right_path);
+  CheckImageSize(right, left.cols, left.rows, right_path, "", "the left image");
   const DisparityResult r = ComputeDisparity(left, right, options);
   if (color.empty()) color = std::filesystem::path(out).replace_extension(".png").string();
   {

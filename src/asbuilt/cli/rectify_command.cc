@@ -6,7 +6,6 @@
 #include <vector>
 
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
 
 #include "asbuilt/cli/command.h"
 #include "asbuilt/imageio/image_io.h"
@@ -42,13 +41,9 @@ int RunRectifyCommand(int argc, char** argv) {
   // Both images of a pair are read and checked before either is written, so
   // a bad pair leaves no half of itself behind.
   auto read = [&](const fs::path& path) {
-    cv::Mat image = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
-    if (image.empty()) throw InputError(path.string(), "", "cannot read the image");
-    if (image.size() != calib.image_size) {
-      throw InputError(path.string(), "",
-                       fmt::format("image is {}x{}, but the calibration {} is for {}x{}", image.cols, image.rows,
-                                   calibration, calib.image_size.width, calib.image_size.height));
-    }
+    cv::Mat image = ReadImageAsStored(path);
+    CheckImageSize(image, calib.image_size.width, calib.image_size.height, path, "",
+                   fmt::format("the calibration {}", calibration));
     return image;
   };
   for (std::size_t i = 0; i < left.size(); ++i) {

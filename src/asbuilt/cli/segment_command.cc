@@ -11,6 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "asbuilt/cli/command.h"
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/seg/seg_data.h"
 #include "asbuilt/seg/segmenter.h"
 #include "asbuilt/util/error.h"
@@ -77,7 +78,7 @@ int RunSegmentCommand(int argc, char** argv) {
   }
   // Read every input first: a bad file fails before anything is written.
   std::vector<cv::Mat> images;
-  for (const fs::path& f : files) images.push_back(ReadImageBgr(f));
+  for (const fs::path& f : files) images.push_back(ReadColourImage(f));
   auto segmenter = LoadSegmenter(model, o);
   fs::create_directories(out);
   ProgressPrinter printer;

@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
 
@@ -35,22 +35,25 @@ cv::Mat Decode(const fs::path& path, const std::string& field, int flags) {
 
 }  // namespace
 
+// The decoder expands grey, drops alpha and applies EXIF orientation
+// (IMREAD_COLOR) while keeping the stored depth (IMREAD_ANYDEPTH).
 cv::Mat ReadColourImage(const fs::path& path, const std::string& field) {
-  cv::Mat image = Decode(path, field, cv::IMREAD_UNCHANGED);
+  cv::Mat image = Decode(path, field, cv::IMREAD_COLOR | cv::IMREAD_ANYDEPTH);
   if (image.depth() != CV_8U) {
     throw InputError(path.string(), field,
                      fmt::format("expected an 8-bit colour image, got {}", DepthName(image.depth())));
   }
-  if (image.channels() == 3) return image;
-  cv::Mat bgr;
-  if (image.channels() == 1) {
-    cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR);
-  } else if (image.channels() == 4) {
-    cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
-  } else {
-    throw InputError(path.string(), field, fmt::format("unsupported channel count {}", image.channels()));
+  return image;
+}
+
+cv::Mat ReadColourImageAnyDepth(const fs::path& path, const std::string& field) {
+  cv::Mat image = Decode(path, field, cv::IMREAD_COLOR | cv::IMREAD_ANYDEPTH);
+  if (image.depth() != CV_8U && image.depth() != CV_16U && image.depth() != CV_32F) {
+    throw InputError(path.string(), field,
+                     fmt::format("expected an 8-bit, 16-bit or 32-bit float colour image, got {}",
+                                 DepthName(image.depth())));
   }
-  return bgr;
+  return image;
 }
 
 cv::Mat ReadGrayImage(const fs::path& path, const std::string& field) {
@@ -101,5 +104,7 @@ void WriteImageAtomic(const std::filesystem::path& path, const cv::Mat& image) {
   if (!ok) throw Error(fmt::format("{}: cannot write image", path.string()));
   file.Commit();
 }
+
+void WriteImageAtomic(const fs::path& path, const Image& image) { WriteImageAtomic(path, AsMat(image)); }
 
 }  // namespace asbuilt

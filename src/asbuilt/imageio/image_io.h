@@ -11,14 +11,21 @@
 
 #include <opencv2/core.hpp>
 
+#include "asbuilt/imageio/image.h"
+
 namespace asbuilt {
 
 // Reads a colour image as CV_8UC3 in OpenCV's BGR order (grey images are
-// expanded, alpha dropped; 16-bit files are refused). Every reader throws
-// InputError(path, field, …) when the file is missing, cannot be decoded or
-// has the wrong type; `field` names where the path came from (e.g.
-// "frames[3].left") and may be empty.
+// expanded, alpha dropped, a JPEG's EXIF orientation applied; 16-bit files
+// are refused). Every reader throws InputError(path, field, …) when the file
+// is missing, cannot be decoded or has the wrong type; `field` names where
+// the path came from (e.g. "frames[3].left") and may be empty.
 cv::Mat ReadColourImage(const std::filesystem::path& path, const std::string& field = "");
+
+// Reads a colour image at the depth it is stored in, as 3-channel BGR:
+// CV_8UC3, CV_16UC3 or CV_32FC3 (Radiance .hdr; OpenEXR where the process has
+// set OPENCV_IO_ENABLE_OPENEXR). For linear high-dynamic-range photos.
+cv::Mat ReadColourImageAnyDepth(const std::filesystem::path& path, const std::string& field = "");
 
 // Reads an image as 8-bit grey (CV_8UC1); colour files are converted.
 cv::Mat ReadGrayImage(const std::filesystem::path& path, const std::string& field = "");
@@ -44,6 +51,7 @@ void CheckImageSize(const cv::Mat& image, int width_px, int height_px, const std
 // Writes `image` in the format of the path's extension (.png: 8/16-bit,
 // lossless). Creates missing folders. Throws Error on failure.
 void WriteImageAtomic(const std::filesystem::path& path, const cv::Mat& image);
+void WriteImageAtomic(const std::filesystem::path& path, const Image& image);
 
 }  // namespace asbuilt
 

@@ -29,7 +29,7 @@ struct ConvertOptions {
   void Check() const;
 };
 
-// Converts one ID map (CV_8UC3, BGR as cv::imread gives) to a CV_8UC1 label
+// Converts one ID map (CV_8UC3, BGR as ReadColourImage gives) to a CV_8UC1 label
 // map. Throws InvalidArgument for an empty palette or a wrong image type.
 // Optionally counts the pixels sent to background by the threshold.
 cv::Mat ConvertIdMap(const cv::Mat& idmap_bgr, const Palette& palette, double threshold,

@@ -14,6 +14,7 @@
 #include <spdlog/spdlog.h>
 
 #include "asbuilt/formats/plan_file.h"
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/mcp/jsonrpc.h"
 #include "asbuilt/mcp/plan_preview.h"
 #include "asbuilt/render/capture_render.h"
@@ -1292,7 +1293,7 @@ ToolResult SceneTools::CameraPreview(const FieldArgs& a) {
   RenderedView view = renderer.Render({cam, views[index], scene_.rig.baseline_m}, options,
                                       static_cast<std::uint64_t>(index), /*right_eye=*/false);
   std::vector<unsigned char> png;
-  if (!cv::imencode(".png", view.left, png)) throw Error("PNG encoding failed");
+  if (!cv::imencode(".png", AsMat(view.left), png)) throw Error("PNG encoding failed");
   ToolResult r = ToolResult::Text(fmt::format(
       "Left camera of view {} (position ({:.2f}, {:.2f}, {:.2f}), yaw {:g}°), {}×{} px.", index,
       views[index].position_m.x(), views[index].position_m.y(), views[index].position_m.z(),

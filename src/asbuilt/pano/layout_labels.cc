@@ -4,7 +4,9 @@
 #include <limits>
 
 #include <fmt/format.h>
+#include <opencv2/core.hpp>
 
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
@@ -95,14 +97,14 @@ std::uint8_t LayoutLabelOfRay(const ZindPanorama& pano, const ZindLayout& layout
   return LayoutScene(pano, layout).Label(ray);
 }
 
-cv::Mat LayoutLabels(const ZindPanorama& pano, const PanoView& view, ZindLayoutKind layout) {
+Image LayoutLabels(const ZindPanorama& pano, const PanoView& view, ZindLayoutKind layout) {
   view.Check();
   const LayoutScene scene(pano, pano.Layout(layout));
   const Mat3 world_from_camera = view.WorldFromCamera();
-  cv::Mat labels(view.camera.height_px, view.camera.width_px, CV_8U);
-  for (int v = 0; v < labels.rows; ++v) {
-    std::uint8_t* row = labels.ptr<std::uint8_t>(v);
-    for (int u = 0; u < labels.cols; ++u) {
+  Image labels(view.camera.width_px, view.camera.height_px, 1, PixelType::kU8);
+  for (int v = 0; v < labels.height(); ++v) {
+    std::uint8_t* row = labels.Row<std::uint8_t>(v);
+    for (int u = 0; u < labels.width(); ++u) {
       row[u] = scene.Label(world_from_camera * Vec3((u - view.camera.cx) / view.camera.fx,
                                                     (v - view.camera.cy) / view.camera.fy, 1.0));
     }
@@ -110,19 +112,20 @@ cv::Mat LayoutLabels(const ZindPanorama& pano, const PanoView& view, ZindLayoutK
   return labels;
 }
 
-cv::Mat LayoutLabelsEquirect(const ZindPanorama& pano, int width_px, int height_px, ZindLayoutKind layout) {
+Image LayoutLabelsEquirect(const ZindPanorama& pano, int width_px, int height_px, ZindLayoutKind layout) {
   CheckArgument(width_px > 0 && height_px > 0,
                 fmt::format("LayoutLabelsEquirect: size {}x{}, must be positive", width_px, height_px));
   const LayoutScene scene(pano, pano.Layout(layout));
-  cv::Mat labels(height_px, width_px, CV_8U);
+  Image labels(width_px, height_px, 1, PixelType::kU8);
   for (int v = 0; v < height_px; ++v) {
-    std::uint8_t* row = labels.ptr<std::uint8_t>(v);
+    std::uint8_t* row = labels.Row<std::uint8_t>(v);
     for (int u = 0; u < width_px; ++u) row[u] = scene.Label(DirectionFromEquirectPixel(Vec2(u, v), width_px, height_px));
   }
   return labels;
 }
 
-cv::Mat DrawLabelOverlay(const cv::Mat& bgr, const cv::Mat& labels, double alpha) {
+Image DrawLabelOverlay(const Image& bgr_image, const Image& labels_image, double alpha) {
+  const cv::Mat bgr = AsMat(bgr_image), labels = AsMat(labels_image);
   CheckArgument(bgr.type() == CV_8UC3 && labels.type() == CV_8UC1 && bgr.size() == labels.size(),
                 "DrawLabelOverlay: needs an 8-bit BGR image and 8-bit labels of the same size");
   // BGR, as seg's LabelOverlay: wall blue, door green, window red; ignore grey.
@@ -142,7 +145,7 @@ cv::Mat DrawLabelOverlay(const cv::Mat& bgr, const cv::Mat& labels, double alpha
       for (int i = 0; i < 3; ++i) o[c][i] = static_cast<std::uint8_t>((1 - alpha) * o[c][i] + alpha * (*k)[i]);
     }
   }
-  return out;
+  return AsImage(out);
 }
 
 }  // namespace asbuilt

@@ -22,9 +22,8 @@
 
 #include <cstdint>
 
-#include <opencv2/core.hpp>
-
 #include "asbuilt/formats/zind.h"
+#include "asbuilt/imageio/image.h"
 #include "asbuilt/pano/perspective.h"
 
 namespace asbuilt {
@@ -34,17 +33,17 @@ inline constexpr std::uint8_t kPassageLabel = 255;  // ZInD openings (passages):
 // The label of one viewing ray (pano frame direction, any length).
 std::uint8_t LayoutLabelOfRay(const ZindPanorama& pano, const ZindLayout& layout, const Vec3& ray);
 
-// The label map (CV_8U, the view's size) of a view of the panorama.
-cv::Mat LayoutLabels(const ZindPanorama& pano, const PanoView& view, ZindLayoutKind layout = ZindLayoutKind::kRaw);
+// The label map (8-bit, the view's size) of a view of the panorama.
+Image LayoutLabels(const ZindPanorama& pano, const PanoView& view, ZindLayoutKind layout = ZindLayoutKind::kRaw);
 
 // The label map of the whole panorama as a W × H equirectangular image.
-cv::Mat LayoutLabelsEquirect(const ZindPanorama& pano, int width_px, int height_px,
+Image LayoutLabelsEquirect(const ZindPanorama& pano, int width_px, int height_px,
                              ZindLayoutKind layout = ZindLayoutKind::kRaw);
 
 // Labels over an image, to look at: wall blue, door green, window red (the
 // colours of `asbuilt segment --overlay`), ignore grey; background as is.
-// `bgr` CV_8UC3 and `labels` CV_8U of the same size (InvalidArgument else).
-cv::Mat DrawLabelOverlay(const cv::Mat& bgr, const cv::Mat& labels, double alpha = 0.45);
+// `bgr` 3 × 8-bit and `labels` 8-bit of the same size (InvalidArgument else).
+Image DrawLabelOverlay(const Image& bgr, const Image& labels, double alpha = 0.45);
 
 }  // namespace asbuilt
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/pano/pano_views.h"
 #include "asbuilt/util/error.h"
 
@@ -42,22 +43,22 @@ int LabelAt(const cv::Mat& labels, const PanoView& view, const Vec3& point, doub
 TEST(LayoutLabels, LabelsWallsDoorsWindowsAndPassagesWhereTheyAre) {
   const ZindPanorama room = SquareRoom();
   const PanoView north{.yaw_deg = 0};  // Looks along +Y, at the door's wall.
-  const cv::Mat labels = LayoutLabels(room, north);
+  const cv::Mat labels = AsMat(LayoutLabels(room, north));
   ASSERT_EQ(labels.size(), cv::Size(640, 480));
   EXPECT_EQ(LabelAt(labels, north, {0, 2, 1.0}, 1.5), 2);     // Door.
   EXPECT_EQ(LabelAt(labels, north, {0, 2, 2.2}, 1.5), 1);     // Wall above the door.
   EXPECT_EQ(LabelAt(labels, north, {1.2, 2, 1.0}, 1.5), 1);   // Wall beside it.
   const PanoView down{.yaw_deg = 0, .pitch_deg = -40};  // A level view sees no floor in this room.
-  EXPECT_EQ(LabelAt(LayoutLabels(room, down), down, {0.3, 1.2, 0}, 1.5), 0);  // Floor.
-  EXPECT_EQ(LabelAt(LayoutLabels(room, down), down, {0.3, 2, 0.3}, 1.5), 2);  // Door.
+  EXPECT_EQ(LabelAt(AsMat(LayoutLabels(room, down)), down, {0.3, 1.2, 0}, 1.5), 0);  // Floor.
+  EXPECT_EQ(LabelAt(AsMat(LayoutLabels(room, down)), down, {0.3, 2, 0.3}, 1.5), 2);  // Door.
   EXPECT_EQ(labels.at<std::uint8_t>(0, 320), 0);              // Ceiling (the top row looks 31° up).
   const PanoView west{.yaw_deg = 90};  // Looks along −X.
-  const cv::Mat w = LayoutLabels(room, west);
+  const cv::Mat w = AsMat(LayoutLabels(room, west));
   EXPECT_EQ(LabelAt(w, west, {-2, 0, 1.5}, 1.5), 3);  // Window.
   EXPECT_EQ(LabelAt(w, west, {-2, 0, 0.5}, 1.5), 1);  // Wall below the sill.
   EXPECT_EQ(LabelAt(w, west, {-2, 1.5, 0.5}, 1.5), 1);
   const PanoView south{.yaw_deg = 180};
-  const cv::Mat s = LayoutLabels(room, south);
+  const cv::Mat s = AsMat(LayoutLabels(room, south));
   EXPECT_EQ(LabelAt(s, south, {1.0, -2, 1.0}, 1.5), kPassageLabel);
   EXPECT_EQ(LabelAt(s, south, {-1.0, -2, 1.0}, 1.5), 1);
   // Every pixel is one of the five ids.
@@ -91,7 +92,7 @@ TEST(LayoutLabels, NearestWallHidesTheWallsBehindIt) {
 
 TEST(LayoutLabels, EquirectLabelsAgreeWithTheViews) {
   const ZindPanorama room = SquareRoom();
-  const cv::Mat equirect = LayoutLabelsEquirect(room, 720, 360);
+  const cv::Mat equirect = AsMat(LayoutLabelsEquirect(room, 720, 360));
   // The door's centre (0, 2, 1): yaw 0 → left edge column, below the horizon.
   const Vec2 door = EquirectPixelFromDirection(Vec3(0, 2, 1.0 - 1.5), 720, 360);
   EXPECT_EQ(equirect.at<std::uint8_t>(static_cast<int>(std::lround(door.y())), 0), 2);
@@ -114,8 +115,8 @@ TEST(LayoutLabels, PutTheBonusRoomsWoodenDoorOnTheWoodInThePhoto) {
   ASSERT_NEAR(door.Width(), 0.81, 0.01);
   const Vec2 centre = 0.5 * (door.start_m + door.end_m);
   const PanoView view{.yaw_deg = RadToDeg(std::atan2(-centre.x(), centre.y()))};
-  const cv::Mat photo = RenderPanoView(ReadEquirect(room.image), view);
-  const cv::Mat labels = LayoutLabels(room, view);
+  const cv::Mat photo = AsMat(RenderPanoView(ReadEquirect(room.image), view));
+  const cv::Mat labels = AsMat(LayoutLabels(room, view));
   // Mean red − blue over door pixels and over wall pixels.
   double sum[4] = {0, 0, 0, 0};
   int n[4] = {0, 0, 0, 0};
@@ -139,12 +140,12 @@ TEST(LayoutLabels, PutTheBonusRoomsWoodenDoorOnTheWoodInThePhoto) {
 TEST(DrawLabelOverlay, ColoursLabelledPixelsOnly) {
   const cv::Mat image(2, 3, CV_8UC3, cv::Scalar(100, 100, 100));
   const cv::Mat labels = (cv::Mat_<std::uint8_t>(2, 3) << 0, 1, 2, 3, 255, 0);
-  const cv::Mat out = DrawLabelOverlay(image, labels, 0.5);
+  const cv::Mat out = AsMat(DrawLabelOverlay(AsImage(image), AsImage(labels), 0.5));
   EXPECT_EQ(out.at<cv::Vec3b>(0, 0), cv::Vec3b(100, 100, 100));
   EXPECT_EQ(out.at<cv::Vec3b>(0, 1), cv::Vec3b(177, 114, 50));
   EXPECT_EQ(out.at<cv::Vec3b>(1, 0), cv::Vec3b(50, 50, 177));
   EXPECT_EQ(out.at<cv::Vec3b>(1, 1), cv::Vec3b(114, 114, 114));
-  EXPECT_THROW(DrawLabelOverlay(image, cv::Mat(3, 3, CV_8U)), InvalidArgument);
+  EXPECT_THROW(DrawLabelOverlay(AsImage(image), AsImage(cv::Mat(3, 3, CV_8U))), InvalidArgument);
 }
 
 }  // namespace

@@ -4,9 +4,9 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "asbuilt/formats/plan_file.h"
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/imageio/image_io.h"
 #include "asbuilt/pano/layout_labels.h"
 #include "asbuilt/util/error.h"
@@ -28,30 +28,21 @@ std::string PanoViewsSummary::BriefReport() const {
                      views_json.string());
 }
 
-cv::Mat ReadEquirect(const fs::path& path) {
-  cv::Mat image;
-  try {
-    image = cv::imread(path.string(), cv::IMREAD_COLOR);
-  } catch (const cv::Exception& e) {
-    throw InputError(path.string(), "", fmt::format("cannot read image: {}", e.what()));
-  }
-  if (image.empty()) {
-    throw InputError(path.string(), "", fs::exists(path) ? "cannot read image (not an image file, or corrupt)"
-                                                         : "no such file");
-  }
+Image ReadEquirect(const fs::path& path) {
+  const cv::Mat image = ReadColourImage(path);
   if (std::abs(image.cols - 2 * image.rows) > 1) {
     throw InputError(path.string(), "",
                      fmt::format("{}x{} is not an equirectangular panorama (twice as wide as high)", image.cols,
                                  image.rows));
   }
-  return image;
+  return AsImage(image);
 }
 
 PanoViewsSummary WritePanoViews(const fs::path& panorama, const fs::path& out_dir, const PanoViewsOptions& options,
                                 const ZindPanorama* zind, const ProgressCallback& progress) {
   options.Check();
   const std::vector<PanoView> views = TurnInPlaceViews(options.turn);
-  const cv::Mat equirect = ReadEquirect(panorama);
+  const Image equirect = ReadEquirect(panorama);
   std::optional<double> height = options.camera_height_m;
   if (!height && zind) height = zind->camera_height_m;
   if (zind) zind->Layout(options.layout);  // Throws now if the layout is missing.
@@ -62,13 +53,13 @@ PanoViewsSummary WritePanoViews(const fs::path& panorama, const fs::path& out_di
   for (std::size_t i = 0; i < views.size(); ++i) {
     const PanoView& view = views[i];
     const std::string name = fmt::format("{:03d}.png", i);
-    const cv::Mat image = RenderPanoView(equirect, view);
+    const Image image = RenderPanoView(equirect, view);
     WriteImageAtomic(out_dir / "images" / name, image);
     nlohmann::json frame = {{"index", i}, {"image", "images/" + name}, {"yaw_deg", view.yaw_deg},
                             {"pitch_deg", view.pitch_deg}};
     if (height) frame["position_m"] = {0.0, 0.0, *height};
     if (zind) {
-      const cv::Mat labels = LayoutLabels(*zind, view, options.layout);
+      const Image labels = LayoutLabels(*zind, view, options.layout);
       WriteImageAtomic(out_dir / "labels" / name, labels);
       frame["labels"] = "labels/" + name;
       if (options.overlays) WriteImageAtomic(out_dir / "overlays" / name, DrawLabelOverlay(image, labels));
@@ -85,7 +76,7 @@ PanoViewsSummary WritePanoViews(const fs::path& panorama, const fs::path& out_di
        {{"width", cam.width_px}, {"height", cam.height_px}, {"fx", cam.fx}, {"fy", cam.fy}, {"cx", cam.cx},
         {"cy", cam.cy}}},
       {"source", {{"panorama", fs::absolute(panorama).lexically_normal().string()},
-                  {"width", equirect.cols}, {"height", equirect.rows}}},
+                  {"width", equirect.width()}, {"height", equirect.height()}}},
       {"frames", std::move(frames)}};
   if (zind) {
     doc["source"]["zind"] = {{"pano", zind->Name()},

@@ -55,7 +55,7 @@ PanoViewsSummary WritePanoViews(const std::filesystem::path& panorama, const std
 
 // Reads an equirectangular panorama as 8-bit BGR. Throws InputError naming
 // the file when it cannot be read or is not twice as wide as high.
-cv::Mat ReadEquirect(const std::filesystem::path& path);
+Image ReadEquirect(const std::filesystem::path& path);
 
 }  // namespace asbuilt
 

@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "asbuilt/formats/plan_file.h"
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/pano/layout_labels.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
@@ -66,7 +67,7 @@ TEST(WritePanoViews, WritesViewsAndAMonoCapture) {
   EXPECT_EQ(j["frames"][3]["image"], "images/003.png");
   EXPECT_FALSE(j["frames"][0].contains("position_m"));  // No camera height given.
   EXPECT_FALSE(j.contains("notice"));
-  const cv::Mat view = cv::imread((dir / "out/images/001.png").string());
+  const cv::Mat view = ReadColourImage(dir / "out/images/001.png");
   ASSERT_EQ(view.size(), cv::Size(160, 120));
   // View 1 looks at yaw 90° (−X): three quarters across the panorama.
   EXPECT_NEAR(view.at<cv::Vec3b>(60, 80)[0], 384 / 2, 2);
@@ -86,8 +87,7 @@ TEST(WritePanoViews, WritesLabelsOverlaysAndTruthForAnAnnotatedPanorama) {
   EXPECT_EQ(j["source"]["zind"]["pano"], "floor_01/complete_room_01/partial_room_01/pano_1");
   EXPECT_EQ(j["frames"][1]["position_m"], nlohmann::json({0.0, 0.0, 1.4}));
   EXPECT_EQ(j["frames"][1]["labels"], "labels/001.png");
-  const cv::Mat labels = cv::imread((dir / "out/labels/000.png").string(), cv::IMREAD_UNCHANGED);
-  ASSERT_EQ(labels.type(), CV_8U);
+  const cv::Mat labels = ReadLabelImage(dir / "out/labels/000.png");
   EXPECT_EQ(labels.at<std::uint8_t>(240, 320), 2);  // View 0 looks at the door.
   EXPECT_TRUE(fs::exists(dir / "out/overlays/001.png"));
   const Plan truth = ReadPlan(dir / "out/truth.json");
@@ -108,7 +108,12 @@ TEST(WritePanoViews, NamesAPanoramaThatIsNotOne) {
               (dir / "square.png").string() + ": 100x100 is not an equirectangular panorama (twice as wide as high)");
   }
   EXPECT_THROW(WritePanoViews(dir / "broken.jpg", dir / "out", {}), InputError);
-  EXPECT_THROW(WritePanoViews(dir / "missing.jpg", dir / "out", {}), InputError);
+  try {
+    WritePanoViews(dir / "missing.jpg", dir / "out", {});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), (dir / "missing.jpg").string() + ": cannot read image: no such file");
+  }
   EXPECT_THROW(WritePanoViews(dir / "square.png", dir / "out", {.camera_height_m = -1}), InvalidArgument);
   EXPECT_FALSE(fs::exists(dir / "out"));
 }

@@ -3,8 +3,10 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
@@ -85,20 +87,21 @@ std::vector<PanoView> TurnInPlaceViews(const TurnInPlaceOptions& options) {
   return views;
 }
 
-cv::Mat RenderPanoView(const cv::Mat& equirect, const PanoView& view) {
+Image RenderPanoView(const Image& equirect, const PanoView& view) {
   view.Check();
   CheckArgument(!equirect.empty(), "RenderPanoView: the panorama is empty");
-  CheckArgument(std::abs(equirect.cols - 2 * equirect.rows) <= 1,
+  const cv::Mat pano = AsMat(equirect);
+  CheckArgument(std::abs(equirect.width() - 2 * equirect.height()) <= 1,
                 fmt::format("RenderPanoView: an equirectangular panorama is twice as wide as high, got {}x{}",
-                            equirect.cols, equirect.rows));
+                            equirect.width(), equirect.height()));
   // Reduce the panorama where a view pixel spans more than 1.5 panorama
   // pixels (at the view's centre, where its pixels span the most).
-  cv::Mat source = equirect;
+  cv::Mat source = pano;
   const double view_px_per_rad = std::min(view.camera.fx, view.camera.fy);
-  const double pano_px_per_rad = equirect.cols / (2 * kPi);
+  const double pano_px_per_rad = equirect.width() / (2 * kPi);
   if (pano_px_per_rad > 1.5 * view_px_per_rad) {
     const int width = std::max(8, static_cast<int>(std::ceil(2 * kPi * view_px_per_rad)) & ~1);
-    cv::resize(equirect, source, cv::Size(width, width / 2), 0, 0, cv::INTER_AREA);
+    cv::resize(pano, source, cv::Size(width, width / 2), 0, 0, cv::INTER_AREA);
   }
   cv::Mat padded;
   cv::copyMakeBorder(source, padded, 0, 0, kSeamPad, kSeamPad, cv::BORDER_WRAP);
@@ -120,7 +123,7 @@ cv::Mat RenderPanoView(const cv::Mat& equirect, const PanoView& view) {
   }
   cv::Mat out;
   cv::remap(padded, out, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
-  return out;
+  return AsImage(out);
 }
 
 }  // namespace asbuilt

@@ -19,13 +19,12 @@
 //   world_from_camera = WorldFromCameraRotation(ψ) · Rx(θ).
 //
 //   PanoView view{.camera = {.width_px = 640, .height_px = 480, .fx = 400, .fy = 400}, .yaw_deg = 30};
-//   cv::Mat bgr = RenderPanoView(equirect_bgr, view);
+//   Image bgr = RenderPanoView(equirect_bgr, view);
 
 #include <vector>
 
-#include <opencv2/core.hpp>
-
 #include "asbuilt/geometry/rig.h"
+#include "asbuilt/imageio/image.h"
 
 namespace asbuilt {
 
@@ -62,13 +61,13 @@ struct TurnInPlaceOptions {
 };
 std::vector<PanoView> TurnInPlaceViews(const TurnInPlaceOptions& options);
 
-// The view's image sampled from an equirectangular panorama (any type
-// cv::remap takes; 8-bit BGR for photos) with bilinear interpolation,
+// The view's image sampled from an equirectangular panorama (any channel
+// count and type; 3 × 8-bit BGR for photos) with bilinear interpolation,
 // wrapping across the 0/360° seam. Where the view's pixels are coarser than
 // the panorama's (a small view of a large panorama), the panorama is first
 // reduced by area averaging so the view does not alias. Throws
 // InvalidArgument when the panorama is empty or not 2:1 (±1 pixel).
-cv::Mat RenderPanoView(const cv::Mat& equirect, const PanoView& view);
+Image RenderPanoView(const Image& equirect, const PanoView& view);
 
 }  // namespace asbuilt
 

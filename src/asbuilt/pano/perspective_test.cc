@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
@@ -102,19 +103,19 @@ double RedColumn(const cv::Mat& view) {
 
 TEST(RenderPanoView, PutsWhatLiesAtTheViewYawInTheMiddle) {
   const PanoView view{.yaw_deg = 30};
-  EXPECT_NEAR(RedColumn(RenderPanoView(StripePanorama(30), view)), view.camera.cx, 1.0);
+  EXPECT_NEAR(RedColumn(AsMat(RenderPanoView(AsImage(StripePanorama(30)), view))), view.camera.cx, 1.0);
   // A stripe 30° counter-clockwise of the axis (to the left, seen from the
   // camera) appears left of the middle, fx·tan 30° away: no mirror.
   const PanoView level{};
-  EXPECT_NEAR(RedColumn(RenderPanoView(StripePanorama(30), level)),
+  EXPECT_NEAR(RedColumn(AsMat(RenderPanoView(AsImage(StripePanorama(30)), level))),
               level.camera.cx - level.camera.fx * std::tan(DegToRad(30)), 1.5);
-  EXPECT_NEAR(RedColumn(RenderPanoView(StripePanorama(-30), level)),
+  EXPECT_NEAR(RedColumn(AsMat(RenderPanoView(AsImage(StripePanorama(-30)), level))),
               level.camera.cx + level.camera.fx * std::tan(DegToRad(30)), 1.5);
 }
 
 TEST(RenderPanoView, WrapsAcrossTheSeam) {
   // Yaw 0 is the seam (left edge = right edge): the stripe on it is whole.
-  const cv::Mat view = RenderPanoView(StripePanorama(0), PanoView{});
+  const cv::Mat view = AsMat(RenderPanoView(AsImage(StripePanorama(0)), PanoView{}));
   EXPECT_NEAR(RedColumn(view), view.cols / 2.0 - 0.5, 1.0);
   // Just beside the stripe, the seam leaves no black or red seam line.
   for (int u = 0; u < view.cols; ++u) {
@@ -130,8 +131,8 @@ TEST(RenderPanoView, AveragesALargePanoramaForASmallView) {
   cv::Mat pano(kH, kW, CV_8UC3);
   for (int v = 0; v < kH; ++v)
     for (int u = 0; u < kW; ++u) pano.at<cv::Vec3b>(v, u) = (u + v) % 2 ? cv::Vec3b(255, 255, 255) : cv::Vec3b(0, 0, 0);
-  const cv::Mat view = RenderPanoView(pano, PanoView{.camera = {.width_px = 64, .height_px = 48, .fx = 40, .fy = 40,
-                                                                 .cx = 31.5, .cy = 23.5}});
+  const cv::Mat view = AsMat(RenderPanoView(
+      AsImage(pano), PanoView{.camera = {.width_px = 64, .height_px = 48, .fx = 40, .fy = 40, .cx = 31.5, .cy = 23.5}}));
   cv::Scalar mean, stddev;
   cv::meanStdDev(view, mean, stddev);
   EXPECT_NEAR(mean[0], 127.5, 3);
@@ -139,8 +140,8 @@ TEST(RenderPanoView, AveragesALargePanoramaForASmallView) {
 }
 
 TEST(RenderPanoView, RejectsAPanoramaThatIsNotTwoToOne) {
-  EXPECT_THROW(RenderPanoView(cv::Mat(100, 100, CV_8UC3), PanoView{}), InvalidArgument);
-  EXPECT_THROW(RenderPanoView(cv::Mat(), PanoView{}), InvalidArgument);
+  EXPECT_THROW(RenderPanoView(Image(100, 100, 3, PixelType::kU8), PanoView{}), InvalidArgument);
+  EXPECT_THROW(RenderPanoView(Image(), PanoView{}), InvalidArgument);
 }
 
 }  // namespace

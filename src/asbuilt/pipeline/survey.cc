@@ -14,6 +14,7 @@
 #include <opencv2/imgproc.hpp>
 #include <spdlog/spdlog.h>
 
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/pano/pano_views.h"
 #include "asbuilt/pipeline/report.h"
 #include "asbuilt/plan/drawing.h"
@@ -595,14 +596,14 @@ SurveyResult RunMonoSurvey(const Capture& capture, const fs::path& capture_json,
   if (capture.kind == CaptureKind::kPanorama) {
     const CapturePanorama& pano = *capture.panorama;
     const fs::path pano_path = capture.Resolve(pano.image);
-    const cv::Mat equirect = ReadEquirect(pano_path);
+    const Image equirect = ReadEquirect(pano_path);
     const std::vector<PanoView> views = TurnInPlaceViews(options.panorama_views);
     camera = views.front().camera;
     for (std::size_t i = 0; i < views.size(); ++i) {
       CaptureFrame f{.index = static_cast<int>(i), .left = fmt::format("{}#view{:03d}", pano.image, i),
                      .yaw_deg = pano.yaw_deg + views[i].yaw_deg, .position_m = pano.position_m};
       frames.push_back(std::move(f));
-      images.push_back(RenderPanoView(equirect, views[i]));
+      images.push_back(AsMat(RenderPanoView(equirect, views[i])));
     }
     if (options.use_capture_labels) {
       throw InvalidArgument("a panorama capture has no labels of its own: give --labels DIR (NNN.png per view)");

@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 #include <spdlog/spdlog.h>
 
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/imageio/image_io.h"
 #include "asbuilt/pano/layout_labels.h"
 #include "asbuilt/pano/pano_views.h"
@@ -39,7 +40,8 @@ SegmentationMetrics Metrics(const ConfusionMatrix& cm, std::int64_t images) {
 // prediction over the photo, half size, with the horizon dashed and a caption.
 cv::Mat SheetTile(const cv::Mat& bgr, const cv::Mat& truth, const cv::Mat& pred, const PanoView& view,
                   const std::string& caption) {
-  cv::Mat top = DrawLabelOverlay(bgr, truth), bottom = DrawLabelOverlay(bgr, pred);
+  const cv::Mat top = AsMat(DrawLabelOverlay(AsImage(bgr), AsImage(truth)));
+  const cv::Mat bottom = AsMat(DrawLabelOverlay(AsImage(bgr), AsImage(pred)));
   cv::Mat tile;
   cv::vconcat(top, bottom, tile);
   cv::resize(tile, tile, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
@@ -201,15 +203,15 @@ ZindEvalSummary EvaluateOnZind(Segmenter& segmenter, const ZindTour& tour, const
   const std::int64_t total = static_cast<std::int64_t>(panoramas.size() * views.size());
   for (const ZindPanorama* pano : panoramas) {
     if (stop.stop_requested()) break;
-    const cv::Mat equirect = ReadEquirect(pano->image);
+    const Image equirect = ReadEquirect(pano->image);
     ConfusionMatrix pano_whole(n_classes), pano_upper(n_classes);
     std::vector<cv::Mat> tiles;
     for (std::size_t first = 0; first < views.size(); first += static_cast<std::size_t>(options.batch_size)) {
       const std::size_t end = std::min(views.size(), first + static_cast<std::size_t>(options.batch_size));
       std::vector<cv::Mat> images, labels;
       for (std::size_t i = first; i < end; ++i) {
-        images.push_back(RenderPanoView(equirect, views[i]));
-        labels.push_back(LayoutLabels(*pano, views[i], options.layout));
+        images.push_back(AsMat(RenderPanoView(equirect, views[i])));
+        labels.push_back(AsMat(LayoutLabels(*pano, views[i], options.layout)));
       }
       const std::vector<cv::Mat> predictions = segmenter.SegmentBatch(images);
       for (std::size_t k = 0; k < images.size(); ++k) {

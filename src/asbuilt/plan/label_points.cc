@@ -1,11 +1,13 @@
 #include "asbuilt/plan/label_points.h"
 
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/core.hpp>
 
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
+namespace fs = std::filesystem;
 
 void LabelPointsOptions::Check() const {
   CheckArgument(stride_px >= 1, fmt::format("LabelPointsOptions.stride_px = {}, must be >= 1", stride_px));
@@ -24,20 +26,14 @@ std::vector<ClassPoint> PointsFromLabelledDepth(const Capture& capture, const La
     if (!frame.labels || !frame.depth) {
       throw InputError(file, field, "needs both `labels` and `depth` for exact class points");
     }
-    auto read = [&](const std::string& relative, int flags, const char* what) {
-      std::string path = capture.Resolve(relative).string();
-      cv::Mat image = cv::imread(path, flags);
-      if (image.empty()) throw InputError(file, field + "." + what, fmt::format("cannot read image {}", path));
-      if (image.cols != camera.width_px || image.rows != camera.height_px) {
-        throw InputError(file, field + "." + what,
-                         fmt::format("{} is {}x{}, the camera is {}x{}", path, image.cols, image.rows,
-                                     camera.width_px, camera.height_px));
-      }
-      return image;
-    };
-    cv::Mat labels = read(*frame.labels, cv::IMREAD_GRAYSCALE, "labels");
-    cv::Mat depth = read(*frame.depth, cv::IMREAD_ANYDEPTH, "depth");
-    if (depth.type() != CV_16UC1) throw InputError(file, field + ".depth", "expected a 16-bit single-channel PNG");
+    const fs::path labels_path = capture.Resolve(*frame.labels), depth_path = capture.Resolve(*frame.depth);
+    const cv::Mat labels = ReadLabelImage(labels_path, field + ".labels");
+    CheckImageSize(labels, camera.width_px, camera.height_px, labels_path, field + ".labels", "the camera");
+    const cv::Mat depth = ReadDepthImage(depth_path, field + ".depth");
+    CheckImageSize(depth, camera.width_px, camera.height_px, depth_path, field + ".depth", "the camera");
+    if (depth.type() != CV_16UC1) {
+      throw InputError(depth_path.string(), field + ".depth", "expected a 16-bit (mm) depth image, got 32-bit float");
+    }
     const Eigen::Isometry3d world_from_cam =
         WorldFromCamera(frame.Pose(), capture.camera.baseline_m, StereoEye::kLeft);
     for (int v = 0; v < labels.rows; v += options.stride_px) {

@@ -6,9 +6,11 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/util/hash.h"
 
 namespace asbuilt {
@@ -74,12 +76,13 @@ ViewEffects RandomViewEffects(double strength, std::uint64_t seed, bool phone) {
   return e;
 }
 
-double AutoExposure(const cv::Mat& linear_rgb, double key) {
+double AutoExposure(const Image& linear_rgb, double key) {
+  const cv::Mat linear = AsMat(linear_rgb);
   double sum = 0.0;
   std::size_t n = 0;
-  for (int y = 0; y < linear_rgb.rows; y += 2) {
-    const auto* row = linear_rgb.ptr<cv::Vec3f>(y);
-    for (int x = 0; x < linear_rgb.cols; x += 2) {
+  for (int y = 0; y < linear.rows; y += 2) {
+    const auto* row = linear.ptr<cv::Vec3f>(y);
+    for (int x = 0; x < linear.cols; x += 2) {
       const cv::Vec3f& c = row[x];
       double lum = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
       sum += std::log(1e-4 + lum);
@@ -91,14 +94,15 @@ double AutoExposure(const cv::Mat& linear_rgb, double key) {
   return key / std::max(log_avg, 1e-4);
 }
 
-cv::Mat DevelopImage(const cv::Mat& linear_rgb, const ViewEffects& effects, std::uint64_t noise_seed) {
-  const int w = linear_rgb.cols, h = linear_rgb.rows;
+Image DevelopImage(const Image& linear_rgb, const ViewEffects& effects, std::uint64_t noise_seed) {
+  const cv::Mat linear = AsMat(linear_rgb);
+  const int w = linear.cols, h = linear.rows;
   const float cx = 0.5f * (w - 1), cy = 0.5f * (h - 1);
   const float r2max = cx * cx + cy * cy;
   cv::Mat srgb(h, w, CV_32FC3);
   const Eigen::Vector3f gains = (effects.white_balance * effects.exposure).cast<float>();
   for (int y = 0; y < h; ++y) {
-    const auto* in = linear_rgb.ptr<cv::Vec3f>(y);
+    const auto* in = linear.ptr<cv::Vec3f>(y);
     auto* out = srgb.ptr<cv::Vec3f>(y);
     for (int x = 0; x < w; ++x) {
       float r2 = ((x - cx) * (x - cx) + (y - cy) * (y - cy)) / std::max(r2max, 1.0f);
@@ -161,7 +165,7 @@ cv::Mat DevelopImage(const cv::Mat& linear_rgb, const ViewEffects& effects, std:
     cv::imencode(".jpg", out, buffer, {cv::IMWRITE_JPEG_QUALITY, effects.jpeg_quality});
     out = cv::imdecode(buffer, cv::IMREAD_COLOR);
   }
-  return out;
+  return AsImage(out);
 }
 
 }  // namespace asbuilt

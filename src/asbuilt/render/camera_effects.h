@@ -8,9 +8,8 @@
 #include <cstdint>
 #include <string>
 
-#include <opencv2/core.hpp>
-
 #include "asbuilt/geometry/rig.h"
+#include "asbuilt/imageio/image.h"
 
 namespace asbuilt {
 
@@ -33,20 +32,21 @@ struct ViewEffects {
 
 // Effects drawn from `seed`; `strength` ∈ [0, 1] scales how far they stray
 // from a clean image (0 gives ViewEffects{}). `phone` adds a phone's
-// processing after the same draws (so phone = false is exactly as before):
-// exposure ±0.8 stops instead of ±0.45, noise up to 2.5× stronger, JPEG
+// processing, drawn after the others (which it leaves as phone = false draws
+// them): exposure ±0.8 stops instead of ±0.45, noise up to 2.5× stronger, JPEG
 // quality 35–95 on 85 % of views, chromatic aberration up to 1.2 px,
 // sharpening up to 0.8, saturation 0.75–1.3.
 ViewEffects RandomViewEffects(double strength, std::uint64_t seed, bool phone = false);
 
-// Linear-RGB float image (CV_32FC3, channels R, G, B; already exposed) →
-// 8-bit BGR with the effects applied. `noise_seed` makes the noise
+// Linear-RGB float image (3 × 32-bit float, channels R, G, B; already
+// exposed) → 8-bit BGR with the effects applied. `noise_seed` makes the noise
 // deterministic (use different seeds for the two eyes).
-cv::Mat DevelopImage(const cv::Mat& linear_rgb, const ViewEffects& effects, std::uint64_t noise_seed);
+Image DevelopImage(const Image& linear_rgb, const ViewEffects& effects, std::uint64_t noise_seed);
 
 // The automatic exposure: the scale bringing the image's log-average
-// luminance to `key` (0.18 is photographic mid-grey).
-double AutoExposure(const cv::Mat& linear_rgb, double key = 0.2);
+// luminance (linear RGB, 3 × 32-bit float) to `key` (0.18 is photographic
+// mid-grey).
+double AutoExposure(const Image& linear_rgb, double key = 0.2);
 
 }  // namespace asbuilt
 

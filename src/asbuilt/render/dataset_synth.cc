@@ -387,9 +387,9 @@ DatasetSynthSummary SynthesizeDataset(const fs::path& dir, const DatasetSynthOpt
       SynthItem item = PlanSynthItem(options, *scene, i);
       RenderedView view = renderer->Render(item.camera, render_options, static_cast<std::uint64_t>(i), false);
       std::array<std::int64_t, 4> counts{};
-      for (int y = 0; y < view.labels.rows; ++y) {
-        const auto* row = view.labels.ptr<std::uint8_t>(y);
-        for (int x = 0; x < view.labels.cols; ++x) counts[std::min<int>(row[x], 3)]++;
+      for (int y = 0; y < view.labels.height(); ++y) {
+        const auto* row = view.labels.Row<std::uint8_t>(y);
+        for (int x = 0; x < view.labels.width(); ++x) counts[std::min<int>(row[x], 3)]++;
       }
       for (int k = 0; k < 4; ++k) summary.class_pixels[k] += counts[k];
       WriteImageAtomic(files[0], view.left);

@@ -78,7 +78,7 @@ struct DatasetSynthOptions {
   RenderOptions render = {.samples_per_pixel = 2, .camera_effects = 1.0};
   RandomSceneOptions scene;        // The random rooms.
   bool resume = true;              // Skip items already written.
-  SynthLevers levers;              // Realism levers (all off: the items as before).
+  SynthLevers levers;              // Realism levers (all off: the scene as modelled).
   std::vector<std::filesystem::path> photo_dirs = DefaultPhotoDirs();  // Where photo_textures and
                                    // outside_photos look (absent folders skipped; none found:
                                    // procedural textures and the sky gradient, with a warning).

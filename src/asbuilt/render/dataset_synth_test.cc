@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
 
@@ -140,8 +141,7 @@ TEST(SynthesizeDataset, LeversRenderValidItemsWithPhotosFromAFolder) {
   DatasetSynthSummary summary = SynthesizeDataset(dir, o);
   EXPECT_EQ(summary.rendered, 6);
   for (int i = 0; i < 6; ++i) {
-    cv::Mat labels = cv::imread((dir / "labels" / fmt::format("{:06d}.png", i)).string(), cv::IMREAD_UNCHANGED);
-    ASSERT_FALSE(labels.empty());
+    const cv::Mat labels = ReadLabelImage(dir / "labels" / fmt::format("{:06d}.png", i));
     double lo, hi;
     cv::minMaxLoc(labels, &lo, &hi);
     EXPECT_LE(hi, 3.0);

@@ -9,10 +9,12 @@
 #include <numbers>
 
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <spdlog/spdlog.h>
 
+#include "asbuilt/imageio/image_cv.h"
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
@@ -57,20 +59,17 @@ std::optional<Photo> LoadPhoto(const fs::path& path, PhotoKind kind, int max_sid
   const std::string ext = Lower(path.extension().string());
   cv::Mat linear;
   if (ext == ".pat") {
-    linear = LinearFromSrgb8(ReadGimpPattern(path));
+    linear = LinearFromSrgb8(AsMat(ReadGimpPattern(path)));
   } else if (ext == ".exr" || ext == ".hdr") {
     // OpenCV reads OpenEXR only when asked to (CVE history); these are
     // files of a Debian package, and the switch is read once per process.
     setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0);
-    cv::Mat m = cv::imread(path.string(), cv::IMREAD_ANYDEPTH | cv::IMREAD_COLOR);
-    if (m.empty()) return std::nullopt;
+    cv::Mat m = ReadColourImageAnyDepth(path);
     m.convertTo(m, CV_32FC3);
     cv::cvtColor(m, linear, cv::COLOR_BGR2RGB);
     cv::max(linear, 0.0, linear);
   } else {
-    cv::Mat m = cv::imread(path.string(), cv::IMREAD_COLOR);
-    if (m.empty()) return std::nullopt;
-    linear = LinearFromSrgb8(m);
+    linear = LinearFromSrgb8(ReadColourImage(path));
   }
   if (linear.empty()) return std::nullopt;
   const int side = std::max(linear.cols, linear.rows);
@@ -81,7 +80,7 @@ std::optional<Photo> LoadPhoto(const fs::path& path, PhotoKind kind, int max_sid
   Photo photo;
   photo.path = path.string();
   photo.kind = kind;
-  photo.linear_rgb = linear;
+  photo.linear_rgb = AsImage(linear);
   cv::Scalar m = cv::mean(linear);
   photo.mean = Vec3f(static_cast<float>(m[0]), static_cast<float>(m[1]), static_cast<float>(m[2]));
   photo.mean_luminance = 0.2126f * photo.mean.x() + 0.7152f * photo.mean.y() + 0.0722f * photo.mean.z();
@@ -104,7 +103,7 @@ const char* PhotoKindName(PhotoKind kind) {
 }
 
 Vec3f Photo::Sample(float u, float v, bool clamp_v) const {
-  const int w = linear_rgb.cols, h = linear_rgb.rows;
+  const int w = linear_rgb.width(), h = linear_rgb.height();
   float x = (u - std::floor(u)) * w - 0.5f;
   float y = (clamp_v ? std::clamp(v, 0.0f, 1.0f) : v - std::floor(v)) * h - 0.5f;
   int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
@@ -112,7 +111,7 @@ Vec3f Photo::Sample(float u, float v, bool clamp_v) const {
   auto at = [&](int xx, int yy) {
     xx = ((xx % w) + w) % w;
     yy = clamp_v ? std::clamp(yy, 0, h - 1) : ((yy % h) + h) % h;
-    const cv::Vec3f& c = linear_rgb.at<cv::Vec3f>(yy, xx);
+    const float* c = linear_rgb.Row<float>(yy) + 3 * xx;
     return Vec3f(c[0], c[1], c[2]);
   };
   return (at(x0, y0) * (1 - fx) + at(x0 + 1, y0) * fx) * (1 - fy) +
@@ -190,7 +189,7 @@ std::optional<PhotoKind> ClassifyPhoto(const fs::path& path) {
   return std::nullopt;
 }
 
-cv::Mat ReadGimpPattern(const fs::path& path) {
+Image ReadGimpPattern(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), "", "cannot open");
   std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -214,13 +213,15 @@ cv::Mat ReadGimpPattern(const fs::path& path) {
   if (header_size < 24 || bytes.size() < header_size + need) {
     throw InputError(path.string(), "pixels", fmt::format("{} bytes, need {}", bytes.size(), header_size + need));
   }
-  cv::Mat bgr(static_cast<int>(height), static_cast<int>(width), CV_8UC3);
+  Image bgr(static_cast<int>(width), static_cast<int>(height), 3, PixelType::kU8);
   const unsigned char* p = bytes.data() + header_size;
   for (std::uint32_t y = 0; y < height; ++y) {
+    std::uint8_t* row = bgr.Row<std::uint8_t>(static_cast<int>(y));
     for (std::uint32_t x = 0; x < width; ++x, p += channels) {
       // 1: grey, 2: grey + alpha, 3: RGB, 4: RGBA (alpha dropped).
-      unsigned char r = p[0], g = channels >= 3 ? p[1] : p[0], b = channels >= 3 ? p[2] : p[0];
-      bgr.at<cv::Vec3b>(static_cast<int>(y), static_cast<int>(x)) = cv::Vec3b(b, g, r);
+      row[3 * x] = channels >= 3 ? p[2] : p[0];
+      row[3 * x + 1] = channels >= 3 ? p[1] : p[0];
+      row[3 * x + 2] = p[0];
     }
   }
   return bgr;
@@ -264,7 +265,7 @@ PhotoLibrary LoadPhotoLibrary(const PhotoLibraryOptions& options) {
       if (std::optional<Photo> photo = LoadPhoto(path, kind, options.max_side_px)) {
         library.photos.push_back(std::make_shared<const Photo>(std::move(*photo)));
       } else {
-        spdlog::warn("photo textures: cannot read {}, skipped", path.string());
+        spdlog::warn("photo textures: {} is black or empty, skipped", path.string());
       }
     } catch (const std::exception& e) {
       spdlog::warn("photo textures: {}, skipped", e.what());

@@ -17,8 +17,7 @@
 #include <string>
 #include <vector>
 
-#include <opencv2/core.hpp>
-
+#include "asbuilt/imageio/image.h"
 #include "asbuilt/render/scene_mesh.h"
 
 namespace asbuilt {
@@ -36,7 +35,7 @@ const char* PhotoKindName(PhotoKind kind);  // "wood", "stone", …
 struct Photo {
   std::string path;       // The file it came from (provenance; written to item meta).
   PhotoKind kind = PhotoKind::kWood;
-  cv::Mat linear_rgb;     // CV_32FC3, channels R, G, B, linear (sRGB decoded; HDR as stored).
+  Image linear_rgb;       // 3 × 32-bit float, channels R, G, B, linear (sRGB decoded; HDR as stored).
   Vec3f mean = Vec3f::Zero();  // Mean linear RGB.
   float mean_luminance = 0.0f;
 
@@ -74,8 +73,8 @@ struct PhotoLibraryOptions {
 std::optional<PhotoKind> ClassifyPhoto(const std::filesystem::path& path);
 
 // A GIMP pattern (.pat, version 1: header, name, 8-bit pixels of 1–4
-// channels) as 8-bit BGR. Throws InputError naming the file and field.
-cv::Mat ReadGimpPattern(const std::filesystem::path& path);
+// channels) as 3 × 8-bit BGR. Throws InputError naming the file and field.
+Image ReadGimpPattern(const std::filesystem::path& path);
 
 struct PhotoLibrary {
   std::vector<std::shared_ptr<const Photo>> photos;  // In path order (deterministic).

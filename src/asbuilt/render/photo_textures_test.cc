@@ -10,6 +10,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
@@ -53,12 +54,12 @@ TEST(ReadGimpPattern, ReadsRgbAndGreyPixelsAsBgr) {
   fs::path dir = TempDir("read");
   WritePattern(dir / "rgb.pat", 4, 3, 3);
   WritePattern(dir / "grey.pat", 2, 2, 1);
-  cv::Mat rgb = ReadGimpPattern(dir / "rgb.pat");
+  const cv::Mat rgb = AsMat(ReadGimpPattern(dir / "rgb.pat"));
   ASSERT_EQ(rgb.cols, 4);
   ASSERT_EQ(rgb.rows, 3);
   // Pixel (2, 1): R = 2 + 3 = 5, G = 15, B = 25; stored B, G, R.
   EXPECT_EQ(rgb.at<cv::Vec3b>(1, 2), cv::Vec3b(25, 15, 5));
-  cv::Mat grey = ReadGimpPattern(dir / "grey.pat");
+  const cv::Mat grey = AsMat(ReadGimpPattern(dir / "grey.pat"));
   EXPECT_EQ(grey.at<cv::Vec3b>(1, 1), cv::Vec3b(4, 4, 4));
   fs::remove_all(dir);
 }
@@ -113,9 +114,10 @@ TEST(LoadPhotoLibrary, ReadsClassifiedFilesAndSkipsMissingFolders) {
 TEST(Photo, EquirectangularOutsideLooksUpAtTheTopRowAndDownAtTheBottom) {
   Photo p;
   p.kind = PhotoKind::kEnvironment;
-  p.linear_rgb = cv::Mat(8, 16, CV_32FC3, cv::Scalar(0.5, 0.5, 0.5));
-  p.linear_rgb.row(0).setTo(cv::Scalar(1, 0, 0));
-  p.linear_rgb.row(7).setTo(cv::Scalar(0, 0, 1));
+  cv::Mat linear_rgb(8, 16, CV_32FC3, cv::Scalar(0.5, 0.5, 0.5));
+  linear_rgb.row(0).setTo(cv::Scalar(1, 0, 0));
+  linear_rgb.row(7).setTo(cv::Scalar(0, 0, 1));
+  p.linear_rgb = AsImage(linear_rgb);
   EXPECT_NEAR(p.Outside(Vec3f(0, 0, 1), 0).x(), 1.0, 1e-5);
   EXPECT_NEAR(p.Outside(Vec3f(0, 0, -1), 0).z(), 1.0, 1e-5);
   EXPECT_NEAR(p.Outside(Vec3f(1, 0, 0), 0).y(), 0.5, 1e-5);

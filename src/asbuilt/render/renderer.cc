@@ -6,9 +6,11 @@
 #include <filesystem>
 
 #include <fmt/format.h>
+#include <opencv2/core.hpp>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/render/ray_tracer.h"
 #include "asbuilt/render/texture.h"
 #include "asbuilt/util/error.h"
@@ -85,7 +87,8 @@ Vec3f PhotoAlbedoAt(const PhotoAlbedo& pa, const Material& m, const Vec3f& point
   PlaneCoordinates(point, normal, &u, &v);  // As TextureAlbedo's.
   if (pa.swap_uv) std::swap(u, v);
   const float width_m = static_cast<float>(pa.size_m);
-  const float height_m = width_m * static_cast<float>(photo.linear_rgb.rows) / static_cast<float>(photo.linear_rgb.cols);
+  const float height_m =
+      width_m * static_cast<float>(photo.linear_rgb.height()) / static_cast<float>(photo.linear_rgb.width());
   Vec3f c = photo.Sample((u + static_cast<float>(pa.offset_m.x())) / width_m,
                          -(v + static_cast<float>(pa.offset_m.y())) / height_m);
   const Vec3f base = m.base_color.cast<float>();
@@ -483,9 +486,9 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
         row[x] = cv::Vec3f(c.x(), c.y(), c.z());
       }
     }
-    if (eye == StereoEye::kLeft) exposure = AutoExposure(linear);
+    if (eye == StereoEye::kLeft) exposure = AutoExposure(AsImage(linear));
     linear *= exposure;
-    cv::Mat developed = DevelopImage(linear, out.effects, view_seed * 2 + eye_index);
+    Image developed = DevelopImage(AsImage(linear), out.effects, view_seed * 2 + eye_index);
     if (eye == StereoEye::kLeft) {
       out.left = developed;
       left_buffers = std::move(b);
@@ -507,7 +510,7 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
   }
   mean_lum = lit > 0 ? mean_lum / lit : 1.0;
   const float drift = static_cast<float>(options.id_drift);
-  out.idmap = cv::Mat(H, W, CV_8UC3);
+  cv::Mat idmap(H, W, CV_8UC3);
   for (int y = 0; y < H; ++y) {
     for (int x = 0; x < W; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * W + x;
@@ -519,13 +522,14 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
         float v = nominal[c] * f + drift * 60.0f * (b.albedo[i][c] - 0.5f);
         px[2 - c] = static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L));
       }
-      out.idmap.at<cv::Vec3b>(y, x) = px;
+      idmap.at<cv::Vec3b>(y, x) = px;
     }
   }
-  out.labels = aux.labels;
-  out.depth_mm = aux.depth_mm;
-  out.normals = aux.normals;
-  out.instance_ids = aux.instance_ids;
+  out.idmap = AsImage(idmap);
+  out.labels = AsImage(aux.labels);
+  out.depth_mm = AsImage(aux.depth_mm);
+  out.normals = AsImage(aux.normals);
+  out.instance_ids = AsImage(aux.instance_ids);
   out.rays_traced = total_rays.load();
   return out;
 }

@@ -23,8 +23,7 @@
 #include <memory>
 #include <string>
 
-#include <opencv2/core.hpp>
-
+#include "asbuilt/imageio/image.h"
 #include "asbuilt/render/camera_effects.h"
 #include "asbuilt/render/photo_textures.h"
 #include "asbuilt/render/scene_mesh.h"
@@ -51,7 +50,7 @@ struct RenderOptions {
   double camera_effects = 1.0;    // [0, 1]: strength of the randomised camera effects (0 = clean).
   bool phone_camera = false;      // Also a phone's processing (camera_effects.h RandomViewEffects):
                                   // wider exposure, noise and JPEG ranges, chromatic aberration,
-                                  // sharpening, saturation. Off: effects exactly as before.
+                                  // sharpening, saturation. Off: the plain camera's effects.
   bool normals = false;           // Also produce camera-frame normals.
   bool instance_ids = false;      // Also produce per-object instance ids.
   std::uint64_t seed = 0;         // Sampling and effects; same seed → identical images.
@@ -69,13 +68,14 @@ struct StereoCamera {
 };
 
 struct RenderedView {
-  cv::Mat left;          // 8-bit BGR.
-  cv::Mat right;         // 8-bit BGR; empty when the right eye was not asked for.
-  cv::Mat idmap;         // 8-bit BGR, left view.
-  cv::Mat labels;        // 8-bit label ids, left view.
-  cv::Mat depth_mm;      // 16-bit millimetres along the optical axis; 0 = nothing within 65.535 m.
-  cv::Mat normals;       // 8-bit BGR encoding (n + 1) / 2 of camera-frame normals; empty unless asked.
-  cv::Mat instance_ids;  // 16-bit: SceneMesh object index + 1, 0 = sky; empty unless asked.
+  // Images of the camera's size (imageio/image_cv.h views them as cv::Mat).
+  Image left;          // 3 × 8-bit BGR.
+  Image right;         // 3 × 8-bit BGR; empty when the right eye was not asked for.
+  Image idmap;         // 3 × 8-bit BGR, left view.
+  Image labels;        // 8-bit label ids, left view.
+  Image depth_mm;      // 16-bit millimetres along the optical axis; 0 = nothing within 65.535 m.
+  Image normals;       // 3 × 8-bit BGR encoding (n + 1) / 2 of camera-frame normals; empty unless asked.
+  Image instance_ids;  // 16-bit: SceneMesh object index + 1, 0 = sky; empty unless asked.
   ViewEffects effects;   // The camera effects applied.
   std::int64_t rays_traced = 0;  // Every ray cast (primary, shadow, bounce), both eyes.
 };
@@ -96,7 +96,7 @@ struct PhotoAlbedo {
 
 // How a scene looks beyond its model: photographic albedo, the view outside,
 // rooms behind doors. dataset synth's realism levers fill it; the default
-// (empty) renders the scene exactly as before.
+// (empty) renders the scene's own materials under the sky gradient.
 struct SceneLook {
   std::map<std::string, PhotoAlbedo> albedo;  // By material name.
   // Seen through windows (and wherever a ray leaves the building) instead of

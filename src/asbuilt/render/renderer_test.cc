@@ -9,6 +9,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "asbuilt/formats/capture.h"
+#include "asbuilt/imageio/image_cv.h"
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/render/capture_render.h"
 #include "asbuilt/util/error.h"
 
@@ -68,11 +70,12 @@ TEST(Render, DepthEqualsAnalyticDistanceOnWallAndFloor) {
   // Facing wall 2 (y = 3) from y = 0.5: every wall pixel is 2.5 m away along z.
   StereoCamera cam = SmallCamera({Vec3(2.0, 0.5, 1.25), 0.0, 0.0});
   RenderedView v = renderer.Render(cam, FastOptions(), 0, false);
+  const cv::Mat labels = AsMat(v.labels), depth_mm = AsMat(v.depth_mm);
   int wall_checked = 0, floor_checked = 0;
   for (int y = 0; y < 120; ++y) {
     for (int x = 0; x < 160; ++x) {
-      int label = v.labels.at<std::uint8_t>(y, x);
-      int depth = v.depth_mm.at<std::uint16_t>(y, x);
+      int label = labels.at<std::uint8_t>(y, x);
+      int depth = depth_mm.at<std::uint16_t>(y, x);
       double ray_z = (y - cam.camera.cy) / cam.camera.fy;  // Downward slope per metre of z.
       if (label == kLabelWall && y > 5 && y < 40 && x > 5 && x < 155) {
         EXPECT_NEAR(depth, 2500, 1) << "wall pixel " << x << "," << y;
@@ -96,7 +99,7 @@ TEST(Render, PitchedCameraSeesTheCeilingAtTheRightDepth) {
   // The centre ray of the left eye rises 60°: ceiling 1.25 m above → 1.25 / sin 60°.
   // The centre pixel (79.5, 59.5) is between pixels; (80, 59) is within 0.5 px.
   double expected_mm = 1250.0 / std::sin(DegToRad(60.0));
-  int depth = v.depth_mm.at<std::uint16_t>(59, 80);
+  int depth = AsMat(v.depth_mm).at<std::uint16_t>(59, 80);
   EXPECT_NEAR(depth, expected_mm, 0.01 * expected_mm);
 }
 
@@ -109,14 +112,15 @@ TEST(Render, RightImageIsTheLeftShiftedByTheDisparity) {
   // fx = 100, B = 0.12, Z = 1.5 → d = 8 px exactly.
   StereoCamera cam = SmallCamera({Vec3(2.0, 1.5, 1.25), 0.0, 0.0});
   RenderedView v = renderer.Render(cam, {.samples_per_pixel = 8, .camera_effects = 0.0}, 0, true);
+  const cv::Mat labels = AsMat(v.labels);
   cv::Mat l, r;
-  cv::cvtColor(v.left, l, cv::COLOR_BGR2GRAY);
-  cv::cvtColor(v.right, r, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(AsMat(v.left), l, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(AsMat(v.right), r, cv::COLOR_BGR2GRAY);
   double shifted = 0, unshifted = 0;
   int n = 0;
   for (int y = 10; y < 40; ++y) {
     for (int x = 30; x < 130; ++x) {
-      ASSERT_EQ(v.labels.at<std::uint8_t>(y, x), kLabelWall);
+      ASSERT_EQ(labels.at<std::uint8_t>(y, x), kLabelWall);
       shifted += std::abs(l.at<std::uint8_t>(y, x) - r.at<std::uint8_t>(y, x - 8));
       unshifted += std::abs(l.at<std::uint8_t>(y, x) - r.at<std::uint8_t>(y, x));
       ++n;
@@ -143,7 +147,7 @@ TEST(Render, ProjectedDoorAndWindowCornersLandOnTheirLabels) {
       ASSERT_TRUE(px.has_value());
       int u = static_cast<int>(std::lround(px->x())), w = static_cast<int>(std::lround(px->y()));
       ASSERT_TRUE(u >= 0 && u < 160 && w >= 0 && w < 120) << u << "," << w;
-      EXPECT_EQ(v.labels.at<std::uint8_t>(w, u), c.label) << "corner " << k << " at " << u << "," << w;
+      EXPECT_EQ(AsMat(v.labels).at<std::uint8_t>(w, u), c.label) << "corner " << k << " at " << u << "," << w;
     }
   }
 }
@@ -159,11 +163,12 @@ TEST(Render, DoorLabelAreaMatchesTheProjectedOpeningWithCasing) {
     ASSERT_TRUE(px.has_value());
     poly.emplace_back(static_cast<float>(px->x()), static_cast<float>(px->y()));
   }
+  const cv::Mat labels = AsMat(v.labels);
   int inside = 0, labelled = 0;
   for (int y = 0; y < 120; ++y) {
     for (int x = 0; x < 160; ++x) {
       if (cv::pointPolygonTest(poly, cv::Point2f(x, y), false) >= 0) ++inside;
-      if (v.labels.at<std::uint8_t>(y, x) == kLabelDoor) ++labelled;
+      if (labels.at<std::uint8_t>(y, x) == kLabelDoor) ++labelled;
     }
   }
   double perimeter = cv::arcLength(poly, true);
@@ -177,23 +182,24 @@ TEST(Render, SameSeedGivesIdenticalImagesAndAnotherSeedDoesNot) {
   RenderOptions o{.samples_per_pixel = 2, .camera_effects = 1.0, .seed = 5};
   RenderedView a = renderer.Render(cam, o, 7);
   RenderedView b = renderer.Render(cam, o, 7);
-  EXPECT_EQ(cv::norm(a.left, b.left, cv::NORM_INF), 0);
-  EXPECT_EQ(cv::norm(a.right, b.right, cv::NORM_INF), 0);
-  EXPECT_EQ(cv::norm(a.idmap, b.idmap, cv::NORM_INF), 0);
+  EXPECT_TRUE(a.left.SamePixels(b.left));
+  EXPECT_TRUE(a.right.SamePixels(b.right));
+  EXPECT_TRUE(a.idmap.SamePixels(b.idmap));
   o.seed = 6;
   RenderedView c = renderer.Render(cam, o, 7);
-  EXPECT_GT(cv::norm(a.left, c.left, cv::NORM_L1), 0);
-  EXPECT_EQ(cv::norm(a.labels, c.labels, cv::NORM_INF), 0) << "labels do not depend on the seed";
+  EXPECT_GT(cv::norm(AsMat(a.left), AsMat(c.left), cv::NORM_L1), 0);
+  EXPECT_TRUE(a.labels.SamePixels(c.labels)) << "labels do not depend on the seed";
 }
 
 TEST(Render, IdMapColoursStayNearTheirClassColour) {
   SceneRenderer renderer(TestRoom());
   StereoCamera cam = SmallCamera({Vec3(2.6, 1.2, 1.3), 20.0, 0.0}, 70.0);
   RenderedView v = renderer.Render(cam, {.samples_per_pixel = 2, .id_drift = 0.15, .camera_effects = 0.0}, 0, false);
+  const cv::Mat labels = AsMat(v.labels), idmap = AsMat(v.idmap);
   for (int y = 0; y < 120; y += 3) {
     for (int x = 0; x < 160; x += 3) {
-      const auto& nominal = kIdMapColors[v.labels.at<std::uint8_t>(y, x)];
-      cv::Vec3b c = v.idmap.at<cv::Vec3b>(y, x);
+      const auto& nominal = kIdMapColors[labels.at<std::uint8_t>(y, x)];
+      cv::Vec3b c = idmap.at<cv::Vec3b>(y, x);
       double d = std::hypot(std::hypot(c[2] - nominal[0], c[1] - nominal[1]), c[0] - nominal[2]);
       EXPECT_LT(d, 90.0) << x << "," << y;
     }
@@ -215,10 +221,8 @@ TEST(RenderCapture, WritesACaptureThatValidatesAndResumes) {
   EXPECT_DOUBLE_EQ(c.camera.cx, 47.5);
   EXPECT_DOUBLE_EQ(c.frames[1].yaw_deg, 120.0);
   ASSERT_TRUE(c.frames[0].depth.has_value());
-  cv::Mat depth = cv::imread(c.Resolve(*c.frames[0].depth).string(), cv::IMREAD_UNCHANGED);
-  EXPECT_EQ(depth.type(), CV_16U);
-  cv::Mat labels = cv::imread(c.Resolve(*c.frames[0].labels).string(), cv::IMREAD_UNCHANGED);
-  EXPECT_EQ(labels.type(), CV_8U);
+  EXPECT_EQ(ReadDepthImage(c.Resolve(*c.frames[0].depth)).type(), CV_16U);
+  EXPECT_EQ(ReadLabelImage(c.Resolve(*c.frames[0].labels)).size(), cv::Size(96, 72));
   EXPECT_TRUE(fs::exists(dir / "truth.json"));
   EXPECT_TRUE(fs::exists(dir / "idmap" / "002.png"));
 
@@ -245,12 +249,13 @@ std::shared_ptr<const Photo> CheckerPhoto(PhotoKind kind) {
   auto p = std::make_shared<Photo>();
   p->kind = kind;
   p->path = "checker";
-  p->linear_rgb = cv::Mat(16, 16, CV_32FC3);
+  cv::Mat linear_rgb(16, 16, CV_32FC3);
   for (int y = 0; y < 16; ++y) {
     for (int x = 0; x < 16; ++x) {
-      p->linear_rgb.at<cv::Vec3f>(y, x) = ((x / 4 + y / 4) % 2) ? cv::Vec3f(0.6f, 0.3f, 0.1f) : cv::Vec3f(0.2f, 0.1f, 0.05f);
+      linear_rgb.at<cv::Vec3f>(y, x) = ((x / 4 + y / 4) % 2) ? cv::Vec3f(0.6f, 0.3f, 0.1f) : cv::Vec3f(0.2f, 0.1f, 0.05f);
     }
   }
+  p->linear_rgb = AsImage(linear_rgb);
   p->mean = Vec3f(0.4f, 0.2f, 0.075f);
   p->mean_luminance = 0.2126f * 0.4f + 0.7152f * 0.2f + 0.0722f * 0.075f;
   return p;
@@ -261,8 +266,8 @@ TEST(Render, AnEmptySceneLookRendersExactlyAsBefore) {
   SceneRenderer plain(scene), looked(scene, SceneLook{});
   StereoCamera cam = SmallCamera({Vec3(2.0, 1.5, 1.3), 0.0, 0.0}, 70.0);
   RenderedView a = plain.Render(cam, FastOptions(), 4, false), b = looked.Render(cam, FastOptions(), 4, false);
-  EXPECT_EQ(cv::norm(a.left, b.left, cv::NORM_INF), 0.0);
-  EXPECT_EQ(cv::norm(a.labels, b.labels, cv::NORM_INF), 0.0);
+  EXPECT_TRUE(a.left.SamePixels(b.left));
+  EXPECT_TRUE(a.labels.SamePixels(b.labels));
 }
 
 TEST(Render, PhotosAndANextRoomChangeColoursNotLabels) {
@@ -277,16 +282,16 @@ TEST(Render, PhotosAndANextRoomChangeColoursNotLabels) {
   for (double yaw : {0.0, -90.0}) {  // The door, the window.
     StereoCamera cam = SmallCamera({Vec3(2.0, 1.5, 1.3), yaw, 0.0}, 70.0);
     RenderedView a = plain.Render(cam, FastOptions(), 1, false), b = looked.Render(cam, FastOptions(), 1, false);
-    EXPECT_EQ(cv::norm(a.labels, b.labels, cv::NORM_INF), 0.0) << "yaw " << yaw;
-    EXPECT_GT(cv::norm(a.left, b.left, cv::NORM_L1) / (160.0 * 120.0), 5.0) << "yaw " << yaw;
+    EXPECT_TRUE(a.labels.SamePixels(b.labels)) << "yaw " << yaw;
+    EXPECT_GT(cv::norm(AsMat(a.left), AsMat(b.left), cv::NORM_L1) / (160.0 * 120.0), 5.0) << "yaw " << yaw;
     if (yaw == 0.0) {
       // Through the doorway the next room's far wall (3 m behind the 0.2 m
       // wall) is farther than the closet's back (1.2 m).
       auto centre = ProjectLeft(cam, Vec3(2.35, 3.0, 1.0));
       ASSERT_TRUE(centre.has_value());
       int u = static_cast<int>(std::lround(centre->x())), v = static_cast<int>(std::lround(centre->y()));
-      EXPECT_EQ(b.labels.at<std::uint8_t>(v, u), kLabelDoor);
-      EXPECT_GT(b.depth_mm.at<std::uint16_t>(v, u), a.depth_mm.at<std::uint16_t>(v, u) + 1000);
+      EXPECT_EQ(AsMat(b.labels).at<std::uint8_t>(v, u), kLabelDoor);
+      EXPECT_GT(AsMat(b.depth_mm).at<std::uint16_t>(v, u), AsMat(a.depth_mm).at<std::uint16_t>(v, u) + 1000);
     }
   }
 }
@@ -311,7 +316,8 @@ TEST(DevelopImage, ChromaticAberrationKeepsGreenInPlace) {
   cv::rectangle(linear, cv::Rect(10, 10, 10, 10), cv::Scalar(0.5, 0.5, 0.5), cv::FILLED);
   ViewEffects clean, fringed;
   fringed.chromatic_aberration_px = 2.0;
-  cv::Mat a = DevelopImage(linear, clean, 1), b = DevelopImage(linear, fringed, 1);
+  const cv::Mat a = AsMat(DevelopImage(AsImage(linear), clean, 1));
+  const cv::Mat b = AsMat(DevelopImage(AsImage(linear), fringed, 1));
   std::vector<cv::Mat> ca, cb;
   cv::split(a, ca);
   cv::split(b, cb);

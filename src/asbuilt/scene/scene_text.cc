@@ -294,7 +294,14 @@ class Parser {
 
   std::vector<Clause> SplitClauses();
   int FindOpeningNoun(const Clause& c) const;
+  // An opening clause around its noun, in steps that each mark the tokens
+  // they read as used, so later steps see only what is left.
   OpeningRequest ParseOpening(const Clause& c, int noun);
+  void ParseOpeningModifiers(const Clause& c, int noun, OpeningRequest& o);  // "french", "double", "large".
+  void ParseOpeningPlacement(const Clause& c, OpeningRequest& o);  // "1 m from the west end", "in the corner".
+  void ParseOpeningLeaf(const Clause& c, OpeningRequest& o);       // "half-open", "left-hinged", "no glass".
+  void ParseOpeningSizes(const Clause& c, int noun, OpeningRequest& o);  // "sill 0.9 m", "1.2 by 1.5 m".
+  void ParseOpeningWalls(const Clause& c, OpeningRequest& o);      // "on the north wall", "each wall".
   void ParseRoomClause(const Clause& c, Request& r);
   void ParseRig(const Clause& c, Request& r);
   void ParseMaterials(const Clause& c, Request& r);
@@ -437,8 +444,8 @@ std::optional<int> Parser::CountBefore(int i, const Clause& c) {
     if (t_[k].used) continue;
     ++unused_seen;
     const std::string& w = t_[k].text;
-    // A count is a small whole number (5.6e45 is not one: casting it to int
-    // was undefined behaviour, found by fuzz_scene_text under UBSan).
+    // A count is a whole number in [0, kMaxCount], so the cast to int below
+    // is defined for any number the text holds (5.6e45 is not a count).
     if (t_[k].number && *t_[k].number >= 0 && *t_[k].number <= kMaxCount &&
         *t_[k].number == std::floor(*t_[k].number) &&
         !(Free(k + 1, c) && UnitFactor(t_[k + 1].text))) {
@@ -472,7 +479,21 @@ OpeningRequest Parser::ParseOpening(const Clause& c, int noun) {
   bool plural = nw.back() == 's';
   t_[noun].used = true;
   for (int i = c.begin; i < c.end; ++i) o.text += (i > c.begin ? " " : "") + t_[i].text;
+  ParseOpeningModifiers(c, noun, o);
+  ParseOpeningPlacement(c, o);
+  ParseOpeningLeaf(c, o);
+  ParseOpeningSizes(c, noun, o);
+  if (auto n = CountBefore(noun, c)) {
+    o.count = *n;
+    o.count_given = true;
+  } else {
+    o.count = plural ? 2 : 1;
+  }
+  ParseOpeningWalls(c, o);
+  return o;
+}
 
+void Parser::ParseOpeningModifiers(const Clause& c, int noun, OpeningRequest& o) {
   // Kind modifiers right before the noun.
   for (int k = noun - 1; k >= c.begin && k >= noun - 3; --k) {
     const std::string& w = t_[k].text;
@@ -494,7 +515,9 @@ OpeningRequest Parser::ParseOpening(const Clause& c, int noun) {
       t_[k].used = true;
     }
   }
+}
 
+void Parser::ParseOpeningPlacement(const Clause& c, OpeningRequest& o) {
   // Positions: "1 m from the west end", "in the (north-east) corner", "near the west end",
   // "centred", "on the left".
   for (int i = c.begin; i < c.end; ++i) {
@@ -558,7 +581,9 @@ OpeningRequest Parser::ParseOpening(const Clause& c, int noun) {
       t_[i].used = true;
     }
   }
+}
 
+void Parser::ParseOpeningLeaf(const Clause& c, OpeningRequest& o) {
   // Door leaf and window glass.
   for (int i = c.begin; i < c.end; ++i) {
     if (!Free(i, c)) continue;
@@ -601,7 +626,9 @@ OpeningRequest Parser::ParseOpening(const Clause& c, int noun) {
       t_[i].used = true;
     }
   }
+}
 
+void Parser::ParseOpeningSizes(const Clause& c, int noun, OpeningRequest& o) {
   // Sizes.
   for (int i = c.begin; i < c.end; ++i) {
     if (!Free(i, c)) continue;
@@ -682,15 +709,9 @@ OpeningRequest Parser::ParseOpening(const Clause& c, int noun) {
       if (Is(len->next, c, {"wide"})) t_[len->next].used = true;
     }
   }
+}
 
-  // Count.
-  if (auto n = CountBefore(noun, c)) {
-    o.count = *n;
-    o.count_given = true;
-  } else {
-    o.count = plural ? 2 : 1;
-  }
-
+void Parser::ParseOpeningWalls(const Clause& c, OpeningRequest& o) {
   // Walls: "on the north (and south) wall(s)", "on each/every/all wall(s)", "facing east".
   for (int i = c.begin; i < c.end; ++i) {
     if (auto comp = CompassAt(i, c)) {
@@ -718,7 +739,6 @@ OpeningRequest Parser::ParseOpening(const Clause& c, int noun) {
   for (int i = c.begin; i < c.end; ++i) {
     if (Is(i, c, {"wall", "walls", "side", "sides"}) && (!o.walls.empty() || o.all_walls)) t_[i].used = true;
   }
-  return o;
 }
 
 void Parser::ParseRig(const Clause& c, Request& r) {

@@ -1,8 +1,9 @@
 #include "asbuilt/seg/evaluate.h"
 
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/core.hpp>
 
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
@@ -46,15 +47,9 @@ SegmentationMetrics EvaluateSegmentation(Segmenter& segmenter, const std::vector
   if (options.max_images > 0) n = std::min(n, static_cast<size_t>(options.max_images));
   std::int64_t images = 0;
   for (size_t i = 0; i < n && !stop.stop_requested(); ++i) {
-    cv::Mat bgr = ReadImageBgr(samples[i].image);
-    cv::Mat label = cv::imread(samples[i].label.string(), cv::IMREAD_UNCHANGED);
-    if (label.empty()) throw InputError(samples[i].label.string(), "", "cannot read as an image");
-    if (label.type() != CV_8UC1) throw InputError(samples[i].label.string(), "", "label must be single-channel 8-bit");
-    if (label.size() != bgr.size()) {
-      throw InputError(samples[i].label.string(), "",
-                       fmt::format("label is {}x{} but image {} is {}x{}", label.cols, label.rows,
-                                   samples[i].image.string(), bgr.cols, bgr.rows));
-    }
+    const cv::Mat bgr = ReadColourImage(samples[i].image);
+    const cv::Mat label = ReadLabelImage(samples[i].label);
+    CheckImageSize(label, bgr.cols, bgr.rows, samples[i].label, "", "its image " + samples[i].image.string());
     cv::Mat mapped(label.size(), CV_8UC1);
     for (int r = 0; r < label.rows; ++r) {
       const std::uint8_t* s = label.ptr<std::uint8_t>(r);

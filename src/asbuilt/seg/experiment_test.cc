@@ -11,8 +11,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/seg/toy_rooms.h"
 #include "asbuilt/util/error.h"
 
@@ -84,8 +84,7 @@ TEST(RatioExperiment, TrainsAndScoresEveryConfigOnTheSameRealTestSet) {
   EXPECT_NE(md.find("| config |"), std::string::npos) << md;
   for (const char* c : expected) EXPECT_NE(md.find(fmt::format("| {} |", c)), std::string::npos) << c << "\n" << md;
   // plot.png: a decodable image with something drawn on it.
-  cv::Mat plot = cv::imread((options.out_dir / "plot.png").string(), cv::IMREAD_COLOR);
-  ASSERT_FALSE(plot.empty());
+  const cv::Mat plot = ReadColourImage(options.out_dir / "plot.png");
   EXPECT_GT(plot.cols, 300);
   EXPECT_GT(plot.rows, 200);
   EXPECT_LT(cv::mean(plot)[0], 254.0);  // Not a blank canvas.

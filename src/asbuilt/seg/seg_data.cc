@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "asbuilt/dataset/manifest.h"
 #include "asbuilt/dataset/pairs.h"
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
@@ -53,27 +53,11 @@ SegDataSplit SplitFromFolders(const fs::path& images_dir, const fs::path& labels
   return split;
 }
 
-cv::Mat ReadImageBgr(const fs::path& path) {
-  cv::Mat img = cv::imread(path.string(), cv::IMREAD_COLOR);
-  if (img.empty()) throw InputError(path.string(), "", "cannot read as an image");
-  return img;
-}
-
 SegPair ReadSegPair(const SegSample& sample, int num_classes) {
   SegPair p;
-  p.bgr = ReadImageBgr(sample.image);
-  p.label = cv::imread(sample.label.string(), cv::IMREAD_UNCHANGED);
-  if (p.label.empty()) throw InputError(sample.label.string(), "", "cannot read as an image");
-  if (p.label.type() != CV_8UC1) {
-    throw InputError(sample.label.string(), "",
-                     fmt::format("label must be single-channel 8-bit (got {} channels, depth {})",
-                                 p.label.channels(), p.label.depth()));
-  }
-  if (p.label.size() != p.bgr.size()) {
-    throw InputError(sample.label.string(), "",
-                     fmt::format("label is {}x{} but image {} is {}x{}", p.label.cols, p.label.rows,
-                                 sample.image.string(), p.bgr.cols, p.bgr.rows));
-  }
+  p.bgr = ReadColourImage(sample.image);
+  p.label = ReadLabelImage(sample.label);
+  CheckImageSize(p.label, p.bgr.cols, p.bgr.rows, sample.label, "", "its image " + sample.image.string());
   for (int r = 0; r < p.label.rows; ++r) {
     const std::uint8_t* l = p.label.ptr<std::uint8_t>(r);
     for (int c = 0; c < p.label.cols; ++c) {

@@ -43,14 +43,10 @@ struct SegPair {
   cv::Mat label;  // CV_8UC1, ids < num_classes or 255.
 };
 
-// Reads and checks one pair. Throws InputError naming the file: unreadable,
-// label not single-channel 8-bit, sizes differ, label id not in
-// {0..num_classes-1, 255}.
+// Reads and checks one pair (imageio's ReadColourImage and ReadLabelImage).
+// Throws InputError naming the file: unreadable, label not single-channel
+// 8-bit, sizes differ, label id not in {0..num_classes-1, 255}.
 SegPair ReadSegPair(const SegSample& sample, int num_classes = 4);
-
-// Reads an image for inference as BGR 8-bit (grey and alpha converted).
-// Throws InputError naming the file.
-cv::Mat ReadImageBgr(const std::filesystem::path& path);
 
 struct AugmentOptions {
   int scale_width_px = 256;   // Base scale: images are first resized to fit it

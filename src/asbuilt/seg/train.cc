@@ -126,6 +126,66 @@ void WriteLogs(const fs::path& dir, const std::vector<EpochRecord>& history) {
   WritePlot(dir / "plot.png", history);
 }
 
+// One training batch: images (8-bit BGR) and labels, augmented to crop size.
+struct TrainBatch {
+  std::vector<cv::Mat> images, labels;
+};
+
+// The batch of global step `step`: which pairs (SampleIndex) and how they are
+// augmented follow from the seed and the step alone, so a resumed run reads
+// the batches an uninterrupted one would.
+TrainBatch ReadTrainBatch(const TrainOptions& options, const std::vector<SegSample>& train, std::int64_t step,
+                          std::vector<size_t>& perm, std::int64_t& perm_pass) {
+  TrainBatch batch;
+  for (int b = 0; b < options.batch_size; ++b) {
+    const std::int64_t k = step * options.batch_size + b;
+    const SegSample& sample = train[SampleIndex(options.seed, k, train.size(), perm, perm_pass)];
+    SegPair pair = ReadSegPair(sample, options.num_classes);
+    std::mt19937_64 rng(options.seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(k));
+    AugmentPair(pair, options.augment, rng);
+    batch.images.push_back(pair.bgr);
+    batch.labels.push_back(pair.label);
+  }
+  return batch;
+}
+
+// One AdamW step on `batch` at the optimizer's current learning rates: cross
+// entropy (label 255 ignored) of the logits upsampled bilinearly to the label
+// size. Returns the batch's loss before the step.
+double OptimizerStep(Segformer& model, torch::optim::AdamW& optimizer, const TrainBatch& batch) {
+  torch::Tensor x = ImagesToTensor(batch.images), y = LabelsToTensor(batch.labels);
+  torch::Tensor logits = model->forward(x);
+  logits = F::interpolate(logits, F::InterpolateFuncOptions()
+                                      .size(std::vector<int64_t>{y.size(1), y.size(2)})
+                                      .mode(torch::kBilinear)
+                                      .align_corners(false));
+  torch::Tensor loss = F::cross_entropy(logits, y, F::CrossEntropyFuncOptions().ignore_index(255));
+  optimizer.zero_grad();
+  loss.backward();
+  optimizer.step();
+  return loss.item<double>();
+}
+
+// Segments every validation pair with the model being trained and stores
+// the metrics (mIoU, mFscore, …) in `rec`.
+void ValidateEpoch(Segmenter& validator, const std::vector<SegSample>& val, int num_classes, int epoch,
+                   const ProgressCallback& progress, EpochRecord& rec) {
+  ConfusionMatrix cm(num_classes);
+  for (size_t i = 0; i < val.size(); ++i) {
+    SegPair pair = ReadSegPair(val[i], num_classes);
+    cm.Add(pair.label, validator.Segment(pair.bgr));
+    ReportProgress(progress, {.stage = fmt::format("validate epoch {}", epoch),
+                              .done = static_cast<std::int64_t>(i + 1),
+                              .total = static_cast<std::int64_t>(val.size())});
+  }
+  const SegmentationMetrics m = ComputeMetrics(cm);
+  rec.val_miou = m.miou;
+  rec.val_mfscore = m.mfscore;
+  rec.val_mprecision = m.mprecision;
+  rec.val_mrecall = m.mrecall;
+  rec.val_aacc = m.aacc;
+}
+
 }  // namespace
 
 TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallback& progress, std::stop_token stop) {
@@ -259,31 +319,11 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
         break;
       }
       const std::int64_t step = static_cast<std::int64_t>(epoch - 1) * steps_per_epoch + s;
-      std::vector<cv::Mat> images, labels;
-      for (int b = 0; b < options.batch_size; ++b) {
-        const std::int64_t k = step * options.batch_size + b;
-        const SegSample& sample = split.train[SampleIndex(options.seed, k, split.train.size(), perm, perm_pass)];
-        SegPair pair = ReadSegPair(sample, options.num_classes);
-        std::mt19937_64 rng(options.seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(k));
-        AugmentPair(pair, options.augment, rng);
-        images.push_back(pair.bgr);
-        labels.push_back(pair.label);
-      }
+      const TrainBatch batch = ReadTrainBatch(options, split.train, step, perm, perm_pass);
       lr = LearningRate(options, step, total_steps);
       optimizer.param_groups()[0].options().set_lr(lr);
       optimizer.param_groups()[1].options().set_lr(lr * options.head_lr_mult);
-
-      torch::Tensor x = ImagesToTensor(images), y = LabelsToTensor(labels);
-      torch::Tensor logits = model->forward(x);
-      logits = F::interpolate(logits, F::InterpolateFuncOptions()
-                                          .size(std::vector<int64_t>{y.size(1), y.size(2)})
-                                          .mode(torch::kBilinear)
-                                          .align_corners(false));
-      torch::Tensor loss = F::cross_entropy(logits, y, F::CrossEntropyFuncOptions().ignore_index(255));
-      optimizer.zero_grad();
-      loss.backward();
-      optimizer.step();
-      double l = loss.item<double>();
+      const double l = OptimizerStep(model, optimizer, batch);
       if (!std::isfinite(l)) {
         throw Error(fmt::format("training diverged at epoch {} step {} (loss {}); lower --lr", epoch, s, l));
       }
@@ -301,22 +341,7 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
     rec.lr = lr;
     rec.train_loss = loss_count > 0 ? loss_sum / loss_count : kNaN;
     rec.val_miou = rec.val_mfscore = rec.val_mprecision = rec.val_mrecall = rec.val_aacc = kNaN;
-    if (!split.val.empty()) {
-      ConfusionMatrix cm(options.num_classes);
-      for (size_t i = 0; i < split.val.size(); ++i) {
-        SegPair pair = ReadSegPair(split.val[i], options.num_classes);
-        cm.Add(pair.label, validator->Segment(pair.bgr));
-        ReportProgress(progress, {.stage = fmt::format("validate epoch {}", epoch),
-                                  .done = static_cast<std::int64_t>(i + 1),
-                                  .total = static_cast<std::int64_t>(split.val.size())});
-      }
-      SegmentationMetrics m = ComputeMetrics(cm);
-      rec.val_miou = m.miou;
-      rec.val_mfscore = m.mfscore;
-      rec.val_mprecision = m.mprecision;
-      rec.val_mrecall = m.mrecall;
-      rec.val_aacc = m.aacc;
-    }
+    if (!split.val.empty()) ValidateEpoch(*validator, split.val, options.num_classes, epoch, progress, rec);
     rec.wall_s = wall_offset + std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
     summary.history.push_back(rec);
     bool best = !std::isnan(rec.val_miou) && (std::isnan(summary.best_miou) || rec.val_miou > summary.best_miou);

@@ -5,9 +5,9 @@
 
 #include <fmt/format.h>
 #include <opencv2/calib3d.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
@@ -105,10 +105,15 @@ CalibrationSummary CalibrateStereo(const std::vector<std::filesystem::path>& lef
   for (std::size_t i = 0; i < left.size(); ++i) {
     ReportProgress(progress, {"find boards", static_cast<std::int64_t>(i), static_cast<std::int64_t>(left.size()), ""});
     ViewReport view{left[i].string(), right[i].string()};
-    const cv::Mat l = cv::imread(left[i].string(), cv::IMREAD_GRAYSCALE);
-    const cv::Mat r = cv::imread(right[i].string(), cv::IMREAD_GRAYSCALE);
-    if (l.empty() || r.empty()) {
-      view.reason = fmt::format("cannot read {}", l.empty() ? view.left : view.right);
+    cv::Mat l, r;
+    try {
+      l = ReadGrayImage(left[i]);
+      r = ReadGrayImage(right[i]);
+    } catch (const InputError& e) {
+      view.reason = e.what();
+    }
+    if (!view.reason.empty()) {
+      // Unreadable: skipped like a pair without a board, the reason names the file.
     } else if (l.size() != r.size()) {
       view.reason = fmt::format("left is {}x{}, right {}x{}", l.cols, l.rows, r.cols, r.rows);
     } else if (image_size.width > 0 && l.size() != image_size) {
