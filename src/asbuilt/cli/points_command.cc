@@ -11,7 +11,8 @@
 #include "asbuilt/cli/command.h"
 #include "asbuilt/formats/capture.h"
 #include "asbuilt/formats/points_file.h"
-#include "asbuilt/stereo/frame_points.h"
+#include "asbuilt/formats/points_ply.h"
+#include "asbuilt/stereo/capture_points.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/progress.h"
 

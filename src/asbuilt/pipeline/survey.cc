@@ -16,6 +16,7 @@
 
 #include "asbuilt/pano/pano_views.h"
 #include "asbuilt/pipeline/report.h"
+#include "asbuilt/formats/points_ply.h"
 #include "asbuilt/plan/drawing.h"
 #include "asbuilt/seg/seg_data.h"
 #include "asbuilt/seg/segmenter.h"

@@ -27,7 +27,8 @@
 #include "asbuilt/plan/reconstruct.h"
 #include "asbuilt/plan/room_iou.h"
 #include "asbuilt/plan/score.h"
-#include "asbuilt/stereo/frame_points.h"
+#include "asbuilt/stereo/capture_points.h"
+#include "asbuilt/stereo/cue_choice.h"
 #include "asbuilt/util/progress.h"
 
 namespace asbuilt {

@@ -1,3 +1,5 @@
+#include "asbuilt/stereo/capture_points.h"
+#include "asbuilt/stereo/cue_choice.h"
 #include "asbuilt/stereo/frame_points.h"
 
 #include <algorithm>
