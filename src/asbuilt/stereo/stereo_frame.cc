@@ -10,46 +10,25 @@
 namespace asbuilt {
 namespace fs = std::filesystem;
 
-LabelProvider LabelsFromDirectory(const fs::path& dir) {
-  return [dir](const CaptureFrame& frame, StereoEye eye) -> cv::Mat {
-    const std::string name = fmt::format("{:03d}.png", frame.index);
-    if (eye == StereoEye::kLeft) {
-      const fs::path path = dir / name;
-      if (!fs::exists(path)) {
-        throw InputError(path.string(), "", fmt::format("no labels for frame {} (expected {})", frame.index, name));
-      }
-      return ReadLabelImage(path);
-    }
-    const fs::path path = dir / "right" / name;
-    return fs::exists(path) ? ReadLabelImage(path) : cv::Mat();
-  };
-}
-
-LabelProvider LabelsFromCapture(const Capture& capture) {
-  const fs::path base = capture.base_dir;
-  return [base](const CaptureFrame& frame, StereoEye eye) -> cv::Mat {
-    if (eye != StereoEye::kLeft) return cv::Mat();
-    if (!frame.labels) {
-      throw InputError("capture.json", fmt::format("frames[index {}].labels", frame.index),
-                       "missing (needed with --use-capture-labels)");
-    }
-    return ReadLabelImage(base / *frame.labels);
-  };
-}
-
-StereoFrame LoadStereoFrame(const Capture& capture, const CaptureFrame& frame, const LabelProvider& labels,
-                            const StereoRectifier* rectifier) {
-  StereoFrame out;
+FrameImages ReadFrameImages(const Capture& capture, const CaptureFrame& frame) {
   auto read = [&](const std::string& rel, const char* field) {
     const fs::path path = capture.Resolve(rel);
     cv::Mat image = ReadColourImage(path, fmt::format("frames[index {}].{}", frame.index, field));
     CheckImageSize(image, capture.camera.width, capture.camera.height, path, "", "capture.json's camera");
     return image;
   };
-  out.left = read(frame.left, "left");
-  out.right = read(frame.right, "right");
-  out.labels_left = labels(frame, StereoEye::kLeft);
-  out.labels_right = labels(frame, StereoEye::kRight);
+  FrameImages out{.frame = frame, .left = read(frame.left, "left")};
+  if (capture.kind == CaptureKind::kStereo) out.right = read(frame.right, "right");
+  return out;
+}
+
+StereoFrame MakeStereoFrame(const Capture& capture, FrameImages images, FrameLabels labels,
+                            const StereoRectifier* rectifier) {
+  const CaptureFrame& frame = images.frame;
+  StereoFrame out{.left = std::move(images.left),
+                  .right = std::move(images.right),
+                  .labels_left = std::move(labels.left),
+                  .labels_right = std::move(labels.right)};
   for (const cv::Mat* l : {&out.labels_left, &out.labels_right}) {
     if (!l->empty() && l->size() != out.left.size()) {
       throw InputError(capture.Resolve(frame.left).string(), "labels",
@@ -66,7 +45,7 @@ StereoFrame LoadStereoFrame(const Capture& capture, const CaptureFrame& frame, c
   out.pose = frame.Pose();
   out.index = frame.index;
   if (!capture.rectified) {
-    CheckArgument(rectifier != nullptr, "LoadStereoFrame: an unrectified capture needs a rectifier");
+    CheckArgument(rectifier != nullptr, "MakeStereoFrame: an unrectified capture needs a rectifier");
     out.left = RectifyImage(*rectifier, StereoEye::kLeft, out.left);
     out.right = RectifyImage(*rectifier, StereoEye::kRight, out.right);
     out.labels_left = RectifyImage(*rectifier, StereoEye::kLeft, out.labels_left, Interpolation::kNearest);
@@ -77,6 +56,14 @@ StereoFrame LoadStereoFrame(const Capture& capture, const CaptureFrame& frame, c
     out.baseline_m = rectifier->baseline_m;
   }
   return out;
+}
+
+StereoFrame LoadStereoFrame(const Capture& capture, const CaptureFrame& frame, LabelSource& labels,
+                            const StereoRectifier* rectifier) {
+  std::vector<FrameImages> images = {ReadFrameImages(capture, frame)};
+  std::vector<FrameLabels> labelled = labels.Label(images);
+  CheckArgument(labelled.size() == 1, "LoadStereoFrame: the label source gave no labels");
+  return MakeStereoFrame(capture, std::move(images.front()), std::move(labelled.front()), rectifier);
 }
 
 }  // namespace asbuilt

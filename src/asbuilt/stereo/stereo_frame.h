@@ -2,15 +2,14 @@
 #define ASBUILT_STEREO_STEREO_FRAME_H_
 
 // A capture's frames as the points pass takes them: rectified images with
-// their labels, the camera and the rig pose.
-
-#include <filesystem>
-#include <functional>
+// their labels, the camera and the rig pose; and how they are loaded (each
+// image decoded once, labelled, rectified).
 
 #include <opencv2/core.hpp>
 
 #include "asbuilt/formats/capture.h"
 #include "asbuilt/geometry/rig.h"
+#include "asbuilt/stereo/label_source.h"
 #include "asbuilt/stereo/rectify.h"
 
 namespace asbuilt {
@@ -37,20 +36,21 @@ struct MonoFrame {
   int index = -1;
 };
 
-// Labels for a frame's view: empty Mat when there are none (for the right
-// view, "none" is normal). Images are as the capture's images (unrectified
-// when the capture is); they are rectified with nearest-neighbour lookup.
-using LabelProvider = std::function<cv::Mat(const CaptureFrame& frame, StereoEye eye)>;
-// Left labels from DIR/NNN.png (frame index, three digits); right labels from
-// DIR/right/NNN.png when present. Throws InputError if a left file is missing.
-LabelProvider LabelsFromDirectory(const std::filesystem::path& dir);
-// Left labels from each frame's `labels` key of capture.json.
-LabelProvider LabelsFromCapture(const Capture& capture);
+// Reads a frame's images, each once: left and right of a stereo capture,
+// the one image (`left`) of a mono capture, each checked to be the size of
+// capture.json's camera. Throws InputError naming the file.
+FrameImages ReadFrameImages(const Capture& capture, const CaptureFrame& frame);
 
-// Reads a frame's images and labels, rectifying them when the capture is not
-// rectified (`rectifier` must then be given). Throws InputError for missing
-// or unreadable images and labels, naming the file.
-StereoFrame LoadStereoFrame(const Capture& capture, const CaptureFrame& frame, const LabelProvider& labels,
+// A stereo frame from its decoded images and labels, rectified when the
+// capture is not (`rectifier` must then be given; images with linear,
+// labels with nearest-neighbour lookup). Throws InputError when the left
+// labels are missing or not of the images' size.
+StereoFrame MakeStereoFrame(const Capture& capture, FrameImages images, FrameLabels labels,
+                            const StereoRectifier* rectifier);
+
+// ReadFrameImages → labels → MakeStereoFrame for one frame: for tests and
+// tools that take frames one by one (ComputeCapturePoints batches them).
+StereoFrame LoadStereoFrame(const Capture& capture, const CaptureFrame& frame, LabelSource& labels,
                             const StereoRectifier* rectifier);
 
 }  // namespace asbuilt
