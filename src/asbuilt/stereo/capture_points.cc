@@ -54,8 +54,11 @@ FramePointsResult PointsOfFrame(const FrameFeed& feed, FrameImages images, Frame
   };
   const CaptureFrame frame = images.frame;
   if (!feed.stereo) {
-    CheckArgument(labels.left.size() == images.left.size(),
-                  fmt::format("frame {}: the labels are not of the image's size", frame.index));
+    if (labels.left.size() != images.left.size()) {
+      throw InputError(feed.capture ? feed.capture->Resolve(frame.left).string() : frame.left, "labels",
+                       fmt::format("frame {}: labels are {}x{}, the image is {}x{}", frame.index, labels.left.cols,
+                                   labels.left.rows, images.left.cols, images.left.rows));
+    }
     const auto t = Clock::now();
     const MonoFrame mono{.image = images.left,
                          .labels = labels.left,

@@ -17,12 +17,7 @@ std::vector<FrameLabels> DirectoryLabels::Label(const std::vector<FrameImages>& 
       throw InputError(left.string(), "", fmt::format("no labels for frame {} (expected {})", f.frame.index, name));
     }
     FrameLabels labels{.left = ReadLabelImage(left)};
-    CheckImageSize(labels.left, f.left.cols, f.left.rows, left, "", fmt::format("frame {}'s image", f.frame.index));
-    if (!f.right.empty() && fs::exists(right)) {
-      labels.right = ReadLabelImage(right);
-      CheckImageSize(labels.right, f.right.cols, f.right.rows, right, "",
-                     fmt::format("frame {}'s right image", f.frame.index));
-    }
+    if (!f.right.empty() && fs::exists(right)) labels.right = ReadLabelImage(right);
     out.push_back(std::move(labels));
   }
   return out;
@@ -38,9 +33,7 @@ std::vector<FrameLabels> CaptureLabels::Label(const std::vector<FrameImages>& fr
                        "missing (needed with --use-capture-labels)");
     }
     const fs::path path = base_dir_ / *f.frame.labels;
-    FrameLabels labels{.left = ReadLabelImage(path)};
-    CheckImageSize(labels.left, f.left.cols, f.left.rows, path, "", fmt::format("frame {}'s image", f.frame.index));
-    out.push_back(std::move(labels));
+    out.push_back({.left = ReadLabelImage(path)});
   }
   return out;
 }

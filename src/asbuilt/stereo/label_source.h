@@ -36,8 +36,9 @@ class LabelSource {
   // The most images labelled in one call (a segmenter's batch): the frame
   // loop hands Label() that many images' frames at once. At least 1.
   virtual int BatchImages() const { return 1; }
-  // The labels of each frame, in order. Throws InputError naming a missing,
-  // unreadable or wrongly sized label file.
+  // The labels of each frame, in order (the frame loop checks their size
+  // against the images). Throws InputError naming a missing or unreadable
+  // label file.
   virtual std::vector<FrameLabels> Label(const std::vector<FrameImages>& frames) = 0;
   // What the labels are, for reports: "label images in DIR", "the
   // capture's own exact labels …", "segmenter … at 640x480".
