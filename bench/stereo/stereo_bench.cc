@@ -232,7 +232,7 @@ int main(int argc, char** argv) {
     c.R = cv::Mat::eye(3, 3, CV_64F);
     c.T = (cv::Mat_<double>(3, 1) << -capture.camera.baseline_m, 0, 0);
     const StereoRectifier rectifier = MakeStereoRectifier(c, {});
-    const LabelProvider labels = LabelsFromCapture(capture);
+    CaptureLabels labels(capture);
     std::vector<double> seconds;
     std::size_t points = 0;
     for (const CaptureFrame& f : capture.frames) {

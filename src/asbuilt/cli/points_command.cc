@@ -1,7 +1,8 @@
 // `asbuilt points capture.json --labels DIR -o points/` — world points by
-// class from a stereo capture and its segmentation (stereo/frame_points.h).
+// class from a stereo capture and its segmentation (stereo/capture_points.h).
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -12,7 +13,8 @@
 #include "asbuilt/cli/field_flags.h"
 #include "asbuilt/formats/capture.h"
 #include "asbuilt/formats/points_file.h"
-#include "asbuilt/stereo/frame_points.h"
+#include "asbuilt/formats/points_ply.h"
+#include "asbuilt/stereo/capture_points.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/progress.h"
 
@@ -55,9 +57,14 @@ int RunPointsCommand(int argc, char** argv) {
   options.Check();
 
   const Capture capture = ReadCapture(capture_path);
-  const LabelProvider labels = use_capture_labels ? LabelsFromCapture(capture) : LabelsFromDirectory(labels_dir);
+  std::unique_ptr<LabelSource> labels;
+  if (use_capture_labels) {
+    labels = std::make_unique<CaptureLabels>(capture);
+  } else {
+    labels = std::make_unique<DirectoryLabels>(labels_dir);
+  }
   ProgressPrinter printer;
-  const CapturePointsResult result = ComputeCapturePoints(capture, labels, options, printer.Callback());
+  const CapturePointsResult result = ComputeCapturePoints(capture, *labels, options, nullptr, printer.Callback());
   printer.Finish();
   for (const FrameCues& f : result.frames) fmt::print(stderr, "  {}\n", f.BriefReport());
   if (!result.wall_cue.empty()) spdlog::info("points: {}", result.wall_cue);

@@ -2,9 +2,10 @@
 #define ASBUILT_PIPELINE_SURVEY_H_
 
 // `asbuilt survey`: a capture in, a dimensioned floor plan and a report
-// out. Stereo captures: (rectify) → segment both views → disparity →
+// out. Stereo captures: segment both views → (rectify) → disparity →
 // corners, edges and dense points → world points → plan → drawings →
-// report, and a score when a truth plan is given or lies beside the capture.
+// report, and a score when a truth plan is given or lies beside the capture
+// (docs/survey.md "Structure": the stages, each image decoded once).
 // Mono and panorama captures (formats/capture.h): a panorama is first
 // resampled into level perspective views turning in place at its centre
 // (`panorama_views`); each view is segmented and its walls' floor and
@@ -27,7 +28,7 @@
 #include "asbuilt/plan/reconstruct.h"
 #include "asbuilt/plan/room_iou.h"
 #include "asbuilt/plan/score.h"
-#include "asbuilt/stereo/frame_points.h"
+#include "asbuilt/stereo/capture_points.h"
 #include "asbuilt/util/progress.h"
 
 namespace asbuilt {

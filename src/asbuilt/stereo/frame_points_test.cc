@@ -1,8 +1,11 @@
+#include "asbuilt/stereo/capture_points.h"
+#include "asbuilt/stereo/cue_choice.h"
 #include "asbuilt/stereo/frame_points.h"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -50,7 +53,7 @@ struct RoomFrames {
 RoomFrames LoadRoom(const std::string& room, const std::vector<int>& indices) {
   RoomFrames r;
   r.capture = ReadCapture(RoomDir(room) / "capture.json");
-  const LabelProvider labels = LabelsFromCapture(r.capture);
+  CaptureLabels labels(r.capture);
   for (int i : indices) {
     const CaptureFrame& f = r.capture.frames.at(i);
     r.frames.push_back(LoadStereoFrame(r.capture, f, labels, nullptr));
@@ -58,6 +61,8 @@ RoomFrames LoadRoom(const std::string& room, const std::vector<int>& indices) {
   }
   return r;
 }
+
+// ---- The pass over a frame (frame_points.h)
 
 TEST(ComputeFramePoints, MatchedCornersAgreeWithRenderedDepth) {
   RoomFrames room = LoadRoom("p01_rect_1door_2win", {0, 1, 3, 5, 8});
@@ -205,6 +210,44 @@ TEST(ComputeFramePoints, WallPointsLieOnTruthWallPlanes) {
 // once the capture's frames give the ceiling height, ceiling contacts lie on
 // the truth walls to about a centimetre — where dense stereo is 10× looser —
 // and the height is the truth room height.
+TEST(ComputeFramePoints, BoundaryPointsLieOnTheOpeningsLabelEdges) {
+  std::vector<double> error_m;
+  for (const std::string room : {"p01_rect_1door_2win", "p02_L_shape"}) {
+    RoomFrames r = LoadRoom(room, {0, 1, 2, 7, 8, 9, 11});
+    const Plan truth = ReadPlan(RoomDir(room) / "truth.json");
+    for (const StereoFrame& f : r.frames) {
+      const Vec3 centre = WorldFromCamera(f.pose, f.baseline_m, StereoEye::kLeft).translation();
+      for (const ClassPoint& p : ComputeFramePoints(f, {}).points) {
+        if (p.source != PointSource::kBoundary) continue;
+        // Slide along the viewing ray onto the nearest opening's wall face;
+        // distance along the wall to the nearer label edge.
+        double best = 1e9;
+        for (const PlanOpening& o : truth.openings) {
+          if ((o.kind == OpeningKind::kDoor) != (p.label == LabelClass::kDoor)) continue;
+          const PlanWall& w = truth.walls[o.wall];
+          const Vec2 along = (w.end - w.start).normalized(), inward(-along.y(), along.x());
+          const Vec2 c = centre.head<2>(), ray = p.position_m.head<2>() - c;
+          const double den = inward.dot(ray);
+          if (std::abs(den) < 1e-9) continue;
+          const Vec2 hit = c + (inward.dot(w.start - c) / den) * ray;
+          const double casing = o.kind == OpeningKind::kDoor ? 0.07 : 0.05;
+          const double t = along.dot(hit - w.start), t0 = along.dot(o.start - w.start) - casing,
+                       t1 = along.dot(o.end - w.start) + casing;
+          best = std::min({best, std::abs(t - t0), std::abs(t - t1)});
+        }
+        error_m.push_back(best);
+      }
+    }
+  }
+  std::printf("boundary points %zu: distance to the label edge median %.4f p90 %.4f max %.4f m\n", error_m.size(),
+              Percentile(error_m, 0.5), Percentile(error_m, 0.9), Percentile(error_m, 1.0));
+  ASSERT_GE(error_m.size(), 300u);
+  EXPECT_LE(Percentile(error_m, 0.5), 0.01);
+  EXPECT_LE(Percentile(error_m, 0.9), 0.03);
+}
+
+// ---- Contacts and the ceiling's height (contacts.h)
+
 TEST(ComputeFramePoints, ContactPointsLieOnTruthWallsAndGiveTheCeilingHeight) {
   FramePointsOptions options;
   options.contacts = ContactUse::kAlways;
@@ -355,37 +398,6 @@ TEST(ComputeFramePoints, SnappedCeilingContactsUndoLabelEdgesThatWaveAwayFromThe
 // The Blender rooms' walls carry texture: their stereo holds down each
 // column (the check measures 0.98–0.99 there), so the default contact use
 // keeps it and gives exactly the points of ContactUse::kOff.
-TEST(CapturePoints, KeepsWallStereoWhereItHoldsAndThenGivesTheStereoPoints) {
-  RoomFrames r = LoadRoom("p01_rect_1door_2win", {0, 3, 6, 9});
-  FramePointsOptions automatic, off;
-  ASSERT_EQ(automatic.contacts, ContactUse::kWhereStereoFails);
-  off.contacts = ContactUse::kOff;
-  CapturePoints gathered(automatic);
-  std::size_t off_points = 0, contact_points = 0;
-  for (const StereoFrame& f : r.frames) {
-    FramePointsResult a = ComputeFramePoints(f, automatic);
-    const FramePointsResult o = ComputeFramePoints(f, off);
-    ASSERT_GT(a.cues.stereo_checked, 1000) << f.index;
-    EXPECT_GE(static_cast<double>(a.cues.stereo_agreed) / a.cues.stereo_checked, 0.9) << a.cues.BriefReport();
-    EXPECT_EQ(a.points.size(), o.points.size()) << f.index;
-    contact_points += a.contact_points.size();
-    off_points += o.points.size();
-    gathered.Add(a);
-  }
-  EXPECT_GT(contact_points, 100u) << "the contact alternative is computed too";
-  CapturePoints::Result result = gathered.Finish();
-  EXPECT_FALSE(result.contacts_used) << result.decision;
-  EXPECT_EQ(result.points.size(), off_points);
-  EXPECT_NE(result.decision.find("walls placed by stereo"), std::string::npos) << result.decision;
-}
-
-TEST(ContactUse, NamesRoundTripAndBadNamesAreRefused) {
-  for (ContactUse use : {ContactUse::kOff, ContactUse::kWhereStereoFails, ContactUse::kAlways}) {
-    EXPECT_EQ(ParseContactUse(ContactUseName(use)), use);
-  }
-  EXPECT_THROW(ParseContactUse("sometimes"), InvalidArgument);
-}
-
 TEST(CeilingHeightFromSamples, TakesTheDenseClusterNotTheSpreadAbove) {
   std::vector<double> samples;
   for (int i = 0; i < 100; ++i) samples.push_back(2.60 + 0.002 * ((i % 7) - 3));  // True: 2.60 ± 6 mm.
@@ -568,54 +580,122 @@ TEST(PendingContacts, DropsCeilingContactsThatAFrameBesideSeesWallAbove) {
 // Opening label edges land on the wall at the casing's outer edge — also
 // beside p02's open door leaf, whose silhouette against the wall is an
 // occlusion and must give no boundary points.
-TEST(ComputeFramePoints, BoundaryPointsLieOnTheOpeningsLabelEdges) {
-  std::vector<double> error_m;
-  for (const std::string room : {"p01_rect_1door_2win", "p02_L_shape"}) {
-    RoomFrames r = LoadRoom(room, {0, 1, 2, 7, 8, 9, 11});
-    const Plan truth = ReadPlan(RoomDir(room) / "truth.json");
-    for (const StereoFrame& f : r.frames) {
-      const Vec3 centre = WorldFromCamera(f.pose, f.baseline_m, StereoEye::kLeft).translation();
-      for (const ClassPoint& p : ComputeFramePoints(f, {}).points) {
-        if (p.source != PointSource::kBoundary) continue;
-        // Slide along the viewing ray onto the nearest opening's wall face;
-        // distance along the wall to the nearer label edge.
-        double best = 1e9;
-        for (const PlanOpening& o : truth.openings) {
-          if ((o.kind == OpeningKind::kDoor) != (p.label == LabelClass::kDoor)) continue;
-          const PlanWall& w = truth.walls[o.wall];
-          const Vec2 along = (w.end - w.start).normalized(), inward(-along.y(), along.x());
-          const Vec2 c = centre.head<2>(), ray = p.position_m.head<2>() - c;
-          const double den = inward.dot(ray);
-          if (std::abs(den) < 1e-9) continue;
-          const Vec2 hit = c + (inward.dot(w.start - c) / den) * ray;
-          const double casing = o.kind == OpeningKind::kDoor ? 0.07 : 0.05;
-          const double t = along.dot(hit - w.start), t0 = along.dot(o.start - w.start) - casing,
-                       t1 = along.dot(o.end - w.start) + casing;
-          best = std::min({best, std::abs(t - t0), std::abs(t - t1)});
-        }
-        error_m.push_back(best);
-      }
-    }
+// ---- The wall cue (cue_choice.h)
+
+TEST(CapturePoints, KeepsWallStereoWhereItHoldsAndThenGivesTheStereoPoints) {
+  RoomFrames r = LoadRoom("p01_rect_1door_2win", {0, 3, 6, 9});
+  FramePointsOptions automatic, off;
+  ASSERT_EQ(automatic.contacts, ContactUse::kWhereStereoFails);
+  off.contacts = ContactUse::kOff;
+  CapturePoints gathered(automatic);
+  std::size_t off_points = 0, contact_points = 0;
+  for (const StereoFrame& f : r.frames) {
+    FramePointsResult a = ComputeFramePoints(f, automatic);
+    const FramePointsResult o = ComputeFramePoints(f, off);
+    ASSERT_GT(a.cues.stereo_checked, 1000) << f.index;
+    EXPECT_GE(static_cast<double>(a.cues.stereo_agreed) / a.cues.stereo_checked, 0.9) << a.cues.BriefReport();
+    EXPECT_EQ(a.points.size(), o.points.size()) << f.index;
+    contact_points += a.contact_points.size();
+    off_points += o.points.size();
+    gathered.Add(a);
   }
-  std::printf("boundary points %zu: distance to the label edge median %.4f p90 %.4f max %.4f m\n", error_m.size(),
-              Percentile(error_m, 0.5), Percentile(error_m, 0.9), Percentile(error_m, 1.0));
-  ASSERT_GE(error_m.size(), 300u);
-  EXPECT_LE(Percentile(error_m, 0.5), 0.01);
-  EXPECT_LE(Percentile(error_m, 0.9), 0.03);
+  EXPECT_GT(contact_points, 100u) << "the contact alternative is computed too";
+  CapturePoints::Result result = gathered.Finish();
+  EXPECT_FALSE(result.contacts_used) << result.decision;
+  EXPECT_EQ(result.points.size(), off_points);
+  EXPECT_NE(result.decision.find("walls placed by stereo"), std::string::npos) << result.decision;
 }
 
-TEST(LabelsFromDirectory, MissingFileNamesTheFile) {
-  const LabelProvider labels = LabelsFromDirectory("/nonexistent-labels");
-  CaptureFrame frame;
-  frame.index = 7;
+TEST(ContactUse, NamesRoundTripAndBadNamesAreRefused) {
+  for (ContactUse use : {ContactUse::kOff, ContactUse::kWhereStereoFails, ContactUse::kAlways}) {
+    EXPECT_EQ(ParseContactUse(ContactUseName(use)), use);
+  }
+  EXPECT_THROW(ParseContactUse("sometimes"), InvalidArgument);
+}
+
+// ---- Loading: label sources and the capture loop (label_source.h, capture_points.h)
+
+TEST(DirectoryLabels, MissingFileNamesTheFile) {
+  DirectoryLabels labels("/nonexistent-labels");
+  FrameImages frame{.left = cv::Mat(4, 4, CV_8UC3), .right = cv::Mat(4, 4, CV_8UC3)};
+  frame.frame.index = 7;
   try {
-    labels(frame, StereoEye::kLeft);
+    labels.Label({frame});
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("007.png"), std::string::npos) << e.what();
   }
-  EXPECT_TRUE(labels(frame, StereoEye::kRight).empty());
 }
+
+// Counts what the frame loop hands it, and what the loop reports back.
+class CountingLabels final : public LabelSource, public FrameObserver {
+ public:
+  explicit CountingLabels(const Capture& capture) : inner_(capture) {}
+  int BatchImages() const override { return 4; }
+  std::vector<FrameLabels> Label(const std::vector<FrameImages>& frames) override {
+    batches.push_back(frames.size());
+    for (const FrameImages& f : frames) {
+      EXPECT_FALSE(f.left.empty());
+      EXPECT_FALSE(f.right.empty());
+    }
+    return inner_.Label(frames);
+  }
+  std::string Describe() const override { return "counting"; }
+  void OnStage(const std::string& stage, double) override { ++stages[stage]; }
+  void OnFrame(const CaptureFrame& frame, const cv::Mat& image, const cv::Mat& labels,
+               const FramePointsResult&) override {
+    seen.push_back(frame.index);
+    EXPECT_EQ(image.size(), labels.size());
+  }
+  std::vector<std::size_t> batches;
+  std::vector<int> seen;
+  std::map<std::string, int> stages;
+
+ private:
+  CaptureLabels inner_;
+};
+
+TEST(ComputeCapturePoints, LabelsTwoStereoFramesABatchAndShowsTheObserverEachFrameOnce) {
+  Capture capture = ReadCapture(RoomDir("p01_rect_1door_2win") / "capture.json");
+  capture.frames.resize(3);
+  CountingLabels counting(capture);
+  FramePointsOptions options;
+  options.use_dense = false;
+  const CapturePointsResult r = ComputeCapturePoints(capture, counting, options, &counting);
+  EXPECT_EQ(counting.batches, (std::vector<std::size_t>{2, 1}));
+  EXPECT_EQ(counting.seen.size(), 3u);
+  EXPECT_EQ(r.frames.size(), 3u);
+  EXPECT_EQ(counting.stages["read images"], 2);
+  EXPECT_EQ(counting.stages["load labels"], 2);
+  EXPECT_EQ(counting.stages["disparity"], 3);
+  EXPECT_FALSE(r.points.empty());
+}
+
+TEST(ComputeCapturePoints, RefusesACalibrationForAnotherImageSize) {
+  const fs::path dir = fs::temp_directory_path() / "asbuilt_capture_points_calibration";
+  fs::create_directories(dir);
+  Capture capture = ReadCapture(RoomDir("p01_rect_1door_2win") / "capture.json");
+  StereoCalibration calibration;
+  calibration.image_size = cv::Size(capture.camera.width / 2, capture.camera.height / 2);
+  calibration.K1 = (cv::Mat_<double>(3, 3) << 100, 0, 80, 0, 100, 60, 0, 0, 1);
+  calibration.K2 = calibration.K1.clone();
+  calibration.D1 = cv::Mat::zeros(1, 5, CV_64F);
+  calibration.D2 = calibration.D1.clone();
+  calibration.R = cv::Mat::eye(3, 3, CV_64F);
+  calibration.T = (cv::Mat_<double>(3, 1) << -0.12, 0, 0);
+  WriteCalibration(calibration, dir / "calibration.yaml");
+  capture.rectified = false;
+  capture.calibration = (dir / "calibration.yaml").string();
+  CaptureLabels labels(capture);
+  try {
+    ComputeCapturePoints(capture, labels, {});
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("calibration is for"), std::string::npos) << e.what();
+  }
+}
+
+// ---- Options (frame_points_options.h)
 
 TEST(FramePointsOptions, RejectsBadFieldsByName) {
   FramePointsOptions o;

@@ -1,0 +1,45 @@
+#ifndef ASBUILT_PIPELINE_SEGMENTER_LABELS_H_
+#define ASBUILT_PIPELINE_SEGMENTER_LABELS_H_
+
+// The segmenter (seg/) as a frame loop's LabelSource (stereo/label_source.h):
+// it labels the images the loop has already decoded, both views of a stereo
+// frame, several frames in one batched forward pass.
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "asbuilt/seg/segmenter.h"
+#include "asbuilt/stereo/label_source.h"
+
+namespace asbuilt {
+
+class SegmenterLabels final : public LabelSource {
+ public:
+  // Loads the model at `model` to segment at `scale_px` (width, height;
+  // {0, 0}: its training scale), or, unset, at the images' own size
+  // `image_size` up to twice the model's training scale. Throws Error when
+  // this build has no segmenter, InputError for a bad model file.
+  SegmenterLabels(const std::filesystem::path& model, std::optional<std::pair<int, int>> scale_px,
+                  cv::Size image_size);
+
+  // Four images a pass (two stereo frames): per image the fastest batch of
+  // the shipped model on CPU (docs/survey.md "Structure").
+  int BatchImages() const override { return 4; }
+  std::vector<FrameLabels> Label(const std::vector<FrameImages>& frames) override;
+  std::string Describe() const override { return description_; }
+  std::string StageName() const override { return "segment"; }
+
+ private:
+  std::unique_ptr<Segmenter> segmenter_;
+  std::string description_;
+};
+
+}  // namespace asbuilt
+
+#endif  // ASBUILT_PIPELINE_SEGMENTER_LABELS_H_
