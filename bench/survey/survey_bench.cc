@@ -184,7 +184,7 @@ int main(int argc, char** argv) {
   }
 
   // Stages in pipeline order (as RunSurvey lists them), then the rest.
-  std::vector<std::string> order = {"read capture", "load model", "load + rectify", "segment", "disparity",
+  std::vector<std::string> order = {"read capture", "load model", "read images", "rectify", "segment", "disparity",
                                     "corners + points", "report pictures", "plan", "write outputs",
                                     "report (html)"};
   for (const Runs& r : runs)
