@@ -22,17 +22,11 @@ namespace {
 // still count, sparse strays do not. Edges are the outermost points of the
 // outermost bins.
 std::pair<double, double> BinnedExtent(const std::vector<double>& ts, double rel_level, double max_gap) {
-  const double bin = 0.02;
-  const double t0 = ts.front();
-  const int nbins = static_cast<int>((ts.back() - t0) / bin) + 1;
-  std::vector<int> counts(nbins, 0);
-  for (double t : ts) counts[std::min(nbins - 1, static_cast<int>((t - t0) / bin))]++;
-  std::vector<int> filled;
-  for (int c : counts) {
-    if (c > 0) filled.push_back(c);
-  }
-  std::sort(filled.begin(), filled.end());
-  const double level = std::max(2.0, rel_level * filled[filled.size() * 3 / 4]);
+  const BinnedPositions binned = BinPositions(ts, 0.02);
+  const double bin = binned.bin_m, t0 = binned.t0;
+  const std::vector<int>& counts = binned.counts;
+  const int nbins = static_cast<int>(counts.size());
+  const double level = std::max(2.0, rel_level * binned.WellFilled());
   const int peak = static_cast<int>(std::max_element(counts.begin(), counts.end()) - counts.begin());
   const int max_skip = static_cast<int>(max_gap / bin);
   int lo = peak, hi = peak;

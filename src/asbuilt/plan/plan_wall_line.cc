@@ -26,6 +26,23 @@ double Votes(const std::vector<WallPoint>& points, const std::vector<int>& idx) 
   return v;
 }
 
+BinnedPositions BinPositions(const std::vector<double>& ts, double bin_m) {
+  BinnedPositions binned{.t0 = ts.front(), .bin_m = bin_m};
+  const int nbins = static_cast<int>((ts.back() - binned.t0) / bin_m) + 1;
+  binned.counts.assign(nbins, 0);
+  for (double t : ts) binned.counts[std::min(nbins - 1, static_cast<int>((t - binned.t0) / bin_m))]++;
+  return binned;
+}
+
+int BinnedPositions::WellFilled() const {
+  std::vector<int> filled;
+  for (int c : counts) {
+    if (c > 0) filled.push_back(c);
+  }
+  std::sort(filled.begin(), filled.end());
+  return filled[filled.size() * 3 / 4];
+}
+
 std::vector<std::pair<size_t, size_t>> DenseRuns(const std::vector<double>& ts, double max_gap) {
   std::vector<std::pair<size_t, size_t>> runs;
   if (ts.empty()) return runs;
@@ -38,17 +55,11 @@ std::vector<std::pair<size_t, size_t>> DenseRuns(const std::vector<double>& ts, 
     }
     return runs;
   }
-  const double bin = 0.1;
-  const double t0 = ts.front();
-  const int nbins = static_cast<int>((ts.back() - t0) / bin) + 1;
-  std::vector<int> counts(nbins, 0);
-  for (double t : ts) counts[std::min(nbins - 1, static_cast<int>((t - t0) / bin))]++;
-  std::vector<int> filled;
-  for (int c : counts) {
-    if (c > 0) filled.push_back(c);
-  }
-  std::sort(filled.begin(), filled.end());
-  const double level = std::max(2.0, 0.1 * filled[filled.size() * 3 / 4]);
+  const BinnedPositions binned = BinPositions(ts, 0.1);
+  const double bin = binned.bin_m, t0 = binned.t0;
+  const std::vector<int>& counts = binned.counts;
+  const int nbins = static_cast<int>(counts.size());
+  const double level = std::max(2.0, 0.1 * binned.WellFilled());
   int run_first = -1, run_last = -1;
   auto emit = [&]() {
     if (run_first < 0) return;

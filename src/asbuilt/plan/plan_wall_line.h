@@ -79,6 +79,18 @@ double SortedQuantile(const std::vector<double>& sorted, double q);
 // Σ of the votes of points[idx[i]].
 double Votes(const std::vector<WallPoint>& points, const std::vector<int>& idx);
 
+// Sorted positions `ts` (non-empty) counted in bins of `bin_m` starting at
+// ts.front() (the last bin also takes ts.back()).
+struct BinnedPositions {
+  double t0 = 0.0;
+  double bin_m = 0.0;
+  std::vector<int> counts;
+  // The count of a well-filled bin: the 75th percentile of the non-empty
+  // bins' counts.
+  int WellFilled() const;
+};
+BinnedPositions BinPositions(const std::vector<double>& ts, double bin_m);
+
 // Dense runs of sorted positions `ts` along a line (m), as index ranges
 // [begin, end). Positions are binned (10 cm); a bin is part of the wall when
 // it holds at least a tenth of a well-filled bin (the 75th percentile), so
