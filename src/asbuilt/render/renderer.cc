@@ -24,6 +24,7 @@ constexpr float kEpsilon = 2e-4f;   // Ray offset from surfaces (metres).
 constexpr float kFar = 1e5f;
 constexpr float kGlassTransmission = 0.85f;
 constexpr float kGlassReflection = 0.06f;
+constexpr float kMirrorReflection = 0.9f;
 constexpr int kAmbientScale = 1;
 
 // Small fast generator, seeded per pixel so results do not depend on threads.
@@ -439,6 +440,13 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
                 extra_sum += throughput.cwiseProduct(kGlassReflection * im.Sky(refl));
                 throughput = throughput.cwiseProduct(
                     kGlassTransmission * im.mesh.materials[o.material].base_color.cast<float>());
+                origin = p;
+                continue;
+              }
+              if (o.role == SurfaceRole::kMirror) {
+                // Silvered glass: on along the reflected ray, tinted by the material.
+                dir = dir - 2.0f * dir.dot(n) * n;
+                throughput = throughput.cwiseProduct(kMirrorReflection * im.mesh.materials[o.material].base_color.cast<float>());
                 origin = p;
                 continue;
               }
