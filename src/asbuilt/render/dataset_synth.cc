@@ -76,7 +76,8 @@ bool ClearSightline(const Scene& scene, const Vec2& p, const Vec2& q) {
 }
 
 // A close view (SynthLevers::close_views): 0.4–1.5 m in front of a plain
-// stretch of wall (clear of openings by 0.5 m) or into a convex corner, at
+// stretch of wall (clear of openings by 0.5 m) or into a convex corner (no
+// opening within 1 m of it), at
 // eye or rig height (1.2–1.75 m), level or pitched up (5–45°) so that the
 // wall–ceiling edge is in the upper part of the frame, with nothing in
 // between. False when no spot is found.
@@ -96,6 +97,15 @@ bool PlanCloseView(SceneRng& rng, const Scene& scene, SynthItem& item) {
       const Vec2 prev = room.polygon[(wall + n - 1) % n];
       const Vec2 d_prev = (a - prev).normalized();
       if (d_prev.x() * d.y() - d_prev.y() * d.x() <= 0.1) continue;
+      const int prev_wall = (wall + n - 1) % n;
+      const double prev_len = (a - prev).norm();
+      bool plain = true;
+      for (const Opening& o : room.openings) {
+        if ((o.wall == wall && o.offset_m < 1.0) || (o.wall == prev_wall && o.offset_m + o.width_m > prev_len - 1.0)) {
+          plain = false;  // An opening within 1 m of the corner.
+        }
+      }
+      if (!plain) continue;
       const Vec2 bisector = (d - d_prev).normalized();
       target2 = a;
       cam2 = a + (dist + 0.3) * bisector;
