@@ -18,6 +18,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kMinWallClearanceM = 0.3;
+constexpr double kCloseViewShare = 0.3;  // Of all views, with the close_views lever.
 
 double DistanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
   Vec2 ab = b - a;
@@ -59,6 +60,91 @@ Vec2 Centroid(const std::vector<Vec2>& poly) {
   return c / std::max<std::size_t>(poly.size(), 1);
 }
 
+// True when the floor-plan segment p–q crosses no furniture footprint (grown by 0.1 m).
+bool ClearSightline(const Scene& scene, const Vec2& p, const Vec2& q) {
+  for (const Furniture& f : scene.furniture) {
+    double y = DegToRad(f.yaw_deg);
+    Vec2 ex(std::cos(y), std::sin(y)), ey(-std::sin(y), std::cos(y));
+    for (int k = 0; k <= 20; ++k) {
+      Vec2 r = p + (k / 20.0) * (q - p) - f.centre_m;
+      if (std::abs(r.dot(ex)) < 0.5 * f.size_m.x() + 0.1 && std::abs(r.dot(ey)) < 0.5 * f.size_m.y() + 0.1) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+// A close view (SynthLevers::close_views): 0.4–1.5 m in front of a plain
+// stretch of wall (clear of openings by 0.5 m) or into a convex corner (no
+// opening within 1 m of it), at
+// eye or rig height (1.2–1.75 m), level or pitched up (5–45°) so that the
+// wall–ceiling edge is in the upper part of the frame, with nothing in
+// between. False when no spot is found.
+bool PlanCloseView(SceneRng& rng, const Scene& scene, SynthItem& item) {
+  const Room& room = scene.rooms.at(0);
+  const int n = static_cast<int>(room.polygon.size());
+  for (int attempt = 0; attempt < 40; ++attempt) {
+    const int wall = rng.UniformInt(0, n - 1);
+    const Vec2 a = room.polygon[wall], b = room.polygon[(wall + 1) % n];
+    const double len = (b - a).norm();
+    const Vec2 d = (b - a) / len;
+    const Vec2 inward(-d.y(), d.x());
+    const double dist = rng.Uniform(0.4, 1.5);
+    Vec2 cam2, target2;
+    if (rng.Chance(0.3)) {
+      // Into the corner at the wall's start, along the bisector of a convex corner.
+      const Vec2 prev = room.polygon[(wall + n - 1) % n];
+      const Vec2 d_prev = (a - prev).normalized();
+      if (d_prev.x() * d.y() - d_prev.y() * d.x() <= 0.1) continue;
+      const int prev_wall = (wall + n - 1) % n;
+      const double prev_len = (a - prev).norm();
+      bool plain = true;
+      for (const Opening& o : room.openings) {
+        if ((o.wall == wall && o.offset_m < 1.0) || (o.wall == prev_wall && o.offset_m + o.width_m > prev_len - 1.0)) {
+          plain = false;  // An opening within 1 m of the corner.
+        }
+      }
+      if (!plain) continue;
+      const Vec2 bisector = (d - d_prev).normalized();
+      target2 = a;
+      cam2 = a + (dist + 0.3) * bisector;
+      item.target = "corner";
+    } else {
+      if (len < 1.2) continue;
+      const double s = rng.Uniform(0.5, len - 0.5);
+      bool plain = true;
+      for (const Opening& o : room.openings) {
+        if (o.wall == wall && s > o.offset_m - 0.5 - 0.5 * dist && s < o.offset_m + o.width_m + 0.5 + 0.5 * dist) {
+          plain = false;
+        }
+      }
+      if (!plain) continue;
+      target2 = a + s * d;
+      const double side = DegToRad(rng.Uniform(-25.0, 25.0));
+      cam2 = target2 + dist * (std::cos(side) * inward + std::sin(side) * d);
+      item.target = "close_wall";
+    }
+    const Vec3 cam(cam2.x(), cam2.y(), std::min(rng.Uniform(1.2, 1.75), room.height_m - 0.4));
+    if (!FreeSpot(scene, room, cam) || !ClearSightline(scene, cam2, target2)) continue;
+    const Vec2 v = target2 - cam2;
+    item.kind = "photo";
+    item.camera.viewpoint.position_m = cam;
+    item.camera.viewpoint.yaw_deg = RadToDeg(std::atan2(-v.x(), v.y())) + rng.Uniform(-10.0, 10.0);
+    if (rng.Chance(0.5)) {
+      item.camera.viewpoint.pitch_deg = rng.Uniform(-5.0, 5.0);
+    } else {
+      // Up, so that the wall–ceiling edge is in the upper part of the frame.
+      const PinholeCamera& k = item.camera.camera;
+      const double half_vfov = RadToDeg(std::atan(0.5 * k.height_px / k.fy));
+      const double edge = RadToDeg(std::atan2(room.height_m - cam.z(), v.norm()));
+      item.camera.viewpoint.pitch_deg = std::clamp(edge - rng.Uniform(0.2, 0.8) * half_vfov, 5.0, 45.0);
+    }
+    return true;
+  }
+  return false;
+}
+
 nlohmann::json Vec3Json(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 template <typename T>
@@ -73,7 +159,9 @@ std::vector<std::pair<std::string, bool SynthLevers::*>> LeverFields() {
           {"home_palette", &SynthLevers::home_palette},     {"sunlight", &SynthLevers::sunlight},
           {"kitchens", &SynthLevers::kitchens},
           {"wall_details", &SynthLevers::wall_details},     {"window_dressing", &SynthLevers::window_dressing},
-          {"phone_camera", &SynthLevers::phone_camera}};
+          {"phone_camera", &SynthLevers::phone_camera},     {"glass_doors", &SynthLevers::glass_doors},
+          {"close_views", &SynthLevers::close_views},       {"ceiling_like_walls", &SynthLevers::ceiling_like_walls},
+          {"wall_art", &SynthLevers::wall_art}};
 }
 
 }  // namespace
@@ -144,6 +232,9 @@ RandomSceneOptions LeveredSceneOptions(const DatasetSynthOptions& options) {
   if (l.kitchens) at_least(o.kitchen_probability, 0.35);
   if (l.wall_details) at_least(o.wall_details_probability, 0.7);
   if (l.window_dressing) at_least(o.window_dressing_probability, 0.5);
+  if (l.glass_doors) at_least(o.glazed_door_probability, 0.3);
+  if (l.ceiling_like_walls) at_least(o.ceiling_like_walls_probability, 0.5);
+  if (l.wall_art) at_least(o.wall_art_probability, 0.6);
   return o;
 }
 
@@ -269,6 +360,19 @@ std::uint64_t SynthSceneSeed(const DatasetSynthOptions& options, int index) {
 }
 
 SynthItem PlanSynthItem(const DatasetSynthOptions& options, const Scene& scene, int index) {
+  if (options.levers.close_views) {
+    // Own stream: with the lever off, items are exactly as before.
+    SceneRng close(SplitMix64(options.seed * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(index) + 0xC105E));
+    if (close.Chance(kCloseViewShare)) {
+      SynthItem item;
+      item.index = index;
+      item.scene_seed = scene.seed;
+      double hfov = close.Uniform(options.min_hfov_deg, options.max_hfov_deg);
+      item.camera.camera = PinholeCamera::FromHorizontalFov(options.width_px, options.height_px, hfov);
+      item.camera.baseline_m = scene.rig.baseline_m;
+      if (PlanCloseView(close, scene, item)) return item;
+    }
+  }
   SceneRng rng(SplitMix64(options.seed * 0x100000001B3ULL + static_cast<std::uint64_t>(index)));
   SynthItem item;
   item.index = index;

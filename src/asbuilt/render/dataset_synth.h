@@ -52,6 +52,12 @@ struct SynthLevers {
   bool window_dressing = false;  // Half the windows: curtains (label 0) or a roller blind in the opening (window).
   bool phone_camera = false;     // RenderOptions::phone_camera: wider exposure/noise/JPEG, chromatic
                                  // aberration, sharpening, saturation.
+  bool glass_doors = false;      // 30 % of doors glazed to the floor (patio / French doors), the outside
+                                 // seen through them; label door over the whole opening.
+  bool close_views = false;      // 30 % of views 0.4–1.5 m from a plain wall or into a corner, level or
+                                 // pitched up to the wall–ceiling edge: the wall fills the frame.
+  bool ceiling_like_walls = false;  // Half the rooms: the ceiling in the walls' paint, soft fill light.
+  bool wall_art = false;         // 60 % of rooms: framed pictures, mirrors, a TV on the walls (label 0).
 
   bool Any() const;
   // Comma-separated names of the levers that are on, or "none".
@@ -106,12 +112,13 @@ struct SynthItem {
   int index = 0;
   std::uint64_t scene_seed = 0;
   std::string kind;  // "photo" or "rig".
-  std::string target;  // "wall", "door", "window" (photo views) or "turn".
+  std::string target;  // "wall", "door", "window", "close_wall", "corner" (photo views) or "turn".
   StereoCamera camera;
 };
 SynthItem PlanSynthItem(const DatasetSynthOptions& options, const Scene& scene, int index);
 // The scene options with the scene-side levers turned on (door_leaves,
-// next_rooms' open doors, sunlight, kitchens, wall_details, window_dressing).
+// next_rooms' open doors, sunlight, kitchens, wall_details, window_dressing,
+// glass_doors, ceiling_like_walls, wall_art).
 RandomSceneOptions LeveredSceneOptions(const DatasetSynthOptions& options);
 // The look of a scene under the render-side levers (photo_textures,
 // outside_photos, next_rooms), drawn from `seed`; may add materials to

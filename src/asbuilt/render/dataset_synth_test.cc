@@ -4,12 +4,14 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 
 #include <opencv2/imgcodecs.hpp>
 
 #include <fmt/format.h>
 
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/imageio/image_io.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
@@ -70,6 +72,43 @@ TEST(PlanSynthItem, PhotoViewsStandInsideTheRoomFacingTheirTarget) {
   EXPECT_GT(photos, 20);
 }
 
+TEST(PlanSynthItem, CloseViewsFillTheFrameWithWallAndLeaveOtherItemsAlone) {
+  DatasetSynthOptions off = TinyOptions(), on = TinyOptions();
+  on.levers.close_views = true;
+  int close = 0, corners = 0, pitched = 0, ceiling_on_top = 0;
+  double wall_fraction = 0.0;
+  for (std::uint64_t seed = 0; seed < 6; ++seed) {
+    Scene scene = RandomScene(on.scene, seed);
+    SceneRenderer renderer(scene);
+    for (int i = 0; i < 20; ++i) {
+      SynthItem a = PlanSynthItem(off, scene, i), b = PlanSynthItem(on, scene, i);
+      if (b.target != "close_wall" && b.target != "corner") {
+        EXPECT_EQ(a.camera.viewpoint.position_m, b.camera.viewpoint.position_m);  // Not chosen: as before.
+        continue;
+      }
+      ++close;
+      corners += b.target == "corner";
+      EXPECT_EQ(b.kind, "photo");
+      EXPECT_GE(b.camera.viewpoint.pitch_deg, -5.0);
+      EXPECT_LE(b.camera.viewpoint.pitch_deg, 45.0);
+      RenderedView v = renderer.Render(b.camera, {.samples_per_pixel = 1, .camera_effects = 0.0}, i, false);
+      const cv::Mat labels = AsMat(v.labels);
+      wall_fraction += cv::countNonZero(labels == kLabelWall) / static_cast<double>(labels.total());
+      if (b.camera.viewpoint.pitch_deg > 5.0) {
+        // Pitched up: the ceiling (background) is in the top row, the wall below it.
+        ++pitched;
+        ceiling_on_top += cv::countNonZero(labels.row(0) == kLabelBackground) > labels.cols / 2;
+      }
+    }
+  }
+  EXPECT_GT(close, 20);  // 30 % of 120.
+  EXPECT_GT(corners, 3);
+  EXPECT_GT(wall_fraction / close, 0.6) << "mean wall share of a close view";
+  EXPECT_GT(ceiling_on_top, pitched * 3 / 4);
+  std::printf("close views: %d (%d corners, %d pitched up, %d with the ceiling on top), mean wall share %.3f\n",
+              close, corners, pitched, ceiling_on_top, wall_fraction / close);
+}
+
 TEST(SynthesizeDataset, ShardUnionEqualsTheWholeRunAndResumes) {
   fs::path root = fs::path(ASBUILT_BINARY_DIR) / "render_test_synth";
   fs::remove_all(root);
@@ -104,10 +143,10 @@ TEST(ParseSynthLevers, ReadsAllNoneAndListsAndNamesAnUnknownLever) {
   EXPECT_EQ(ParseSynthLevers("none").ToString(), "none");
   EXPECT_EQ(ParseSynthLevers("all").ToString(),
             "photo_textures,outside_photos,next_rooms,door_leaves,home_palette,sunlight,kitchens,wall_details,"
-            "window_dressing,phone_camera");
-  EXPECT_EQ(ParseSynthLevers("all,-sunlight,-phone_camera").ToString(),
+            "window_dressing,phone_camera,glass_doors,close_views,ceiling_like_walls,wall_art");
+  EXPECT_EQ(ParseSynthLevers("all,-sunlight,-phone_camera,-wall_art").ToString(),
             "photo_textures,outside_photos,next_rooms,door_leaves,home_palette,kitchens,wall_details,"
-            "window_dressing");
+            "window_dressing,glass_doors,close_views,ceiling_like_walls");
   EXPECT_EQ(ParseSynthLevers("kitchens,door_leaves").ToString(), "door_leaves,kitchens");
   try {
     ParseSynthLevers("kitchens,skylights");

@@ -24,6 +24,7 @@ constexpr float kEpsilon = 2e-4f;   // Ray offset from surfaces (metres).
 constexpr float kFar = 1e5f;
 constexpr float kGlassTransmission = 0.85f;
 constexpr float kGlassReflection = 0.06f;
+constexpr float kMirrorReflection = 0.9f;
 constexpr int kAmbientScale = 1;
 
 // Small fast generator, seeded per pixel so results do not depend on threads.
@@ -433,12 +434,13 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
               Vec3f p = origin + dir * hit.t;
               travelled += hit.t;
               Vec3f n = hit.geometric_normal.dot(dir) > 0 ? Vec3f(-hit.geometric_normal) : hit.geometric_normal;
-              if (o.role == SurfaceRole::kGlass) {
-                // Pane: a faint sky reflection, then on through it.
-                Vec3f refl = dir - 2.0f * dir.dot(n) * n;
-                extra_sum += throughput.cwiseProduct(kGlassReflection * im.Sky(refl));
-                throughput = throughput.cwiseProduct(
-                    kGlassTransmission * im.mesh.materials[o.material].base_color.cast<float>());
+              if (o.role == SurfaceRole::kGlass || o.role == SurfaceRole::kMirror) {
+                // Pane: a faint sky reflection, then on through it. Mirror: on along the reflection.
+                const bool mirror = o.role == SurfaceRole::kMirror;
+                const Vec3f refl = dir - 2.0f * dir.dot(n) * n, tint = im.mesh.materials[o.material].base_color.cast<float>();
+                if (!mirror) extra_sum += throughput.cwiseProduct(kGlassReflection * im.Sky(refl));
+                throughput = throughput.cwiseProduct((mirror ? kMirrorReflection : kGlassTransmission) * tint);
+                dir = mirror ? refl : dir;
                 origin = p;
                 continue;
               }

@@ -296,6 +296,65 @@ TEST(Render, PhotosAndANextRoomChangeColoursNotLabels) {
   }
 }
 
+TEST(Render, AGlazedDoorIsDoorOverItsWholeOpeningAndShowsTheOutside) {
+  Scene solid = TestRoom(), glazed = TestRoom();
+  glazed.rooms[0].openings[0].glazed = true;
+  for (const MeshObject& o : BuildSceneMesh(glazed).objects) {
+    EXPECT_EQ(o.name.find("closet"), std::string::npos) << o.name;  // Nothing walls off the view outside.
+    if (o.role == SurfaceRole::kGlass && o.name.find("door") != std::string::npos) EXPECT_EQ(o.label, kLabelDoor);
+  }
+  StereoCamera cam = SmallCamera({Vec3(2.35, 0.6, 1.2), 0.0, 0.0}, 60.0);
+  RenderedView a = SceneRenderer(solid).Render(cam, FastOptions(), 0, false);
+  RenderedView b = SceneRenderer(glazed).Render(cam, FastOptions(), 0, false);
+  // Same labels: door over the opening with its casing, glass, frame and all.
+  EXPECT_TRUE(a.labels.SamePixels(b.labels));
+  // Through the pane (upper middle of the leaf) the outside shows, not the white leaf.
+  auto pane = ProjectLeft(cam, Vec3(2.55, 3.0, 1.5));  // Beside the glazing bar.
+  ASSERT_TRUE(pane.has_value());
+  cv::Rect box(static_cast<int>(pane->x()) - 3, static_cast<int>(pane->y()) - 3, 7, 7);
+  EXPECT_GT(cv::norm(AsMat(a.left)(box), AsMat(b.left)(box), cv::NORM_L1) / 49.0, 30.0);
+  // A wide glazed door is a pair of leaves (French doors), one hinged at each jamb.
+  glazed.rooms[0].openings[0].width_m = 1.6;
+  glazed.rooms[0].openings[0].offset_m = 0.9;
+  glazed.rooms[0].openings[0].open_deg = 70.0;
+  for (const MeshObject& o : BuildSceneMesh(glazed).objects) {
+    if (o.role == SurfaceRole::kGlass && o.label == kLabelDoor) EXPECT_EQ(o.triangles.size(), 4u) << "two panes";
+  }
+}
+
+TEST(Render, AMirrorReflectsTheRoomAndIsBackground) {
+  Scene plain = TestRoom();
+  plain.materials.push_back({.name = "mirror", .base_color = Vec3(0.9, 0.9, 0.9), .roughness = 0.02});
+  // Hung on wall 2 left of the door (x ∈ [0.4, 1.4], z ∈ [1.0, 1.8]).
+  plain.furniture.push_back({.name = "mirror", .centre_m = Vec2(0.9, 3.0 - 0.0225), .size_m = Vec3(1.0, 0.025, 0.8),
+                             .elevation_m = 1.0, .material = "furniture"});
+  Scene mirrored = plain;
+  mirrored.furniture.back().material = "mirror";
+  StereoCamera cam = SmallCamera({Vec3(1.5, 1.0, 1.4), 0.0, 0.0}, 70.0);
+  RenderedView a = SceneRenderer(plain).Render(cam, FastOptions(), 0, false);
+  RenderedView b = SceneRenderer(mirrored).Render(cam, FastOptions(), 0, false);
+  EXPECT_TRUE(a.labels.SamePixels(b.labels));
+  auto centre = ProjectLeft(cam, Vec3(0.9, 2.97, 1.4));
+  ASSERT_TRUE(centre.has_value());
+  int u = static_cast<int>(std::lround(centre->x())), v = static_cast<int>(std::lround(centre->y()));
+  EXPECT_EQ(AsMat(b.labels).at<std::uint8_t>(v, u), kLabelBackground);
+  cv::Rect box(u - 3, v - 3, 7, 7);
+  EXPECT_GT(cv::norm(AsMat(a.left)(box), AsMat(b.left)(box), cv::NORM_L1) / 49.0, 15.0);
+}
+
+TEST(Render, ACeilingInTheWallsPaintIsStillBackground) {
+  Scene plain = TestRoom(), painted = TestRoom();
+  painted.rooms[0].ceiling_material = painted.rooms[0].wall_material;
+  StereoCamera cam = SmallCamera({Vec3(2.0, 1.0, 1.4), 0.0, 30.0}, 70.0);  // Up at the wall–ceiling edge.
+  RenderedView a = SceneRenderer(plain).Render(cam, FastOptions(), 0, false);
+  RenderedView b = SceneRenderer(painted).Render(cam, FastOptions(), 0, false);
+  EXPECT_TRUE(a.labels.SamePixels(b.labels));
+  const cv::Mat labels = AsMat(b.labels);
+  EXPECT_EQ(labels.at<std::uint8_t>(2, 80), kLabelBackground);  // Top row: the ceiling.
+  EXPECT_GT(cv::countNonZero(labels == kLabelBackground), 1000);
+  EXPECT_GT(cv::norm(AsMat(a.left), AsMat(b.left), cv::NORM_L1), 0.0);
+}
+
 TEST(RandomViewEffects, PhoneProcessingLeavesTheOtherDrawsAlone) {
   for (std::uint64_t seed : {1u, 2u, 3u}) {
     ViewEffects plain = RandomViewEffects(1.0, seed), phone = RandomViewEffects(1.0, seed, true);

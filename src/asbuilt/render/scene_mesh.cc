@@ -26,6 +26,9 @@ constexpr double kFrameDepthM = 0.06;      // Window frame depth (across the wal
 constexpr double kSkirtingHeightM = 0.08;
 constexpr double kSkirtingDepthM = 0.012;
 constexpr double kClosetDepthM = 1.2;      // The closed space behind exterior doors.
+constexpr double kGlazedStileM = 0.07;     // Glazed door leaf: side stiles…
+constexpr double kGlazedTopRailM = 0.09;   // …top rail…
+constexpr double kGlazedBottomRailM = 0.14;  // …and bottom rail around the pane.
 
 Vec3f F(const Vec3& v) { return v.cast<float>(); }
 
@@ -259,31 +262,33 @@ class MeshBuilder {
     AddPortal(w, op, a - kLiningM, b + kLiningM, 0, top + kLiningM);
 
     // Leaf: hinged at one jamb (left/right as seen from inside: s grows to
-    // the viewer's left), swinging into the room (−out).
+    // the viewer's left), swinging into the room (−out). A wide glazed door
+    // has two leaves, one hinged at each jamb (French doors).
     MeshObject& leaf = NewObject(name + "/leaf", SurfaceRole::kDoorLeaf, kLabelDoor, mat);
-    const double width = op.width_m - 0.006;
+    MeshObject* glass = op.glazed ? &NewObject(name + "/glass", SurfaceRole::kGlass, kLabelDoor,
+                                                MaterialIndex("glass", field))
+                                  : nullptr;
     const double height = op.height_m - 0.006;
-    const bool hinge_at_a = op.hinge == HingeSide::kRight;
     const double angle = DegToRad(std::clamp(op.open_deg, 0.0, 180.0));
-    const Vec3 e_closed = hinge_at_a ? w.along : Vec3(-w.along);
-    const Vec3 hinge = w.At(hinge_at_a ? a + 0.003 : b - 0.003, 0, 0);
-    if (angle < 1e-6) {
-      Vec3 o = hinge + kLeafRecessM * w.out;
-      AddBox(leaf, o, width * e_closed, kLeafThicknessM * w.out, Vec3(0, 0, height));
-      Vec3 handle_o = o + (width - 0.1) * e_closed + Vec3(0, 0, 1.0) - 0.06 * w.out;
-      AddBox(leaf, handle_o, 0.12 * e_closed, 0.06 * w.out, Vec3(0, 0, 0.025));
-    } else {
+    const bool pair = op.glazed && op.width_m > 1.3;
+    for (int k = 0; k < (pair ? 2 : 1); ++k) {
+      const bool hinge_at_a = pair ? k == 0 : op.hinge == HingeSide::kRight;
+      const double width = (pair ? 0.5 * op.width_m : op.width_m) - 0.006;
+      const Vec3 e_closed = hinge_at_a ? w.along : Vec3(-w.along);
+      const Vec3 hinge = w.At(hinge_at_a ? a + 0.003 : b - 0.003, 0, 0);
       const Vec3 e = std::cos(angle) * e_closed - std::sin(angle) * w.out;
       const Vec3 thick = std::cos(angle) * w.out + std::sin(angle) * e_closed;
-      Vec3 o = hinge;
-      AddBox(leaf, o, width * e, kLeafThicknessM * thick, Vec3(0, 0, height));
-      Vec3 handle_o = o + (width - 0.1) * e + Vec3(0, 0, 1.0) - 0.06 * thick;
-      AddBox(leaf, handle_o, 0.12 * e, 0.06 * thick, Vec3(0, 0, 0.025));
+      const Vec3 o = angle < 1e-6 ? Vec3(hinge + kLeafRecessM * w.out) : hinge;
+      AddLeaf(leaf, glass, o, e, thick, width, height);
+      AddBox(leaf, o + (width - 0.1) * e + Vec3(0, 0, 1.0) - 0.06 * thick, 0.12 * e, 0.06 * thick,
+             Vec3(0, 0, 0.025));
     }
 
     // A small closed space behind a door that leads outside.
     Vec3 behind = w.At(0.5 * (a + b), t + 0.5, 0);
-    if (!InsideAnyRoom(behind.head<2>()) && options_.next_room_depth_m > 0) {
+    if (op.glazed) {
+      // Glazed: the outside shows through the panes, as through a window.
+    } else if (!InsideAnyRoom(behind.head<2>()) && options_.next_room_depth_m > 0) {
       BuildNextRoom(w, a, b, top, field, room);
     } else if (!InsideAnyRoom(behind.head<2>())) {
       int wall_mat = MaterialIndex(room.wall_material, field);
@@ -301,6 +306,29 @@ class MeshBuilder {
       AddQuad(closet, w.At(s0, n0 + 1e-3, 0), (a - kLiningM - s0) * w.along, Vec3(0, 0, z1));
       AddQuad(closet, w.At(b + kLiningM, n0 + 1e-3, 0), (s1 - b - kLiningM) * w.along, Vec3(0, 0, z1));
     }
+  }
+
+  // One door leaf: origin o (bottom corner at the hinge), e along its width,
+  // `thick` across it, up +Z. Solid, or with `glass` a frame of stiles and
+  // rails around a pane at mid-thickness (and a glazing bar on wide leaves).
+  static void AddLeaf(MeshObject& leaf, MeshObject* glass, const Vec3& o, const Vec3& e, const Vec3& thick,
+                      double width, double height) {
+    const Vec3 up(0, 0, 1);
+    auto part = [&](double u0, double u1, double z0, double z1) {
+      AddBox(leaf, o + u0 * e + z0 * up, (u1 - u0) * e, kLeafThicknessM * thick, (z1 - z0) * up);
+    };
+    if (glass == nullptr) {
+      part(0, width, 0, height);
+      return;
+    }
+    const double stile = std::min(kGlazedStileM, 0.2 * width), top = kGlazedTopRailM, bottom = kGlazedBottomRailM;
+    part(0, stile, 0, height);
+    part(width - stile, width, 0, height);
+    part(stile, width - stile, 0, bottom);
+    part(stile, width - stile, height - top, height);
+    if (width > 0.7) part(0.5 * width - 0.015, 0.5 * width + 0.015, bottom, height - top);
+    AddQuad(*glass, o + stile * e + 0.5 * kLeafThicknessM * thick + bottom * up, (width - 2 * stile) * e,
+            (height - top - bottom) * up);
   }
 
   // A lit room behind a door (SceneMeshOptions::next_room_depth_m): floor,
@@ -400,7 +428,8 @@ class MeshBuilder {
     const Furniture& fu = scene_.furniture[f];
     int mat = MaterialIndex(fu.material, fmt::format("furniture[{}].material", f));
     MeshObject& o = NewObject(fu.name.empty() ? fmt::format("furniture{}", f) : fu.name,
-                              SurfaceRole::kFurniture, kLabelBackground, mat);
+                              fu.material == "mirror" ? SurfaceRole::kMirror : SurfaceRole::kFurniture,
+                              kLabelBackground, mat);
     double y = DegToRad(fu.yaw_deg);
     Vec3 ex(std::cos(y), std::sin(y), 0), ey(-std::sin(y), std::cos(y), 0);
     Vec3 c(fu.centre_m.x(), fu.centre_m.y(), fu.elevation_m);
@@ -517,6 +546,7 @@ const char* SurfaceRoleName(SurfaceRole role) {
     case SurfaceRole::kGround: return "ground";
     case SurfaceRole::kExterior: return "exterior";
     case SurfaceRole::kCloset: return "closet";
+    case SurfaceRole::kMirror: return "mirror";
   }
   return "?";
 }

@@ -11,7 +11,8 @@
 //  - walls as solid boxes: inner face on the polygon line, thickness outwards,
 //    cut by their openings (jamb linings, casings, door leaf, window frame,
 //    glass and sill board fill the cuts); skirting boards (label wall);
-//  - furniture boxes (label 0), area lights as thin emissive panels;
+//  - furniture boxes (label 0; material "mirror": a mirror), area lights as
+//    thin emissive panels;
 //  - outside: ground, buildings and trees (label 0), sky on a miss;
 //  - a small closed space behind each door that opens to the outside.
 // Doors and windows also get a *label portal*: the rectangle on the wall's
@@ -43,6 +44,7 @@ inline constexpr std::uint8_t kLabelIgnore = 255;
 enum class SurfaceRole : std::uint8_t {
   kFloor, kCeiling, kWall, kSkirting, kDoorLeaf, kDoorLining, kCasing, kWindowFrame,
   kGlass, kWindowSill, kFurniture, kLight, kGround, kExterior, kCloset,
+  kMirror,  // A furniture box of material "mirror": reflects like a mirror (label 0, as furniture).
 };
 const char* SurfaceRoleName(SurfaceRole role);
 

@@ -378,6 +378,152 @@ void DressWindows(SceneRng& rng, const RandomSceneOptions& o, Scene& scene) {
   if (used_blind) AddMaterialOnce(scene, blind);
 }
 
+
+// True when no furniture stands within `depth_m` in front of [s0, s1] on `wall`.
+bool ClearOfFurniture(const Scene& scene, const Room& room, int wall, double s0, double s1, double depth_m) {
+  Vec2 a = WallStart(room, wall);
+  Vec2 d = (WallEnd(room, wall) - a).normalized();
+  Vec2 inward(-d.y(), d.x());
+  for (const Furniture& f : scene.furniture) {
+    Vec2 r = f.centre_m - a;
+    double reach = 0.5 * std::max(f.size_m.x(), f.size_m.y());
+    if (r.dot(inward) < depth_m + reach && r.dot(d) > s0 - reach && r.dot(d) < s1 + reach) return false;
+  }
+  return true;
+}
+
+void GlazeDoors(SceneRng& rng, const RandomSceneOptions& o, Scene& scene) {
+  Room& room = scene.rooms[0];
+  Material dark{.name = "door_frame_dark", .base_color = Jitter(rng, Vec3(0.12, 0.12, 0.13), 0.03),
+                .roughness = 0.3, .texture = TextureKind::kPaint, .texture_scale_m = 0.3};
+  dark.secondary_color = 0.9 * dark.base_color;
+  bool used_dark = false;
+  for (std::size_t k = 0; k < room.openings.size(); ++k) {
+    Opening& op = room.openings[k];
+    if (op.kind != OpeningKind::kDoor || !rng.Chance(o.glazed_door_probability)) continue;
+    op.glazed = true;
+    // Patio doors: wider and taller, where the wall and the room in front allow.
+    const double width = rng.Uniform(1.4, 2.4), height = rng.Uniform(2.0, 2.3);
+    const double len = WallLength(room, op.wall);
+    const double centre = op.offset_m + 0.5 * op.width_m;
+    const double s0 = std::clamp(centre - 0.5 * width, 0.1, std::max(0.1, len - width - 0.1));
+    if (rng.Chance(0.6) && width > op.width_m && s0 + width <= len - 0.1) {
+      Room without = room;
+      without.openings.erase(without.openings.begin() + static_cast<std::ptrdiff_t>(k));
+      if (ClearOfOpenings(without, op.wall, s0, s0 + width, 0.0) &&
+          ClearOfFurniture(scene, room, op.wall, s0, s0 + width, 0.9)) {
+        op.offset_m = s0;
+        op.width_m = width;
+        op.height_m = std::max(op.height_m, std::min(height, room.height_m - 0.1));
+      }
+    }
+    if (rng.Chance(0.3)) {
+      op.material = "door_frame_dark";  // Aluminium or uPVC patio frames.
+      used_dark = true;
+    }
+  }
+  if (used_dark) AddMaterialOnce(scene, dark);
+}
+
+void PaintCeilingLikeWalls(SceneRng& rng, Scene& scene) {
+  Room& room = scene.rooms[0];
+  for (Material& m : scene.materials) {
+    if (m.name == room.wall_material && (m.texture == TextureKind::kWallpaper || m.texture == TextureKind::kConcrete)) {
+      m.texture = TextureKind::kPaint;  // Paint that also suits a ceiling.
+    }
+  }
+  room.ceiling_material = room.wall_material;
+  // Soft light: more fill, so wall and ceiling differ by shading only.
+  scene.environment.ambient = std::max(scene.environment.ambient, rng.Uniform(0.15, 0.3));
+}
+
+// Framed pictures, mirrors and a TV on plain stretches of wall, clear of openings.
+void AddWallArt(SceneRng& rng, Scene& scene) {
+  const Room& room = scene.rooms[0];
+  const std::vector<Vec3> frames = {Vec3(0.08, 0.07, 0.06), Vec3(0.85, 0.84, 0.8), Vec3(0.55, 0.38, 0.2),
+                                    Vec3(0.7, 0.6, 0.35)};
+  Material frame{.name = "art_frame", .base_color = Jitter(rng, Pick(rng, frames), 0.03), .roughness = 0.4};
+  Material picture{.name = "art_picture", .base_color = Vec3(rng.Uniform(0.2, 0.9), rng.Uniform(0.2, 0.9),
+                                                             rng.Uniform(0.2, 0.9)),
+                   .roughness = 0.5, .texture = Pick(rng, std::vector<TextureKind>{TextureKind::kWallpaper,
+                                                                                    TextureKind::kConcrete,
+                                                                                    TextureKind::kTiles}),
+                   .texture_scale_m = rng.Uniform(0.05, 0.3)};
+  picture.secondary_color = Vec3(rng.Uniform(0.05, 0.9), rng.Uniform(0.05, 0.9), rng.Uniform(0.05, 0.9));
+  Material mirror{.name = "mirror", .base_color = Vec3(0.9, 0.9, 0.9), .roughness = 0.02};
+  Material screen{.name = "tv_screen", .base_color = Jitter(rng, Vec3(0.03, 0.03, 0.035), 0.01), .roughness = 0.1};
+  const int items = rng.UniformInt(1, 4);
+  bool used[4] = {false, false, false, false};
+  for (int k = 0; k < items; ++k) {
+    const int wall = rng.UniformInt(0, WallCount(room) - 1);
+    const double len = WallLength(room, wall);
+    const int kind = rng.Chance(0.5) ? 0 : (rng.Chance(0.5) ? 1 : 2);  // Picture, mirror, TV.
+    double w, h, z;
+    if (kind == 2) {
+      w = rng.Uniform(0.8, 1.5);
+      h = w * 9.0 / 16.0;
+      z = rng.Uniform(0.9, 1.4);
+    } else {
+      w = rng.Uniform(0.3, 1.2);
+      h = w * rng.Uniform(0.6, 1.5);
+      z = std::max(0.9, rng.Uniform(1.3, 1.7) - 0.5 * h);
+    }
+    if (len < w + 0.4 || z + h > room.height_m - 0.15) continue;
+    const double s = rng.Uniform(0.2 + 0.5 * w, len - 0.2 - 0.5 * w);
+    if (!ClearOfOpenings(room, wall, s - 0.5 * w, s + 0.5 * w, 0.1)) continue;
+    const double border = kind == 2 ? 0.015 : rng.Uniform(0.02, 0.06);
+    const char* face = kind == 0 ? "art_picture" : (kind == 1 ? "mirror" : "tv_screen");
+    const char* name = kind == 0 ? "picture" : (kind == 1 ? "mirror" : "tv");
+    scene.furniture.push_back(WallBox(room, wall, s, 0.005, Vec3(w, kind == 2 ? 0.05 : 0.025, h), z,
+                                      std::string(name) + " frame", kind == 2 ? "tv_screen" : "art_frame"));
+    scene.furniture.push_back(WallBox(room, wall, s, 0.01, Vec3(w - 2 * border, kind == 2 ? 0.05 : 0.025, h - 2 * border),
+                                      z + border, name, face));
+    used[kind] = true;
+    used[3] = used[3] || kind != 2;
+  }
+  if (used[3]) AddMaterialOnce(scene, frame);
+  if (used[0]) AddMaterialOnce(scene, picture);
+  if (used[1]) AddMaterialOnce(scene, mirror);
+  if (used[2]) AddMaterialOnce(scene, screen);
+}
+
+// Brighter, shinier kitchens (after AddKitchen, own stream): more white
+// units, light worktops, steel or white gloss appliances, a steel sink.
+void BrightenKitchen(SceneRng& rng, Scene& scene) {
+  for (Material& m : scene.materials) {
+    if (m.name == "cabinet" && rng.Chance(0.4)) {
+      m.base_color = Jitter(rng, Vec3(0.9, 0.9, 0.88), 0.02);
+      m.secondary_color = 0.45 * m.base_color;
+      m.roughness = rng.Uniform(0.15, 0.4);  // Gloss fronts.
+    } else if (m.name == "worktop" && rng.Chance(0.5)) {
+      m.base_color = Jitter(rng, Vec3(0.88, 0.87, 0.84), 0.03);
+      m.secondary_color = 0.85 * m.base_color;
+      m.roughness = 0.2;
+    } else if (m.name == "appliance") {
+      m.base_color = rng.Chance(0.45) ? Jitter(rng, Vec3(0.62, 0.63, 0.64), 0.03) : Jitter(rng, Vec3(0.93, 0.93, 0.92), 0.02);
+      m.roughness = rng.Uniform(0.08, 0.2);
+    }
+  }
+  Material steel{.name = "steel", .base_color = Jitter(rng, Vec3(0.65, 0.66, 0.67), 0.02), .roughness = 0.12};
+  bool sink = false;
+  for (std::size_t i = 0, n = scene.furniture.size(); i < n; ++i) {
+    const Furniture top = scene.furniture[i];
+    if (top.name != "worktop" || top.size_m.x() < 1.0 || !rng.Chance(0.8)) continue;
+    const double yaw = DegToRad(top.yaw_deg);
+    const Vec2 ex(std::cos(yaw), std::sin(yaw)), ey(-std::sin(yaw), std::cos(yaw));
+    const double width = rng.Uniform(0.45, 0.8);
+    const Vec2 c = top.centre_m + rng.Uniform(-0.5, 0.5) * (top.size_m.x() - width) * ex + 0.03 * ey;
+    const double z = top.elevation_m + top.size_m.z();
+    scene.furniture.push_back({.name = "sink", .centre_m = c, .yaw_deg = top.yaw_deg,
+                               .size_m = Vec3(width, 0.42, 0.012), .elevation_m = z, .material = "steel"});
+    scene.furniture.push_back({.name = "tap", .centre_m = c - 0.24 * ey, .yaw_deg = top.yaw_deg,
+                               .size_m = Vec3(0.04, 0.04, rng.Uniform(0.2, 0.32)), .elevation_m = z,
+                               .material = "steel"});
+    sink = true;
+  }
+  if (sink) AddMaterialOnce(scene, steel);
+}
+
 }  // namespace
 
 const char* RigSpotName(RigSpot spot) { return spot == RigSpot::kSurvey ? "survey" : "random"; }
@@ -418,7 +564,10 @@ void RandomSceneOptions::Check() const {
                          {"window_sun_probability", window_sun_probability},
                          {"kitchen_probability", kitchen_probability},
                          {"wall_details_probability", wall_details_probability},
-                         {"window_dressing_probability", window_dressing_probability}}) {
+                         {"window_dressing_probability", window_dressing_probability},
+                         {"glazed_door_probability", glazed_door_probability},
+                         {"ceiling_like_walls_probability", ceiling_like_walls_probability},
+                         {"wall_art_probability", wall_art_probability}}) {
     CheckArgument(p >= 0 && p <= 1, fmt::format("RandomSceneOptions.{} = {}, must be in [0, 1]", name, p));
   }
   CheckArgument(turn_step_deg > 0 && turn_step_deg <= 360,
@@ -516,6 +665,10 @@ Scene RandomScene(const RandomSceneOptions& options, std::uint64_t seed) {
     SceneRng r = stream(1);
     StyleDoors(r, options, scene);
   }
+  if (options.glazed_door_probability > 0) {
+    SceneRng r = stream(7);
+    GlazeDoors(r, options, scene);
+  }
   if (SceneRng r = stream(6); options.neutral_wall_probability > 0 && r.Chance(options.neutral_wall_probability)) {
     PaintWallsNeutral(r, scene);
   }
@@ -524,6 +677,8 @@ Scene RandomScene(const RandomSceneOptions& options, std::uint64_t seed) {
   }
   if (SceneRng r = stream(3); options.kitchen_probability > 0 && r.Chance(options.kitchen_probability)) {
     AddKitchen(r, scene);
+    SceneRng bright = stream(8);
+    BrightenKitchen(bright, scene);
   }
   if (SceneRng r = stream(4); options.wall_details_probability > 0 && r.Chance(options.wall_details_probability)) {
     AddWallDetails(r, scene);
@@ -531,6 +686,13 @@ Scene RandomScene(const RandomSceneOptions& options, std::uint64_t seed) {
   if (options.window_dressing_probability > 0) {
     SceneRng r = stream(5);
     DressWindows(r, options, scene);
+  }
+  if (SceneRng r = stream(9);
+      options.ceiling_like_walls_probability > 0 && r.Chance(options.ceiling_like_walls_probability)) {
+    PaintCeilingLikeWalls(r, scene);
+  }
+  if (SceneRng r = stream(10); options.wall_art_probability > 0 && r.Chance(options.wall_art_probability)) {
+    AddWallArt(r, scene);
   }
 
   std::vector<Problem> problems = ValidateScene(scene, scene.name);

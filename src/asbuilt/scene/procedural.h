@@ -57,6 +57,9 @@ struct RandomSceneOptions {
   double kitchen_probability = 0.0;      // Kitchen units with worktop and wall units, white appliances (label 0).
   double wall_details_probability = 0.0; // Radiators under windows, sockets, light switches by doors (label 0).
   double window_dressing_probability = 0.0;  // Per window: curtains (label 0) or a blind in the opening (window).
+  double glazed_door_probability = 0.0;  // Per door: glazed (patio / French door, Opening::glazed), often widened.
+  double ceiling_like_walls_probability = 0.0;  // Ceiling painted with the walls' paint, soft ambient light.
+  double wall_art_probability = 0.0;     // Framed pictures, mirrors, a TV on the walls (label 0).
 
   void Check() const;
 };

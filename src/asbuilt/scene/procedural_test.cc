@@ -128,6 +128,9 @@ RandomSceneOptions AllLevers() {
   o.kitchen_probability = 1.0;
   o.wall_details_probability = 1.0;
   o.window_dressing_probability = 1.0;
+  o.glazed_door_probability = 0.5;
+  o.ceiling_like_walls_probability = 0.5;
+  o.wall_art_probability = 1.0;
   return o;
 }
 
@@ -143,6 +146,11 @@ TEST(RandomScene, LeversAddToTheSameRoomAndStayValid) {
     ASSERT_EQ(a.polygon, b.polygon) << "seed " << seed;
     ASSERT_EQ(a.openings.size(), b.openings.size());
     for (std::size_t k = 0; k < a.openings.size(); ++k) {
+      if (b.openings[k].glazed) {  // A patio door may be wider and taller, never narrower.
+        EXPECT_GE(b.openings[k].width_m, a.openings[k].width_m);
+        EXPECT_GE(b.openings[k].height_m, a.openings[k].height_m);
+        continue;
+      }
       EXPECT_EQ(a.openings[k].offset_m, b.openings[k].offset_m);
       EXPECT_EQ(a.openings[k].width_m, b.openings[k].width_m);
       EXPECT_EQ(a.openings[k].height_m, b.openings[k].height_m);
@@ -157,15 +165,56 @@ TEST(RandomScene, LeversAddToTheSameRoomAndStayValid) {
     for (const Light& l : levered.lights) suns_through_windows += l.kind == LightKind::kSun && l.intensity >= 2.0;
     for (const Opening& o : b.openings) {
       if (o.kind == OpeningKind::kDoor) {
-        EXPECT_THAT(o.material, testing::AnyOf("door_white", "door_wood"));
+        EXPECT_THAT(o.material, testing::AnyOf("door_white", "door_wood", "door_frame_dark"));
       }
     }
   }
   for (const char* name : {"kitchen units", "worktop", "wall units", "fridge", "radiator", "socket", "switch",
-                           "curtain", "blind"}) {
+                           "curtain", "blind", "sink", "tap", "picture", "picture frame", "mirror", "tv"}) {
     EXPECT_TRUE(added.contains(name)) << name;
   }
   EXPECT_GT(suns_through_windows, 10);
+}
+
+TEST(RandomScene, GlassDoorsCeilingsLikeWallsAndWallArtDoWhatTheySay) {
+  RandomSceneOptions o;
+  o.glazed_door_probability = 1.0;
+  o.ceiling_like_walls_probability = 1.0;
+  o.wall_art_probability = 1.0;
+  int doors = 0, widened = 0, art = 0;
+  for (std::uint64_t seed = 0; seed < 30; ++seed) {
+    Scene plain = RandomScene({}, seed), scene = RandomScene(o, seed);
+    EXPECT_TRUE(ValidateScene(scene).empty()) << "seed " << seed;
+    const Room& room = scene.rooms[0];
+    for (std::size_t k = 0; k < room.openings.size(); ++k) {
+      const Opening& op = room.openings[k];
+      EXPECT_EQ(op.glazed, op.kind == OpeningKind::kDoor) << "seed " << seed;  // Every door, no window.
+      doors += op.kind == OpeningKind::kDoor;
+      widened += op.width_m > plain.rooms[0].openings[k].width_m;
+      if (op.glazed && op.width_m > plain.rooms[0].openings[k].width_m) EXPECT_GE(op.width_m, 1.4);
+    }
+    // The ceiling is the walls' own material (same paint, same photo).
+    EXPECT_EQ(room.ceiling_material, room.wall_material);
+    EXPECT_GE(scene.environment.ambient, 0.15);
+    // Art hangs on the walls (its back within 1 cm of a wall face), above the floor, clear of openings.
+    for (const Furniture& f : scene.furniture) {
+      if (f.name != "picture" && f.name != "mirror" && f.name != "tv") continue;
+      ++art;
+      EXPECT_GE(f.elevation_m, 0.9);
+      double nearest = 1e9;
+      for (int w = 0; w < WallCount(room); ++w) {
+        Vec2 a = WallStart(room, w), d = (WallEnd(room, w) - a).normalized();
+        Vec2 r = f.centre_m - a;
+        double along = r.dot(d);
+        if (along < 0 || along > WallLength(room, w)) continue;
+        nearest = std::min(nearest, std::abs(r.dot(Vec2(-d.y(), d.x())) - 0.5 * f.size_m.y()));
+      }
+      EXPECT_LT(nearest, 0.011) << f.name << " seed " << seed;
+    }
+  }
+  EXPECT_GT(doors, 30);
+  EXPECT_GT(widened, 5);  // Patio doors.
+  EXPECT_GT(art, 30);
 }
 
 TEST(RandomScene, LeversOffLeaveTheSceneAsItWas) {

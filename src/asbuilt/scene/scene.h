@@ -45,6 +45,10 @@ struct Opening {
   // Doors.
   double open_deg = 0.0;  // Leaf angle, 0 = closed, up to 180; swings into the room.
   HingeSide hinge = HingeSide::kLeft;
+  // Doors: a glazed leaf (patio or French door): a frame of stiles and rails
+  // around glass panes to the floor, two leaves when wider than 1.3 m. The
+  // outside is seen through it, as through a window; labelled door all the same.
+  bool glazed = false;
   // Windows.
   double frame_width_m = 0.05;
   bool glass = true;

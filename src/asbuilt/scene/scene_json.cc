@@ -81,7 +81,7 @@ Material ParseMaterial(const JsonField& f) {
 Opening ParseOpening(const JsonField& f) {
   Opening o;
   if (!f.Object({"kind", "wall", "offset_m", "width_m", "height_m", "sill_m", "open_deg", "hinge",
-                 "frame_width_m", "glass", "material"})) {
+                 "frame_width_m", "glass", "glazed", "material"})) {
     return o;
   }
   JsonField kind = f.Required("kind");
@@ -114,6 +114,7 @@ Opening ParseOpening(const JsonField& f) {
   }
   ReadNumber(f, "frame_width_m", o.frame_width_m);
   ReadBool(f, "glass", o.glass);
+  ReadBool(f, "glazed", o.glazed);
   ReadString(f, "material", o.material);
   return o;
 }
@@ -349,6 +350,7 @@ json SceneToJson(const Scene& scene) {
                           {"frame_width_m", o.frame_width_m},
                           {"glass", o.glass},
                           {"material", o.material}});
+      if (o.glazed) openings.back()["glazed"] = true;  // Absent when false: older files stay as they were.
     }
     rooms.push_back({{"name", r.name},
                      {"polygon", std::move(poly)},
@@ -458,6 +460,7 @@ const json& SceneJsonSchema() {
          {"hinge", json{{"enum", {"left", "right"}}}},
          {"frame_width_m", nonneg("window frame width")},
          {"glass", boolean("window has glass")},
+         {"glazed", boolean("door leaf glazed to the floor (patio or French door); default false")},
          {"material", str("material name; empty = built-in door/window material")}},
         {"kind", "wall"}, "a door or window in one wall of its room");
     json room = object(
