@@ -43,11 +43,9 @@
 
 namespace asbuilt {
 
-std::vector<WallLine> SelectVisibleLines(const WallPoints &walls,
-                                         std::vector<WallLine> lines,
-                                         const DirectionFrame &frame,
-                                         const PlanOptions &o);
+std::vector<WallLine> SelectVisibleLines(const WallPoints &walls, std::vector<WallLine> lines,
+                                         const DirectionFrame &frame, const PlanOptions &o);
 
-} // namespace asbuilt
+}  // namespace asbuilt
 
-#endif // ASBUILT_PLAN_PLAN_RING_VISIBLE_H_
+#endif  // ASBUILT_PLAN_PLAN_RING_VISIBLE_H_

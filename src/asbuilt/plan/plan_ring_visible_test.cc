@@ -23,27 +23,22 @@ std::vector<ClassPoint> ClutteredRoomPoints() {
   AddWallRun(points, {5, 4}, {0, 4}, 500, PointSource::kContact);
   AddWallRun(points, {0, 4}, {0, 0}, 400, PointSource::kContact);
   AddWallRun(points, {1.0, 2.8}, {3.5, 2.8}, 600,
-             PointSource::kContact); // Sofa: denser than the wall behind.
+             PointSource::kContact);  // Sofa: denser than the wall behind.
   AddWallRun(points, {5.8, 1.0}, {5.8, 2.5}, 60,
-             PointSource::kContact); // Beyond the right wall.
+             PointSource::kContact);  // Beyond the right wall.
   for (int i = 0; i < 150; ++i) {
-    const Vec2 p(0.5 + 4.0 * ((i * 37) % 100) / 100.0,
-                 0.5 + 3.0 * ((i * 61) % 100) / 100.0);
-    points.push_back({LabelClass::kWall, Vec3(p.x(), p.y(), 0.0), 0.01,
-                      PointSource::kContact, i % 12});
+    const Vec2 p(0.5 + 4.0 * ((i * 37) % 100) / 100.0, 0.5 + 3.0 * ((i * 61) % 100) / 100.0);
+    points.push_back({LabelClass::kWall, Vec3(p.x(), p.y(), 0.0), 0.01, PointSource::kContact, i % 12});
   }
   return points;
 }
 
 TEST(SelectVisibleLines, KeepsOneWallPerBearingAndDropsClutter) {
   const std::vector<ClassPoint> points = ClutteredRoomPoints();
-  const PlanOptions o{.viewpoint_m = Vec3(2.0, 1.5, 1.4),
-                      .one_viewpoint = true};
+  const PlanOptions o{.viewpoint_m = Vec3(2.0, 1.5, 1.4), .one_viewpoint = true};
   const PlanPoints planar = PlanarizePoints(points, o);
-  SnappedLines snapped = SnapToDominantDirections(
-      planar.walls, FindWallLines(planar.walls, o).lines, o);
-  const std::vector<WallLine> lines =
-      SelectVisibleLines(planar.walls, snapped.lines, snapped.frame, o);
+  SnappedLines snapped = SnapToDominantDirections(planar.walls, FindWallLines(planar.walls, o).lines, o);
+  const std::vector<WallLine> lines = SelectVisibleLines(planar.walls, snapped.lines, snapped.frame, o);
   // Every line on one of the four walls (a wall may come in pieces), and
   // every wall found.
   const std::vector<std::pair<Vec2, Vec2>> walls = {
@@ -52,16 +47,13 @@ TEST(SelectVisibleLines, KeepsOneWallPerBearingAndDropsClutter) {
   for (const WallLine &l : lines) {
     int on = 0;
     for (size_t w = 0; w < walls.size(); ++w) {
-      const bool here = std::abs(l.Distance(walls[w].first)) < 0.01 &&
-                        std::abs(l.Distance(walls[w].second)) < 0.01;
+      const bool here = std::abs(l.Distance(walls[w].first)) < 0.01 && std::abs(l.Distance(walls[w].second)) < 0.01;
       on += here;
       found[w] += here;
     }
-    EXPECT_EQ(on, 1) << "line through (" << l.c.x() << ", " << l.c.y()
-                     << ") at " << RadToDeg(l.theta) << "°";
+    EXPECT_EQ(on, 1) << "line through (" << l.c.x() << ", " << l.c.y() << ") at " << RadToDeg(l.theta) << "°";
   }
-  for (size_t w = 0; w < walls.size(); ++w)
-    EXPECT_GE(found[w], 1) << "wall " << w;
+  for (size_t w = 0; w < walls.size(); ++w) EXPECT_GE(found[w], 1) << "wall " << w;
   EXPECT_LE(lines.size(), 6u);
 }
 
@@ -69,13 +61,9 @@ TEST(SelectVisibleLines, LeavesLinesAsTheyAreWithoutAViewpoint) {
   const std::vector<ClassPoint> points = ClutteredRoomPoints();
   const PlanOptions o{.one_viewpoint = true};
   const PlanPoints planar = PlanarizePoints(points, o);
-  SnappedLines snapped = SnapToDominantDirections(
-      planar.walls, FindWallLines(planar.walls, o).lines, o);
+  SnappedLines snapped = SnapToDominantDirections(planar.walls, FindWallLines(planar.walls, o).lines, o);
   const size_t before = snapped.lines.size();
-  EXPECT_EQ(SelectVisibleLines(planar.walls, std::move(snapped.lines),
-                               snapped.frame, o)
-                .size(),
-            before);
+  EXPECT_EQ(SelectVisibleLines(planar.walls, std::move(snapped.lines), snapped.frame, o).size(), before);
 }
 
 // Through ReconstructPlan: the room comes out whole with the option, and the
@@ -92,5 +80,5 @@ TEST(SelectVisibleLines, ClosesTheClutteredRoom) {
   EXPECT_LT(RoomPolygonOverlap(without, truth)->Iou(), 0.99);
 }
 
-} // namespace
-} // namespace asbuilt
+}  // namespace
+}  // namespace asbuilt
