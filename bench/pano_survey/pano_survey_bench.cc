@@ -244,10 +244,14 @@ int main(int argc, char** argv) {
     md += RunTable(by_model) + "\n";
     md += "Where it stands: the geometry is not the limit (the layout-label run above); the segmenter is. "
           "It was trained on rendered rooms only and scores mIoU 0.23 on these photos (bench/results/zind.md): "
-          "its wall/floor and wall/ceiling edges wander, furniture and open doors break the wall bases, and "
-          "spurious short walls cut the room polygon. Segmenting the 512x1024 views at their full size instead "
-          "of 240x480 did not help (measured 2026-12-03 with ASBUILT_BENCH_PANO_SEG=512x1024: IoU median 0.575, "
-          "wall recall 36/68, 27 s a panorama).\n\n";
+          "its wall/floor and wall/ceiling edges wander, and furniture and open doors break the wall bases. "
+          "Spurious lines no longer cut the room polygon: a capture from one spot chooses one wall per bearing "
+          "around the camera (PlanOptions::one_viewpoint, docs/survey.md \"Survey from a 360° photo\"; room IoU "
+          "median 0.416 before it, 2026-12-03). What is left is in the points: rooms whose wall bases are hidden "
+          "(kitchen counters, the garage) or seen from a doorway (the closets) get walls placed where the "
+          "segmenter's edges put them. Segmenting the 512x1024 views at their full size instead of 240x480 did "
+          "not help (measured 2026-12-03 before one_viewpoint, with ASBUILT_BENCH_PANO_SEG=512x1024: IoU median "
+          "0.575, wall recall 36/68, 27 s a panorama).\n\n";
   } else {
     md += "The shipped-model run was skipped (no LibTorch, no model, or ASBUILT_BENCH_PANO_MODEL=0).\n\n";
   }

@@ -167,6 +167,7 @@ SnappedLines SnapToDominantDirections(const WallPoints& walls, std::vector<WallL
   frame.directions = ClusterDirections(lines, o);
   const std::vector<int> frame_axes = FormManhattanFrame(frame.directions, o);
   frame.manhattan = !frame_axes.empty();
+  frame.axes = frame_axes;
   for (WallLine& line : lines) {
     if (!SnapNoisyLineToAxis(pts, line, frame.directions, frame_axes, o)) SnapLineToDirection(pts, line, frame, o);
   }

@@ -32,6 +32,7 @@ struct Direction {
 struct DirectionFrame {
   std::vector<Direction> directions;  // The two axes of a Manhattan frame are exactly 90° apart.
   bool manhattan = false;             // A Manhattan frame was found and used.
+  std::vector<int> axes;              // Indices of its two axes in `directions` (empty: no frame).
 };
 
 struct SnappedLines {

@@ -140,6 +140,10 @@ const FieldList<PlanOptions>& PlanOptionFields() {
                   [](O& o, const nlohmann::json& v) {
                     o.viewpoint_m = Vec3(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
                   }),
+      Bind(&O::one_viewpoint,
+           {.name = "one_viewpoint",
+            .description = "Every point was seen from viewpoint_m (panorama or mono capture): the walls are "
+                           "chosen one per bearing around it (docs/survey.md, \"Survey from a 360° photo\")."}),
       Bind(&O::seed, {.name = "seed", .description = "RANSAC sampling seed.", .minimum = 0.0,
                       .maximum = 4294967295.0}),
   };

@@ -51,6 +51,7 @@ struct PlanOptions {
   double shared_sigma_fraction = 0.5;          // Share of a wall's contacts' median σ that does not average out.
   double shared_stereo_sigma_fraction = 0.25;  // The same for stereo points (the matcher's sub-pixel bias).
   std::optional<Vec3> viewpoint_m;    // Capture centre (rig position, world m), if known; improves openings.
+  bool one_viewpoint = false;         // Every point seen from viewpoint_m (panorama/mono): one wall per bearing.
   std::uint64_t seed = 1;             // RANSAC sampling.
 
   void Check() const;

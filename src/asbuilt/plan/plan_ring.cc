@@ -1,5 +1,7 @@
 #include "asbuilt/plan/plan_ring.h"
 
+#include "asbuilt/plan/plan_ring_visible.h"
+
 #include <algorithm>
 #include <limits>
 #include <optional>
@@ -475,6 +477,7 @@ int CloseGap(const WallLine& a, const WallLine& b, WallLine& b_copy, std::vector
 Ring CloseRoom(const WallPoints& walls, std::vector<WallLine> lines, const std::vector<VertexPoint>& vertex_points,
                const DirectionFrame& frame, const PlanOptions& o) {
   const double strong = walls.strong_line_votes;
+  if (o.one_viewpoint) lines = SelectVisibleLines(walls, std::move(lines), frame, o);
   Ring out;
   out.viewpoint = RingViewpoint(lines, o);
   const Vec2& view = out.viewpoint;

@@ -20,6 +20,8 @@
 //    are vertices and the gap runs across the dominant directions) — unless
 //    the connector runs along a neighbour's own line, which is then that wall
 //    extended to its corner.
+// With PlanOptions::one_viewpoint (a capture from one spot) the lines are
+// first reduced to one wall per bearing (plan_ring_visible.h).
 // docs/plan.md, step 4, gives each rule's reason and the cases it was
 // measured on.
 

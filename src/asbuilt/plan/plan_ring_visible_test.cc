@@ -1,0 +1,84 @@
+// Plan stage 4a, one wall per bearing for a capture from one spot
+// (plan_ring_visible.h): on its own and through ReconstructPlan.
+#include "asbuilt/plan/plan_ring_visible.h"
+
+#include <gtest/gtest.h>
+
+#include "asbuilt/plan/plan_lines.h"
+#include "asbuilt/plan/plan_test_rooms.h"
+#include "asbuilt/plan/reconstruct.h"
+#include "asbuilt/plan/room_iou.h"
+
+namespace asbuilt {
+namespace {
+
+// A 5 × 4 m room's four walls as floor contacts seen from (2, 1.5), with
+// what a poor segmenter adds: a sofa's front 1.2 m inside the room along the
+// back wall (its base read as the wall's), a strip beyond the right wall
+// (a cabinet's top projected past it), and scattered points in the room.
+std::vector<ClassPoint> ClutteredRoomPoints() {
+  std::vector<ClassPoint> points;
+  AddWallRun(points, {0, 0}, {5, 0}, 500, PointSource::kContact);
+  AddWallRun(points, {5, 0}, {5, 4}, 400, PointSource::kContact);
+  AddWallRun(points, {5, 4}, {0, 4}, 500, PointSource::kContact);
+  AddWallRun(points, {0, 4}, {0, 0}, 400, PointSource::kContact);
+  AddWallRun(points, {1.0, 2.8}, {3.5, 2.8}, 600,
+             PointSource::kContact);  // Sofa: denser than the wall behind.
+  AddWallRun(points, {5.8, 1.0}, {5.8, 2.5}, 60,
+             PointSource::kContact);  // Beyond the right wall.
+  for (int i = 0; i < 150; ++i) {
+    const Vec2 p(0.5 + 4.0 * ((i * 37) % 100) / 100.0, 0.5 + 3.0 * ((i * 61) % 100) / 100.0);
+    points.push_back({LabelClass::kWall, Vec3(p.x(), p.y(), 0.0), 0.01, PointSource::kContact, i % 12});
+  }
+  return points;
+}
+
+TEST(SelectVisibleLines, KeepsOneWallPerBearingAndDropsClutter) {
+  const std::vector<ClassPoint> points = ClutteredRoomPoints();
+  const PlanOptions o{.viewpoint_m = Vec3(2.0, 1.5, 1.4), .one_viewpoint = true};
+  const PlanPoints planar = PlanarizePoints(points, o);
+  SnappedLines snapped = SnapToDominantDirections(planar.walls, FindWallLines(planar.walls, o).lines, o);
+  const std::vector<WallLine> lines = SelectVisibleLines(planar.walls, snapped.lines, snapped.frame, o);
+  // Every line on one of the four walls (a wall may come in pieces), and
+  // every wall found.
+  const std::vector<std::pair<Vec2, Vec2>> walls = {
+      {{0, 0}, {5, 0}}, {{5, 0}, {5, 4}}, {{5, 4}, {0, 4}}, {{0, 4}, {0, 0}}};
+  std::vector<int> found(walls.size(), 0);
+  for (const WallLine &l : lines) {
+    int on = 0;
+    for (size_t w = 0; w < walls.size(); ++w) {
+      const bool here = std::abs(l.Distance(walls[w].first)) < 0.01 && std::abs(l.Distance(walls[w].second)) < 0.01;
+      on += here;
+      found[w] += here;
+    }
+    EXPECT_EQ(on, 1) << "line through (" << l.c.x() << ", " << l.c.y() << ") at " << RadToDeg(l.theta) << "°";
+  }
+  for (size_t w = 0; w < walls.size(); ++w) EXPECT_GE(found[w], 1) << "wall " << w;
+  EXPECT_LE(lines.size(), 6u);
+}
+
+TEST(SelectVisibleLines, LeavesLinesAsTheyAreWithoutAViewpoint) {
+  const std::vector<ClassPoint> points = ClutteredRoomPoints();
+  const PlanOptions o{.one_viewpoint = true};
+  const PlanPoints planar = PlanarizePoints(points, o);
+  SnappedLines snapped = SnapToDominantDirections(planar.walls, FindWallLines(planar.walls, o).lines, o);
+  const size_t before = snapped.lines.size();
+  EXPECT_EQ(SelectVisibleLines(planar.walls, std::move(snapped.lines), snapped.frame, o).size(), before);
+}
+
+// Through ReconstructPlan: the room comes out whole with the option, and the
+// clutter cuts it without (what the option is for).
+TEST(SelectVisibleLines, ClosesTheClutteredRoom) {
+  const std::vector<ClassPoint> points = ClutteredRoomPoints();
+  const Plan truth = PolygonPlan({{0, 0}, {5, 0}, {5, 4}, {0, 4}});
+  PlanOptions o{.viewpoint_m = Vec3(2.0, 1.5, 1.4), .one_viewpoint = true};
+  const Plan plan = ReconstructPlan(points, o).plan;
+  ASSERT_EQ(plan.walls.size(), 4u);
+  EXPECT_GT(RoomPolygonOverlap(plan, truth)->Iou(), 0.99);
+  o.one_viewpoint = false;
+  const Plan without = ReconstructPlan(points, o).plan;
+  EXPECT_LT(RoomPolygonOverlap(without, truth)->Iou(), 0.99);
+}
+
+}  // namespace
+}  // namespace asbuilt
