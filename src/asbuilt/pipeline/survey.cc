@@ -365,8 +365,9 @@ void PlanStage(Survey& s) {
   Plan& plan = s.result.plan;
   PlanOptions plan_options = s.options.plan;
   if (!plan_options.viewpoint_m) plan_options.viewpoint_m = s.viewpoint_m;
-  // One camera turning in place: every point was seen from the viewpoint.
-  if (s.capture.kind != CaptureKind::kStereo && s.viewpoint_m) {
+  // One camera turning in place: every point was seen from the viewpoint
+  // (turned on here for such captures; `--plan.one-viewpoint` forces it on).
+  if (!plan_options.one_viewpoint && s.capture.kind != CaptureKind::kStereo && s.viewpoint_m) {
     bool one_spot = true;
     for (const Vec2& rig : s.rigs) one_spot = one_spot && (rig - s.viewpoint_m->head<2>()).norm() < 0.05;
     plan_options.one_viewpoint = one_spot;

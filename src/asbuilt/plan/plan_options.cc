@@ -143,7 +143,8 @@ const FieldList<PlanOptions>& PlanOptionFields() {
       Bind(&O::one_viewpoint,
            {.name = "one_viewpoint",
             .description = "Every point was seen from viewpoint_m (panorama or mono capture): the walls are "
-                           "chosen one per bearing around it (docs/survey.md, \"Survey from a 360° photo\")."}),
+                           "chosen one per bearing around it. `survey` turns it on for a panorama or mono capture taken "
+                           "from one spot (docs/survey.md, \"Survey from a 360° photo\")."}),
       Bind(&O::seed, {.name = "seed", .description = "RANSAC sampling seed.", .minimum = 0.0,
                       .maximum = 4294967295.0}),
   };
