@@ -365,6 +365,7 @@ void PlanStage(Survey& s) {
   Plan& plan = s.result.plan;
   PlanOptions plan_options = s.options.plan;
   if (!plan_options.viewpoint_m) plan_options.viewpoint_m = s.viewpoint_m;
+  plan_options = plan_options.ForLabels(s.options.use_capture_labels);
   try {
     PlanResult reconstructed = ReconstructPlan(s.points, plan_options, s.capture_json.string());
     plan = std::move(reconstructed.plan);
