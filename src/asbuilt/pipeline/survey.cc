@@ -365,6 +365,7 @@ void PlanStage(Survey& s) {
   Plan& plan = s.result.plan;
   PlanOptions plan_options = s.options.plan;
   if (!plan_options.viewpoint_m) plan_options.viewpoint_m = s.viewpoint_m;
+  plan_options = plan_options.ForLabels(s.options.use_capture_labels);
   // One camera turning in place: every point was seen from the viewpoint
   // (turned on here for such captures; `--plan.one-viewpoint` forces it on).
   if (!plan_options.one_viewpoint && s.capture.kind != CaptureKind::kStereo && s.viewpoint_m) {

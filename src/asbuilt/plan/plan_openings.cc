@@ -366,7 +366,7 @@ bool DoorWidthFromLeaf(EdgePair& edges, double extent_a, double extent_b, double
         (!hinge_seen && std::abs(leaf->t_hinge - clear_unseen) >= kHingeTolerance)) {
       continue;
     }
-    const double var = (unseen_b ? edges.var_a : edges.var_b) + 0.01 * 0.01;
+    const double var = (unseen_b ? edges.var_a : edges.var_b) + o.leaf_edge_sigma_m * o.leaf_edge_sigma_m;
     if (unseen_b) {
       edges.b = clear_unseen + casing, edges.var_b = var;
     } else {
@@ -378,6 +378,13 @@ bool DoorWidthFromLeaf(EdgePair& edges, double extent_a, double extent_b, double
     return true;
   }
   return false;
+}
+
+// Where an opening's edge came from, for the log: a label edge, an open
+// leaf (the edge opposite a label edge, when the leaf gave the width) or the
+// extent of the opening's points.
+const char* EdgeOrigin(bool label_edge, bool from_leaf) {
+  return label_edge ? "label edge" : from_leaf ? "leaf" : "extent";
 }
 
 // The opening a group of points on wall `wi` gives, with ±; nullopt when it
@@ -413,10 +420,20 @@ std::optional<PlanOpening> MeasureOpening(const std::vector<OpeningPoint>& group
   spdlog::debug("plan: wall {} {} group: extent [{:.3f}, {:.3f}], edges [{:.3f}{}, {:.3f}{}], {} boundary points",
                 wi, door ? "door" : "window", extent_a, extent_b, edges.a, edges.from_boundary_a ? " (label edge)" : "",
                 edges.b, edges.from_boundary_b ? " (label edge)" : "", boundary_ts.size());
-  if (door && edges.from_boundary_a != edges.from_boundary_b &&
-      DoorWidthFromLeaf(edges, extent_a, extent_b, casing, w, d, wall_leaf_pts, wi, o)) {
-    ++door_leaves;
-  }
+  const bool from_leaf = door && edges.from_boundary_a != edges.from_boundary_b &&
+                         DoorWidthFromLeaf(edges, extent_a, extent_b, casing, w, d, wall_leaf_pts, wi, o);
+  door_leaves += from_leaf;
+  // An edge that is neither a label edge nor placed from a leaf is where the
+  // opening's points stop: occluders, a recessed frame and label blobs move
+  // it far more than the points' own noise (extent_edge_sigma_m).
+  const double extent_edge_var = o.extent_edge_sigma_m * o.extent_edge_sigma_m;
+  if (!edges.from_boundary_a && !(from_leaf && edges.from_boundary_b)) edges.var_a += extent_edge_var;
+  if (!edges.from_boundary_b && !(from_leaf && edges.from_boundary_a)) edges.var_b += extent_edge_var;
+  // A label edge is known to its points' spread and to how far the labels
+  // themselves may be off (label_edge_sigma_m).
+  const double label_edge_var = std::pow(*o.ForLabels(false).label_edge_sigma_m, 2);
+  if (edges.from_boundary_a) edges.var_a += label_edge_var;
+  if (edges.from_boundary_b) edges.var_b += label_edge_var;
   const double a = edges.a, b = edges.b;
   double t0 = std::clamp(a + casing, 0.0, len), t1 = std::clamp(b - casing, 0.0, len);
   if (t1 - t0 < o.min_opening_width_m) return std::nullopt;
@@ -437,6 +454,9 @@ std::optional<PlanOpening> MeasureOpening(const std::vector<OpeningPoint>& group
   // ±: each edge's variance plus the casing-width uncertainty.
   const double casing_var = o.casing_sigma_m * o.casing_sigma_m;
   op.width_sigma_m = std::sqrt(edges.var_a + edges.var_b + 2 * casing_var);
+  spdlog::debug("plan: wall {} {} width {:.3f} ± {:.3f} m, edges from {} and {}", wi, door ? "door" : "window",
+                op.width, *op.width_sigma_m, EdgeOrigin(edges.from_boundary_a, from_leaf),
+                EdgeOrigin(edges.from_boundary_b, from_leaf));
   double zspacing = (z1 - z0) / group.size();
   double zedge_var = mean_var / n_edge + zspacing * zspacing + o.casing_sigma_m * o.casing_sigma_m;
   op.height_sigma_m = std::sqrt((door ? 1 : 2) * zedge_var);

@@ -2,6 +2,8 @@
 // ReconstructPlan.
 #include "asbuilt/plan/plan_openings.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "asbuilt/plan/plan_test_rooms.h"
@@ -37,6 +39,30 @@ TEST(FindOpenings, GivesTheClearOpeningInsideTheLabel) {
   EXPECT_NEAR(w.sill.value_or(0), 0.85 + o.window_casing_m, 1e-9);
   EXPECT_NEAR(w.height.value_or(0), 1.5 - 2 * o.window_casing_m, 1e-9);
   EXPECT_GT(w.width_sigma_m.value_or(0), 0.0);
+}
+
+// Where an opening's points stop without a label edge (occluders, a
+// recessed frame) each edge takes extent_edge_sigma_m more; label_edge_sigma_m
+// (for label edges) leaves such edges alone.
+TEST(FindOpenings, EdgesWithoutLabelEdgesTakeTheExtentEdgeSigma) {
+  std::vector<ClassPoint> points;
+  for (int i = 0; i <= 120; ++i) {
+    for (int k = 0; k <= 30; ++k) {
+      points.push_back({LabelClass::kWindow, Vec3(1.0 + 0.01 * i, 0.0, 0.85 + 0.05 * k), 0.005, PointSource::kDense, 0});
+    }
+  }
+  std::vector<const ClassPoint*> pointers;
+  for (const ClassPoint& p : points) pointers.push_back(&p);
+  const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}};
+  const auto sigma = [&](const PlanOptions& o) {
+    const FoundOpenings found = FindOpenings(pointers, walls, Vec2(2, 1.5), o);
+    return found.openings.size() == 1 ? found.openings[0].width_sigma_m.value_or(-1) : -1.0;
+  };
+  const double plain = sigma({.extent_edge_sigma_m = 0, .label_edge_sigma_m = 0});
+  ASSERT_GT(plain, 0.0);
+  EXPECT_NEAR(sigma({.extent_edge_sigma_m = 0.05, .label_edge_sigma_m = 0}), std::hypot(plain, 0.05 * std::sqrt(2.0)),
+              1e-9);
+  EXPECT_NEAR(sigma({.extent_edge_sigma_m = 0, .label_edge_sigma_m = 0.05}), plain, 1e-9);
 }
 
 // Fewer than min_opening_points points are no opening.

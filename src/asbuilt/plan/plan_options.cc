@@ -4,6 +4,9 @@
 
 namespace asbuilt {
 
+static_assert(PlanOptions::kSegmentedContactScaleSigma == 0.005, "contact_scale_sigma's description says 0.005");
+static_assert(PlanOptions::kSegmentedLabelEdgeSigmaM == 0.01, "label_edge_sigma_m's description says 0.01");
+
 const FieldList<PlanOptions>& PlanOptionFields() {
   using O = PlanOptions;
   static const FieldList<O> kList = {
@@ -120,6 +123,20 @@ const FieldList<PlanOptions>& PlanOptionFields() {
       Bind(&O::leaf_min_points, {.name = "leaf_min_points",
                                  .description = "Door points along one line that make a leaf (its width gives "
                                                 "the door's)."}),
+      Bind(&O::leaf_edge_sigma_m, {.name = "leaf_edge_sigma_m",
+                                   .description = "1σ of a door edge placed one leaf width from the seen one "
+                                                  "(enters the ± of widths), m.",
+                                   .minimum = 0.0}),
+      Bind(&O::extent_edge_sigma_m,
+           {.name = "extent_edge_sigma_m",
+            .description = "1σ of an opening edge taken where its points stop, without a label edge there "
+                           "(occluders, recessed frames; enters the ± of widths), m.",
+            .minimum = 0.0}),
+      Bind(&O::label_edge_sigma_m,
+           {.name = "label_edge_sigma_m",
+            .description = "1σ of an opening's label edge beyond its points' spread (enters the ± of widths); "
+                           "unset: 0 for exact labels, 0.01 for segmented ones, m.",
+            .minimum = 0.0}),
       Bind(&O::max_independent_points,
            {.name = "max_independent_points",
             .description = "Dense points are correlated: cap on the points a ± assumes.", .minimum = 2.0}),
@@ -131,6 +148,12 @@ const FieldList<PlanOptions>& PlanOptionFields() {
            {.name = "shared_stereo_sigma_fraction",
             .description = "Share of a wall's stereo points' median σ that does not average out over them.",
             .minimum = 0.0}),
+      Bind(&O::contact_scale_sigma,
+           {.name = "contact_scale_sigma",
+            .description = "Relative 1σ of a room-wide scale error of contact-placed walls about the rig (ceiling "
+                           "height, label edges off alike all round); unset: 0 for exact labels, 0.005 for "
+                           "segmented ones.",
+            .minimum = 0.0, .maximum = 0.5}),
       BindWith<O>({.name = "viewpoint_m", .kind = FieldKind::kPoint3,
                    .description = "Capture centre X,Y,Z (world m), if known; improves openings."},
                   [](const O& o) -> nlohmann::json {

@@ -47,12 +47,36 @@ struct PlanOptions {
   int min_boundary_points = 4;        // Label-edge points needed per side to measure a width from them.
   double leaf_max_distance_m = 1.5;   // An open door's leaf: door points up to this far in front of the wall, m…
   int leaf_min_points = 20;           // …at least this many, along one line (its width gives the door's).
+  double leaf_edge_sigma_m = 0.08;    // 1σ of a door edge placed one leaf width from the seen one, m.
+  double extent_edge_sigma_m = 0.06;  // 1σ of an opening edge where its points stop (no label edge there), m.
+  // 1σ of an opening's label edge beyond its points' spread (a segmenter's
+  // edge off alike all along it), m. Unset: auto, ForLabels().
+  std::optional<double> label_edge_sigma_m;
   int max_independent_points = 400;   // Dense points are correlated: cap the points a ± assumes.
   double shared_sigma_fraction = 0.5;          // Share of a wall's contacts' median σ that does not average out.
   double shared_stereo_sigma_fraction = 0.25;  // The same for stereo points (the matcher's sub-pixel bias).
+  // Relative 1σ of a room-wide scale error of the contact-placed walls about
+  // the viewpoint: a ceiling height or label edges off the same way all
+  // round move every such wall by this share of its distance from the rig.
+  // Unset: auto, ForLabels().
+  std::optional<double> contact_scale_sigma;
   std::optional<Vec3> viewpoint_m;    // Capture centre (rig position, world m), if known; improves openings.
   bool one_viewpoint = false;         // Every point seen from viewpoint_m (panorama/mono): one wall per bearing.
   std::uint64_t seed = 1;             // RANSAC sampling.
+
+  // These options with the auto ones (unset) resolved for labels of this
+  // origin: 0 for a capture's exact labels, the kSegmented… values for
+  // segmented or given ones (fitted on calibration rooms, docs/plan.md
+  // "±"). survey resolves them; ReconstructPlan, which does not know the
+  // labels' origin, reads unset ones as segmented.
+  static constexpr double kSegmentedContactScaleSigma = 0.005;
+  static constexpr double kSegmentedLabelEdgeSigmaM = 0.01;
+  PlanOptions ForLabels(bool exact_labels) const {
+    PlanOptions o = *this;
+    o.contact_scale_sigma = contact_scale_sigma.value_or(exact_labels ? 0.0 : kSegmentedContactScaleSigma);
+    o.label_edge_sigma_m = label_edge_sigma_m.value_or(exact_labels ? 0.0 : kSegmentedLabelEdgeSigmaM);
+    return o;
+  }
 
   void Check() const;
 };

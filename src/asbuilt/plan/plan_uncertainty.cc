@@ -1,6 +1,7 @@
 #include "asbuilt/plan/plan_uncertainty.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <numeric>
 
@@ -10,8 +11,39 @@
 namespace asbuilt {
 namespace {
 
+double MedianOf(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// The variance of a line's offset that its floor and ceiling contacts'
+// disagreement shows: each set's median distance to the line (r_f, r_c)
+// carries its own label edge's error along the whole wall (a skirting taken
+// for floor, a segmenter's edge a pixel off), which no number of points
+// averages out. Taking the two errors as independent and alike, E[(r_f −
+// r_c)²] = 2σ², and the line, a mix a·floor + (1 − a)·ceiling (a the floor's
+// share of the weight), is off by σ² (a² + (1 − a)²). 0 unless both sets
+// have kMinEdgeContacts points.
+double FloorCeilingDisagreementVariance(const WallPoints& walls, const WallLine& l) {
+  constexpr int kMinEdgeContacts = 10;
+  constexpr double kFloorMaxZ = 0.1;  // Floor contacts lie at z = 0, ceiling ones at the ceiling's height.
+  std::vector<double> floor, ceiling;
+  double w_floor = 0, w_ceiling = 0;
+  for (int k : l.members) {
+    const WallPoint& p = walls.points[k];
+    if (!p.contact) continue;
+    const bool on_floor = p.z < kFloorMaxZ;
+    (on_floor ? floor : ceiling).push_back(l.Distance(p.p));
+    (on_floor ? w_floor : w_ceiling) += p.w;
+  }
+  if (floor.size() < kMinEdgeContacts || ceiling.size() < kMinEdgeContacts) return 0;
+  const double a = w_floor / (w_floor + w_ceiling);
+  return std::pow(MedianOf(floor) - MedianOf(ceiling), 2) / 2 * (a * a + (1 - a) * (1 - a));
+}
+
 // Copies of the ring's lines without their member lists (cheap to copy),
-// their offset variances raised by what their points share.
+// their offset variances raised by what their points share: the larger of
+// (f · median σ) and the floor/ceiling contacts' disagreement.
 std::vector<WallLine> LinesWithSharedVariance(const WallPoints& walls, const std::vector<WallLine>& ring,
                                               const PlanOptions& o) {
   std::vector<WallLine> light;
@@ -27,8 +59,7 @@ std::vector<WallLine> LinesWithSharedVariance(const WallPoints& walls, const std
       const WallPoint& p = walls.points[k];
       sigmas.push_back((p.contact ? o.shared_sigma_fraction : o.shared_stereo_sigma_fraction) * p.sigma);
     }
-    std::nth_element(sigmas.begin(), sigmas.begin() + sigmas.size() / 2, sigmas.end());
-    copy.var_rho += std::pow(sigmas[sigmas.size() / 2], 2);
+    copy.var_rho += std::max(std::pow(MedianOf(std::move(sigmas)), 2), FloorCeilingDisagreementVariance(walls, l));
   }
   return light;
 }
@@ -60,24 +91,60 @@ double PropagatedVariance(const std::vector<WallLine>& lines,
   return var;
 }
 
+// Each line's share of its members' weight that contacts carry: how far it
+// follows a scale error of the contacts.
+std::vector<double> ContactShares(const WallPoints& walls, const std::vector<WallLine>& ring) {
+  std::vector<double> shares;
+  for (const WallLine& l : ring) {
+    double contact = 0, all = 0;
+    for (int k : l.members) {
+      all += walls.points[k].w;
+      if (walls.points[k].contact) contact += walls.points[k].w;
+    }
+    shares.push_back(all > 0 ? contact / all : 0.0);
+  }
+  return shares;
+}
+
+// Variance of f(lines) from a room-wide scale error s of the contacts, 1σ
+// `sigma`: line l moves away from `viewpoint` by shares[l] · s · its
+// distance from it (its centroid scaled about the viewpoint), all lines at
+// once, by central differences.
+double ScaleModeVariance(const std::vector<WallLine>& lines, const std::vector<double>& shares, const Vec2& viewpoint,
+                         double sigma, const std::function<double(const std::vector<WallLine>&)>& f) {
+  if (sigma <= 0) return 0;
+  auto scaled = [&](double s) {
+    std::vector<WallLine> moved = lines;
+    for (std::size_t l = 0; l < moved.size(); ++l) moved[l].c = viewpoint + (1 + shares[l] * s) * (moved[l].c - viewpoint);
+    return moved;
+  };
+  const double h = 1e-3 * sigma;
+  const double d = (f(scaled(h)) - f(scaled(-h))) / (2 * h);
+  return d * d * sigma * sigma;
+}
+
 }  // namespace
 
 RingSigmas PropagateRingSigmas(const WallPoints& walls, const std::vector<WallLine>& ring, const PlanOptions& o) {
   const std::vector<WallLine> lines = LinesWithSharedVariance(walls, ring, o);
   const int n = static_cast<int>(lines.size());
+  const std::vector<double> shares = ContactShares(walls, ring);
+  const double scale_sigma = o.viewpoint_m ? *o.ForLabels(false).contact_scale_sigma : 0.0;
+  const Vec2 viewpoint = o.viewpoint_m ? Vec2(o.viewpoint_m->head<2>()) : Vec2::Zero();
   RingSigmas out;
   for (int i = 0; i < n; ++i) {
     auto length = [i, n](const std::vector<WallLine>& L) {
       std::vector<Vec2> c = RingCorners(L);
       return (c[(i + 1) % n] - c[i]).norm();
     };
-    out.wall_length_m.push_back(std::sqrt(PropagatedVariance(lines, length, {(i + n - 1) % n, i, (i + 1) % n})));
+    out.wall_length_m.push_back(std::sqrt(PropagatedVariance(lines, length, {(i + n - 1) % n, i, (i + 1) % n}) +
+                                          ScaleModeVariance(lines, shares, viewpoint, scale_sigma, length)));
   }
   std::vector<int> all_lines(n);
   std::iota(all_lines.begin(), all_lines.end(), 0);
-  out.area_m2 = std::sqrt(
-      PropagatedVariance(lines, [](const std::vector<WallLine>& L) { return std::abs(PolygonArea(RingCorners(L))); },
-                         all_lines));
+  const auto area = [](const std::vector<WallLine>& L) { return std::abs(PolygonArea(RingCorners(L))); };
+  out.area_m2 = std::sqrt(PropagatedVariance(lines, area, all_lines) +
+                          ScaleModeVariance(lines, shares, viewpoint, scale_sigma, area));
   return out;
 }
 

@@ -6,13 +6,20 @@
 //
 // A line's fitted variances shrink with its number of points, but what its
 // points share does not average out over them: its offset variance first
-// gains (f · median σ of its points)², f = PlanOptions::shared_sigma_fraction
-// for contact points and shared_stereo_sigma_fraction for stereo points
-// (docs/plan.md, "±", says how they were measured). The variances are then
-// propagated numerically (central differences of the corners, RingCorners,
-// under each line's θ and ρ moved by 10⁻³ σ) to every wall length and to the
-// area; lines with zero variance (inferred connectors along a fixed
-// direction) add nothing.
+// gains the larger of (f · median σ of its points)², f =
+// PlanOptions::shared_sigma_fraction for contact points and
+// shared_stereo_sigma_fraction for stereo points, and what its floor and
+// ceiling contacts' disagreement shows ((r_f − r_c)²/2 · (a² + (1 − a)²),
+// r the two sets' median distances to the line, a the floor's share of the
+// weight; docs/plan.md, "±", says how they were measured). The variances are
+// then propagated numerically (central differences of the corners,
+// RingCorners, under each line's θ and ρ moved by 10⁻³ σ) to every wall
+// length and to the area; lines with zero variance (inferred connectors along
+// a fixed direction) add nothing. With a viewpoint, a room-wide scale error
+// of the contacts (PlanOptions::contact_scale_sigma, auto read as segmented
+// labels') moves every line by its contacts' share of the weight times the
+// scale times its distance from the viewpoint, all lines together, and adds
+// its variance to each length and the area.
 
 #include <vector>
 

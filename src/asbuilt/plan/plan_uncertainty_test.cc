@@ -47,6 +47,58 @@ TEST(PropagateRingSigmas, AWallKeepsTheShareOfItsPointsSigmaTheyAllShare) {
   EXPECT_NEAR(s.area_m2, 3 * 0.005, 1e-9);
 }
 
+// A wall whose floor contacts lie 2 cm out and whose ceiling contacts lie
+// 2 cm in (a label edge off at one of them) is off by about half that
+// disagreement, however many contacts it has: with equal weights its offset
+// σ becomes (4 cm)²/2 · (½² + ½²) = (2 cm)², above the shared floor.
+TEST(PropagateRingSigmas, FloorAndCeilingContactsThatDisagreeWidenTheWallsOffset) {
+  WallPoints walls;
+  for (int i = 0; i < 1000; ++i) {
+    const bool floor = i % 2 == 0;
+    walls.points.push_back({Vec2(floor ? 4.02 : 3.98, 0.003 * i), floor ? 0.0 : 2.6, 1e4, 0.01, 0.05, 1.0, true});
+  }
+  std::vector<WallLine> ring = {WallLine{.c = {2, 0}, .theta = 0}, WallLine{.c = {4, 1.5}, .theta = kPi / 2},
+                                WallLine{.c = {2, 3}, .theta = kPi}, WallLine{.c = {0, 1.5}, .theta = 1.5 * kPi}};
+  for (int i = 0; i < 1000; ++i) ring[1].members.push_back(i);
+  const RingSigmas s = PropagateRingSigmas(walls, ring, {.shared_sigma_fraction = 0.5});
+  EXPECT_NEAR(s.wall_length_m[0], 0.02, 1e-6);
+  EXPECT_NEAR(s.wall_length_m[2], 0.02, 1e-6);
+  // Floor contacts alone show no disagreement: the shared share of σ stays.
+  for (WallPoint& p : walls.points) p.z = 0.0;
+  EXPECT_NEAR(PropagateRingSigmas(walls, ring, {.shared_sigma_fraction = 0.5}).wall_length_m[0], 0.005, 1e-6);
+}
+
+// A room-wide scale error s of the contacts about the rig moves every
+// contact-placed wall by s times its distance from the rig, all together: a
+// 4 × 3 m room seen from its centre gets σ = s · length on every wall and
+// 2 s · area on the area. Without a viewpoint there is no such term.
+TEST(PropagateRingSigmas, AContactScaleErrorMovesAllContactWallsTogether) {
+  WallPoints walls;
+  std::vector<WallLine> ring = {WallLine{.c = {2, 0}, .theta = 0}, WallLine{.c = {4, 1.5}, .theta = kPi / 2},
+                                WallLine{.c = {2, 3}, .theta = kPi}, WallLine{.c = {0, 1.5}, .theta = 1.5 * kPi}};
+  for (std::size_t l = 0; l < ring.size(); ++l) {
+    walls.points.push_back({ring[l].c, 0.0, 1e4, 0.01, 0.05, 1.0, true});
+    ring[l].members = {static_cast<int>(l)};
+  }
+  const PlanOptions o{.shared_sigma_fraction = 0, .contact_scale_sigma = 0.01, .viewpoint_m = Vec3(2, 1.5, 1.5)};
+  const RingSigmas s = PropagateRingSigmas(walls, ring, o);
+  EXPECT_NEAR(s.wall_length_m[0], 0.04, 1e-6);
+  EXPECT_NEAR(s.wall_length_m[1], 0.03, 1e-6);
+  EXPECT_NEAR(s.area_m2, 2 * 0.01 * 12, 1e-6);
+  EXPECT_NEAR(PropagateRingSigmas(walls, ring, {.shared_sigma_fraction = 0, .contact_scale_sigma = 0.01}).area_m2, 0,
+              1e-9);
+}
+
+// Auto options resolve by the labels' origin; set ones stay.
+TEST(PlanOptions, ForLabelsResolvesTheAutoSigmasByTheLabelsOrigin) {
+  const PlanOptions exact = PlanOptions{}.ForLabels(true), segmented = PlanOptions{}.ForLabels(false);
+  EXPECT_EQ(exact.contact_scale_sigma, 0.0);
+  EXPECT_EQ(exact.label_edge_sigma_m, 0.0);
+  EXPECT_EQ(segmented.contact_scale_sigma, PlanOptions::kSegmentedContactScaleSigma);
+  EXPECT_EQ(segmented.label_edge_sigma_m, PlanOptions::kSegmentedLabelEdgeSigmaM);
+  EXPECT_EQ(PlanOptions{.contact_scale_sigma = 0.02}.ForLabels(true).contact_scale_sigma, 0.02);
+}
+
 TEST(PlanUncertainty, ReportsUncertaintiesThatCoverTheErrors) {
   Plan truth = RectangleRoom();
   int covered = 0, total = 0;

@@ -111,6 +111,10 @@ void PlanOptions::Check() const {
   positive(nominal_sigma_m, "nominal_sigma_m");
   non_negative(shared_sigma_fraction, "shared_sigma_fraction");
   non_negative(shared_stereo_sigma_fraction, "shared_stereo_sigma_fraction");
+  non_negative(leaf_edge_sigma_m, "leaf_edge_sigma_m");
+  non_negative(extent_edge_sigma_m, "extent_edge_sigma_m");
+  if (contact_scale_sigma) non_negative(*contact_scale_sigma, "contact_scale_sigma");
+  if (label_edge_sigma_m) non_negative(*label_edge_sigma_m, "label_edge_sigma_m");
   CheckArgument(vote_sigma_m > 0 && std::isfinite(vote_sigma_m),
                 fmt::format("PlanOptions.vote_sigma_m = {}, must be > 0", vote_sigma_m));
   CheckArgument(min_wall_points >= 3, fmt::format("PlanOptions.min_wall_points = {}, must be >= 3", min_wall_points));
