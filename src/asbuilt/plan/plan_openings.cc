@@ -388,7 +388,7 @@ const char* EdgeOrigin(bool label_edge, bool from_leaf) {
 }
 
 // The opening a group of points on wall `wi` gives, with ±; nullopt when it
-// has too few points or its clear opening is too narrow. Counts a width
+// has too few points or its clear opening is too narrow or too low. Counts a width
 // taken from an open leaf in `door_leaves`.
 std::optional<PlanOpening> MeasureOpening(const std::vector<OpeningPoint>& group, int wi, const PlanWall& w, bool door,
                                           const std::vector<Vec2>& wall_leaf_pts, const PlanOptions& o,
@@ -451,6 +451,9 @@ std::optional<PlanOpening> MeasureOpening(const std::vector<OpeningPoint>& group
     op.sill = std::max(0.0, z0 + casing);
     op.height = z1 - casing - *op.sill;
   }
+  // A strip thinner than its casings has no clear opening (and plan.json
+  // refuses a height ≤ 0).
+  if (*op.height <= 0.0) return std::nullopt;
   // ±: each edge's variance plus the casing-width uncertainty.
   const double casing_var = o.casing_sigma_m * o.casing_sigma_m;
   op.width_sigma_m = std::sqrt(edges.var_a + edges.var_b + 2 * casing_var);

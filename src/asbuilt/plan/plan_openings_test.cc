@@ -65,6 +65,24 @@ TEST(FindOpenings, EdgesWithoutLabelEdgesTakeTheExtentEdgeSigma) {
   EXPECT_NEAR(sigma({.extent_edge_sigma_m = 0, .label_edge_sigma_m = 0.05}), plain, 1e-9);
 }
 
+// A window label strip thinner than its two casings (a sill or a lintel
+// edge seen as window) leaves no clear height: no opening, never a negative
+// height that plan.json would refuse.
+TEST(FindOpenings, AStripThinnerThanItsCasingsIsNoOpening) {
+  std::vector<ClassPoint> points;
+  for (int i = 0; i <= 120; ++i) {
+    for (const double z : {1.00, 1.02, 1.04}) {
+      points.push_back({LabelClass::kWindow, Vec3(1.0 + 0.01 * i, 0.0, z), 0.005, PointSource::kDense, 0});
+    }
+  }
+  std::vector<const ClassPoint*> pointers;
+  for (const ClassPoint& p : points) pointers.push_back(&p);
+  const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}};
+  const PlanOptions o;
+  ASSERT_LT(0.04, 2 * o.window_casing_m);
+  EXPECT_TRUE(FindOpenings(pointers, walls, Vec2(2, 1.5), o).openings.empty());
+}
+
 // Fewer than min_opening_points points are no opening.
 TEST(FindOpenings, NeedsEnoughPoints) {
   std::vector<ClassPoint> points;
