@@ -14,15 +14,27 @@
 namespace asbuilt {
 namespace {
 
+// Rows of a window label's points on the wall y = 0, x from 1.0 to 2.2 m
+// every cm, z from `bottom` up `height` every `step` metres.
+struct WindowRows {
+  double bottom, height, step;
+};
+std::vector<ClassPoint> WindowPoints(const WindowRows& rows) {
+  std::vector<ClassPoint> points;
+  const int n = static_cast<int>(std::lround(rows.height / rows.step));
+  for (int i = 0; i <= 120; ++i) {
+    for (int k = 0; k <= n; ++k) {
+      points.push_back({LabelClass::kWindow, Vec3(1.0 + 0.01 * i, 0.0, rows.bottom + rows.step * k), 0.005,
+                        PointSource::kDense, 0});
+    }
+  }
+  return points;
+}
+
 // A window's label on a wall's face, 1.2 m wide from 0.85 to 2.35 m up,
 // casing included: the opening is the clear one inside the casing.
 TEST(FindOpenings, GivesTheClearOpeningInsideTheLabel) {
-  std::vector<ClassPoint> points;
-  for (int i = 0; i <= 120; ++i) {
-    for (int k = 0; k <= 30; ++k) {
-      points.push_back({LabelClass::kWindow, Vec3(1.0 + 0.01 * i, 0.0, 0.85 + 0.05 * k), 0.005, PointSource::kDense, 0});
-    }
-  }
+  const std::vector<ClassPoint> points = WindowPoints({0.85, 1.5, 0.05});
   std::vector<const ClassPoint*> pointers;
   for (const ClassPoint& p : points) pointers.push_back(&p);
   const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}, {.start = {4, 0}, .end = {4, 3}}};
@@ -45,12 +57,7 @@ TEST(FindOpenings, GivesTheClearOpeningInsideTheLabel) {
 // recessed frame) each edge takes extent_edge_sigma_m more; label_edge_sigma_m
 // (for label edges) leaves such edges alone.
 TEST(FindOpenings, EdgesWithoutLabelEdgesTakeTheExtentEdgeSigma) {
-  std::vector<ClassPoint> points;
-  for (int i = 0; i <= 120; ++i) {
-    for (int k = 0; k <= 30; ++k) {
-      points.push_back({LabelClass::kWindow, Vec3(1.0 + 0.01 * i, 0.0, 0.85 + 0.05 * k), 0.005, PointSource::kDense, 0});
-    }
-  }
+  const std::vector<ClassPoint> points = WindowPoints({0.85, 1.5, 0.05});
   std::vector<const ClassPoint*> pointers;
   for (const ClassPoint& p : points) pointers.push_back(&p);
   const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}};
@@ -69,12 +76,7 @@ TEST(FindOpenings, EdgesWithoutLabelEdgesTakeTheExtentEdgeSigma) {
 // edge seen as window) leaves no clear height: no opening, never a negative
 // height that plan.json would refuse.
 TEST(FindOpenings, AStripThinnerThanItsCasingsIsNoOpening) {
-  std::vector<ClassPoint> points;
-  for (int i = 0; i <= 120; ++i) {
-    for (const double z : {1.00, 1.02, 1.04}) {
-      points.push_back({LabelClass::kWindow, Vec3(1.0 + 0.01 * i, 0.0, z), 0.005, PointSource::kDense, 0});
-    }
-  }
+  const std::vector<ClassPoint> points = WindowPoints({1.00, 0.04, 0.02});
   std::vector<const ClassPoint*> pointers;
   for (const ClassPoint& p : points) pointers.push_back(&p);
   const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}};

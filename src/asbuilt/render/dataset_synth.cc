@@ -145,6 +145,18 @@ bool PlanCloseView(SceneRng& rng, const Scene& scene, SynthItem& item) {
   return false;
 }
 
+// Item `index` of `scene` with its camera's field of view drawn from `rng`
+// (the first draw of the item's stream); pose and kind still to plan.
+SynthItem NewSynthItem(const DatasetSynthOptions& options, const Scene& scene, int index, SceneRng& rng) {
+  SynthItem item;
+  item.index = index;
+  item.scene_seed = scene.seed;
+  const double hfov = rng.Uniform(options.min_hfov_deg, options.max_hfov_deg);
+  item.camera.camera = PinholeCamera::FromHorizontalFov(options.width_px, options.height_px, hfov);
+  item.camera.baseline_m = scene.rig.baseline_m;
+  return item;
+}
+
 nlohmann::json Vec3Json(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 template <typename T>
@@ -364,22 +376,12 @@ SynthItem PlanSynthItem(const DatasetSynthOptions& options, const Scene& scene, 
     // Own stream: with the lever off, items are exactly as before.
     SceneRng close(SplitMix64(options.seed * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(index) + 0xC105E));
     if (close.Chance(kCloseViewShare)) {
-      SynthItem item;
-      item.index = index;
-      item.scene_seed = scene.seed;
-      double hfov = close.Uniform(options.min_hfov_deg, options.max_hfov_deg);
-      item.camera.camera = PinholeCamera::FromHorizontalFov(options.width_px, options.height_px, hfov);
-      item.camera.baseline_m = scene.rig.baseline_m;
+      SynthItem item = NewSynthItem(options, scene, index, close);
       if (PlanCloseView(close, scene, item)) return item;
     }
   }
   SceneRng rng(SplitMix64(options.seed * 0x100000001B3ULL + static_cast<std::uint64_t>(index)));
-  SynthItem item;
-  item.index = index;
-  item.scene_seed = scene.seed;
-  double hfov = rng.Uniform(options.min_hfov_deg, options.max_hfov_deg);
-  item.camera.camera = PinholeCamera::FromHorizontalFov(options.width_px, options.height_px, hfov);
-  item.camera.baseline_m = scene.rig.baseline_m;
+  SynthItem item = NewSynthItem(options, scene, index, rng);
   const Room& room = scene.rooms.at(0);
   const int n = static_cast<int>(room.polygon.size());
 
