@@ -41,14 +41,33 @@ cv::Ptr<cv::StereoMatcher> MakeLeftMatcher(const DisparityOptions& o, int min_di
                                 o.full_dp ? cv::StereoSGBM::MODE_HH : cv::StereoSGBM::MODE_SGBM_3WAY);
 }
 
-cv::Mat ToFloatDisparity(const cv::Mat& fixed16, int min_disp) {
+// OpenCV's SGBM (every mode) places the cost parabola's minimum with
+// integer arithmetic, d·16 + (16·(S[d−1] − S[d+1]) + den)/(2·den), and C's
+// division truncates toward zero: where the parabola's offset δ from the best
+// whole disparity is below −1/32 px the result is rounded up, 1/16 px too
+// high, instead of to the nearest sixteenth. This maps a matcher value s (in
+// sixteenths) back to the nearest-sixteenth estimate: a fraction of 9–15
+// sixteenths came from a negative δ (−1/16); a whole value mixes δ in
+// [−1/32, 1/32) (exact) with δ in (−3/32, −1/32) (one too high), so it takes
+// their mid-point (−1/32), unbiased where δ's density is locally flat; 1–8
+// sixteenths are exact. The speckle and 3×3 median filters after the fit
+// keep values on this lattice.
+float UnroundSgbm(short s) {
+  const int fraction = ((s % 16) + 16) % 16;
+  if (fraction >= 9) return (s - 1) / 16.0f;
+  if (fraction == 0) return (s - 0.5f) / 16.0f;
+  return s / 16.0f;
+}
+
+// `unround`: the values are SGBM's raw output (UnroundSgbm).
+cv::Mat ToFloatDisparity(const cv::Mat& fixed16, int min_disp, bool unround) {
   cv::Mat out(fixed16.size(), CV_32F);
   const int invalid = (min_disp - 1) * 16;
   for (int y = 0; y < fixed16.rows; ++y) {
     const short* s = fixed16.ptr<short>(y);
     float* d = out.ptr<float>(y);
     for (int x = 0; x < fixed16.cols; ++x) {
-      d[x] = s[x] <= invalid ? kNaN : s[x] / 16.0f;
+      d[x] = s[x] <= invalid ? kNaN : (unround ? UnroundSgbm(s[x]) : s[x] / 16.0f);
     }
   }
   return out;
@@ -155,8 +174,9 @@ void DisparityOptions::Check() const {
 }
 
 std::string DisparityOptions::ToString() const {
-  return fmt::format("{} range [{}, {}) block {} LR {} WLS {} fill {} multi-scale {}",
+  return fmt::format("{}{} range [{}, {}) block {} LR {} WLS {} fill {} multi-scale {}",
                      matcher == DisparityMatcher::kSgbm ? (full_dp ? "SGBM-HH" : "SGBM") : "BM",
+                     matcher == DisparityMatcher::kSgbm && !unround_subpixel ? " (OpenCV rounding)" : "",
                      min_disparity_px, min_disparity_px + num_disparities_px, block_size_px,
                      left_right_check ? fmt::format("±{:g}px", max_left_right_diff_px) : "off",
                      wls_filter ? "on" : "off", fill_holes ? "on" : "off", multi_scale ? "on" : "off");
@@ -213,7 +233,8 @@ DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right,
   const bool need_right = options.left_right_check || options.wls_filter;
   // Left images for WLS guidance must match the matcher's input channels.
   RawPair raw = MatchBoth(left, right, options, min_disp, num_disp, need_right);
-  cv::Mat disp = ToFloatDisparity(raw.left16, min_disp);
+  cv::Mat disp = ToFloatDisparity(raw.left16, min_disp,
+                                  options.unround_subpixel && options.matcher == DisparityMatcher::kSgbm);
 
   // Left–right consistency: the right view's disparity (negated by the right
   // matcher) at x − d must agree.
@@ -260,7 +281,7 @@ DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right,
     wls->setSigmaColor(options.wls_sigma);
     cv::Mat filtered;
     wls->filter(raw.left16, left, filtered, raw.right16);
-    disp = ToFloatDisparity(filtered, min_disp);
+    disp = ToFloatDisparity(filtered, min_disp, /*unround=*/false);
   }
   if (options.fill_holes) {
     FillHolesFromBackground(disp);

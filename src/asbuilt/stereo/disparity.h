@@ -37,6 +37,7 @@ struct DisparityOptions {
   bool fill_holes = false;          // Fill holes along rows with the farther bounding disparity (background).
   int median_px = 0;                // Median filter after filling (3 or 5; 0: off; only with fill_holes).
   bool multi_scale = false;         // A half-size pass narrows the full-size range (coarse 1st–99th percentile).
+  bool unround_subpixel = true;     // SGBM: undo OpenCV's sub-pixel rounding (+1/16 px on half the pixels, ~+0.03 px mean).
 
   // Throws InvalidArgument naming the field ("DisparityOptions.block_size_px = 4, must be odd").
   void Check() const;
