@@ -140,6 +140,11 @@ FieldList<FramePointsOptions> FramePointsContactFields() {
                                .exclusive_minimum = 0.0}),
       Bind(&O::dense_sigma_px, {.name = "dense_sigma_px", .description = "1σ disparity of a dense point, px.",
                                 .exclusive_minimum = 0.0}),
+      Bind(&O::sigma_from_neighbours,
+           {.name = "sigma_from_neighbours",
+            .description = "A dense, edge or corner point's σ is taken at the depth of its region's disparity "
+                           "around it, not its own: σ ∝ Z², so a point read too near would weigh more and pull "
+                           "its wall in."}),
       Bind(&O::min_depth_m, {.name = "min_depth_m", .description = "Points nearer than this are dropped, m.",
                              .exclusive_minimum = 0.0}),
       Bind(&O::max_depth_m, {.name = "max_depth_m", .description = "Points farther than this are dropped, m.",

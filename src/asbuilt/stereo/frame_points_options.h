@@ -65,6 +65,7 @@ struct FramePointsOptions {
   double corner_sigma_px = 0.25;     // 1σ disparity of a corner point, px.
   double edge_sigma_px = 0.3;        // 1σ disparity of an edge point, px.
   double dense_sigma_px = 0.5;       // 1σ disparity of a dense point, px.
+  bool sigma_from_neighbours = true; // A stereo point's σ at its neighbours' depth, not its own (unbiased fit weights).
   double min_depth_m = 0.3;          // Points nearer than this are dropped, m.
   double max_depth_m = 20.0;         // Points farther than this are dropped, m.
   int right_label_radius_px = 2;     // With right labels: a match must carry the same class within this, px.
