@@ -296,6 +296,88 @@ DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right,
   return result;
 }
 
+namespace {
+
+// Keys' cubic convolution (a = −0.5) at fraction t between row[i] and
+// row[i + 1]: far less phase error at sub-pixel shifts than linear
+// interpolation, whose error draws a patch match towards half pixels.
+double CubicAt(const float* row, int i, double t) {
+  const double p0 = row[i - 1], p1 = row[i], p2 = row[i + 1], p3 = row[i + 2];
+  return p1 + 0.5 * t * (p2 - p0 + t * (2 * p0 - 5 * p1 + 4 * p2 - p3 + t * (3 * (p1 - p2) + p3 - p0)));
+}
+
+// The (2r+1)² patch of `image` centred on (u, v), cubic along the row, as
+// zero mean and unit variance, and its derivative along u (central
+// differences, in the same units). False when it leaves the image or is flat.
+bool NormalisedPatch(const cv::Mat& image, double u, int v, int r, std::vector<double>& values,
+                     std::vector<double>& along) {
+  const int side = 2 * r + 1;
+  const double x0 = u - r;
+  const int i0 = static_cast<int>(std::floor(x0));
+  const double t = x0 - i0;
+  if (v - r < 0 || v + r >= image.rows || i0 - 2 < 0 || i0 + side + 2 >= image.cols) return false;
+  values.resize(side * side);
+  along.resize(side * side);
+  double mean = 0, var = 0;
+  for (int y = 0, k = 0; y < side; ++y) {
+    const float* row = image.ptr<float>(v - r + y);
+    for (int x = 0; x < side; ++x, ++k) {
+      const int i = i0 + x;
+      values[k] = CubicAt(row, i, t);
+      along[k] = 0.5 * (CubicAt(row, i + 1, t) - CubicAt(row, i - 1, t));
+      mean += values[k];
+    }
+  }
+  mean /= values.size();
+  for (double value : values) var += (value - mean) * (value - mean);
+  var /= values.size();
+  if (var < 0.25) return false;  // Below half a gray level: no texture.
+  const double scale = 1.0 / std::sqrt(var);
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    values[k] = (values[k] - mean) * scale;
+    along[k] *= scale;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::optional<SubpixelDisparity> RefineDisparityAt(const cv::Mat& left_gray, const cv::Mat& right_gray, int u, int v,
+                                                   double d0, int radius_px, int iterations) {
+  CheckArgument(left_gray.type() == CV_32FC1 && right_gray.type() == CV_32FC1 && left_gray.size() == right_gray.size(),
+                "RefineDisparityAt: images must be CV_32FC1 of one size");
+  if (radius_px < 1 || !std::isfinite(d0)) return std::nullopt;
+  // Both views move by half the sub-pixel part e of d = whole + e, the left
+  // patch to u + e/2 and the right to u − whole − e/2: both are then blurred
+  // alike by the interpolation (fractions e/2 and 1 − e/2), which otherwise
+  // draws a one-sided estimate towards half pixels.
+  const double whole = std::round(d0);
+  double e = d0 - whole, residual = 0, jj = 0;
+  std::vector<double> l, lx, r, rx;
+  for (int it = 0; it < iterations; ++it) {
+    if (!NormalisedPatch(left_gray, u + 0.5 * e, v, radius_px, l, lx) ||
+        !NormalisedPatch(right_gray, u - whole - 0.5 * e, v, radius_px, r, rx)) {
+      return std::nullopt;
+    }
+    double num = 0;
+    residual = jj = 0;
+    for (std::size_t k = 0; k < l.size(); ++k) {
+      const double diff = l[k] - r[k], g = 0.5 * (lx[k] + rx[k]);  // ∂(l − r)/∂e.
+      num += diff * g;
+      jj += g * g;
+      residual += diff * diff;
+    }
+    if (jj <= 1e-9) return std::nullopt;
+    const double step = std::clamp(-num / jj, -0.5, 0.5);
+    e += step;
+    if (std::abs(whole + e - d0) > 1.0) return std::nullopt;
+    if (std::abs(step) < 1e-3) break;
+  }
+  return SubpixelDisparity{.disparity_px = whole + e,
+                           .left_u_px = u + 0.5 * e,
+                           .sigma_px = std::sqrt(residual / (l.size() - 1) / jj)};
+}
+
 cv::Mat ColorizeDisparity(const cv::Mat& disparity_px, double lo, double hi) {
   CV_Assert(disparity_px.type() == CV_32F);
   if (!std::isfinite(lo)) lo = Percentile(disparity_px, 0.01);

@@ -171,11 +171,12 @@ std::string FrameCues::CarriedBy() const {
 
 std::string FrameCues::BriefReport() const {
   return fmt::format(
-      "frame {}: corners {}/{}, edges {}/{}, dense {} ({:.0f}% of labelled px "
+      "frame {}: corners {}/{}, edges {}/{}, dense {} ({} refined; {:.0f}% of labelled px "
       "consistent), boundary {}, "
       "vertices {}, contacts floor {} (+{} occluded) ceiling {}{} — {}, {:.0f} "
       "ms",
-      index, corners_matched, corners_found, edge_points, edge_candidates, dense_points, 100.0 * dense_valid_fraction,
+      index, corners_matched, corners_found, edge_points, edge_candidates, dense_points, dense_refined,
+      100.0 * dense_valid_fraction,
       boundary_points, vertex_points, floor_contacts, floor_rejected, ceiling_contacts,
       stereo_checked == 0 ? ""
                           : fmt::format(", wall stereo consistent down its "
@@ -510,9 +511,22 @@ void AddDensePoints(const FramePass& pass) {
         if (!m[u] || !ok[u] || !std::isfinite(d[u])) continue;
         if (c == 1 && (!pass.wall_stereo || pass.covered.at<unsigned char>(v, u))) continue;
         if (!RightLabelAgrees(frame.labels_right, Vec2(u - d[u], v), static_cast<unsigned char>(c), 0)) continue;
-        if (pass.AddPoint(static_cast<unsigned char>(c), Vec2(u, v), d[u], options.dense_sigma_px,
+        // SGBM's sub-pixel parabola is drawn towards whole pixels; where the
+        // images pin the disparity down better, take theirs.
+        double disparity_px = d[u], u_px = u;
+        bool refined = false;
+        if (options.dense_refine_radius_px > 0) {
+          const auto r = RefineDisparityAt(pass.gray_left, pass.gray_right, u, v, d[u], options.dense_refine_radius_px);
+          if (r && r->sigma_px <= options.dense_refine_max_sigma_px) {
+            disparity_px = r->disparity_px;
+            u_px = r->left_u_px;
+            refined = true;
+          }
+        }
+        if (pass.AddPoint(static_cast<unsigned char>(c), Vec2(u_px, v), disparity_px, options.dense_sigma_px,
                           PointSource::kDense, around[u])) {
           ++result.cues.dense_points;
+          result.cues.dense_refined += refined;
         }
       }
     }
