@@ -41,14 +41,33 @@ cv::Ptr<cv::StereoMatcher> MakeLeftMatcher(const DisparityOptions& o, int min_di
                                 o.full_dp ? cv::StereoSGBM::MODE_HH : cv::StereoSGBM::MODE_SGBM_3WAY);
 }
 
-cv::Mat ToFloatDisparity(const cv::Mat& fixed16, int min_disp) {
+// OpenCV's SGBM (every mode) places the cost parabola's minimum with
+// integer arithmetic, d·16 + (16·(S[d−1] − S[d+1]) + den)/(2·den), and C's
+// division truncates toward zero: where the parabola's offset δ from the best
+// whole disparity is below −1/32 px the result is rounded up, 1/16 px too
+// high, instead of to the nearest sixteenth. This maps a matcher value s (in
+// sixteenths) back to the nearest-sixteenth estimate: a fraction of 9–15
+// sixteenths came from a negative δ (−1/16); a whole value mixes δ in
+// [−1/32, 1/32) (exact) with δ in (−3/32, −1/32) (one too high), so it takes
+// their mid-point (−1/32), unbiased where δ's density is locally flat; 1–8
+// sixteenths are exact. The speckle and 3×3 median filters after the fit
+// keep values on this lattice.
+float UnroundSgbm(short s) {
+  const int fraction = ((s % 16) + 16) % 16;
+  if (fraction >= 9) return (s - 1) / 16.0f;
+  if (fraction == 0) return (s - 0.5f) / 16.0f;
+  return s / 16.0f;
+}
+
+// `unround`: the values are SGBM's raw output (UnroundSgbm).
+cv::Mat ToFloatDisparity(const cv::Mat& fixed16, int min_disp, bool unround) {
   cv::Mat out(fixed16.size(), CV_32F);
   const int invalid = (min_disp - 1) * 16;
   for (int y = 0; y < fixed16.rows; ++y) {
     const short* s = fixed16.ptr<short>(y);
     float* d = out.ptr<float>(y);
     for (int x = 0; x < fixed16.cols; ++x) {
-      d[x] = s[x] <= invalid ? kNaN : s[x] / 16.0f;
+      d[x] = s[x] <= invalid ? kNaN : (unround ? UnroundSgbm(s[x]) : s[x] / 16.0f);
     }
   }
   return out;
@@ -155,8 +174,9 @@ void DisparityOptions::Check() const {
 }
 
 std::string DisparityOptions::ToString() const {
-  return fmt::format("{} range [{}, {}) block {} LR {} WLS {} fill {} multi-scale {}",
+  return fmt::format("{}{} range [{}, {}) block {} LR {} WLS {} fill {} multi-scale {}",
                      matcher == DisparityMatcher::kSgbm ? (full_dp ? "SGBM-HH" : "SGBM") : "BM",
+                     matcher == DisparityMatcher::kSgbm && !unround_subpixel ? " (OpenCV rounding)" : "",
                      min_disparity_px, min_disparity_px + num_disparities_px, block_size_px,
                      left_right_check ? fmt::format("±{:g}px", max_left_right_diff_px) : "off",
                      wls_filter ? "on" : "off", fill_holes ? "on" : "off", multi_scale ? "on" : "off");
@@ -213,7 +233,8 @@ DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right,
   const bool need_right = options.left_right_check || options.wls_filter;
   // Left images for WLS guidance must match the matcher's input channels.
   RawPair raw = MatchBoth(left, right, options, min_disp, num_disp, need_right);
-  cv::Mat disp = ToFloatDisparity(raw.left16, min_disp);
+  cv::Mat disp = ToFloatDisparity(raw.left16, min_disp,
+                                  options.unround_subpixel && options.matcher == DisparityMatcher::kSgbm);
 
   // Left–right consistency: the right view's disparity (negated by the right
   // matcher) at x − d must agree.
@@ -260,7 +281,7 @@ DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right,
     wls->setSigmaColor(options.wls_sigma);
     cv::Mat filtered;
     wls->filter(raw.left16, left, filtered, raw.right16);
-    disp = ToFloatDisparity(filtered, min_disp);
+    disp = ToFloatDisparity(filtered, min_disp, /*unround=*/false);
   }
   if (options.fill_holes) {
     FillHolesFromBackground(disp);
@@ -273,6 +294,88 @@ DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right,
   result.disparity_px = disp;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+namespace {
+
+// Keys' cubic convolution (a = −0.5) at fraction t between row[i] and
+// row[i + 1]: far less phase error at sub-pixel shifts than linear
+// interpolation, whose error draws a patch match towards half pixels.
+double CubicAt(const float* row, int i, double t) {
+  const double p0 = row[i - 1], p1 = row[i], p2 = row[i + 1], p3 = row[i + 2];
+  return p1 + 0.5 * t * (p2 - p0 + t * (2 * p0 - 5 * p1 + 4 * p2 - p3 + t * (3 * (p1 - p2) + p3 - p0)));
+}
+
+// The (2r+1)² patch of `image` centred on (u, v), cubic along the row, as
+// zero mean and unit variance, and its derivative along u (central
+// differences, in the same units). False when it leaves the image or is flat.
+bool NormalisedPatch(const cv::Mat& image, double u, int v, int r, std::vector<double>& values,
+                     std::vector<double>& along) {
+  const int side = 2 * r + 1;
+  const double x0 = u - r;
+  const int i0 = static_cast<int>(std::floor(x0));
+  const double t = x0 - i0;
+  if (v - r < 0 || v + r >= image.rows || i0 - 2 < 0 || i0 + side + 2 >= image.cols) return false;
+  values.resize(side * side);
+  along.resize(side * side);
+  double mean = 0, var = 0;
+  for (int y = 0, k = 0; y < side; ++y) {
+    const float* row = image.ptr<float>(v - r + y);
+    for (int x = 0; x < side; ++x, ++k) {
+      const int i = i0 + x;
+      values[k] = CubicAt(row, i, t);
+      along[k] = 0.5 * (CubicAt(row, i + 1, t) - CubicAt(row, i - 1, t));
+      mean += values[k];
+    }
+  }
+  mean /= values.size();
+  for (double value : values) var += (value - mean) * (value - mean);
+  var /= values.size();
+  if (var < 0.25) return false;  // Below half a gray level: no texture.
+  const double scale = 1.0 / std::sqrt(var);
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    values[k] = (values[k] - mean) * scale;
+    along[k] *= scale;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::optional<SubpixelDisparity> RefineDisparityAt(const cv::Mat& left_gray, const cv::Mat& right_gray, int u, int v,
+                                                   double d0, int radius_px, int iterations) {
+  CheckArgument(left_gray.type() == CV_32FC1 && right_gray.type() == CV_32FC1 && left_gray.size() == right_gray.size(),
+                "RefineDisparityAt: images must be CV_32FC1 of one size");
+  if (radius_px < 1 || !std::isfinite(d0)) return std::nullopt;
+  // Both views move by half the sub-pixel part e of d = whole + e, the left
+  // patch to u + e/2 and the right to u − whole − e/2: both are then blurred
+  // alike by the interpolation (fractions e/2 and 1 − e/2), which otherwise
+  // draws a one-sided estimate towards half pixels.
+  const double whole = std::round(d0);
+  double e = d0 - whole, residual = 0, jj = 0;
+  std::vector<double> l, lx, r, rx;
+  for (int it = 0; it < iterations; ++it) {
+    if (!NormalisedPatch(left_gray, u + 0.5 * e, v, radius_px, l, lx) ||
+        !NormalisedPatch(right_gray, u - whole - 0.5 * e, v, radius_px, r, rx)) {
+      return std::nullopt;
+    }
+    double num = 0;
+    residual = jj = 0;
+    for (std::size_t k = 0; k < l.size(); ++k) {
+      const double diff = l[k] - r[k], g = 0.5 * (lx[k] + rx[k]);  // ∂(l − r)/∂e.
+      num += diff * g;
+      jj += g * g;
+      residual += diff * diff;
+    }
+    if (jj <= 1e-9) return std::nullopt;
+    const double step = std::clamp(-num / jj, -0.5, 0.5);
+    e += step;
+    if (std::abs(whole + e - d0) > 1.0) return std::nullopt;
+    if (std::abs(step) < 1e-3) break;
+  }
+  return SubpixelDisparity{.disparity_px = whole + e,
+                           .left_u_px = u + 0.5 * e,
+                           .sigma_px = std::sqrt(residual / (l.size() - 1) / jj)};
 }
 
 cv::Mat ColorizeDisparity(const cv::Mat& disparity_px, double lo, double hi) {

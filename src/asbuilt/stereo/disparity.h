@@ -8,6 +8,7 @@
 // Disparity d = u_left − u_right in pixels, positive for points in front.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include <opencv2/core.hpp>
@@ -37,6 +38,7 @@ struct DisparityOptions {
   bool fill_holes = false;          // Fill holes along rows with the farther bounding disparity (background).
   int median_px = 0;                // Median filter after filling (3 or 5; 0: off; only with fill_holes).
   bool multi_scale = false;         // A half-size pass narrows the full-size range (coarse 1st–99th percentile).
+  bool unround_subpixel = true;     // SGBM: undo OpenCV's sub-pixel rounding (+1/16 px on half the pixels, ~+0.03 px mean).
 
   // Throws InvalidArgument naming the field ("DisparityOptions.block_size_px = 4, must be odd").
   void Check() const;
@@ -69,6 +71,26 @@ struct DisparityResult {
 // mismatched or empty images or bad options.
 DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right,
                                  const DisparityOptions& options);
+
+// A sub-pixel disparity refined from the images themselves.
+struct SubpixelDisparity {
+  double disparity_px = 0.0;
+  double left_u_px = 0.0;  // The left column it belongs to (within half a pixel of the one asked).
+  double sigma_px = 0.0;   // 1σ from the residual of the fit and the patches' gradients.
+};
+
+// Refines the disparity d0 of left pixel (u, v) by Gauss–Newton on the
+// zero-mean, unit-variance difference of (2r+1)² patches, a 1-D
+// Lucas–Kanade along the row: unlike SGBM's cost parabola it is not drawn
+// towards whole pixels. Symmetric: for d = whole + e both views are sampled
+// (bilinear) half of e apart from their pixels, the left at u + e/2, so the
+// disparity is that of column u + e/2 (`left_u_px`). `left_gray`,
+// `right_gray` CV_32FC1 of one size. nullopt when a patch leaves the image or
+// has no texture (σ below half a gray level), or the estimate moves more
+// than 1 px from d0; it stops after `iterations` steps or a step under
+// 0.001 px.
+std::optional<SubpixelDisparity> RefineDisparityAt(const cv::Mat& left_gray, const cv::Mat& right_gray, int u, int v,
+                                                   double d0, int radius_px, int iterations = 10);
 
 // A colour picture of a disparity map (turbo colour map over [lo, hi], NaN
 // black); lo/hi default to the map's 1st/99th percentile.

@@ -58,6 +58,10 @@ const FieldList<DisparityOptions>& DisparityOptionFields() {
       Bind(&O::multi_scale,
            {.name = "multi_scale",
             .description = "A half-size pass narrows the full-size range to its 1st–99th percentile."}),
+      Bind(&O::unround_subpixel,
+           {.name = "unround_subpixel",
+            .description = "SGBM: undo OpenCV's rounding of the sub-pixel offset toward zero, which reads half "
+                           "the pixels 1/16 px too high (a mean +0.03 px: walls ~0.2 % too near)."}),
   };
   return kList;
 }

@@ -171,11 +171,12 @@ std::string FrameCues::CarriedBy() const {
 
 std::string FrameCues::BriefReport() const {
   return fmt::format(
-      "frame {}: corners {}/{}, edges {}/{}, dense {} ({:.0f}% of labelled px "
+      "frame {}: corners {}/{}, edges {}/{}, dense {} ({} refined; {:.0f}% of labelled px "
       "consistent), boundary {}, "
       "vertices {}, contacts floor {} (+{} occluded) ceiling {}{} — {}, {:.0f} "
       "ms",
-      index, corners_matched, corners_found, edge_points, edge_candidates, dense_points, 100.0 * dense_valid_fraction,
+      index, corners_matched, corners_found, edge_points, edge_candidates, dense_points, dense_refined,
+      100.0 * dense_valid_fraction,
       boundary_points, vertex_points, floor_contacts, floor_rejected, ceiling_contacts,
       stereo_checked == 0 ? ""
                           : fmt::format(", wall stereo consistent down its "
@@ -208,14 +209,21 @@ struct FramePass {
 
   // Triangulates (Z = f·B/d, X = (u − cx)·Z/fx, Y = (v − cy)·Z/fy) into the
   // world and adds the point; nullopt when it lies outside the depth range.
-  std::optional<Vec3> AddPoint(unsigned char label, const Vec2& px, double d, double sigma_d,
-                               PointSource source) const {
+  // Its σ is σ_d's at the depth of `d_for_sigma` (the neighbourhood's
+  // disparity, FramePointsOptions::sigma_from_neighbours) when finite, else
+  // of d.
+  std::optional<Vec3> AddPoint(unsigned char label, const Vec2& px, double d, double sigma_d, PointSource source,
+                               double d_for_sigma = NAN) const {
     const double fx = frame.camera.fx;
     const std::optional<double> z = DepthFromDisparity(fx, frame.baseline_m, d);
     if (!z || *z < options.min_depth_m || *z > options.max_depth_m) return std::nullopt;
     const Vec3 p = world_from_cam * UnprojectToCamera(frame.camera, px, *z);
+    const std::optional<double> z_sigma =
+        options.sigma_from_neighbours && std::isfinite(d_for_sigma) ? DepthFromDisparity(fx, frame.baseline_m, d_for_sigma)
+                                                                    : z;
     result->points.push_back({static_cast<LabelClass>(label), p,
-                              DepthSigmaFromDisparitySigma(fx, frame.baseline_m, *z, sigma_d), source, frame.index});
+                              DepthSigmaFromDisparitySigma(fx, frame.baseline_m, z_sigma.value_or(*z), sigma_d),
+                              source, frame.index});
     return p;
   }
 
@@ -256,7 +264,7 @@ void AddCornerPoints(const FramePass& pass) {
     if (std::isfinite(own) && std::abs(own - m->disparity_px) > options.corner_region_tolerance_px) continue;
     const Vec2 right_px(c.pixel.x() - m->disparity_px, c.pixel.y() + m->row_offset_px);
     if (!RightLabelAgrees(frame.labels_right, right_px, label, options.right_label_radius_px)) continue;
-    if (auto p = pass.AddPoint(label, c.pixel, m->disparity_px, options.corner_sigma_px, PointSource::kCorner)) {
+    if (auto p = pass.AddPoint(label, c.pixel, m->disparity_px, options.corner_sigma_px, PointSource::kCorner, own)) {
       result.corners.push_back({c, *m, *p});
       ++result.cues.corners_matched;
     }
@@ -316,7 +324,7 @@ void AddEdgePoints(const FramePass& pass) {
                             options.right_label_radius_px)) {
         continue;
       }
-      if (pass.AddPoint(lab[u], px, m->disparity_px, options.edge_sigma_px, PointSource::kEdge)) {
+      if (pass.AddPoint(lab[u], px, m->disparity_px, options.edge_sigma_px, PointSource::kEdge, own)) {
         ++result.cues.edge_points;
       }
     }
@@ -448,6 +456,30 @@ double DenseValidFraction(const cv::Mat& labels, const cv::Mat& valid) {
   return labelled > 0 ? static_cast<double>(consistent) / labelled : NAN;
 }
 
+// Half the side of the window over which NeighbourDisparity averages, px:
+// wide against the matcher's per-pixel noise, narrow against a wall's
+// change of depth across the image.
+constexpr int kNeighbourRadiusPx = 6;
+
+// Per pixel, the mean of the valid disparities of `label` pixels in the
+// (2r+1)² window around it (CV_32F; NaN where there are none): the depth a
+// dense point's σ is taken at, so that its weight in the plan's fit does not
+// rise with its own error (a point read too near would otherwise count more,
+// as σ ∝ Z², and pull its wall in).
+cv::Mat NeighbourDisparity(const cv::Mat& disparity, const cv::Mat& valid, const cv::Mat& labels,
+                           unsigned char label, int r) {
+  cv::Mat use = (labels == label) & valid, values = cv::Mat::zeros(disparity.size(), CV_32F), count;
+  disparity.copyTo(values, use);
+  use.convertTo(count, CV_32F, 1.0 / 255);
+  const cv::Size window(2 * r + 1, 2 * r + 1);
+  cv::boxFilter(values, values, CV_32F, window, cv::Point(-1, -1), /*normalize=*/false, cv::BORDER_CONSTANT);
+  cv::boxFilter(count, count, CV_32F, window, cv::Point(-1, -1), /*normalize=*/false, cv::BORDER_CONSTANT);
+  cv::Mat mean(disparity.size(), CV_32F, cv::Scalar(NAN));
+  cv::divide(values, count, mean);
+  mean.setTo(NAN, count < 0.5f);
+  return mean;
+}
+
 // Dense: consistent disparities well inside each enabled class region.
 void AddDensePoints(const FramePass& pass) {
   const FramePointsOptions& options = pass.options;
@@ -468,17 +500,33 @@ void AddDensePoints(const FramePass& pass) {
       cv::distanceTransform(frame.labels_left == c, distance, cv::DIST_L2, 3);
       mask &= distance <= options.window_band_px;
     }
+    const cv::Mat neighbours = NeighbourDisparity(disparity, result.disparity.valid, frame.labels_left,
+                                                  static_cast<unsigned char>(c), kNeighbourRadiusPx);
     for (int v = 0; v < mask.rows; v += options.dense_stride_px) {
       const unsigned char* m = mask.ptr<unsigned char>(v);
       const unsigned char* ok = result.disparity.valid.ptr<unsigned char>(v);
       const float* d = disparity.ptr<float>(v);
+      const float* around = neighbours.ptr<float>(v);
       for (int u = 0; u < mask.cols; u += options.dense_stride_px) {
         if (!m[u] || !ok[u] || !std::isfinite(d[u])) continue;
         if (c == 1 && (!pass.wall_stereo || pass.covered.at<unsigned char>(v, u))) continue;
         if (!RightLabelAgrees(frame.labels_right, Vec2(u - d[u], v), static_cast<unsigned char>(c), 0)) continue;
-        if (pass.AddPoint(static_cast<unsigned char>(c), Vec2(u, v), d[u], options.dense_sigma_px,
-                          PointSource::kDense)) {
+        // SGBM's sub-pixel parabola is drawn towards whole pixels; where the
+        // images pin the disparity down better, take theirs.
+        double disparity_px = d[u], u_px = u;
+        bool refined = false;
+        if (options.dense_refine_radius_px > 0) {
+          const auto r = RefineDisparityAt(pass.gray_left, pass.gray_right, u, v, d[u], options.dense_refine_radius_px);
+          if (r && r->sigma_px <= options.dense_refine_max_sigma_px) {
+            disparity_px = r->disparity_px;
+            u_px = r->left_u_px;
+            refined = true;
+          }
+        }
+        if (pass.AddPoint(static_cast<unsigned char>(c), Vec2(u_px, v), disparity_px, options.dense_sigma_px,
+                          PointSource::kDense, around[u])) {
           ++result.cues.dense_points;
+          result.cues.dense_refined += refined;
         }
       }
     }

@@ -45,6 +45,7 @@ struct FrameCues {
   int edge_candidates = 0;
   int edge_points = 0;
   int dense_points = 0;
+  int dense_refined = 0;           // Of those, disparities set by the patch refinement (RefineDisparityAt).
   int boundary_points = 0;         // Door/window label edges on the wall.
   int vertex_points = 0;           // Wall–wall corner columns.
   int floor_contacts = 0;          // Wall/door–floor contact points.

@@ -30,6 +30,16 @@ FieldList<FramePointsOptions> FramePointsCueFields() {
            {.name = "dense_inset_px",
             .description = "Dense points only this far inside their class region (no foreground edges), px.",
             .minimum = 0.0}),
+      Bind(&O::dense_refine_radius_px,
+           {.name = "dense_refine_radius_px",
+            .description = "Refine each dense disparity by Gauss–Newton on a (2r+1)² patch (SGBM's sub-pixel "
+                           "parabola is drawn towards whole pixels); 0 = off, px.",
+            .minimum = 0.0, .maximum = 20.0}),
+      Bind(&O::dense_refine_max_sigma_px,
+           {.name = "dense_refine_max_sigma_px",
+            .description = "Keep a refined dense disparity only where its own σ (fit residual over the patch's "
+                           "gradients) is at most this; else SGBM's, px.",
+            .exclusive_minimum = 0.0}),
       Bind(&O::edge_row_step_px,
            {.name = "edge_row_step_px", .description = "Edge points: sample every n-th row.", .minimum = 1.0}),
       Bind(&O::edge_min_gradient,
@@ -140,6 +150,11 @@ FieldList<FramePointsOptions> FramePointsContactFields() {
                                .exclusive_minimum = 0.0}),
       Bind(&O::dense_sigma_px, {.name = "dense_sigma_px", .description = "1σ disparity of a dense point, px.",
                                 .exclusive_minimum = 0.0}),
+      Bind(&O::sigma_from_neighbours,
+           {.name = "sigma_from_neighbours",
+            .description = "A dense, edge or corner point's σ is taken at the depth of its region's disparity "
+                           "around it, not its own: σ ∝ Z², so a point read too near would weigh more and pull "
+                           "its wall in."}),
       Bind(&O::min_depth_m, {.name = "min_depth_m", .description = "Points nearer than this are dropped, m.",
                              .exclusive_minimum = 0.0}),
       Bind(&O::max_depth_m, {.name = "max_depth_m", .description = "Points farther than this are dropped, m.",

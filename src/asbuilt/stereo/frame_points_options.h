@@ -33,6 +33,8 @@ struct FramePointsOptions {
   double window_band_px = 14.0;      // Width of that band; door/window edge points use the same band, px.
   int dense_stride_px = 3;           // Keep every n-th dense pixel in x and y (1 = all); fewer points, same fit.
   int dense_inset_px = 3;            // Dense points only this far inside their region (no foreground edges), px.
+  int dense_refine_radius_px = 0;    // Refine dense disparities on a (2r+1)² patch (RefineDisparityAt; 0: off)…
+  double dense_refine_max_sigma_px = 0.1;  // …keeping the refinement where its own σ is at most this, px.
   int edge_row_step_px = 3;          // Edge points: sample every n-th row…
   double edge_min_gradient = 8.0;    // …where the horizontal gradient is a row maximum above this, gray levels.
   double guide_radius_px = 4.0;      // Search ± this around the dense disparity at a corner or edge pixel.
@@ -65,6 +67,7 @@ struct FramePointsOptions {
   double corner_sigma_px = 0.25;     // 1σ disparity of a corner point, px.
   double edge_sigma_px = 0.3;        // 1σ disparity of an edge point, px.
   double dense_sigma_px = 0.5;       // 1σ disparity of a dense point, px.
+  bool sigma_from_neighbours = true; // A stereo point's σ at its neighbours' depth, not its own (unbiased fit weights).
   double min_depth_m = 0.3;          // Points nearer than this are dropped, m.
   double max_depth_m = 20.0;         // Points farther than this are dropped, m.
   int right_label_radius_px = 2;     // With right labels: a match must carry the same class within this, px.

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "asbuilt/formats/capture.h"
 #include "asbuilt/formats/plan_file.h"
@@ -204,6 +205,62 @@ TEST(ComputeFramePoints, WallPointsLieOnTruthWallPlanes) {
       EXPECT_LE(Percentile(edge, 0.9), 0.10);
     }
   }
+}
+
+// A wall seen head-on at disparity d0 (yaw 0: depth is world y), textured,
+// with independent noise in the two views so that SGBM's disparities scatter.
+StereoFrame NoisyFrontalWall(double d0_px) {
+  StereoFrame f;
+  cv::Mat texture(480, 640, CV_8UC1);
+  cv::RNG rng(11);
+  rng.fill(texture, cv::RNG::UNIFORM, 0, 255);
+  cv::GaussianBlur(texture, f.left, cv::Size(7, 7), 1.5);
+  const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, -d0_px, 0, 1, 0);
+  cv::warpAffine(f.left, f.right, shift, f.left.size(), cv::INTER_CUBIC, cv::BORDER_REFLECT);
+  for (cv::Mat* view : {&f.left, &f.right}) {
+    cv::Mat noise(view->size(), CV_16SC1);
+    rng.fill(noise, cv::RNG::NORMAL, 0, 6);
+    cv::Mat sum;
+    cv::add(*view, noise, sum, cv::noArray(), CV_16SC1);
+    sum.convertTo(*view, CV_8UC1);
+  }
+  f.labels_left = cv::Mat(f.left.size(), CV_8UC1, cv::Scalar(1));
+  f.index = 0;
+  return f;
+}
+
+// σ ∝ Z²: a dense point's σ taken at its own depth gives the points read too
+// near the larger weights, so the plan's weighted fit pulls the wall in by
+// about 3·(σ_d/d)² of its distance (here −0.7 %, the noise being strong and
+// the wall far). Taken at its neighbours' depth the weights follow only what
+// those share of the point's error (SGBM's errors are correlated over its
+// block and paths): a third of it (−0.23 %).
+TEST(ComputeFramePoints, DenseWeightsDoNotFollowTheirPointsOwnError) {
+  const StereoFrame frame = NoisyFrontalWall(6.3);
+  double shift_own = 0, shift_neighbours = 0;
+  for (bool neighbours : {false, true}) {
+    FramePointsOptions options;
+    options.contacts = ContactUse::kOff;
+    options.use_corners = options.use_edges = options.use_vertices = options.use_boundaries = false;
+    options.sigma_from_neighbours = neighbours;
+    double sum = 0, weighted = 0, weights = 0;
+    int n = 0;
+    for (const ClassPoint& p : ComputeFramePoints(frame, options).points) {
+      const double w = 1.0 / (p.sigma_m * p.sigma_m);
+      sum += p.position_m.y();
+      weighted += w * p.position_m.y();
+      weights += w;
+      ++n;
+    }
+    ASSERT_GT(n, 10000);
+    const double z0 = frame.camera.fx * frame.baseline_m / 6.3;
+    const double shift = (weighted / weights - sum / n) / z0;
+    std::printf("sigma at %s depth: weighted minus plain mean depth %+.3f %%\n", neighbours ? "neighbours'" : "own",
+                100 * shift);
+    (neighbours ? shift_neighbours : shift_own) = shift;
+  }
+  EXPECT_LT(shift_own, -0.0005);
+  EXPECT_LT(std::abs(shift_neighbours), 0.4 * std::abs(shift_own));
 }
 
 // Floor and ceiling contacts (Blender rooms, exact labels): floor contacts and,
