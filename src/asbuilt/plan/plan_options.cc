@@ -5,7 +5,7 @@
 namespace asbuilt {
 
 static_assert(PlanOptions::kSegmentedContactScaleSigma == 0.005, "contact_scale_sigma's description says 0.005");
-static_assert(PlanOptions::kSegmentedLabelEdgeSigmaMrad == 3.0, "label_edge_sigma_mrad's description says 3");
+static_assert(PlanOptions::kSegmentedLabelEdgeSigmaMrad == 3.5, "label_edge_sigma_mrad's description says 3.5");
 
 const FieldList<PlanOptions>& PlanOptionFields() {
   using O = PlanOptions;
@@ -141,7 +141,7 @@ const FieldList<PlanOptions>& PlanOptionFields() {
       Bind(&O::label_edge_sigma_mrad,
            {.name = "label_edge_sigma_mrad",
             .description = "1σ of an opening's label edge beyond its points' spread, as an angle seen from the "
-                           "viewpoint (enters the ± of widths); unset: 0 for exact labels, 3 for segmented ones, "
+                           "viewpoint (enters the ± of widths); unset: 0 for exact labels, 3.5 for segmented ones, "
                            "mrad.",
             .minimum = 0.0}),
       Bind(&O::max_independent_points,

@@ -73,7 +73,7 @@ struct PlanOptions {
   // "±"). survey resolves them; ReconstructPlan, which does not know the
   // labels' origin, reads unset ones as segmented.
   static constexpr double kSegmentedContactScaleSigma = 0.005;
-  static constexpr double kSegmentedLabelEdgeSigmaMrad = 3.0;
+  static constexpr double kSegmentedLabelEdgeSigmaMrad = 3.5;
   PlanOptions ForLabels(bool exact_labels) const {
     PlanOptions o = *this;
     o.contact_scale_sigma = contact_scale_sigma.value_or(exact_labels ? 0.0 : kSegmentedContactScaleSigma);
