@@ -278,7 +278,15 @@ std::vector<std::vector<OpeningPoint>> ProjectOntoWalls(const std::vector<const 
       // is not needed (its ray lands where the ones behind the face do),
       // while an open leaf's points near its hinge, sent along their rays,
       // would widen the door by tens of centimetres.
-      if (r > o.opening_front_m || r < -o.opening_band_m) continue;
+      // A label-edge point lies at the wall's own depth, so its offset from
+      // the face is depth noise alone: it may stand as far in front as its σ
+      // allows (a far wall's edges scatter 5–30 cm; dropped, they left a
+      // door's width to where its points stop).
+      const bool boundary = p->source == PointSource::kBoundary;
+      const double front =
+          boundary ? std::max(o.opening_front_m, std::min(o.inlier_sigmas * sigma, o.max_inlier_distance_m))
+                   : o.opening_front_m;
+      if (r > front || r < -o.opening_band_m) continue;
       double t = d.dot(xy - w.start);
       // Noisy points (error mostly along the viewing ray) are projected
       // along the ray, which cancels that error. Precise points on or in front
@@ -286,7 +294,6 @@ std::vector<std::vector<OpeningPoint>> ProjectOntoWalls(const std::vector<const 
       // which is exact for them, while precise points behind the face (glass,
       // jamb linings, a recessed leaf) go along the ray to where the opening
       // cuts the face.
-      const bool boundary = p->source == PointSource::kBoundary;
       bool along_ray = o.viewpoint_m && (boundary || sigma > 0.01 || r < -0.01);
       if (along_ray) {
         Vec2 ray = xy - view;
@@ -380,6 +387,29 @@ bool DoorWidthFromLeaf(EdgePair& edges, double extent_a, double extent_b, double
   return false;
 }
 
+// A label edge whose casing's outer side faces away from the viewpoint is
+// seen at the casing's front corner, casing_depth_m in front of the face;
+// sent along its ray onto the face it lands (edge − t_v)·p/(h − p) farther
+// out (t_v: the viewpoint's foot along the wall, h: its distance from the
+// face, p: casing_depth_m), the more the more obliquely the wall is seen.
+// Moves such label edges of `edges` back onto the casing's outer side and
+// adds the casing depth's uncertainty (casing_sigma_m · |edge − t_v|/h) to
+// their variance. Needs PlanOptions::viewpoint_m; casing_depth_m 0: off.
+void CorrectFarLabelEdges(EdgePair& edges, const PlanWall& w, const Vec2& d, const PlanOptions& o) {
+  if (!o.viewpoint_m || o.casing_depth_m <= 0) return;
+  const Vec2 v = o.viewpoint_m->head<2>() - w.start;
+  const double t_v = d.dot(v), h = Vec2(-d.y(), d.x()).dot(v), p = o.casing_depth_m;
+  if (h <= p + 0.1) return;
+  const auto correct = [&](double& edge, double& var) {
+    var += std::pow(o.casing_sigma_m * (edge - t_v) / h, 2);
+    edge = t_v + (edge - t_v) * (h - p) / h;
+  };
+  // Edge a has the opening on its +t side: its outer side faces −t, away
+  // from a viewpoint beyond it; edge b the other way round.
+  if (edges.from_boundary_a && t_v > edges.a) correct(edges.a, edges.var_a);
+  if (edges.from_boundary_b && t_v < edges.b) correct(edges.b, edges.var_b);
+}
+
 // Where an opening's edge came from, for the log: a label edge, an open
 // leaf (the edge opposite a label edge, when the leaf gave the width) or the
 // extent of the opening's points.
@@ -387,13 +417,18 @@ const char* EdgeOrigin(bool label_edge, bool from_leaf) {
   return label_edge ? "label edge" : from_leaf ? "leaf" : "extent";
 }
 
-// The opening a group of points on wall `wi` gives, with ±; nullopt when it
+// The opening a group of points on wall `wi` seen from `viewpoint` (plan, m)
+// gives, with ±; nullopt when it
 // has too few points or its clear opening is too narrow or too low. Counts a width
 // taken from an open leaf in `door_leaves`.
 std::optional<PlanOpening> MeasureOpening(const std::vector<OpeningPoint>& group, int wi, const PlanWall& w, bool door,
-                                          const std::vector<Vec2>& wall_leaf_pts, const PlanOptions& o,
-                                          int& door_leaves) {
-  if (static_cast<int>(group.size()) < o.min_opening_points) return std::nullopt;
+                                          const std::vector<Vec2>& wall_leaf_pts, const Vec2& viewpoint,
+                                          const PlanOptions& o, int& door_leaves) {
+  // Label edges alone, without the opening's own points between them, are
+  // no opening: an open leaf's outline against the wall behind it gives
+  // such edges (a door's leaf swung back along the next wall).
+  const auto own = std::count_if(group.begin(), group.end(), [](const OpeningPoint& g) { return !g.boundary; });
+  if (own < o.min_opening_points) return std::nullopt;
   const double casing = door ? o.door_casing_m : o.window_casing_m;
   const double len = w.Length();
   const Vec2 d = (w.end - w.start) / len;
@@ -417,6 +452,7 @@ std::optional<PlanOpening> MeasureOpening(const std::vector<OpeningPoint>& group
   // Label edges on the wall surface fix an edge better than the extent
   // of the opening's points (recessed glass, jambs, depth noise).
   EdgePair edges = BoundaryEdges(boundary_ts, extent_a, extent_b, extent_var, o);
+  CorrectFarLabelEdges(edges, w, d, o);
   spdlog::debug("plan: wall {} {} group: extent [{:.3f}, {:.3f}], edges [{:.3f}{}, {:.3f}{}], {} boundary points",
                 wi, door ? "door" : "window", extent_a, extent_b, edges.a, edges.from_boundary_a ? " (label edge)" : "",
                 edges.b, edges.from_boundary_b ? " (label edge)" : "", boundary_ts.size());
@@ -430,10 +466,16 @@ std::optional<PlanOpening> MeasureOpening(const std::vector<OpeningPoint>& group
   if (!edges.from_boundary_a && !(from_leaf && edges.from_boundary_b)) edges.var_a += extent_edge_var;
   if (!edges.from_boundary_b && !(from_leaf && edges.from_boundary_a)) edges.var_b += extent_edge_var;
   // A label edge is known to its points' spread and to how far the labels
-  // themselves may be off (label_edge_sigma_m).
-  const double label_edge_var = std::pow(*o.ForLabels(false).label_edge_sigma_m, 2);
-  if (edges.from_boundary_a) edges.var_a += label_edge_var;
-  if (edges.from_boundary_b) edges.var_b += label_edge_var;
+  // themselves may be off, an angle (label_edge_sigma_mrad) that moves the
+  // edge along the wall by range²/h times it: far and oblique edges the most.
+  const double label_edge_rad = 1e-3 * *o.ForLabels(false).label_edge_sigma_mrad;
+  const Vec2 v = viewpoint - w.start;
+  const double t_v = d.dot(v), h = std::max(0.1, std::abs(Vec2(-d.y(), d.x()).dot(v)));
+  const auto label_edge_var = [&](double edge) {
+    return std::pow(label_edge_rad * ((edge - t_v) * (edge - t_v) + h * h) / h, 2);
+  };
+  if (edges.from_boundary_a) edges.var_a += label_edge_var(edges.a);
+  if (edges.from_boundary_b) edges.var_b += label_edge_var(edges.b);
   const double a = edges.a, b = edges.b;
   double t0 = std::clamp(a + casing, 0.0, len), t1 = std::clamp(b - casing, 0.0, len);
   if (t1 - t0 < o.min_opening_width_m) return std::nullopt;
@@ -479,7 +521,7 @@ FoundOpenings FindOpenings(const std::vector<const ClassPoint*>& points, const s
     const int wi = static_cast<int>(slot / 2);
     const bool door = slot % 2 == 0;
     for (const std::vector<OpeningPoint>& group : GroupAlongWall(per_wall_kind[slot], o)) {
-      if (auto op = MeasureOpening(group, wi, walls[wi], door, leaf_pts[wi], o, out.door_leaves)) {
+      if (auto op = MeasureOpening(group, wi, walls[wi], door, leaf_pts[wi], viewpoint, o, out.door_leaves)) {
         out.openings.push_back(*op);
       }
     }

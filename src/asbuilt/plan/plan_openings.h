@@ -12,11 +12,15 @@
 // depth error); the others perpendicularly. Per wall and kind, points are
 // grouped along the wall (split at gaps > opening_gap_m and at piers: a gap
 // with wall label edges at both its ends); a group of min_opening_points or
-// more gives an opening. Its extent comes from 2 cm bins holding edge_level
-// of a well-filled bin; an edge with min_boundary_points label-edge points
-// is their median instead. A door seen with a label edge on one side only
-// takes its width from its open leaf when one is found (door points up to
-// leaf_max_distance_m in front of the wall along one line). The clear
+// more gives an opening when at least min_opening_points of them are its own
+// (not label edges). Its extent comes from 2 cm bins holding edge_level of a
+// well-filled bin; an edge with min_boundary_points label-edge points is
+// their median instead, moved back by casing_depth_m's parallax where the
+// casing hides its own outer side from the viewpoint. Label-edge points may
+// stand up to inlier_sigmas σ (at most max_inlier_distance_m) in front of the
+// face. A door seen with a label edge on one side only takes its width from
+// its open leaf when one is found (door points up to leaf_max_distance_m in
+// front of the wall along one line). The clear
 // opening is the extent minus the casing (door_casing_m, window_casing_m) on
 // each side, clamped to the wall; narrower than min_opening_width_m: none.
 // Height and sill come from the z extent minus the casing.
@@ -35,8 +39,10 @@ struct FoundOpenings {
 };
 
 // `points`: door and window points; `walls`: the plan's walls (room on their
-// left); `viewpoint`: in plan, m, used only when PlanOptions::viewpoint_m is
-// set. Deterministic for a given PlanOptions::seed.
+// left); `viewpoint`: in plan, m, where the walls were seen from (the ring's
+// viewpoint); it places points along their rays only when
+// PlanOptions::viewpoint_m is set, and always scales the ± of label edges
+// (label_edge_sigma_mrad). Deterministic for a given PlanOptions::seed.
 FoundOpenings FindOpenings(const std::vector<const ClassPoint*>& points, const std::vector<PlanWall>& walls,
                            const Vec2& viewpoint, const PlanOptions& o);
 

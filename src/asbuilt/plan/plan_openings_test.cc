@@ -3,6 +3,7 @@
 #include "asbuilt/plan/plan_openings.h"
 
 #include <cmath>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -54,7 +55,7 @@ TEST(FindOpenings, GivesTheClearOpeningInsideTheLabel) {
 }
 
 // Where an opening's points stop without a label edge (occluders, a
-// recessed frame) each edge takes extent_edge_sigma_m more; label_edge_sigma_m
+// recessed frame) each edge takes extent_edge_sigma_m more; label_edge_sigma_mrad
 // (for label edges) leaves such edges alone.
 TEST(FindOpenings, EdgesWithoutLabelEdgesTakeTheExtentEdgeSigma) {
   const std::vector<ClassPoint> points = WindowPoints({0.85, 1.5, 0.05});
@@ -65,11 +66,11 @@ TEST(FindOpenings, EdgesWithoutLabelEdgesTakeTheExtentEdgeSigma) {
     const FoundOpenings found = FindOpenings(pointers, walls, Vec2(2, 1.5), o);
     return found.openings.size() == 1 ? found.openings[0].width_sigma_m.value_or(-1) : -1.0;
   };
-  const double plain = sigma({.extent_edge_sigma_m = 0, .label_edge_sigma_m = 0});
+  const double plain = sigma({.extent_edge_sigma_m = 0, .label_edge_sigma_mrad = 0});
   ASSERT_GT(plain, 0.0);
-  EXPECT_NEAR(sigma({.extent_edge_sigma_m = 0.05, .label_edge_sigma_m = 0}), std::hypot(plain, 0.05 * std::sqrt(2.0)),
+  EXPECT_NEAR(sigma({.extent_edge_sigma_m = 0.05, .label_edge_sigma_mrad = 0}), std::hypot(plain, 0.05 * std::sqrt(2.0)),
               1e-9);
-  EXPECT_NEAR(sigma({.extent_edge_sigma_m = 0, .label_edge_sigma_m = 0.05}), plain, 1e-9);
+  EXPECT_NEAR(sigma({.extent_edge_sigma_m = 0, .label_edge_sigma_mrad = 5}), plain, 1e-9);
 }
 
 // A window label strip thinner than its two casings (a sill or a lintel
@@ -98,6 +99,124 @@ TEST(FindOpenings, NeedsEnoughPoints) {
   const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}};
   EXPECT_TRUE(FindOpenings(pointers, walls, Vec2(2, 1.5), {.min_opening_points = 23}).openings.empty());
   EXPECT_EQ(FindOpenings(pointers, walls, Vec2(2, 1.5), {.min_opening_points = 22}).openings.size(), 1u);
+}
+
+// Label-edge points of a window on the wall y = 0 at x = `a` and `b`, every
+// 5 cm from 1.0 to 2.0 m up, σ 5 cm; each is the point at `ahead_m` in front
+// of the face on the ray from `view` through where the edge meets the face.
+std::vector<ClassPoint> EdgePoints(double a, double b, const Vec3& view, double ahead_m) {
+  std::vector<ClassPoint> points;
+  for (const double x : {a, b}) {
+    for (double z = 1.0; z <= 2.0; z += 0.05) {
+      const Vec3 on_face(x, 0, z), ray = on_face - view;
+      points.push_back({LabelClass::kWindow, on_face + ahead_m / ray.y() * ray, 0.05, PointSource::kBoundary, 0});
+    }
+  }
+  return points;
+}
+
+// Label edges with none of the opening's own points beside them are no
+// opening, whatever leaf stands nearby: a door's open leaf swung back along
+// the next wall outlines itself against that wall so, and the leaf would
+// give the phantom door a width.
+TEST(FindOpenings, LabelEdgesAloneAreNoOpening) {
+  const Vec3 view(2, 1.5, 1.5);
+  std::vector<ClassPoint> points;
+  for (double z = 0.1; z <= 2.0; z += 0.05) {
+    points.push_back({LabelClass::kDoor, Vec3(1.0, 0, z), 0.05, PointSource::kBoundary, 0});
+  }
+  const double leaf_deg = 70.0;
+  const Vec2 hinge(0.93, 0), leaf(std::cos(DegToRad(leaf_deg)), std::sin(DegToRad(leaf_deg)));
+  for (double s = 0.05; s < 0.8; s += 0.01) {
+    for (double z = 0.1; z < 1.3; z += 0.1) {
+      const Vec2 xy = hinge + s * leaf;
+      points.push_back({LabelClass::kDoor, Vec3(xy.x(), xy.y(), z), 0.01, PointSource::kDense, 0});
+    }
+  }
+  std::vector<const ClassPoint*> pointers;
+  for (const ClassPoint& p : points) pointers.push_back(&p);
+  const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}};
+  const PlanOptions o{.viewpoint_m = view};
+  EXPECT_TRUE(FindOpenings(pointers, walls, view.head<2>(), o).openings.empty());
+  // With the door's own points beside the edge it is a door.
+  std::vector<ClassPoint> own;
+  for (double x = 1.0; x < 1.5; x += 0.01) {
+    for (double z = 0.1; z <= 2.0; z += 0.1) own.push_back({LabelClass::kDoor, Vec3(x, 0, z), 0.005, PointSource::kDense, 0});
+  }
+  for (const ClassPoint& p : own) pointers.push_back(&p);
+  EXPECT_EQ(FindOpenings(pointers, walls, view.head<2>(), o).openings.size(), 1u);
+}
+
+// A far wall's label edges scatter in front of its face by their depth
+// noise: within 3σ they still place the edge. Here a cupboard hides the
+// window's last 20 cm, its points stop at 2.0 m, and the label edge at
+// 2.2 m, 6 cm in front of the face (σ 5 cm), gives the width.
+TEST(FindOpenings, ALabelEdgeInFrontOfTheFaceByItsNoiseStillPlacesTheEdge) {
+  const Vec3 view(2, 1.5, 1.5);
+  std::vector<ClassPoint> points = WindowPoints({0.85, 1.5, 0.05});
+  std::erase_if(points, [](const ClassPoint& p) { return p.position_m.x() > 2.0; });
+  const std::vector<ClassPoint> edges = EdgePoints(1.0, 2.2, view, 0.06);
+  points.insert(points.end(), edges.begin(), edges.end());
+  std::vector<const ClassPoint*> pointers;
+  for (const ClassPoint& p : points) pointers.push_back(&p);
+  const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}};
+  const PlanOptions o{.casing_depth_m = 0, .viewpoint_m = view};
+  const FoundOpenings found = FindOpenings(pointers, walls, view.head<2>(), o);
+  ASSERT_EQ(found.openings.size(), 1u);
+  EXPECT_NEAR(found.openings[0].width, 1.2 - 2 * o.window_casing_m, 0.002);
+}
+
+// Seen obliquely, the far edge's casing hides its own outer side: the
+// label ends at the casing's front corner, 1.5 cm before the face, and its
+// ray meets the face (edge − foot)·p/(h − p) farther out. That edge is moved
+// back; its σ grows with the obliquity.
+TEST(FindOpenings, AFarLabelEdgeSeenPastItsCasingIsMovedBack) {
+  const Vec3 view(-1, 1.5, 1.5);  // Off to the window's start side: its end edge is the far one.
+  const double p = 0.015, seen_b = 2.2 + (2.2 - view.x()) * p / (view.y() - p);
+  std::vector<ClassPoint> points = WindowPoints({0.85, 1.5, 0.05});
+  const std::vector<ClassPoint> edges = EdgePoints(1.0, seen_b, view, 0.0);
+  points.insert(points.end(), edges.begin(), edges.end());
+  std::vector<const ClassPoint*> pointers;
+  for (const ClassPoint& q : points) pointers.push_back(&q);
+  const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}};
+  const auto width = [&](double casing_depth_m) {
+    const PlanOptions o{.casing_depth_m = casing_depth_m, .viewpoint_m = view};
+    const FoundOpenings found = FindOpenings(pointers, walls, view.head<2>(), o);
+    return found.openings.size() == 1 ? found.openings[0] : PlanOpening{};
+  };
+  const PlanOpening plain = width(0.0), corrected = width(p);
+  EXPECT_GT(plain.width, 1.1 + 0.025);
+  EXPECT_NEAR(corrected.width, 1.1, 0.002);
+  EXPECT_GT(corrected.width_sigma_m.value_or(0), plain.width_sigma_m.value_or(1));
+}
+
+// A label edge off by an angle δ seen from the viewpoint lands range²/h · δ
+// along the wall (h: the viewpoint's distance from it): a window seen
+// head-on from 2 m gains little, one seen obliquely from 4 m away much more.
+TEST(FindOpenings, ALabelEdgesSigmaGrowsWithRangeSquaredOverDistance) {
+  const auto added_var = [](const Vec3& view) {
+    std::vector<ClassPoint> points = WindowPoints({0.85, 1.5, 0.05});
+    const std::vector<ClassPoint> edges = EdgePoints(1.0, 2.2, view, 0.0);
+    points.insert(points.end(), edges.begin(), edges.end());
+    std::vector<const ClassPoint*> pointers;
+    for (const ClassPoint& q : points) pointers.push_back(&q);
+    const std::vector<PlanWall> walls = {{.start = {-5, 0}, .end = {5, 0}}};
+    const auto sigma = [&](double mrad) {
+      const PlanOptions o{.casing_depth_m = 0, .label_edge_sigma_mrad = mrad, .viewpoint_m = view};
+      const FoundOpenings found = FindOpenings(pointers, walls, view.head<2>(), o);
+      return found.openings.size() == 1 ? found.openings[0].width_sigma_m.value_or(0) : 0.0;
+    };
+    return std::pow(sigma(5), 2) - std::pow(sigma(0), 2);
+  };
+  const auto expected = [](const Vec3& view) {
+    double var = 0;
+    for (const double x : {1.0, 2.2}) var += std::pow(0.005 * (std::pow(x - view.x(), 2) + std::pow(view.y(), 2)) / view.y(), 2);
+    return var;
+  };
+  const Vec3 head_on(1.6, 2, 1.5), oblique(-2, 1, 1.5);
+  EXPECT_NEAR(added_var(head_on), expected(head_on), 1e-7);
+  EXPECT_NEAR(added_var(oblique), expected(oblique), 1e-6);
+  EXPECT_GT(added_var(oblique), 20 * added_var(head_on));
 }
 
 TEST(PlanOpenings, OpeningWidthsComeFromLabelEdgesOnTheWall) {

@@ -5,7 +5,7 @@
 namespace asbuilt {
 
 static_assert(PlanOptions::kSegmentedContactScaleSigma == 0.005, "contact_scale_sigma's description says 0.005");
-static_assert(PlanOptions::kSegmentedLabelEdgeSigmaM == 0.01, "label_edge_sigma_m's description says 0.01");
+static_assert(PlanOptions::kSegmentedLabelEdgeSigmaMrad == 3.5, "label_edge_sigma_mrad's description says 3.5");
 
 const FieldList<PlanOptions>& PlanOptionFields() {
   using O = PlanOptions;
@@ -89,9 +89,15 @@ const FieldList<PlanOptions>& PlanOptionFields() {
       Bind(&O::window_casing_m,
            {.name = "window_casing_m",
             .description = "Window labels extend this far beyond the clear opening, m.", .minimum = 0.0}),
-      Bind(&O::casing_sigma_m, {.name = "casing_sigma_m",
-                                .description = "Uncertainty of the casing widths (enters the ± of openings), m.",
-                                .minimum = 0.0}),
+      Bind(&O::casing_depth_m,
+           {.name = "casing_depth_m",
+            .description = "Casings stand this far in front of the wall face: a label edge seen past a casing's "
+                           "front corner is moved back by it (0: labels end at the face), m.",
+            .minimum = 0.0, .maximum = 0.1}),
+      Bind(&O::casing_sigma_m,
+           {.name = "casing_sigma_m",
+            .description = "Uncertainty of the casing widths and depth (enters the ± of openings), m.",
+            .minimum = 0.0}),
       Bind(&O::opening_band_m,
            {.name = "opening_band_m",
             .description = "Door/window points within this behind a wall's line belong to it, m.",
@@ -132,10 +138,11 @@ const FieldList<PlanOptions>& PlanOptionFields() {
             .description = "1σ of an opening edge taken where its points stop, without a label edge there "
                            "(occluders, recessed frames; enters the ± of widths), m.",
             .minimum = 0.0}),
-      Bind(&O::label_edge_sigma_m,
-           {.name = "label_edge_sigma_m",
-            .description = "1σ of an opening's label edge beyond its points' spread (enters the ± of widths); "
-                           "unset: 0 for exact labels, 0.01 for segmented ones, m.",
+      Bind(&O::label_edge_sigma_mrad,
+           {.name = "label_edge_sigma_mrad",
+            .description = "1σ of an opening's label edge beyond its points' spread, as an angle seen from the "
+                           "viewpoint (enters the ± of widths); unset: 0 for exact labels, 3.5 for segmented ones, "
+                           "mrad.",
             .minimum = 0.0}),
       Bind(&O::max_independent_points,
            {.name = "max_independent_points",

@@ -37,7 +37,8 @@ struct PlanOptions {
   double max_corner_extension_m = 2.5;  // A corner may lie at most this far beyond a wall's points, m.
   double door_casing_m = 0.07;        // Door labels extend this far beyond the clear opening (casing), m.
   double window_casing_m = 0.05;      // Window labels extend this far beyond the clear opening, m.
-  double casing_sigma_m = 0.01;       // Uncertainty of the casing widths (enters the ± of openings), m.
+  double casing_depth_m = 0.015;      // Casings stand this far in front of the wall face (label edges seen past them), m.
+  double casing_sigma_m = 0.01;       // Uncertainty of the casing widths and depth (enters the ± of openings), m.
   double opening_band_m = 0.3;        // Door/window points within this behind a wall's line belong to it…
   double opening_front_m = 0.03;      // …and within this in front: casings (not sill boards, not open leaves).
   double opening_gap_m = 0.25;        // Openings on one wall are split at gaps longer than this, m.
@@ -49,9 +50,11 @@ struct PlanOptions {
   int leaf_min_points = 20;           // …at least this many, along one line (its width gives the door's).
   double leaf_edge_sigma_m = 0.08;    // 1σ of a door edge placed one leaf width from the seen one, m.
   double extent_edge_sigma_m = 0.06;  // 1σ of an opening edge where its points stop (no label edge there), m.
-  // 1σ of an opening's label edge beyond its points' spread (a segmenter's
-  // edge off alike all along it), m. Unset: auto, ForLabels().
-  std::optional<double> label_edge_sigma_m;
+  // 1σ of an opening's label edge beyond its points' spread, as an angle
+  // seen from the viewpoint (a segmenter's edge off alike all along it by a
+  // fraction of a pixel or more); along the wall it is range²/h times that,
+  // h the viewpoint's distance from the wall, mrad. Unset: auto, ForLabels().
+  std::optional<double> label_edge_sigma_mrad;
   int max_independent_points = 400;   // Dense points are correlated: cap the points a ± assumes.
   double shared_sigma_fraction = 0.5;          // Share of a wall's contacts' median σ that does not average out.
   double shared_stereo_sigma_fraction = 0.25;  // The same for stereo points (the matcher's sub-pixel bias).
@@ -70,11 +73,11 @@ struct PlanOptions {
   // "±"). survey resolves them; ReconstructPlan, which does not know the
   // labels' origin, reads unset ones as segmented.
   static constexpr double kSegmentedContactScaleSigma = 0.005;
-  static constexpr double kSegmentedLabelEdgeSigmaM = 0.01;
+  static constexpr double kSegmentedLabelEdgeSigmaMrad = 3.5;
   PlanOptions ForLabels(bool exact_labels) const {
     PlanOptions o = *this;
     o.contact_scale_sigma = contact_scale_sigma.value_or(exact_labels ? 0.0 : kSegmentedContactScaleSigma);
-    o.label_edge_sigma_m = label_edge_sigma_m.value_or(exact_labels ? 0.0 : kSegmentedLabelEdgeSigmaM);
+    o.label_edge_sigma_mrad = label_edge_sigma_mrad.value_or(exact_labels ? 0.0 : kSegmentedLabelEdgeSigmaMrad);
     return o;
   }
 

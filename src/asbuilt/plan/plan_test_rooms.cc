@@ -90,11 +90,21 @@ std::vector<ClassPoint> BoundaryPoints(const Plan& plan, const Vec3& view, doubl
   for (const PlanOpening& o : plan.openings) {
     const bool door = o.kind == OpeningKind::kDoor;
     const double casing = door ? 0.07 : 0.05;
-    const Vec2 along = (o.end - o.start).normalized();
+    const Vec2 along = (o.end - o.start).normalized(), inward(-along.y(), along.x());
     const double sill = o.sill.value_or(0.0), top = sill + o.height.value_or(2.0);
-    for (const Vec2& edge : {Vec2(o.start - casing * along), Vec2(o.end + casing * along)}) {
+    // The casing stands kCasingDepth in front of the face. Its outer side
+    // faces the viewpoint at one edge, where the label meets the wall on the
+    // face; at the other the label ends at its front corner, which hides the
+    // face beyond it: the edge is where the ray past that corner meets the face.
+    constexpr double kCasingDepth = 0.015;
+    const Vec2 v = view.head<2>();
+    const double h = inward.dot(v - o.start);
+    for (const auto& [edge, outward] : {std::pair<Vec2, Vec2>{o.start - casing * along, -along},
+                                        std::pair<Vec2, Vec2>{o.end + casing * along, along}}) {
+      const double beyond = outward.dot(edge - v);  // > 0: the outer side faces away.
+      const Vec2 seen = beyond > 0 ? Vec2(edge + beyond * kCasingDepth / (h - kCasingDepth) * outward) : edge;
       for (double z = sill + 0.05; z < top; z += 0.05, ++k) {
-        const Vec3 on_face(edge.x(), edge.y(), z);
+        const Vec3 on_face(seen.x(), seen.y(), z);
         const double error = depth_error_m * ((k % 7) / 3.0 - 1.0);  // −1 … +1 of the bound.
         const Vec3 p = on_face + error * (on_face - view).normalized();
         out.push_back({door ? LabelClass::kDoor : LabelClass::kWindow, p, 0.03, PointSource::kBoundary, 0});

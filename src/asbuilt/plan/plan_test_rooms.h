@@ -40,7 +40,9 @@ void AddWallRun(std::vector<ClassPoint>& points, const Vec2& a, const Vec2& b, i
 void AddVertex(std::vector<ClassPoint>& points, const Vec2& corner, int frames = 2);
 
 // Label-edge (boundary) points of every opening of `plan`: on the wall face
-// at the label's edges (the casing's outer edges), every 5 cm in height, each
+// at the label's edges (the casing's outer edges; where a 1.5 cm deep
+// casing's outer side faces away from `view`, where the ray past its front
+// corner meets the face), every 5 cm in height, each
 // moved along its viewing ray by up to ±`depth_error_m` (what stereo depth
 // error does), as ComputeFramePoints makes them.
 std::vector<ClassPoint> BoundaryPoints(const Plan& plan, const Vec3& view, double depth_error_m);

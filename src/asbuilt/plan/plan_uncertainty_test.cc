@@ -93,9 +93,9 @@ TEST(PropagateRingSigmas, AContactScaleErrorMovesAllContactWallsTogether) {
 TEST(PlanOptions, ForLabelsResolvesTheAutoSigmasByTheLabelsOrigin) {
   const PlanOptions exact = PlanOptions{}.ForLabels(true), segmented = PlanOptions{}.ForLabels(false);
   EXPECT_EQ(exact.contact_scale_sigma, 0.0);
-  EXPECT_EQ(exact.label_edge_sigma_m, 0.0);
+  EXPECT_EQ(exact.label_edge_sigma_mrad, 0.0);
   EXPECT_EQ(segmented.contact_scale_sigma, PlanOptions::kSegmentedContactScaleSigma);
-  EXPECT_EQ(segmented.label_edge_sigma_m, PlanOptions::kSegmentedLabelEdgeSigmaM);
+  EXPECT_EQ(segmented.label_edge_sigma_mrad, PlanOptions::kSegmentedLabelEdgeSigmaMrad);
   EXPECT_EQ(PlanOptions{.contact_scale_sigma = 0.02}.ForLabels(true).contact_scale_sigma, 0.02);
 }
 

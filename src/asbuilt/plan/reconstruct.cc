@@ -114,7 +114,7 @@ void PlanOptions::Check() const {
   non_negative(leaf_edge_sigma_m, "leaf_edge_sigma_m");
   non_negative(extent_edge_sigma_m, "extent_edge_sigma_m");
   if (contact_scale_sigma) non_negative(*contact_scale_sigma, "contact_scale_sigma");
-  if (label_edge_sigma_m) non_negative(*label_edge_sigma_m, "label_edge_sigma_m");
+  if (label_edge_sigma_mrad) non_negative(*label_edge_sigma_mrad, "label_edge_sigma_mrad");
   CheckArgument(vote_sigma_m > 0 && std::isfinite(vote_sigma_m),
                 fmt::format("PlanOptions.vote_sigma_m = {}, must be > 0", vote_sigma_m));
   CheckArgument(min_wall_points >= 3, fmt::format("PlanOptions.min_wall_points = {}, must be >= 3", min_wall_points));
@@ -141,6 +141,7 @@ void PlanOptions::Check() const {
   positive(max_corner_extension_m, "max_corner_extension_m");
   non_negative(door_casing_m, "door_casing_m");
   non_negative(window_casing_m, "window_casing_m");
+  non_negative(casing_depth_m, "casing_depth_m");
   non_negative(casing_sigma_m, "casing_sigma_m");
   positive(opening_band_m, "opening_band_m");
   positive(opening_front_m, "opening_front_m");

@@ -16,6 +16,12 @@ namespace {
 // needed to estimate the ceiling, or to check the paired estimate.
 constexpr size_t kMinStereoCeilingSamples = 200;
 
+// Ceiling-height samples counted as independent in a σ, at most: samples of
+// one frame's neighbouring columns share its label edges' errors (and, for
+// stereo heights, its matcher's bias along the whole wall), so a 12-frame
+// turn gives about two independent ones per frame.
+constexpr double kIndependentCeilingSamples = 24.0;
+
 bool IsStructureLabel(unsigned char label) { return label >= 1 && label <= 3; }
 
 // Depth σ of a point on a horizontal plane `dh` metres from the camera, at
@@ -448,10 +454,10 @@ std::optional<CeilingHeight> CeilingHeightFromSamples(std::vector<double> sample
   out.height_m = median(near);
   std::vector<double> dev;
   for (double x : near) dev.push_back(std::abs(x - out.height_m));
-  // σ of the median: 1.4826·MAD/√n, floored (the samples share a rig height).
-  // Samples of one frame's neighbouring columns share its label edges' errors:
-  // count at most two per frame of a 12-frame turn as independent.
-  out.sigma_m = std::max(0.002, 1.4826 * median(dev) / std::sqrt(std::min(24.0, static_cast<double>(near.size()))));
+  // σ of the median: 1.4826·MAD/√n, floored (the samples share a rig height),
+  // n at most kIndependentCeilingSamples.
+  out.sigma_m = std::max(
+      0.002, 1.4826 * median(dev) / std::sqrt(std::min(kIndependentCeilingSamples, static_cast<double>(near.size()))));
   out.samples = static_cast<int>(near.size());
   return out;
 }
@@ -570,9 +576,12 @@ ResolvedContacts PendingContacts::Resolve(const FramePointsOptions& options) con
             out.ceiling->samples, samples.size(), stereo_range->first, stereo_range->second, rejected);
       } else {
         const double median = stereo[stereo.size() / 2];
+        // σ of the median: 1.2533·σ/√n, n at most kIndependentCeilingSamples
+        // (thousands of stereo heights, a few walls' matcher errors).
         const double sigma = (stereo_range->second - stereo_range->first) / 1.349;
+        const double independent = std::min(kIndependentCeilingSamples, static_cast<double>(stereo.size()));
         out.ceiling = CeilingHeight{.height_m = median,
-                                    .sigma_m = std::max(0.002, 1.2533 * sigma / std::sqrt(double(stereo.size()))),
+                                    .sigma_m = std::max(0.002, 1.2533 * sigma / std::sqrt(independent)),
                                     .samples = static_cast<int>(stereo.size())};
         out.how = fmt::format(
             "the median of the walls' stereo heights under {} "

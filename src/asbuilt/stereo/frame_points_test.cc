@@ -536,6 +536,9 @@ TEST(PendingContacts, ChecksTheCeilingHeightAgainstTheWallsStereo) {
   ASSERT_TRUE(resolved.ceiling.has_value());
   EXPECT_NEAR(resolved.ceiling->height_m, 2.85, 0.002);
   EXPECT_NE(resolved.how.find("stereo"), std::string::npos) << resolved.how;
+  // Its σ counts 24 of the 1000 correlated heights as independent:
+  // 1.2533 · (IQR 0.15 m / 1.349) / √24 = 28 mm, not 4 mm.
+  EXPECT_NEAR(resolved.ceiling->sigma_m, 0.0284, 0.002);
 
   pending.stereo_samples_m.clear();  // Stereo heights around 3.40 m: the pairs stand.
   for (int i = 0; i < 1000; ++i) pending.stereo_samples_m.push_back(3.25 + 0.0003 * i);
