@@ -43,7 +43,7 @@ ABL_STEPS=${ABL_STEPS:-1500}
 ZIND=${ZIND:-$HERE/../shared/data/zind_sample_tour}
 SMOKE=${SMOKE:-0}
 LEVERS=(photo_textures outside_photos next_rooms door_leaves home_palette sunlight kitchens wall_details window_dressing
-  phone_camera glass_doors close_views ceiling_like_walls wall_art)
+  phone_camera glass_doors close_views ceiling_like_walls wall_art close_doors)
 mkdir -p "$WORK"
 has() { [[ ",$STAGES," == *",$1,"* ]]; }
 

@@ -72,6 +72,40 @@ def fit_size(w, h, sw, sh):
     return max(1, int(round(w * s))), max(1, int(round(h * s)))
 
 
+def add_stray_light(bgr, label, rng):
+    """seg/seg_data.cc AddStrayLight: patches of sun or lamp light, and, half
+    the time, dimmed windows, so that brightness alone does not say window."""
+    h, w = label.shape
+    gain = np.zeros((h, w), np.float32)
+    for _ in range(1 + int(rng.random() * 3)):
+        mask = np.zeros((h, w), np.uint8)
+        cx, cy = rng.uniform(0, w), rng.uniform(0, h)
+        extent = min(w, h)
+        a, b, angle = rng.uniform(0.08, 0.35) * extent, rng.uniform(0.05, 0.25) * extent, rng.uniform(0, 180)
+        if rng.random() < 0.6:
+            skew, t = rng.uniform(-0.8, 0.8), np.deg2rad(angle)
+            ax = np.array([a * np.cos(t), a * np.sin(t)])
+            ay = np.array([b * (-np.sin(t) + skew * np.cos(t)), b * (np.cos(t) + skew * np.sin(t))])
+            c = np.array([cx, cy])
+            quad = np.array([c - ax - ay, c + ax - ay, c + ax + ay, c - ax + ay]).round().astype(np.int32)
+            cv2.fillConvexPoly(mask, quad, 255, cv2.LINE_AA)
+        else:
+            cv2.ellipse(mask, (int(cx), int(cy)), (int(a), int(b)), angle, 0, 360, 255, cv2.FILLED, cv2.LINE_AA)
+        soft = cv2.GaussianBlur(mask.astype(np.float32) / 255, (0, 0), rng.uniform(0.5, 0.5 * b))
+        gain += soft * rng.uniform(0.5, 3.0)
+    warmth = rng.uniform(0, 0.25)
+    tint = np.array([1 - warmth, 1, 1 + 0.5 * warmth], np.float32)  # BGR.
+    img = np.clip(bgr.astype(np.float32) * (1 + gain[..., None] * tint), 0, 255).astype(np.uint8)
+    if rng.random() < 0.5:
+        window = label == 3
+        if window.any():
+            grey = cv2.cvtColor(cv2.cvtColor(img, cv2.COLOR_BGR2GRAY), cv2.COLOR_GRAY2BGR).astype(np.float32)
+            keep, scale = rng.uniform(0.2, 1.0), rng.uniform(0.35, 0.9)
+            dim = img.astype(np.float32) * keep * scale + grey * (1 - keep) * scale
+            img[window] = np.clip(dim[window], 0, 255).astype(np.uint8)
+    return img
+
+
 def augment(bgr, label, a, rng):
     """seg/seg_data.cc AugmentPair, in NumPy/OpenCV."""
     fw, fh = fit_size(bgr.shape[1], bgr.shape[0], *a.scale)
@@ -96,6 +130,8 @@ def augment(bgr, label, a, rng):
     label = label[y:y + ch, x:x + cw]
     if rng.random() < 0.5:
         bgr, label = bgr[:, ::-1], label[:, ::-1]
+    if a.stray_light > 0 and rng.random() < a.stray_light:
+        bgr = add_stray_light(np.ascontiguousarray(bgr), np.ascontiguousarray(label), rng)
     f = bgr.astype(np.float32)
     if rng.random() < 0.5:
         f += rng.uniform(-32, 32)
@@ -190,6 +226,8 @@ def main():
     p.add_argument("--scale", type=size_arg, default=(320, 240))
     p.add_argument("--crop", type=size_arg, default=(256, 256))
     p.add_argument("--batch", type=int, default=32)
+    p.add_argument("--stray-light", type=float, default=0.0,
+                   help="share of crops given light patches and dimmed windows (asbuilt train --stray-light)")
     p.add_argument("--steps", type=int, default=10000)
     p.add_argument("--lr", type=float, default=1e-3)
     p.add_argument("--weight-decay", type=float, default=1e-2)

@@ -47,6 +47,11 @@ int RunTrainCommand(int argc, char** argv) {
   app.add_flag("--no-flip", no_flip, "no horizontal flips");
   app.add_flag("--no-photometric", no_photometric, "no photometric distortion");
   app.add_flag("--no-blur-noise", no_blur_noise, "no blur / noise augmentation");
+  app.add_option("--stray-light", o.augment.stray_light_probability,
+                 "share of crops given patches of sun/lamp light and dimmed windows, so bright is not window "
+                 "(real photos; 0 = off)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--val-fraction", o.val_fraction, "folders: share held out for validation")->capture_default_str();
   app.add_option("--val-max", o.val_max_images, "validate on at most N images (0 = all)")->capture_default_str();
   app.add_option("--seed", o.seed, "seed for split, order, augmentation, init")->capture_default_str();

@@ -19,6 +19,7 @@ namespace {
 
 constexpr double kMinWallClearanceM = 0.3;
 constexpr double kCloseViewShare = 0.3;  // Of all views, with the close_views lever.
+constexpr double kCloseDoorShare = 0.2;  // Of all views, with the close_doors lever.
 
 double DistanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
   Vec2 ab = b - a;
@@ -145,6 +146,40 @@ bool PlanCloseView(SceneRng& rng, const Scene& scene, SynthItem& item) {
   return false;
 }
 
+// A close view of a door (SynthLevers::close_doors): 0.5–1.6 m in front of
+// one of the room's doors, up to 40° off its normal, at eye or rig height,
+// looking at a point of the opening: what real photos of hallways and closets
+// show, an open leaf or the room beyond filling much of the frame. False when
+// the room has no door or no clear spot is found.
+bool PlanCloseDoorView(SceneRng& rng, const Scene& scene, SynthItem& item) {
+  const Room& room = scene.rooms.at(0);
+  std::vector<const Opening*> doors;
+  for (const Opening& o : room.openings) {
+    if (o.kind == OpeningKind::kDoor) doors.push_back(&o);
+  }
+  if (doors.empty()) return false;
+  const int n = static_cast<int>(room.polygon.size());
+  for (int attempt = 0; attempt < 40; ++attempt) {
+    const Opening& door = *doors[rng.UniformInt(0, static_cast<int>(doors.size()) - 1)];
+    const Vec2 a = room.polygon[door.wall], b = room.polygon[(door.wall + 1) % n];
+    const Vec2 d = (b - a).normalized();
+    const Vec2 inward(-d.y(), d.x());
+    const Vec2 target2 = a + (door.offset_m + door.width_m * rng.Uniform(0.2, 0.8)) * d;
+    const double dist = rng.Uniform(0.5, 1.6), side = DegToRad(rng.Uniform(-40.0, 40.0));
+    const Vec2 cam2 = target2 + dist * (std::cos(side) * inward + std::sin(side) * d);
+    const Vec3 cam(cam2.x(), cam2.y(), std::min(rng.Uniform(1.2, 1.75), room.height_m - 0.4));
+    if (!FreeSpot(scene, room, cam) || !ClearSightline(scene, cam2, target2)) continue;
+    const Vec2 v = target2 - cam2;
+    item.kind = "photo";
+    item.target = "close_door";
+    item.camera.viewpoint.position_m = cam;
+    item.camera.viewpoint.yaw_deg = RadToDeg(std::atan2(-v.x(), v.y())) + rng.Uniform(-15.0, 15.0);
+    item.camera.viewpoint.pitch_deg = rng.Uniform(-10.0, 10.0);
+    return true;
+  }
+  return false;
+}
+
 // Item `index` of `scene` with its camera's field of view drawn from `rng`
 // (the first draw of the item's stream); pose and kind still to plan.
 SynthItem NewSynthItem(const DatasetSynthOptions& options, const Scene& scene, int index, SceneRng& rng) {
@@ -173,7 +208,7 @@ std::vector<std::pair<std::string, bool SynthLevers::*>> LeverFields() {
           {"wall_details", &SynthLevers::wall_details},     {"window_dressing", &SynthLevers::window_dressing},
           {"phone_camera", &SynthLevers::phone_camera},     {"glass_doors", &SynthLevers::glass_doors},
           {"close_views", &SynthLevers::close_views},       {"ceiling_like_walls", &SynthLevers::ceiling_like_walls},
-          {"wall_art", &SynthLevers::wall_art}};
+          {"wall_art", &SynthLevers::wall_art},             {"close_doors", &SynthLevers::close_doors}};
 }
 
 }  // namespace
@@ -378,6 +413,14 @@ SynthItem PlanSynthItem(const DatasetSynthOptions& options, const Scene& scene, 
     if (close.Chance(kCloseViewShare)) {
       SynthItem item = NewSynthItem(options, scene, index, close);
       if (PlanCloseView(close, scene, item)) return item;
+    }
+  }
+  if (options.levers.close_doors) {
+    // Own stream too: the other levers' items stay as they were.
+    SceneRng close(SplitMix64(options.seed * 0xD1B54A32D192ED03ULL + static_cast<std::uint64_t>(index) + 0xD00125));
+    if (close.Chance(kCloseDoorShare)) {
+      SynthItem item = NewSynthItem(options, scene, index, close);
+      if (PlanCloseDoorView(close, scene, item)) return item;
     }
   }
   SceneRng rng(SplitMix64(options.seed * 0x100000001B3ULL + static_cast<std::uint64_t>(index)));

@@ -58,6 +58,8 @@ struct SynthLevers {
                                  // pitched up to the wall–ceiling edge: the wall fills the frame.
   bool ceiling_like_walls = false;  // Half the rooms: the ceiling in the walls' paint, soft fill light.
   bool wall_art = false;         // 60 % of rooms: framed pictures, mirrors, a TV on the walls (label 0).
+  bool close_doors = false;      // 20 % of views 0.5–1.6 m from a door, ±40° off its normal: the door (an
+                                 // open leaf, the room beyond) fills much of the frame, as in hallways.
 
   bool Any() const;
   // Comma-separated names of the levers that are on, or "none".

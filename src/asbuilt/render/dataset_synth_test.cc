@@ -109,6 +109,41 @@ TEST(PlanSynthItem, CloseViewsFillTheFrameWithWallAndLeaveOtherItemsAlone) {
               close, corners, pitched, ceiling_on_top, wall_fraction / close);
 }
 
+// close_doors: a fifth of the views stand close to a door and see much of
+// it (door label); the other items are as without the lever.
+TEST(PlanSynthItem, CloseDoorViewsSeeMuchDoorAndLeaveOtherItemsAlone) {
+  DatasetSynthOptions off = TinyOptions(), on = TinyOptions();
+  on.levers.close_doors = true;
+  int close = 0, rooms_with_doors = 0;
+  double door_fraction = 0.0;
+  for (std::uint64_t seed = 0; seed < 8; ++seed) {
+    Scene scene = RandomScene(on.scene, seed);
+    bool has_door = false;
+    for (const Opening& o : scene.rooms[0].openings) has_door |= o.kind == OpeningKind::kDoor;
+    rooms_with_doors += has_door;
+    SceneRenderer renderer(scene);
+    for (int i = 0; i < 20; ++i) {
+      SynthItem a = PlanSynthItem(off, scene, i), b = PlanSynthItem(on, scene, i);
+      if (b.target != "close_door") {
+        EXPECT_EQ(a.camera.viewpoint.position_m, b.camera.viewpoint.position_m);  // Not chosen: as before.
+        continue;
+      }
+      ASSERT_TRUE(has_door);
+      ++close;
+      EXPECT_EQ(b.kind, "photo");
+      EXPECT_LE(std::abs(b.camera.viewpoint.pitch_deg), 10.0);
+      RenderedView v = renderer.Render(b.camera, {.samples_per_pixel = 1, .camera_effects = 0.0}, i, false);
+      const cv::Mat labels = AsMat(v.labels);
+      door_fraction += cv::countNonZero(labels == kLabelDoor) / static_cast<double>(labels.total());
+    }
+  }
+  ASSERT_GT(rooms_with_doors, 3);
+  EXPECT_GT(close, rooms_with_doors * 20 / 10);  // 20 % of the rooms-with-doors' views, less misses.
+  EXPECT_GT(door_fraction / close, 0.25) << "mean door share of a close door view";
+  std::printf("close door views: %d in %d rooms with doors, mean door share %.3f\n", close, rooms_with_doors,
+              door_fraction / close);
+}
+
 TEST(SynthesizeDataset, ShardUnionEqualsTheWholeRunAndResumes) {
   fs::path root = fs::path(ASBUILT_BINARY_DIR) / "render_test_synth";
   fs::remove_all(root);
@@ -143,8 +178,8 @@ TEST(ParseSynthLevers, ReadsAllNoneAndListsAndNamesAnUnknownLever) {
   EXPECT_EQ(ParseSynthLevers("none").ToString(), "none");
   EXPECT_EQ(ParseSynthLevers("all").ToString(),
             "photo_textures,outside_photos,next_rooms,door_leaves,home_palette,sunlight,kitchens,wall_details,"
-            "window_dressing,phone_camera,glass_doors,close_views,ceiling_like_walls,wall_art");
-  EXPECT_EQ(ParseSynthLevers("all,-sunlight,-phone_camera,-wall_art").ToString(),
+            "window_dressing,phone_camera,glass_doors,close_views,ceiling_like_walls,wall_art,close_doors");
+  EXPECT_EQ(ParseSynthLevers("all,-sunlight,-phone_camera,-wall_art,-close_doors").ToString(),
             "photo_textures,outside_photos,next_rooms,door_leaves,home_palette,kitchens,wall_details,"
             "window_dressing,glass_doors,close_views,ceiling_like_walls");
   EXPECT_EQ(ParseSynthLevers("kitchens,door_leaves").ToString(), "door_leaves,kitchens");

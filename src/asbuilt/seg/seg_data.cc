@@ -78,12 +78,68 @@ void AugmentOptions::Check() const {
                 fmt::format("AugmentOptions crop {}x{}, must be > 0", crop_width_px, crop_height_px));
   CheckArgument(ratio_min > 0 && ratio_min <= ratio_max,
                 fmt::format("AugmentOptions ratio range [{}, {}] is empty or not positive", ratio_min, ratio_max));
+  CheckArgument(stray_light_probability >= 0 && stray_light_probability <= 1,
+                fmt::format("AugmentOptions stray_light_probability {}, must be in [0, 1]", stray_light_probability));
 }
 
 cv::Size FitSize(cv::Size image, int width_px, int height_px) {
   double s = std::min(static_cast<double>(width_px) / image.width, static_cast<double>(height_px) / image.height);
   return {std::max(1, static_cast<int>(std::lround(image.width * s))),
           std::max(1, static_cast<int>(std::lround(image.height * s)))};
+}
+
+void AddStrayLight(SegPair& pair, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u01(0, 1);
+  auto U = [&](double a, double b) { return a + (b - a) * u01(rng); };
+  const int w = pair.bgr.cols, h = pair.bgr.rows;
+  const double extent = std::min(w, h);
+  cv::Mat gain(pair.bgr.size(), CV_32F, cv::Scalar(0));
+  const int patches = 1 + static_cast<int>(u01(rng) * 3);
+  for (int i = 0; i < patches; ++i) {
+    cv::Mat mask(pair.bgr.size(), CV_8U, cv::Scalar(0));
+    const cv::Point2d c(U(0, w), U(0, h));
+    const double a = U(0.08, 0.35) * extent, b = U(0.05, 0.25) * extent, angle = U(0, 180);
+    if (u01(rng) < 0.6) {
+      // A sun patch: a window's shape thrown obliquely, a parallelogram.
+      const double skew = U(-0.8, 0.8), t = angle * CV_PI / 180;
+      const cv::Point2d ax(a * std::cos(t), a * std::sin(t)), ay(b * (-std::sin(t) + skew * std::cos(t)),
+                                                                  b * (std::cos(t) + skew * std::sin(t)));
+      const std::vector<cv::Point> quad = {c - ax - ay, c + ax - ay, c + ax + ay, c - ax + ay};
+      cv::fillConvexPoly(mask, quad, cv::Scalar(255), cv::LINE_AA);
+    } else {
+      // A lamp's pool of light or a glossy highlight: an ellipse.
+      cv::ellipse(mask, cv::Point(c), cv::Size(static_cast<int>(a), static_cast<int>(b)), angle, 0, 360,
+                  cv::Scalar(255), cv::FILLED, cv::LINE_AA);
+    }
+    cv::Mat soft;
+    mask.convertTo(soft, CV_32F, 1.0 / 255);
+    cv::GaussianBlur(soft, soft, cv::Size(0, 0), U(0.5, 0.5 * b));  // Soft edges, the core kept.
+    cv::scaleAdd(soft, U(0.5, 3.0), gain, gain);
+  }
+  cv::Mat f;
+  pair.bgr.convertTo(f, CV_32FC3);
+  // Warm light: blue gains less than red (BGR order).
+  const double warmth = U(0, 0.25);
+  std::vector<cv::Mat> ch;
+  cv::split(f, ch);
+  for (int k = 0; k < 3; ++k) {
+    const double tint = k == 0 ? 1 - warmth : (k == 2 ? 1 + 0.5 * warmth : 1);
+    cv::Mat g = gain * tint + 1;
+    ch[static_cast<std::size_t>(k)] = ch[static_cast<std::size_t>(k)].mul(g);
+  }
+  cv::merge(ch, f);
+  f.convertTo(pair.bgr, CV_8UC3);  // Saturates: blown-out light, as in photos.
+  if (u01(rng) < 0.5) {
+    // A dull or shaded window: darker and greyer than the room around it.
+    cv::Mat window = pair.label == 3;
+    if (cv::countNonZero(window) == 0) return;
+    cv::Mat grey, grey3, dim;
+    cv::cvtColor(pair.bgr, grey, cv::COLOR_BGR2GRAY);
+    cv::cvtColor(grey, grey3, cv::COLOR_GRAY2BGR);
+    const double keep = U(0.2, 1.0), scale = U(0.35, 0.9);
+    cv::addWeighted(pair.bgr, keep * scale, grey3, (1 - keep) * scale, 0, dim);
+    dim.copyTo(pair.bgr, window);
+  }
 }
 
 void AugmentPair(SegPair& pair, const AugmentOptions& o, std::mt19937_64& rng) {
@@ -130,6 +186,8 @@ void AugmentPair(SegPair& pair, const AugmentOptions& o, std::mt19937_64& rng) {
     cv::flip(pair.bgr, pair.bgr, 1);
     cv::flip(pair.label, pair.label, 1);
   }
+  // Drawn only when on, so the shipped recipe's random stream is unchanged.
+  if (o.stray_light_probability > 0 && u01(rng) < o.stray_light_probability) AddStrayLight(pair, rng);
   if (o.photometric) {
     cv::Mat f;
     pair.bgr.convertTo(f, CV_32FC3);

@@ -59,8 +59,20 @@ struct AugmentOptions {
   bool flip = true;             // Horizontal flip, p = 0.5.
   bool photometric = true;      // Brightness, contrast, saturation, hue (mmseg).
   bool blur_noise = true;       // Gaussian blur (p 0.3) and noise (p 0.3).
+  // Light that is not a window (issue 21: real photos' sunlit patches, lamps
+  // and white appliances read as window). With this probability per crop:
+  // 1–3 soft-edged patches of warm light (a sun patch's parallelogram or a
+  // lamp's ellipse) brightened 1.5–4× and clipped, anywhere in the crop; and,
+  // half as often, the window pixels dimmed to 35–90 % and desaturated (dull
+  // or shaded windows), so that brightness alone does not say "window".
+  // Labels unchanged. 0 = off (the shipped recipe).
+  double stray_light_probability = 0;
   void Check() const;
 };
+
+// AugmentOptions::stray_light_probability's change, always applied: light
+// patches over the image and, half the time, dimmed windows; labels untouched.
+void AddStrayLight(SegPair& pair, std::mt19937_64& rng);
 
 // Augments one pair in place to exactly crop size.
 void AugmentPair(SegPair& pair, const AugmentOptions& options, std::mt19937_64& rng);

@@ -169,6 +169,43 @@ TEST(AugmentPair, ProducesCropSizeAndKeepsLabelsValid) {
   }
 }
 
+// Stray light brightens parts of the image (some to white), never darkens
+// a non-window pixel, and leaves the labels as they were; over many draws
+// some crops get their windows dimmed below where they started.
+TEST(AddStrayLight, BrightensPatchesDimsSomeWindowsKeepsLabels) {
+  SegPair base{cv::Mat(60, 80, CV_8UC3, cv::Scalar(120, 130, 140)), cv::Mat(60, 80, CV_8UC1, cv::Scalar(1))};
+  base.label(cv::Rect(50, 10, 20, 20)).setTo(3);
+  base.bgr(cv::Rect(50, 10, 20, 20)).setTo(cv::Scalar(230, 230, 230));
+  const cv::Mat wall = base.label == 1, window = base.label == 3;
+  std::mt19937_64 rng(11);
+  int brightened = 0, saturated = 0, windows_dimmed = 0;
+  for (int i = 0; i < 40; ++i) {
+    SegPair p{base.bgr.clone(), base.label.clone()};
+    AddStrayLight(p, rng);
+    ASSERT_EQ(cv::countNonZero(p.label != base.label), 0);
+    cv::Mat grey, base_grey;
+    cv::cvtColor(p.bgr, grey, cv::COLOR_BGR2GRAY);
+    cv::cvtColor(base.bgr, base_grey, cv::COLOR_BGR2GRAY);
+    cv::Mat darker_wall = (grey < base_grey - 1) & wall;
+    ASSERT_EQ(cv::countNonZero(darker_wall), 0) << "draw " << i;
+    brightened += cv::countNonZero((grey > base_grey + 20) & wall) > 0;
+    saturated += cv::countNonZero((grey >= 250) & wall) > 0;
+    windows_dimmed += cv::mean(grey, window)[0] < 200;
+  }
+  EXPECT_GE(brightened, 36);  // A patch may fall on the window alone.
+  EXPECT_GT(saturated, 5);
+  EXPECT_GT(windows_dimmed, 5);
+  EXPECT_LT(windows_dimmed, 35);
+}
+
+TEST(AugmentOptions, RefusesAStrayLightShareOutsideZeroToOne) {
+  AugmentOptions o;
+  o.stray_light_probability = 1.5;
+  EXPECT_THROW(o.Check(), InvalidArgument);
+  o.stray_light_probability = 0.5;
+  EXPECT_NO_THROW(o.Check());
+}
+
 TEST(EvaluateOptions, LabelMapsForRealDatasets) {
   auto ade = LabelMapTable("ade20k");
   EXPECT_EQ(ade[0], 255);
