@@ -19,7 +19,7 @@
 #   THREADS  LibTorch threads per run; the runs go side by side [1]
 #   ZIND     the ZInD sample tour [../shared/data/zind_sample_tour]
 #
-# Time on 2 cores (2026-12-04): data ≈ 15 min (+8 for close_doors), each
+# Time on 2 cores (2026-12-04): data ≈ 15 min (+8–20 for close_doors, with other work), each
 # 300-step run ≈ 28 min with two side by side, each ZInD evaluation ≈ 2–3 min.
 set -euo pipefail
 BUILD=${1:-build}
