@@ -53,7 +53,7 @@ int RunPointsCommand(int argc, char** argv) {
   if (labels_dir.empty() == !use_capture_labels) {
     throw CLI::ValidationError("--labels", "give exactly one of --labels DIR or --use-capture-labels");
   }
-  options.contact_snap_px = options.ContactSnapPx(use_capture_labels);
+  options.ResolveSnaps(use_capture_labels);
   options.Check();
 
   const Capture capture = ReadCapture(capture_path);

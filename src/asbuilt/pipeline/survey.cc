@@ -283,7 +283,7 @@ void LabelSourceStage(Survey& s) {
 // Every frame's points (the one frame loop), the wall cue and the ceiling.
 void PointsStage(Survey& s, const ProgressCallback& progress) {
   FramePointsOptions options = s.options.points;
-  options.contact_snap_px = options.ContactSnapPx(s.options.use_capture_labels);
+  options.ResolveSnaps(s.options.use_capture_labels);
   SurveyFrameObserver observer(s);
   CapturePointsResult gathered = s.views ? ComputeCapturePoints(*s.views, *s.labels, options, &observer, progress)
                                          : ComputeCapturePoints(s.capture, *s.labels, options, &observer, progress);

@@ -200,8 +200,10 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
   if (!(h > 0.05)) return;                            // No usable height: no contacts.
   const int rows = labels.rows, cols = labels.cols, run = options.contact_min_run_px;
   const double fxb = cam.fx * frame.baseline_m;
-  const cv::Mat steps =
-      options.contact_snap_px.value_or(0) > 0 || options.skirting_depth_m > 0 ? VerticalSteps(frame.left) : cv::Mat();
+  const cv::Mat steps = options.contact_snap_px.value_or(0) > 0 || options.floor_snap_px.value_or(0) > 0 ||
+                                options.skirting_depth_m > 0
+                            ? VerticalSteps(frame.left)
+                            : cv::Mat();
   const std::size_t first_point = result->points.size(), first_paired = result->pending.paired_floor.size(),
                     first_topped = result->pending.topped_floor.size();
   std::vector<double> skirting_heights;  // Per wall foot: the step above it, in
@@ -242,8 +244,11 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
 
   for (int u = 0; u < cols; u += options.contact_col_step_px) {
     // Floor: scan up from the bottom for the lowest wall/door → background
-    // edge (not snapped: docs/stereo.md, "Option notes", says why).
-    double floor_row = NAN;
+    // edge, snapped within floor_snap_px rows only (a wider window reaches
+    // skirting tops and grout lines: docs/stereo.md, "Option notes").
+    // `floor_edge` is the label edge (which rows hold the wall), `floor_row`
+    // where the contact is measured (snapped when asked).
+    double floor_row = NAN, floor_edge = NAN;
     unsigned char floor_label = 0;
     for (int v = rows - 1 - run; v >= run; --v) {
       if (v + 0.5 <= cam.cy + 1.0) break;  // At or above the horizon: not the floor.
@@ -273,7 +278,10 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
           break;  // Occluded base: nothing lower in this column is the wall's.
         }
       }
-      floor_row = v + 0.5;
+      floor_edge = v + 0.5;
+      floor_row = SnapRowToImageEdge(steps, u, floor_edge, options.floor_snap_px.value_or(0),
+                                     options.contact_snap_min_step);
+      if (floor_row <= cam.cy + 1.0) floor_row = floor_edge;
       floor_label = a;
       break;
     }
@@ -294,7 +302,7 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
             skirting_heights.push_back(*s);
           }
         }
-        cover(u, static_cast<int>(floor_row - 0.5), -1);
+        cover(u, static_cast<int>(floor_edge - 0.5), -1);
       } else {
         floor_row = NAN;
       }
@@ -323,7 +331,7 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
     bool paired = false;
     if (floor_point && std::isfinite(ceiling_row)) {
       paired = true;
-      for (int v = static_cast<int>(ceiling_edge + 0.5); v <= static_cast<int>(floor_row - 0.5) && paired; ++v) {
+      for (int v = static_cast<int>(ceiling_edge + 0.5); v <= static_cast<int>(floor_edge - 0.5) && paired; ++v) {
         paired = IsStructureLabel(label_at(v, u));
       }
     }
@@ -334,7 +342,7 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
       result->pending.paired_floor.push_back({*floor_point, sample, sigma});
     } else if (floor_point) {
       // Wall (or openings) from the image's top edge down to the contact.
-      if (result->pending.top_edges.back().wall_to_row[u] >= static_cast<int>(floor_row - 0.5)) {
+      if (result->pending.top_edges.back().wall_to_row[u] >= static_cast<int>(floor_edge - 0.5)) {
         // The image's top edge (row −0.5) still shows the wall at depth z.
         const double z = cam.fy * h / (floor_row - cam.cy);
         const double rise = (cam.cy + 0.5) / cam.fy;

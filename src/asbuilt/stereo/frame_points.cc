@@ -132,10 +132,10 @@ void FramePointsOptions::Check() const {
                             "need step, run >= 1 and sigmas, tolerance > 0",
                             contact_col_step_px, contact_min_run_px, contact_sigma_px, camera_height_sigma_m,
                             contact_floor_tolerance_px));
-  CheckArgument(contact_snap_px.value_or(0) >= 0 && contact_snap_min_step >= 0,
-                fmt::format("FramePointsOptions: contact_snap_px = {}, "
+  CheckArgument(contact_snap_px.value_or(0) >= 0 && floor_snap_px.value_or(0) >= 0 && contact_snap_min_step >= 0,
+                fmt::format("FramePointsOptions: contact_snap_px = {}, floor_snap_px = {}, "
                             "contact_snap_min_step = {}: must be >= 0",
-                            contact_snap_px.value_or(0), contact_snap_min_step));
+                            contact_snap_px.value_or(0), floor_snap_px.value_or(0), contact_snap_min_step));
   CheckArgument(skirting_depth_m >= 0 && skirting_depth_m < 0.1,
                 fmt::format("FramePointsOptions.skirting_depth_m = {}, must be in [0, 0.1)", skirting_depth_m));
   CheckArgument(stereo_check_tolerance_px > 0 && stereo_check_min_agree >= 0 && stereo_check_min_agree <= 1 &&

@@ -83,6 +83,7 @@ FieldList<FramePointsOptions> FramePointsCueFields() {
 }
 
 static_assert(FramePointsOptions::kDefaultContactSnapPx == 10, "contact_snap_px's description says 10");
+static_assert(FramePointsOptions::kDefaultFloorSnapPx == 2, "floor_snap_px's description says 2");
 
 // Contacts, the stereo check and the point σ (second half of the list).
 FieldList<FramePointsOptions> FramePointsContactFields() {
@@ -119,6 +120,11 @@ FieldList<FramePointsOptions> FramePointsContactFields() {
            {.name = "contact_snap_min_step",
             .description = "Ceiling contacts snap only to a colour step at least this strong, gray levels.",
             .minimum = 0.0}),
+      Bind(&O::floor_snap_px,
+           {.name = "floor_snap_px",
+            .description = "Move each floor contact to the image's strongest edge within N rows of the label "
+                           "edge (0 = off); unset: 2 for segmented or given labels, 0 for exact ones.",
+            .minimum = 0.0, .maximum = 64.0}),
       Bind(&O::skirting_depth_m,
            {.name = "skirting_depth_m",
             .description = "Move wall-foot contacts back this far where a skirting board is seen (0 = off), m.",

@@ -55,6 +55,7 @@ struct FramePointsOptions {
   double contact_floor_tolerance_px = 1.0;  // Reject a floor contact when the floor below is nearer by max(this, 15 %).
   std::optional<int> contact_snap_px;  // Snap ceiling contacts to the image edge within this many rows; unset: auto.
   double contact_snap_min_step = 1.0;  // …when that colour step is at least this, gray levels.
+  std::optional<int> floor_snap_px;  // Snap floor contacts to the image edge within this many rows; unset: auto.
   double skirting_depth_m = 0.012;   // Move wall-foot contacts back this far where a skirting is seen (0: off), m.
   double stereo_check_tolerance_px = 0.5;  // Stereo check: a wall column's disparities agree within max(this, 3 %)…
   double stereo_check_min_agree = 0.7;     // …for this share of wall pixels, or the wall stereo is dropped…
@@ -80,6 +81,17 @@ struct FramePointsOptions {
   static constexpr int kDefaultContactSnapPx = 10;
   int ContactSnapPx(bool exact_labels) const {
     return contact_snap_px.value_or(exact_labels ? 0 : kDefaultContactSnapPx);
+  }
+  // The same for floor contacts, with a window too narrow to reach a
+  // skirting board's top or a tile's grout line (they gave steps as strong
+  // as the wall's foot to the wide ceiling window): the snap only refines a
+  // segmented label edge to the image's own sub-pixel edge beside it.
+  static constexpr int kDefaultFloorSnapPx = 2;
+  int FloorSnapPx(bool exact_labels) const { return floor_snap_px.value_or(exact_labels ? 0 : kDefaultFloorSnapPx); }
+  // Both snap radii resolved for labels of this origin.
+  void ResolveSnaps(bool exact_labels) {
+    contact_snap_px = ContactSnapPx(exact_labels);
+    floor_snap_px = FloorSnapPx(exact_labels);
   }
 
   void Check() const;

@@ -452,6 +452,57 @@ TEST(ComputeFramePoints, SnappedCeilingContactsUndoLabelEdgesThatWaveAwayFromThe
   EXPECT_LE(Percentile(snapped, 0.5), 0.01);
 }
 
+// A segmenter's floor edge sits a pixel off along a whole wall seen head-on
+// (every column quantises the same horizontal edge alike), which moves every
+// foot of that wall in or out together: the demo's feet lay 7–8 mm in, its
+// walls 0.2 % short. floor_snap_px moves each foot to the image's own edge
+// within 2 rows, too few to reach a skirting's top (8 cm up: 10+ rows at
+// 5 m in these 640×480 views). Blender room p01 (skirting 15 mm deep) with
+// its exact labels shifted a whole row down and up: the feet move in or out
+// by about a centimetre, and snapping brings them back to where the exact
+// labels put them.
+TEST(ComputeFramePoints, SnappedFloorContactsUndoALabelEdgeARowOff) {
+  RoomFrames r = LoadRoom("p01_rect_1door_2win", {0, 2, 4, 6, 8, 10});
+  const Plan truth = ReadPlan(RoomDir("p01_rect_1door_2win") / "truth.json");
+  auto feet_inside = [&](int shift_rows, int snap_px) {
+    FramePointsOptions options;
+    options.contacts = ContactUse::kAlways;
+    options.floor_snap_px = snap_px;
+    options.skirting_depth_m = 0.015;
+    options.ceiling_height_m = truth.walls.at(0).height.value_or(NAN);  // The height is not what this measures.
+    PendingContacts pending;
+    for (StereoFrame f : r.frames) {
+      cv::Mat shifted = f.labels_left.clone();
+      for (int v = 0; v < shifted.rows; ++v) {
+        f.labels_left.row(std::clamp(v - shift_rows, 0, shifted.rows - 1)).copyTo(shifted.row(v));
+      }
+      f.labels_left = shifted;
+      f.labels_right = cv::Mat();
+      pending.Append(std::move(ComputeFramePoints(f, options).contacts));
+    }
+    std::vector<double> inside;
+    for (const ClassPoint& p : pending.Resolve(options).points) {
+      if (p.position_m.z() == 0.0 && p.label == LabelClass::kWall) inside.push_back(InsideTheWalls(truth, p.position_m));
+    }
+    return inside;
+  };
+  const std::vector<double> exact = feet_inside(0, 0), exact_snapped = feet_inside(0, 2), down = feet_inside(1, 0),
+                            down_snapped = feet_inside(1, 2), up = feet_inside(-1, 0), up_snapped = feet_inside(-1, 2);
+  const double e = Percentile(exact, 0.5);
+  std::printf("wall feet inside the walls, median: exact labels %.4f m (%zu), snapped %.4f m; a row down %.4f → "
+              "snapped %.4f m (%zu); a row up %.4f → snapped %.4f m (%zu)\n",
+              e, exact.size(), Percentile(exact_snapped, 0.5), Percentile(down, 0.5), Percentile(down_snapped, 0.5),
+              down_snapped.size(), Percentile(up, 0.5), Percentile(up_snapped, 0.5), up_snapped.size());
+  ASSERT_GE(exact.size(), 300u);
+  EXPECT_LE(std::abs(Percentile(exact_snapped, 0.5) - e), 0.003);  // Exact edges stay (no skirting top).
+  EXPECT_GE(Percentile(down, 0.5) - e, 0.005);                       // A row down: feet in…
+  EXPECT_LE(Percentile(up, 0.5) - e, -0.005);                        // …a row up: feet out…
+  for (const auto* snapped : {&down_snapped, &up_snapped}) {         // …and snapping undoes most of either.
+    ASSERT_GE(snapped->size(), 0.9 * exact.size());
+    EXPECT_LE(std::abs(Percentile(*snapped, 0.5) - e), 0.3 * std::abs(Percentile(down, 0.5) - e));
+  }
+}
+
 // The Blender rooms' walls carry texture: their stereo holds down each
 // column (the check measures 0.98–0.99 there), so the default contact use
 // keeps it and gives exactly the points of ContactUse::kOff.
