@@ -87,15 +87,21 @@ std::vector<Direction> ClusterDirections(const std::vector<WallLine>& lines, con
   return dirs;
 }
 
-// The first pair of directions (in order) 90° apart within the data
-// becomes a Manhattan frame: both are replaced by its two axes, each with
+// The first pair of directions (in order) 90° apart within the data (within
+// snap_sigmas of their σ, and manhattan_max_deg or, when their σ is wider,
+// that σ up to manhattan_snap_max_deg) becomes a Manhattan frame: both are replaced by its two axes, each with
 // their pooled weight. Returns the axes' indices into `dirs` (none: no frame).
 std::vector<int> FormManhattanFrame(std::vector<Direction>& dirs, const PlanOptions& o) {
   for (size_t a = 0; a < dirs.size(); ++a) {
     for (size_t b = a + 1; b < dirs.size(); ++b) {
       double off = std::abs(std::abs(AngleDiffModPi(dirs[a].theta, dirs[b].theta)) - kPi / 2);
-      double tol = std::max(DegToRad(o.manhattan_always_deg), o.snap_sigmas * std::sqrt(dirs[a].Var() + dirs[b].Var()));
-      if (off < DegToRad(o.manhattan_max_deg) && off <= tol) {
+      const double sigma = std::sqrt(dirs[a].Var() + dirs[b].Var());
+      const double tol = std::max(DegToRad(o.manhattan_always_deg), o.snap_sigmas * sigma);
+      // A pair known to within a degree or so that is 3° off square is a
+      // room built so; a pair whose σ is wider than that (a bent line's,
+      // alone in its direction) cannot tell, and is squared up to its 1σ.
+      const double cap = std::max(DegToRad(o.manhattan_max_deg), std::min(DegToRad(o.manhattan_snap_max_deg), sigma));
+      if (off < cap && off <= tol) {
         double frame = CircularMean({{dirs[a].theta, dirs[a].sum_w}, {dirs[b].theta, dirs[b].sum_w}}, 4);
         double sw = dirs[a].sum_w + dirs[b].sum_w;
         Direction da{frame, sw}, db{std::fmod(frame + kPi / 2, kPi), sw};

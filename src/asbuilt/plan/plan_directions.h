@@ -9,8 +9,8 @@
 // (PlanOptions::bend_sigmas). Directions cluster the lines' angles (within
 // snap_max_deg, strongest lines first), each weighted by 1/var θ. Two
 // directions form a Manhattan frame when they are 90° apart within
-// manhattan_max_deg and within snap_sigmas of their σ (always within
-// manhattan_always_deg). A line snaps (is refitted at the direction's angle,
+// manhattan_max_deg (or their σ, when wider, up to manhattan_snap_max_deg)
+// and within snap_sigmas of their σ (always within manhattan_always_deg). A line snaps (is refitted at the direction's angle,
 // taking its σ) when its own fit agrees within snap_sigmas of σ (between
 // snap_min_deg and snap_max_deg); in a Manhattan frame, within
 // manhattan_snap_max_deg of an axis, or up to noisy_snap_max_deg when the

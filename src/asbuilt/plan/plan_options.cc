@@ -59,7 +59,7 @@ const FieldList<PlanOptions>& PlanOptionFields() {
                               .minimum = 0.0}),
       Bind(&O::manhattan_max_deg,
            {.name = "manhattan_max_deg",
-            .description = "Two dominant directions this close to 90° may form a Manhattan frame, deg.",
+            .description = "Two dominant directions this close to 90° may form a Manhattan frame (or up to their σ when wider, at most manhattan_snap_max_deg), deg.",
             .minimum = 0.0}),
       Bind(&O::manhattan_always_deg,
            {.name = "manhattan_always_deg",

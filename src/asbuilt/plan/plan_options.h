@@ -29,7 +29,7 @@ struct PlanOptions {
   double snap_max_deg = 5.0;          // …and never more than this many degrees.
   double manhattan_snap_max_deg = 8.0;  // In a Manhattan frame, every line this close to an axis snaps, deg.
   double snap_min_deg = 0.05;         // Always snap within this (depth quantisation, exact labels), deg.
-  double manhattan_max_deg = 3.0;     // Two dominant directions this close to 90° may form a frame, deg…
+  double manhattan_max_deg = 3.0;     // Two dominant directions this close to 90° (or their σ) may form a frame, deg…
   double manhattan_always_deg = 1.0;  // …and this close always do (docs/plan.md, "Option notes").
   double noisy_snap_max_deg = 25.0;   // In a frame, a line this far off an axis snaps when the axis fits its noise.
   double bend_sigmas = 3.0;           // A line whose halves differ by this many σ is bent; its σ widens (0: off).
