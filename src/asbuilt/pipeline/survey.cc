@@ -366,6 +366,12 @@ void PlanStage(Survey& s) {
   PlanOptions plan_options = s.options.plan;
   if (!plan_options.viewpoint_m) plan_options.viewpoint_m = s.viewpoint_m;
   plan_options = plan_options.ForLabels(s.options.use_capture_labels);
+  // The ceiling estimate's σ as a share of its height above the rig: a
+  // ceiling contact's distance is proportional to H − h (docs/plan.md, "±").
+  if (s.viewpoint_m && std::isfinite(summary.ceiling_height_m) && std::isfinite(summary.ceiling_height_sigma_m) &&
+      summary.ceiling_height_m - s.viewpoint_m->z() > 0.1 && plan_options.ceiling_scale_sigma == 0.0) {
+    plan_options.ceiling_scale_sigma = summary.ceiling_height_sigma_m / (summary.ceiling_height_m - s.viewpoint_m->z());
+  }
   // One camera turning in place: every point was seen from the viewpoint
   // (turned on here for such captures; `--plan.one-viewpoint` forces it on).
   if (!plan_options.one_viewpoint && s.capture.kind != CaptureKind::kStereo && s.viewpoint_m) {

@@ -161,6 +161,11 @@ const FieldList<PlanOptions>& PlanOptionFields() {
                            "height, label edges off alike all round); unset: 0 for exact labels, 0.005 for "
                            "segmented ones.",
             .minimum = 0.0, .maximum = 0.5}),
+      Bind(&O::ceiling_scale_sigma,
+           {.name = "ceiling_scale_sigma",
+            .description = "Relative 1σ of the ceiling's height above the rig, σ_H / (H − h): moves ceiling-contact "
+                           "walls together (survey sets it from its ceiling estimate).",
+            .minimum = 0.0, .maximum = 0.5}),
       BindWith<O>({.name = "viewpoint_m", .kind = FieldKind::kPoint3,
                    .description = "Capture centre X,Y,Z (world m), if known; improves openings."},
                   [](const O& o) -> nlohmann::json {

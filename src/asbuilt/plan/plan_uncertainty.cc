@@ -11,6 +11,9 @@
 namespace asbuilt {
 namespace {
 
+// Floor contacts lie at z = 0, ceiling ones at the ceiling's height.
+constexpr double kCeilingContactMinZ = 0.1;
+
 double MedianOf(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
   return v[v.size() / 2];
@@ -26,13 +29,12 @@ double MedianOf(std::vector<double> v) {
 // have kMinEdgeContacts points.
 double FloorCeilingDisagreementVariance(const WallPoints& walls, const WallLine& l) {
   constexpr int kMinEdgeContacts = 10;
-  constexpr double kFloorMaxZ = 0.1;  // Floor contacts lie at z = 0, ceiling ones at the ceiling's height.
   std::vector<double> floor, ceiling;
   double w_floor = 0, w_ceiling = 0;
   for (int k : l.members) {
     const WallPoint& p = walls.points[k];
     if (!p.contact) continue;
-    const bool on_floor = p.z < kFloorMaxZ;
+    const bool on_floor = p.z < kCeilingContactMinZ;
     (on_floor ? floor : ceiling).push_back(l.Distance(p.p));
     (on_floor ? w_floor : w_ceiling) += p.w;
   }
@@ -91,15 +93,17 @@ double PropagatedVariance(const std::vector<WallLine>& lines,
   return var;
 }
 
-// Each line's share of its members' weight that contacts carry: how far it
-// follows a scale error of the contacts.
-std::vector<double> ContactShares(const WallPoints& walls, const std::vector<WallLine>& ring) {
+// Each line's share of its members' weight that contacts carry (all of
+// them, or only the ceiling's, above the floor): how far it follows a scale
+// error of those contacts.
+std::vector<double> ContactShares(const WallPoints& walls, const std::vector<WallLine>& ring, bool ceiling_only) {
   std::vector<double> shares;
   for (const WallLine& l : ring) {
     double contact = 0, all = 0;
     for (int k : l.members) {
-      all += walls.points[k].w;
-      if (walls.points[k].contact) contact += walls.points[k].w;
+      const WallPoint& p = walls.points[k];
+      all += p.w;
+      if (p.contact && (!ceiling_only || p.z > kCeilingContactMinZ)) contact += p.w;
     }
     shares.push_back(all > 0 ? contact / all : 0.0);
   }
@@ -128,23 +132,29 @@ double ScaleModeVariance(const std::vector<WallLine>& lines, const std::vector<d
 RingSigmas PropagateRingSigmas(const WallPoints& walls, const std::vector<WallLine>& ring, const PlanOptions& o) {
   const std::vector<WallLine> lines = LinesWithSharedVariance(walls, ring, o);
   const int n = static_cast<int>(lines.size());
-  const std::vector<double> shares = ContactShares(walls, ring);
+  const std::vector<double> shares = ContactShares(walls, ring, false),
+                            ceiling_shares = ContactShares(walls, ring, true);
   const double scale_sigma = o.viewpoint_m ? *o.ForLabels(false).contact_scale_sigma : 0.0;
+  const double ceiling_sigma = o.viewpoint_m ? o.ceiling_scale_sigma : 0.0;
   const Vec2 viewpoint = o.viewpoint_m ? Vec2(o.viewpoint_m->head<2>()) : Vec2::Zero();
+  // The two room-wide modes: the contacts' scale, and the ceiling height's.
+  auto modes = [&](const std::function<double(const std::vector<WallLine>&)>& f) {
+    return ScaleModeVariance(lines, shares, viewpoint, scale_sigma, f) +
+           ScaleModeVariance(lines, ceiling_shares, viewpoint, ceiling_sigma, f);
+  };
   RingSigmas out;
   for (int i = 0; i < n; ++i) {
     auto length = [i, n](const std::vector<WallLine>& L) {
       std::vector<Vec2> c = RingCorners(L);
       return (c[(i + 1) % n] - c[i]).norm();
     };
-    out.wall_length_m.push_back(std::sqrt(PropagatedVariance(lines, length, {(i + n - 1) % n, i, (i + 1) % n}) +
-                                          ScaleModeVariance(lines, shares, viewpoint, scale_sigma, length)));
+    out.wall_length_m.push_back(
+        std::sqrt(PropagatedVariance(lines, length, {(i + n - 1) % n, i, (i + 1) % n}) + modes(length)));
   }
   std::vector<int> all_lines(n);
   std::iota(all_lines.begin(), all_lines.end(), 0);
   const auto area = [](const std::vector<WallLine>& L) { return std::abs(PolygonArea(RingCorners(L))); };
-  out.area_m2 = std::sqrt(PropagatedVariance(lines, area, all_lines) +
-                          ScaleModeVariance(lines, shares, viewpoint, scale_sigma, area));
+  out.area_m2 = std::sqrt(PropagatedVariance(lines, area, all_lines) + modes(area));
   return out;
 }
 

@@ -19,7 +19,9 @@
 // of the contacts (PlanOptions::contact_scale_sigma, auto read as segmented
 // labels') moves every line by its contacts' share of the weight times the
 // scale times its distance from the viewpoint, all lines together, and adds
-// its variance to each length and the area.
+// its variance to each length and the area. A second such mode, the
+// ceiling's height (PlanOptions::ceiling_scale_sigma, σ_H / (H − h)), moves
+// each line by its ceiling contacts' share of the weight.
 
 #include <vector>
 

@@ -89,6 +89,38 @@ TEST(PropagateRingSigmas, AContactScaleErrorMovesAllContactWallsTogether) {
               1e-9);
 }
 
+// The ceiling's height H is estimated; a ceiling contact's distance is
+// proportional to H − h, so its relative error moves every ceiling-placed
+// wall out together (bench_rooms seed 22: H 33 mm high, every wall 3 % long
+// at ± 1 %). Walls placed by ceiling contacts alone take the whole mode, a
+// wall of half floor, half ceiling contacts half of it, floor-only walls none.
+TEST(PropagateRingSigmas, TheCeilingHeightsErrorMovesCeilingContactWallsTogether) {
+  std::vector<WallLine> ring = {WallLine{.c = {2, 0}, .theta = 0}, WallLine{.c = {4, 1.5}, .theta = kPi / 2},
+                                WallLine{.c = {2, 3}, .theta = kPi}, WallLine{.c = {0, 1.5}, .theta = 1.5 * kPi}};
+  auto room = [&](double z) {
+    WallPoints walls;
+    for (std::size_t l = 0; l < ring.size(); ++l) {
+      walls.points.push_back({ring[l].c, z, 1e4, 0.01, 0.05, 1.0, true});
+      ring[l].members = {static_cast<int>(l)};
+    }
+    return walls;
+  };
+  const PlanOptions o{.shared_sigma_fraction = 0, .contact_scale_sigma = 0.0, .ceiling_scale_sigma = 0.01,
+                      .viewpoint_m = Vec3(2, 1.5, 1.5)};
+  const RingSigmas ceiling = PropagateRingSigmas(room(2.6), ring, o);
+  EXPECT_NEAR(ceiling.wall_length_m[0], 0.04, 1e-6);
+  EXPECT_NEAR(ceiling.wall_length_m[1], 0.03, 1e-6);
+  EXPECT_NEAR(ceiling.area_m2, 2 * 0.01 * 12, 1e-6);
+  EXPECT_NEAR(PropagateRingSigmas(room(0.0), ring, o).area_m2, 0, 1e-9);
+  // Half the weight on the ceiling: half the mode.
+  WallPoints half = room(0.0);
+  for (std::size_t l = 0; l < ring.size(); ++l) {
+    half.points.push_back({ring[l].c, 2.6, 1e4, 0.01, 0.05, 1.0, true});
+    ring[l].members.push_back(static_cast<int>(ring.size() + l));
+  }
+  EXPECT_NEAR(PropagateRingSigmas(half, ring, o).wall_length_m[0], 0.02, 1e-6);
+}
+
 // Auto options resolve by the labels' origin; set ones stay.
 TEST(PlanOptions, ForLabelsResolvesTheAutoSigmasByTheLabelsOrigin) {
   const PlanOptions exact = PlanOptions{}.ForLabels(true), segmented = PlanOptions{}.ForLabels(false);
