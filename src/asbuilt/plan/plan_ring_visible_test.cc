@@ -133,5 +133,27 @@ TEST(SelectVisibleLines, PlanDoesNotDependOnPointOrderOrTextRounding) {
   expect_same(rounded, "rounded to 10 µm");
 }
 
+// A camera outside the room (a closet seen from its doorway): bearings that
+// meet no candidate wall (here due south, away from the closet) carry the
+// walls beside them, and the rule still chooses. The decode used to fail
+// there and return the lines as they were, so whether the rule ran at all
+// hung on one offset peak at the vote threshold covering such a bearing
+// (a ZInD closet: IoU 0.25 or 0.75 under a 0.1 mm jitter).
+TEST(SelectVisibleLines, ChoosesWallsForACameraOutsideTheRoom) {
+  // A 2 × 1.2 m closet, its open side y = 0; the camera 1 m out, in front.
+  std::vector<ClassPoint> points;
+  AddWallRun(points, {2, 0}, {2, 1.2}, 300, PointSource::kContact);
+  AddWallRun(points, {2, 1.2}, {0, 1.2}, 400, PointSource::kContact);
+  AddWallRun(points, {0, 1.2}, {0, 0}, 300, PointSource::kContact);
+  AddWallRun(points, {0.6, 1.6}, {1.4, 1.6}, 60, PointSource::kContact);  // Beyond the back wall.
+  const PlanOptions o{.viewpoint_m = Vec3(1.0, -1.0, 1.4), .one_viewpoint = true};
+  const PlanPoints planar = PlanarizePoints(points, o);
+  SnappedLines snapped = SnapToDominantDirections(planar.walls, FindWallLines(planar.walls, o).lines, o);
+  ASSERT_EQ(snapped.lines.size(), 4u);
+  const std::vector<WallLine> lines = SelectVisibleLines(planar.walls, snapped.lines, snapped.frame, o);
+  EXPECT_EQ(lines.size(), 3u);
+  for (const WallLine &l : lines) EXPECT_GT(std::abs(l.Distance(Vec2(1.0, 1.6))), 0.3) << "the strip beyond the wall";
+}
+
 }  // namespace
 }  // namespace asbuilt
