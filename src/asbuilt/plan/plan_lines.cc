@@ -1,6 +1,9 @@
 #include "asbuilt/plan/plan_lines.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <random>
 
 namespace asbuilt {
@@ -18,6 +21,19 @@ struct LineHypothesis {
   Vec2 n = Vec2::UnitY();
   double rho = 0;
 };
+
+// Scores the line through a and b on `subset` (votes of the points in their
+// band); keeps it in `best` when it holds more.
+void ScoreHypothesis(const std::vector<WallPoint>& pts, const std::vector<int>& subset, const Vec2& a, const Vec2& b,
+                     LineHypothesis& best) {
+  Vec2 d = b - a;
+  if (d.norm() < 0.1) return;
+  Vec2 n = Vec2(-d.y(), d.x()).normalized();
+  double rho = n.dot(a);
+  double count = 0;
+  for (int k : subset) count += std::abs(n.dot(pts[k].p) - rho) < pts[k].thr ? pts[k].vote : 0.0;
+  if (count > best.votes) best = {count, n, rho};
+}
 
 // Scores ransac_iterations hypotheses on a random subset of `remaining`
 // (ransac_subset_points of them), each through two points drawn by their
@@ -40,13 +56,70 @@ std::pair<LineHypothesis, int> BestHypothesis(const std::vector<WallPoint>& pts,
   for (int it = 0; it < o.ransac_iterations; ++it) {
     const Vec2& a = pts[subset[pick(rng)]].p;
     const Vec2& b = pts[subset[pick(rng)]].p;
-    Vec2 d = b - a;
-    if (d.norm() < 0.1) continue;
-    Vec2 n = Vec2(-d.y(), d.x()).normalized();
-    double rho = n.dot(a);
-    double count = 0;
-    for (int k : subset) count += std::abs(n.dot(pts[k].p) - rho) < pts[k].thr ? pts[k].vote : 0.0;
-    if (count > best.votes) best = {count, n, rho};
+    ScoreHypothesis(pts, subset, a, b, best);
+  }
+  return {best, m};
+}
+
+// SplitMix64's finaliser: a well-mixed 64-bit hash.
+std::uint64_t Mix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+// A point's sampling key (PlanOptions::one_viewpoint): the seed and its
+// position rounded to kKeyCellM, hashed. It names the point whatever its
+// index, so the draws do not move when other points come, go or change
+// order, and a sub-millimetre change moves only the few points next to a
+// cell's edge.
+constexpr double kKeyCellM = 0.01;
+std::uint64_t PointKey(const WallPoint& p, std::uint64_t seed) {
+  auto cell = [](double v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / kKeyCellM))); };
+  return Mix(Mix(Mix(seed ^ cell(p.p.x())) ^ cell(p.p.y())) ^ cell(p.z));
+}
+
+// Points with equal keys (one cell) ordered by position: no index decides.
+bool KeyLess(const std::vector<WallPoint>& pts, const std::vector<std::uint64_t>& keys, int a, int b) {
+  if (keys[a] != keys[b]) return keys[a] < keys[b];
+  if (pts[a].p.x() != pts[b].p.x()) return pts[a].p.x() < pts[b].p.x();
+  if (pts[a].p.y() != pts[b].p.y()) return pts[a].p.y() < pts[b].p.y();
+  return pts[a].z < pts[b].z;
+}
+
+// BestHypothesis with draws tied to the points, not to a random stream:
+// the subset is the ransac_subset_points smallest keys of `remaining`, and
+// hypothesis i's two points win exponential races (each point's time
+// −ln U / vote, U from its key and i: drawn by vote). A point that joins or
+// leaves `remaining` changes only the draws it wins, so a change between
+// rounds (one point more in a line's band) no longer reshuffles every later
+// round's hypotheses, as a shared random stream does.
+std::pair<LineHypothesis, int> BestKeyedHypothesis(const std::vector<WallPoint>& pts,
+                                                   const std::vector<std::uint64_t>& keys,
+                                                   const std::vector<int>& remaining, const PlanOptions& o) {
+  std::vector<int> subset = remaining;
+  const int m = std::min<int>(subset.size(), o.ransac_subset_points);
+  auto less = [&](int a, int b) { return KeyLess(pts, keys, a, b); };
+  std::nth_element(subset.begin(), subset.begin() + (m > 0 ? m - 1 : 0), subset.end(), less);
+  subset.resize(m);
+  std::sort(subset.begin(), subset.end(), less);
+  const int draws = 2 * o.ransac_iterations;
+  std::vector<double> first(draws, std::numeric_limits<double>::infinity());
+  std::vector<int> winner(draws, -1);
+  for (int k : subset) {
+    if (pts[k].vote <= 0) continue;
+    const std::uint64_t key = keys[k];
+    for (int d = 0; d < draws; ++d) {
+      const double u = (static_cast<double>(Mix(key ^ Mix(static_cast<std::uint64_t>(d))) >> 11) + 0.5) * 0x1.0p-53;
+      const double t = -std::log(u) / pts[k].vote;
+      if (t < first[d]) first[d] = t, winner[d] = k;
+    }
+  }
+  LineHypothesis best;
+  for (int it = 0; it < o.ransac_iterations; ++it) {
+    if (winner[2 * it] < 0 || winner[2 * it + 1] < 0) continue;
+    ScoreHypothesis(pts, subset, pts[winner[2 * it]].p, pts[winner[2 * it + 1]].p, best);
   }
   return {best, m};
 }
@@ -119,6 +192,11 @@ bool AcceptRuns(const std::vector<WallPoint>& pts, std::vector<int>& inliers, do
 // hundred thousand dense points), then every point not taken. Without
 // contacts the plain algorithm: counts, no exemptions, 4 failures.
 std::vector<WallLine> SequentialRansac(const WallPoints& walls, const PlanOptions& o, std::mt19937_64& rng) {
+  std::vector<std::uint64_t> keys;
+  if (o.one_viewpoint) {
+    keys.reserve(walls.points.size());
+    for (const WallPoint& p : walls.points) keys.push_back(PointKey(p, o.seed));
+  }
   const std::vector<WallPoint>& pts = walls.points;
   const double total_votes = walls.TotalVotes();
   const double strong = walls.strong_line_votes;
@@ -133,7 +211,8 @@ std::vector<WallLine> SequentialRansac(const WallPoints& walls, const PlanOption
     int failures = 0;
     while (static_cast<int>(remaining.size()) >= o.min_wall_points && state.lines.size() < 64 &&
            failures < max_failures) {
-      const auto [best, m] = BestHypothesis(pts, remaining, o, rng);
+      const auto [best, m] =
+          o.one_viewpoint ? BestKeyedHypothesis(pts, keys, remaining, o) : BestHypothesis(pts, remaining, o, rng);
       double expected = best.votes * remaining.size() / m;
       if (expected < o.min_wall_points) break;
       std::vector<int> inliers = RefinedInliers(pts, remaining, best, o);

@@ -12,7 +12,11 @@
 // lines sparser than min_relative_density of the densest, or with less than
 // min_wall_fraction of all votes, are dropped unless strongly supported
 // (WallPoints::strong_line_votes). Deterministic for a given
-// PlanOptions::seed. Lines run in their fitted direction (not yet oriented).
+// PlanOptions::seed; with PlanOptions::one_viewpoint the draws are tied to
+// the points (a hash of the seed and each point's position to 1 cm), so the
+// lines do not depend on the points' order, and a point more or less
+// changes only the draws it wins. Lines run in their fitted direction (not
+// yet oriented).
 
 #include <vector>
 

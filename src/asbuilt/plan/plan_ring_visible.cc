@@ -193,9 +193,17 @@ std::vector<WallLine> SelectVisibleLines(const WallPoints &walls, std::vector<Wa
     }
   }
   for (int b = 0; b < kVisibleBins; ++b) {
+    bool any = false;
     for (int k = 0; k < n; ++k) {
       if (!std::isfinite(RayRange(cands[k], view, BinBearing(b)))) score[b][k] = -kVisibleInf;
+      any = any || score[b][k] > -kVisibleInf;
     }
+    // A bearing that meets no candidate (a camera outside the room, looking
+    // out through its doorway) says nothing: any wall may carry through it,
+    // rather than the decode failing and the rule turning off for the whole
+    // room — on or off as one more candidate, at the vote threshold, covered
+    // that bearing or not.
+    if (!any) std::fill(score[b].begin(), score[b].end(), 0.0);
   }
   // A corner costs a typical bin's votes.
   std::vector<double> filled;

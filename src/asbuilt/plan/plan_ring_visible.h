@@ -21,7 +21,9 @@
 //    in a bin is the votes of the bin's points within their inlier band of
 //    it, less the votes of those seen beyond it along their ray (an opaque
 //    wall hides what lies behind it; nearer points may be furniture before
-//    it); invalid where the bin's ray does not meet it within 0.3–30 m.
+//    it); invalid where the bin's ray does not meet it within 0.3–30 m. A
+//    bin whose ray meets no candidate (a camera outside the room, looking
+//    out of its doorway) lets any candidate carry through it at no score.
 //  - Dynamic programming around the circle picks one candidate per bin,
 //    maximising the score less a cost per change: a corner (the two lines
 //    meet at that bearing) costs the votes of a typical bin (the median over
