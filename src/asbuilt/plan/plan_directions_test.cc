@@ -119,6 +119,21 @@ TEST(PlanDirections, AWallFittedAFewDegreesOffInAManhattanRoomIsSnappedSquare) {
   }
 }
 
+// Floor contacts along a → b, n of them (σ 2 cm, frames 0–11 in turn),
+// each moved by Gaussian noise of the given σ: the pieces RANSAC finds in a
+// wall whose contacts a segmenter pushed out over part of its length.
+struct ContactPieces {
+  ContactPieces(std::uint64_t seed, double noise_m) : rng(seed), noise(0.0, noise_m) {}
+  void Add(std::vector<ClassPoint>& points, const Vec2& a, const Vec2& b, int n) {
+    for (int i = 0; i < n; ++i) {
+      const Vec2 p = a + (b - a) * (i + 0.5) / n + Vec2(noise(rng), noise(rng));
+      points.push_back({LabelClass::kWall, Vec3(p.x(), p.y(), 0.0), 0.02, PointSource::kContact, i % 12});
+    }
+  }
+  std::mt19937_64 rng;
+  std::normal_distribution<double> noise;
+};
+
 // An L as a segmenter that takes a skirting board for floor over part of a
 // wall sees it: its two near walls give no points (vertices place them), two
 // walls are measured to millimetres and square, and the contacts of the
@@ -131,14 +146,8 @@ TEST(PlanDirections, AWallFittedAFewDegreesOffInAManhattanRoomIsSnappedSquare) {
 TEST(PlanDirections, AWallBentByItsContactsDoesNotTurnTheRoom) {
   const Plan truth = PolygonPlan({{2.66, 0}, {7.49, 0}, {7.49, 4.09}, {0, 4.09}, {0, 2.30}, {2.66, 2.30}}, 3.46);
   std::vector<ClassPoint> points;
-  std::mt19937_64 rng(10);
-  std::normal_distribution<double> noise(0.0, 0.01);
-  auto piece = [&](const Vec2& a, const Vec2& b, int n) {
-    for (int i = 0; i < n; ++i) {
-      const Vec2 p = a + (b - a) * (i + 0.5) / n + Vec2(noise(rng), noise(rng));
-      points.push_back({LabelClass::kWall, Vec3(p.x(), p.y(), 0.0), 0.02, PointSource::kContact, i % 12});
-    }
-  };
+  ContactPieces pieces(10, 0.01);
+  auto piece = [&](const Vec2& a, const Vec2& b, int n) { pieces.Add(points, a, b, n); };
   piece({0.0, 2.35}, {0.0, 4.05}, 240);    // West: exact.
   piece({2.66, 0.05}, {2.66, 1.96}, 180);  // The notch: exact.
   piece({3.47, -0.20}, {7.58, -0.01}, 520);  // South, two pieces.
@@ -171,14 +180,8 @@ TEST(PlanDirections, AWallBentByItsContactsDoesNotTurnTheRoom) {
 TEST(PlanDirections, ADirectionKnownOnlyToDegreesIsSquaredPastTheCap) {
   const Plan truth = PolygonPlan({{2.66, 0}, {7.49, 0}, {7.49, 4.09}, {0, 4.09}, {0, 2.30}, {2.66, 2.30}}, 3.46);
   std::vector<ClassPoint> points;
-  std::mt19937_64 rng(10);
-  std::normal_distribution<double> noise(0.0, 0.02);
-  auto piece = [&](const Vec2& a, const Vec2& b, int n) {
-    for (int i = 0; i < n; ++i) {
-      const Vec2 p = a + (b - a) * (i + 0.5) / n + Vec2(noise(rng), noise(rng));
-      points.push_back({LabelClass::kWall, Vec3(p.x(), p.y(), 0.0), 0.02, PointSource::kContact, i % 12});
-    }
-  };
+  ContactPieces pieces(10, 0.02);
+  auto piece = [&](const Vec2& a, const Vec2& b, int n) { pieces.Add(points, a, b, n); };
   piece({-0.066, 4.106}, {-0.071, 2.212}, 237);  // West.
   piece({2.642, 1.954}, {2.664, -0.078}, 188);   // The notch.
   piece({3.459, -0.25}, {7.585, -0.023}, 479);  // South, two pieces.
