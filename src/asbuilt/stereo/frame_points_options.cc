@@ -83,7 +83,7 @@ FieldList<FramePointsOptions> FramePointsCueFields() {
 }
 
 static_assert(FramePointsOptions::kDefaultContactSnapPx == 10, "contact_snap_px's description says 10");
-static_assert(FramePointsOptions::kDefaultFloorSnapPx == 2, "floor_snap_px's description says 2");
+static_assert(FramePointsOptions::kDefaultFloorSnapPx == 1, "floor_snap_px's description says 1");
 
 // Contacts, the stereo check and the point σ (second half of the list).
 FieldList<FramePointsOptions> FramePointsContactFields() {
@@ -123,7 +123,7 @@ FieldList<FramePointsOptions> FramePointsContactFields() {
       Bind(&O::floor_snap_px,
            {.name = "floor_snap_px",
             .description = "Move each floor contact to the image's strongest edge within N rows of the label "
-                           "edge (0 = off); unset: 2 for segmented or given labels, 0 for exact ones.",
+                           "edge (0 = off); unset: 1 for segmented or given labels, 0 for exact ones.",
             .minimum = 0.0, .maximum = 64.0}),
       Bind(&O::skirting_depth_m,
            {.name = "skirting_depth_m",

@@ -84,9 +84,11 @@ struct FramePointsOptions {
   }
   // The same for floor contacts, with a window too narrow to reach a
   // skirting board's top or a tile's grout line (they gave steps as strong
-  // as the wall's foot to the wide ceiling window): the snap only refines a
-  // segmented label edge to the image's own sub-pixel edge beside it.
-  static constexpr int kDefaultFloorSnapPx = 2;
+  // as the wall's foot to the wide ceiling window): at 1 the snap only
+  // refines a segmented label edge to the image's own sub-pixel edge within
+  // its row (2, which can move it a row, did better on rendered rooms and
+  // worse on real panoramas: docs/stereo.md).
+  static constexpr int kDefaultFloorSnapPx = 1;
   int FloorSnapPx(bool exact_labels) const { return floor_snap_px.value_or(exact_labels ? 0 : kDefaultFloorSnapPx); }
   // Both snap radii resolved for labels of this origin.
   void ResolveSnaps(bool exact_labels) {
