@@ -57,7 +57,7 @@ struct PlanOptions {
   std::optional<double> label_edge_sigma_mrad;
   int max_independent_points = 400;   // Dense points are correlated: cap the points a ± assumes.
   double shared_sigma_fraction = 0.5;          // Share of a wall's contacts' median σ that does not average out.
-  double shared_stereo_sigma_fraction = 0.25;  // The same for stereo points (the matcher's sub-pixel bias).
+  double shared_stereo_sigma_fraction = 0.15;  // The same for stereo points (the matcher's sub-pixel bias).
   // Relative 1σ of a room-wide scale error of the contact-placed walls about
   // the viewpoint: a ceiling height or label edges off the same way all
   // round move every such wall by this share of its distance from the rig.
