@@ -369,7 +369,7 @@ void PlanStage(Survey& s) {
   // The ceiling estimate's σ as a share of its height above the rig: a
   // ceiling contact's distance is proportional to H − h (docs/plan.md, "±").
   if (s.viewpoint_m && std::isfinite(summary.ceiling_height_m) && std::isfinite(summary.ceiling_height_sigma_m) &&
-      summary.ceiling_height_m - s.viewpoint_m->z() > 0.1 && plan_options.ceiling_scale_sigma == 0.0) {
+      summary.ceiling_height_m - s.viewpoint_m->z() > 0.1 && !plan_options.ceiling_scale_sigma) {
     plan_options.ceiling_scale_sigma = summary.ceiling_height_sigma_m / (summary.ceiling_height_m - s.viewpoint_m->z());
   }
   // One camera turning in place: every point was seen from the viewpoint

@@ -89,8 +89,9 @@ std::vector<Direction> ClusterDirections(const std::vector<WallLine>& lines, con
 
 // The first pair of directions (in order) 90° apart within the data (within
 // snap_sigmas of their σ, and manhattan_max_deg or, when their σ is wider,
-// that σ up to manhattan_snap_max_deg) becomes a Manhattan frame: both are replaced by its two axes, each with
-// their pooled weight. Returns the axes' indices into `dirs` (none: no frame).
+// that σ up to manhattan_snap_max_deg) becomes a Manhattan frame: both are
+// replaced by its two axes, each with their pooled weight. Returns the axes'
+// indices into `dirs` (none: no frame).
 std::vector<int> FormManhattanFrame(std::vector<Direction>& dirs, const PlanOptions& o) {
   for (size_t a = 0; a < dirs.size(); ++a) {
     for (size_t b = a + 1; b < dirs.size(); ++b) {

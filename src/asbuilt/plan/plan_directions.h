@@ -10,12 +10,12 @@
 // snap_max_deg, strongest lines first), each weighted by 1/var θ. Two
 // directions form a Manhattan frame when they are 90° apart within
 // manhattan_max_deg (or their σ, when wider, up to manhattan_snap_max_deg)
-// and within snap_sigmas of their σ (always within manhattan_always_deg). A line snaps (is refitted at the direction's angle,
-// taking its σ) when its own fit agrees within snap_sigmas of σ (between
-// snap_min_deg and snap_max_deg); in a Manhattan frame, within
-// manhattan_snap_max_deg of an axis, or up to noisy_snap_max_deg when the
-// axis explains its points within their noise. Lines that became collinear
-// are merged. docs/plan.md, step 3, says why and what it was measured on.
+// and within snap_sigmas of their σ (always within manhattan_always_deg).
+// A line snaps (is refitted at the direction's angle, taking its σ) when
+// its own fit agrees within snap_sigmas of σ (between snap_min_deg and
+// snap_max_deg); in a Manhattan frame, within manhattan_snap_max_deg of an
+// axis, or up to noisy_snap_max_deg when the axis explains its points within
+// their noise. Lines that became collinear are merged. docs/plan.md, step 3, says why and what it was measured on.
 
 #include <vector>
 

@@ -59,7 +59,8 @@ const FieldList<PlanOptions>& PlanOptionFields() {
                               .minimum = 0.0}),
       Bind(&O::manhattan_max_deg,
            {.name = "manhattan_max_deg",
-            .description = "Two dominant directions this close to 90° may form a Manhattan frame (or up to their σ when wider, at most manhattan_snap_max_deg), deg.",
+            .description = "Two dominant directions this close to 90° may form a Manhattan frame (or up to their σ "
+                           "when wider, at most manhattan_snap_max_deg), deg.",
             .minimum = 0.0}),
       Bind(&O::manhattan_always_deg,
            {.name = "manhattan_always_deg",
@@ -164,7 +165,7 @@ const FieldList<PlanOptions>& PlanOptionFields() {
       Bind(&O::ceiling_scale_sigma,
            {.name = "ceiling_scale_sigma",
             .description = "Relative 1σ of the ceiling's height above the rig, σ_H / (H − h): moves ceiling-contact "
-                           "walls together (survey sets it from its ceiling estimate).",
+                           "walls together; unset: survey sets it from its ceiling estimate, else 0.",
             .minimum = 0.0, .maximum = 0.5}),
       BindWith<O>({.name = "viewpoint_m", .kind = FieldKind::kPoint3,
                    .description = "Capture centre X,Y,Z (world m), if known; improves openings."},

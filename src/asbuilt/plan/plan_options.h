@@ -66,9 +66,9 @@ struct PlanOptions {
   // Relative 1σ of the ceiling's height above the rig, (H − h): a ceiling
   // contact's distance is proportional to it, so an error in H moves every
   // ceiling-contact-placed wall by its ceiling contacts' share of the weight
-  // times this times its distance from the rig, all together. survey sets it
-  // from its ceiling estimate (σ_H / (H − h)); 0: none.
-  double ceiling_scale_sigma = 0.0;
+  // times this times its distance from the rig, all together. Unset: survey
+  // sets it from its ceiling estimate (σ_H / (H − h)); elsewhere 0.
+  std::optional<double> ceiling_scale_sigma;
   std::optional<Vec3> viewpoint_m;    // Capture centre (rig position, world m), if known; improves openings.
   bool one_viewpoint = false;         // Every point seen from viewpoint_m (panorama/mono): one wall per bearing.
   std::uint64_t seed = 1;             // RANSAC sampling.

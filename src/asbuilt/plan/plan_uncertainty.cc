@@ -135,7 +135,7 @@ RingSigmas PropagateRingSigmas(const WallPoints& walls, const std::vector<WallLi
   const std::vector<double> shares = ContactShares(walls, ring, false),
                             ceiling_shares = ContactShares(walls, ring, true);
   const double scale_sigma = o.viewpoint_m ? *o.ForLabels(false).contact_scale_sigma : 0.0;
-  const double ceiling_sigma = o.viewpoint_m ? o.ceiling_scale_sigma : 0.0;
+  const double ceiling_sigma = o.viewpoint_m ? o.ceiling_scale_sigma.value_or(0.0) : 0.0;
   const Vec2 viewpoint = o.viewpoint_m ? Vec2(o.viewpoint_m->head<2>()) : Vec2::Zero();
   // The two room-wide modes: the contacts' scale, and the ceiling height's.
   auto modes = [&](const std::function<double(const std::vector<WallLine>&)>& f) {

@@ -114,7 +114,7 @@ void PlanOptions::Check() const {
   non_negative(leaf_edge_sigma_m, "leaf_edge_sigma_m");
   non_negative(extent_edge_sigma_m, "extent_edge_sigma_m");
   if (contact_scale_sigma) non_negative(*contact_scale_sigma, "contact_scale_sigma");
-  non_negative(ceiling_scale_sigma, "ceiling_scale_sigma");
+  if (ceiling_scale_sigma) non_negative(*ceiling_scale_sigma, "ceiling_scale_sigma");
   if (label_edge_sigma_mrad) non_negative(*label_edge_sigma_mrad, "label_edge_sigma_mrad");
   CheckArgument(vote_sigma_m > 0 && std::isfinite(vote_sigma_m),
                 fmt::format("PlanOptions.vote_sigma_m = {}, must be > 0", vote_sigma_m));
