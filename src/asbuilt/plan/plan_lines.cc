@@ -107,11 +107,17 @@ std::pair<LineHypothesis, int> BestKeyedHypothesis(const std::vector<WallPoint>&
   const int draws = 2 * o.ransac_iterations;
   std::vector<double> first(draws, std::numeric_limits<double>::infinity());
   std::vector<int> winner(draws, -1);
+  std::vector<std::uint64_t> salt(draws);
+  for (int d = 0; d < draws; ++d) salt[d] = Mix(static_cast<std::uint64_t>(d));
   for (int k : subset) {
     if (pts[k].vote <= 0) continue;
     const std::uint64_t key = keys[k];
+    const double inv_vote = 1.0 / pts[k].vote;
     for (int d = 0; d < draws; ++d) {
-      const double u = (static_cast<double>(Mix(key ^ Mix(static_cast<std::uint64_t>(d))) >> 11) + 0.5) * 0x1.0p-53;
+      const double u = (static_cast<double>(Mix(key ^ salt[d]) >> 11) + 0.5) * 0x1.0p-53;
+      // −ln u ≥ 1 − u: most points lose a race without the logarithm (the
+      // margin keeps a last-ulp difference from skipping a winner).
+      if ((1.0 - u) * inv_vote > first[d] * (1.0 + 1e-12)) continue;
       const double t = -std::log(u) / pts[k].vote;
       if (t < first[d]) first[d] = t, winner[d] = k;
     }
