@@ -6,7 +6,6 @@
 #include <random>
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
 #include "asbuilt/plan/plan_lines.h"
@@ -208,11 +207,8 @@ TEST(PlanDirections, ADirectionKnownOnlyToDegreesIsSquaredPastTheCap) {
   capped.manhattan_snap_max_deg = capped.manhattan_max_deg;  // The cap alone, as before.
   const SnappedLines before = snapped(capped), now = snapped({});
   ASSERT_EQ(now.lines.size(), 4u);
-  std::printf("directions before: %s\n",
-              fmt::format("{:.2f}°", fmt::join(std::vector<double>{RadToDeg(before.frame.directions[0].theta),
-                                                                      RadToDeg(before.frame.directions.back().theta)},
-                                               "°, "))
-                  .c_str());
+  std::printf("directions without the frame: %.2f°, %.2f°\n", RadToDeg(before.frame.directions.front().theta),
+              RadToDeg(before.frame.directions.back().theta));
   EXPECT_FALSE(before.frame.manhattan);
   EXPECT_TRUE(now.frame.manhattan);
   for (const WallLine& l : now.lines) {
