@@ -28,6 +28,12 @@ const FieldList<SurveyOptions>& SurveyPointsFields() {
   return kList;
 }
 
+const FieldList<SurveyOptions>& SurveyLayoutFields() {
+  static const FieldList<SurveyOptions> kList =
+      FieldList<SurveyOptions>().Nest("layout", &SurveyOptions::layout, PanoLayoutOptionFields());
+  return kList;
+}
+
 }  // namespace
 
 int RunSurveyCommand(int argc, char** argv) {
@@ -70,6 +76,9 @@ int RunSurveyCommand(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--pano-yaw-step", options.panorama_views.yaw_step_deg, "panorama captures: yaw step (deg)")
       ->capture_default_str();
+  app.add_flag("--pano-layout", options.pano_layout,
+               "panorama captures: redraw the segmenter's labels on the room's layout found from the panorama's "
+               "edges (writes layout.png; docs/survey.md)");
   // The short spellings are older flags that scripts use.
   FieldFlags plan_flags(app, SurveyPlanFields().Fields(options), {{"plan.epsilon_m", "--epsilon-m"}},
                         "Plan options (PlanOptions, docs/plan.md)");
@@ -78,7 +87,10 @@ int RunSurveyCommand(int argc, char** argv) {
                            {"points.contacts", "--contacts"},
                            {"points.contact_snap_px", "--snap-contacts-px"}},
                           "Points options (FramePointsOptions, docs/stereo.md)");
+  FieldFlags layout_flags(app, SurveyLayoutFields().Fields(options), {},
+                          "Panorama layout options (PanoLayoutOptions, docs/survey.md)");
   Parse(app, argc, argv);
+  layout_flags.Read(SurveyLayoutFields(), options);
   plan_flags.Read(SurveyPlanFields(), options);
   points_flags.Read(SurveyPointsFields(), options);
   if (!model.empty()) options.model_path = model;

@@ -16,7 +16,9 @@
 
 #include "asbuilt/formats/points_ply.h"
 #include "asbuilt/imageio/image_cv.h"
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/pano/pano_views.h"
+#include "asbuilt/pipeline/pano_layout_labels.h"
 #include "asbuilt/pipeline/points_plot.h"
 #include "asbuilt/pipeline/report.h"
 #include "asbuilt/pipeline/segmenter_labels.h"
@@ -116,6 +118,7 @@ void SurveyOptions::Check() const {
   plan.Check();
   CheckArgument(report_frames >= 0, fmt::format("SurveyOptions.report_frames = {}, must be >= 0", report_frames));
   panorama_views.Check();
+  layout.Check();
   CheckArgument(std::abs(panorama_views.pitch_deg) < 1e-9,
                 fmt::format("SurveyOptions.panorama_views.pitch_deg = {}, must be 0: contacts need level views",
                             panorama_views.pitch_deg));
@@ -190,6 +193,9 @@ struct Survey {
   StageTimes times;
   Capture capture;
   std::optional<MonoViews> views;  // A panorama's level views.
+  cv::Mat equirect;                 // A panorama's image (8-bit BGR), kept for its layout.
+  std::vector<PanoView> pano_views;
+  cv::Mat layout_picture;           // The panorama with its layout drawn (PanoLayoutLabels).
   std::optional<Plan> truth;
   std::unique_ptr<LabelSource> labels;
   std::vector<ClassPoint> points;
@@ -248,6 +254,8 @@ void ReadCaptureStage(Survey& s) {
     const CapturePanorama& pano = *s.capture.panorama;
     const Image equirect = ReadEquirect(s.capture.Resolve(pano.image));
     const std::vector<PanoView> views = TurnInPlaceViews(s.options.panorama_views);
+    s.equirect = AsMat(equirect).clone();
+    s.pano_views = views;
     s.views = MonoViews{.kind = s.summary().capture_kind, .camera = views.front().camera};
     for (std::size_t i = 0; i < views.size(); ++i) {
       s.views->frames.push_back({.index = static_cast<int>(i),
@@ -276,6 +284,14 @@ void LabelSourceStage(Survey& s) {
     s.labels = std::make_unique<SegmenterLabels>(
         options.model_path.empty() ? DefaultModelPath() : options.model_path, options.segment_scale_px, image);
     s.times.Add("load model", Since(t));
+    if (s.views && options.pano_layout) {
+      auto layout = std::make_unique<PanoLayoutLabels>(std::move(s.labels), s.equirect, s.pano_views,
+                                                       s.views->images, s.capture.panorama->position_m.z(),
+                                                       options.layout);
+      s.times.Add("segment + layout", layout->seconds());
+      s.layout_picture = layout->picture();
+      s.labels = std::move(layout);
+    }
   }
   s.summary().labels_source = s.labels->Describe();
 }
@@ -425,6 +441,7 @@ void WriteOutputsStage(Survey& s) {
     WritePlanFiles(plan, s.out_dir);  // .json, .svg, .dxf, .pdf, .png, .ifc
   }
   WritePoints(s.points, s.out_dir / "points.txt");
+  if (!s.layout_picture.empty()) WriteImageAtomic(s.out_dir / "layout.png", s.layout_picture);
   WritePointsPly(s.points, s.out_dir / "points.ply");
   if (s.summary().score) {
     WriteFileAtomic(s.out_dir / "score.json", PlanScoreToJson(*s.summary().score).dump(2) + "\n");

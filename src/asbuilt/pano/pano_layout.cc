@@ -1,0 +1,548 @@
+#include "asbuilt/pano/pano_layout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+
+#include <fmt/format.h>
+#include <opencv2/imgproc.hpp>
+
+#include "asbuilt/formats/points_file.h"
+#include "asbuilt/util/error.h"
+
+namespace asbuilt {
+namespace {
+
+constexpr std::uint8_t kBackground = static_cast<std::uint8_t>(LabelClass::kBackground);
+constexpr std::uint8_t kWall = static_cast<std::uint8_t>(LabelClass::kWall);
+constexpr std::uint8_t kDoor = static_cast<std::uint8_t>(LabelClass::kDoor);
+constexpr std::uint8_t kWindow = static_cast<std::uint8_t>(LabelClass::kWindow);
+
+// Row (fractional, OpenCV centres) of an elevation in a panorama `rows` high.
+double RowOfElevation(double elevation_rad, int rows) { return rows * (0.5 - elevation_rad / kPi) - 0.5; }
+
+// Column of a direction's yaw in a panorama `columns` wide, rounded, wrapped.
+int ColumnOf(const Vec3& direction, int columns) {
+  const Vec2 pixel = EquirectPixelFromDirection(direction, columns, columns / 2);
+  int u = static_cast<int>(std::lround(pixel.x()));
+  u %= columns;
+  return u < 0 ? u + columns : u;
+}
+
+// Strength of horizontal steps in the image: where the region above a row
+// differs from the region below it (a wall meeting the floor or the
+// ceiling), not where a texture (carpet, wood grain) varies row to row. Per
+// Lab channel, the difference of the means of `half` rows above and below,
+// smoothed along the row; the larger of lightness and colour. Returned as a
+// saturating 0..1 response at the image's own scale, so a faint wall–ceiling
+// crease still counts beside a picture frame's hard edge.
+cv::Mat HorizontalSteps(const cv::Mat& bgr, double max_elevation_deg) {
+  constexpr int kHalf = 3;  // Rows each side of the step.
+  cv::Mat lab;
+  cv::cvtColor(bgr, lab, cv::COLOR_BGR2Lab);
+  std::vector<cv::Mat> channels;
+  cv::split(lab, channels);
+  cv::Mat strength(bgr.size(), CV_32F, cv::Scalar(0));
+  const float channel_weight[3] = {1.0f, 1.5f, 1.5f};
+  for (int c = 0; c < 3; ++c) {
+    cv::Mat f, mean;
+    channels[c].convertTo(f, CV_32F);
+    // Mean of kHalf rows and 5 columns around each pixel.
+    cv::blur(f, mean, cv::Size(5, kHalf), cv::Point(-1, -1), cv::BORDER_REPLICATE);
+    for (int y = 0; y < f.rows; ++y) {
+      const int above = std::max(0, y - (kHalf + 1) / 2), below = std::min(f.rows - 1, y + (kHalf + 1) / 2);
+      const float* a = mean.ptr<float>(above);
+      const float* b = mean.ptr<float>(below);
+      float* s = strength.ptr<float>(y);
+      for (int x = 0; x < f.cols; ++x) s[x] = std::max(s[x], channel_weight[c] * std::abs(a[x] - b[x]));
+    }
+  }
+  // Scale: the 90th percentile of the steps (most of a room is flat).
+  std::vector<float> values(strength.begin<float>(), strength.end<float>());
+  const std::size_t k = values.size() * 9 / 10;
+  std::nth_element(values.begin(), values.begin() + k, values.end());
+  const double scale = values[k] + 1e-3;
+  cv::Mat response = strength / (strength + scale);
+  cv::Mat widened;
+  cv::dilate(response, widened, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(1, 3)));
+  // Nothing near the poles: the camera's own mount and the stitching's
+  // smear at the nadir, a ceiling light's rim at the zenith.
+  const int rows = widened.rows;
+  for (int y = 0; y < rows; ++y) {
+    const double elevation = kPi * (0.5 - (y + 0.5) / rows);
+    if (std::abs(elevation) > DegToRad(max_elevation_deg)) widened.row(y).setTo(0);
+  }
+  return widened;
+}
+
+// Per column, the cumulative sum down the rows of each row's label vote:
+// +1 wall/door/window, −1 background, 0 unknown. cumulative(y, x) is the sum
+// over rows < y (rows + 1 entries).
+cv::Mat CumulativeLabelVotes(const cv::Mat& labels, int rows, int columns, bool lower_only) {
+  cv::Mat cumulative(rows + 1, columns, CV_32F, cv::Scalar(0));
+  if (labels.empty()) return cumulative;
+  cv::Mat resized;
+  cv::resize(labels, resized, cv::Size(columns, rows), 0, 0, cv::INTER_NEAREST);
+  for (int y = 0; y < rows; ++y) {
+    const std::uint8_t* l = resized.ptr<std::uint8_t>(y);
+    const float* above = cumulative.ptr<float>(y);
+    float* here = cumulative.ptr<float>(y + 1);
+    if (lower_only && y < rows / 2) {
+      for (int x = 0; x < columns; ++x) here[x] = above[x];
+      continue;
+    }
+    for (int x = 0; x < columns; ++x) {
+      const float vote = l[x] == kBackground ? -1.0f : (l[x] == kWall || l[x] == kDoor || l[x] == kWindow) ? 1.0f : 0.0f;
+      here[x] = above[x] + vote;
+    }
+  }
+  return cumulative;
+}
+
+// Each column's cost of each distance bin for one ceiling height: minus the
+// edge strengths at the bin's floor and ceiling rows and the labels'
+// agreement with the band between (columns × bins, row-major).
+std::vector<float> ColumnCosts(const cv::Mat& edges, const cv::Mat& votes, const std::vector<double>& distances_m,
+                               double camera_height_m, double ceiling_height_m, const PanoLayoutOptions& o) {
+  const int rows = edges.rows, columns = edges.cols, bins = static_cast<int>(distances_m.size());
+  std::vector<int> floor_row(bins), ceiling_row(bins);
+  for (int k = 0; k < bins; ++k) {
+    const double d = distances_m[k];
+    floor_row[k] = std::clamp(static_cast<int>(std::lround(RowOfElevation(-std::atan2(camera_height_m, d), rows))), 0,
+                              rows - 1);
+    ceiling_row[k] = std::clamp(
+        static_cast<int>(std::lround(RowOfElevation(std::atan2(ceiling_height_m - camera_height_m, d), rows))), 0,
+        rows - 1);
+  }
+  std::vector<float> costs(static_cast<std::size_t>(columns) * bins);
+  for (int x = 0; x < columns; ++x) {
+    const float total = votes.at<float>(rows, x);
+    float* c = &costs[static_cast<std::size_t>(x) * bins];
+    for (int k = 0; k < bins; ++k) {
+      const int yc = ceiling_row[k], yf = floor_row[k];
+      const float inside = votes.at<float>(yf + 1, x) - votes.at<float>(yc, x);
+      const float agreement = inside - (total - inside);
+      c[k] = -static_cast<float>(o.floor_edge_weight * edges.at<float>(yf, x) +
+                                 o.ceiling_edge_weight * edges.at<float>(yc, x) + o.label_weight_per_row * agreement);
+    }
+  }
+  return costs;
+}
+
+// A best path round the panorama: per column its distance bin.
+struct PathFit {
+  std::vector<int> bins;  // Per column: the distance bin.
+  double score = -std::numeric_limits<double>::infinity();
+};
+
+// Free dynamic programme over the columns: any distance per column, paying
+// for changes of bin. Run twice round the panorama and keep the middle turn,
+// so the seam has no start of its own.
+PathFit FitFreePath(const std::vector<float>& costs, int columns, int bins, const PanoLayoutOptions& o) {
+  const int steps = 2 * columns;
+  std::vector<float> cost(bins), next(bins);
+  std::vector<std::int16_t> from(static_cast<std::size_t>(steps) * bins);
+  std::copy_n(costs.begin(), bins, cost.begin());
+  const float smooth = static_cast<float>(o.smooth_cost_per_bin), jump = static_cast<float>(o.jump_cost);
+  for (int step = 1; step < steps; ++step) {
+    const float* unary = &costs[static_cast<std::size_t>(step % columns) * bins];
+    const int best = static_cast<int>(std::min_element(cost.begin(), cost.end()) - cost.begin());
+    for (int k = 0; k < bins; ++k) {
+      float b = cost[best] + jump;
+      int arg = best;
+      const int lo = std::max(0, k - o.smooth_bins), hi = std::min(bins - 1, k + o.smooth_bins);
+      for (int j = lo; j <= hi; ++j) {
+        const float c = cost[j] + smooth * static_cast<float>(std::abs(j - k));
+        if (c < b) b = c, arg = j;
+      }
+      next[k] = b + unary[k];
+      from[static_cast<std::size_t>(step) * bins + k] = static_cast<std::int16_t>(arg);
+    }
+    std::swap(cost, next);
+  }
+  int k = static_cast<int>(std::min_element(cost.begin(), cost.end()) - cost.begin());
+  PathFit fit;
+  fit.score = -cost[k];
+  std::vector<int> path(steps);
+  for (int step = steps - 1; step >= 0; --step) {
+    path[step] = k;
+    if (step > 0) k = from[static_cast<std::size_t>(step) * bins + k];
+  }
+  fit.bins.assign(columns, 0);
+  for (int step = columns / 2; step < columns / 2 + columns; ++step) fit.bins[step % columns] = path[step];
+  return fit;
+}
+
+// Horizontal unit direction of each working column.
+std::vector<Vec2> ColumnDirections(int columns) {
+  std::vector<Vec2> out;
+  for (int x = 0; x < columns; ++x) {
+    const Vec3 d = DirectionFromEquirectPixel(Vec2(x, columns / 4 - 0.5), columns, columns / 2);
+    out.push_back(d.head<2>().normalized());
+  }
+  return out;
+}
+
+// The walls' direction (radians in [0, π/2)) from a free path: the
+// length-weighted histogram, modulo 90°, of the directions between points a
+// few columns apart along it (not across jumps), smoothed, at its peak.
+double DominantWallDirection(const std::vector<int>& bins, const std::vector<double>& distances_m,
+                             const std::vector<Vec2>& directions) {
+  constexpr int kSpan = 10, kBins = 180;
+  const int columns = static_cast<int>(bins.size());
+  std::vector<double> histogram(kBins, 0.0);
+  for (int x = 0; x < columns; ++x) {
+    const int y = (x + kSpan) % columns;
+    if (std::abs(bins[x] - bins[y]) > 2 * kSpan) continue;
+    const Vec2 p = distances_m[bins[x]] * directions[x], q = distances_m[bins[y]] * directions[y];
+    const Vec2 v = q - p;
+    double a = std::atan2(v.y(), v.x());
+    a = std::fmod(a, kPi / 2);
+    if (a < 0) a += kPi / 2;
+    histogram[static_cast<int>(a / (kPi / 2) * kBins) % kBins] += v.norm();
+  }
+  int peak = 0;
+  double peak_value = -1.0;
+  for (int b = 0; b < kBins; ++b) {
+    double v = 0.0;
+    for (int t = -3; t <= 3; ++t) v += histogram[(b + t + kBins) % kBins] * (4 - std::abs(t));
+    if (v > peak_value) peak_value = v, peak = b;
+  }
+  return (peak + 0.5) * (kPi / 2) / kBins;
+}
+
+// Manhattan dynamic programme: each column sees a wall of one of four
+// normals (the walls' direction and its right angles, each side) at a
+// perpendicular distance D; a column's distance is D / cos(angle between its
+// ray and the normal). Along a wall the state stays (free); at a room corner
+// the next wall continues where this one ends (corner_cost); any other change
+// is one wall before another (jump_cost). Distances share the free path's
+// log bins, so a state's column distance is bin k + shift(normal, column).
+PathFit FitManhattanPath(const std::vector<float>& costs, int columns, int bins, double wall_direction_rad,
+                         const std::vector<Vec2>& directions, double log_step, const PanoLayoutOptions& o) {
+  constexpr int kNormals = 4;
+  constexpr float kInvalid = 1e6f;
+  const int states = kNormals * bins;
+  // shift(n, x) = −ln cos / log_step, or −1 where the ray grazes the wall.
+  std::vector<int> shift(static_cast<std::size_t>(kNormals) * columns);
+  for (int n = 0; n < kNormals; ++n) {
+    const double a = wall_direction_rad + kPi / 2 + n * kPi / 2;
+    const Vec2 normal(std::cos(a), std::sin(a));
+    for (int x = 0; x < columns; ++x) {
+      const double c = directions[x].dot(normal);
+      shift[n * columns + x] = c < 0.08 ? -1 : static_cast<int>(std::lround(-std::log(c) / log_step));
+    }
+  }
+  auto unary = [&](int n, int k, int x) {
+    const int s = shift[n * columns + x];
+    if (s < 0 || k + s >= bins) return kInvalid;
+    return costs[static_cast<std::size_t>(x) * bins + k + s];
+  };
+  const int steps = 2 * columns;
+  std::vector<float> cost(states), next(states);
+  std::vector<std::int16_t> from(static_cast<std::size_t>(steps) * states);
+  for (int n = 0; n < kNormals; ++n) {
+    for (int k = 0; k < bins; ++k) cost[n * bins + k] = unary(n, k, 0);
+  }
+  const float corner = static_cast<float>(o.corner_cost), jump = static_cast<float>(o.jump_cost);
+  for (int step = 1; step < steps; ++step) {
+    const int x = step % columns;
+    const int best = static_cast<int>(std::min_element(cost.begin(), cost.end()) - cost.begin());
+    for (int n = 0; n < kNormals; ++n) {
+      const int sn = shift[n * columns + x];
+      for (int k = 0; k < bins; ++k) {
+        const int here = n * bins + k;
+        // Stay on the wall.
+        float b = cost[here];
+        int arg = here;
+        if (cost[best] + jump < b) b = cost[best] + jump, arg = best;
+        // A corner: the previous wall ends where this one starts.
+        if (sn >= 0) {
+          for (int m = 0; m < kNormals; ++m) {
+            const int sm = shift[m * columns + x];
+            if (m == n || sm < 0) continue;
+            const int centre = k + sn - sm;
+            for (int j = std::max(0, centre - 1); j <= std::min(bins - 1, centre + 1); ++j) {
+              const float c = cost[m * bins + j] + corner;
+              if (c < b) b = c, arg = m * bins + j;
+            }
+          }
+        }
+        next[here] = b + unary(n, k, x);
+        from[static_cast<std::size_t>(step) * states + here] = static_cast<std::int16_t>(arg);
+      }
+    }
+    std::swap(cost, next);
+  }
+  int state = static_cast<int>(std::min_element(cost.begin(), cost.end()) - cost.begin());
+  PathFit fit;
+  fit.score = -cost[state];
+  std::vector<int> path(steps);
+  for (int step = steps - 1; step >= 0; --step) {
+    path[step] = state;
+    if (step > 0) state = from[static_cast<std::size_t>(step) * states + state];
+  }
+  fit.bins.assign(columns, 0);
+  for (int step = columns / 2; step < columns / 2 + columns; ++step) {
+    const int x = step % columns, n = path[step] / bins, k = path[step] % bins;
+    fit.bins[x] = std::clamp(k + std::max(0, shift[n * columns + x]), 0, bins - 1);
+  }
+  return fit;
+}
+
+}  // namespace
+
+void PanoLayoutOptions::Check() const {
+  CheckArgument(width_px >= 64 && width_px <= 8192 && width_px % 2 == 0,
+                fmt::format("PanoLayoutOptions.width_px = {}, must be even and in 64..8192", width_px));
+  CheckArgument(std::isfinite(min_distance_m) && min_distance_m > 0,
+                fmt::format("PanoLayoutOptions.min_distance_m = {}, must be > 0", min_distance_m));
+  CheckArgument(std::isfinite(max_distance_m) && max_distance_m > min_distance_m,
+                fmt::format("PanoLayoutOptions.max_distance_m = {}, must be > min_distance_m", max_distance_m));
+  CheckArgument(distance_bins >= 8 && distance_bins <= 4096,
+                fmt::format("PanoLayoutOptions.distance_bins = {}, must be in 8..4096", distance_bins));
+  CheckArgument(std::isfinite(min_ceiling_m) && min_ceiling_m > 0,
+                fmt::format("PanoLayoutOptions.min_ceiling_m = {}, must be > 0", min_ceiling_m));
+  CheckArgument(std::isfinite(max_ceiling_m) && max_ceiling_m >= min_ceiling_m,
+                fmt::format("PanoLayoutOptions.max_ceiling_m = {}, must be >= min_ceiling_m", max_ceiling_m));
+  CheckArgument(std::isfinite(ceiling_step_m) && ceiling_step_m > 0,
+                fmt::format("PanoLayoutOptions.ceiling_step_m = {}, must be > 0", ceiling_step_m));
+  for (const auto& [name, value] : {std::pair{"floor_edge_weight", floor_edge_weight},
+                                    {"ceiling_edge_weight", ceiling_edge_weight},
+                                    {"label_weight_per_row", label_weight_per_row},
+                                    {"smooth_cost_per_bin", smooth_cost_per_bin},
+                                    {"jump_cost", jump_cost},
+                                    {"corner_cost", corner_cost}}) {
+    CheckArgument(std::isfinite(value) && value >= 0,
+                  fmt::format("PanoLayoutOptions.{} = {}, must be finite and >= 0", name, value));
+  }
+  CheckArgument(smooth_bins >= 0 && smooth_bins < distance_bins,
+                fmt::format("PanoLayoutOptions.smooth_bins = {}, must be in 0..distance_bins − 1", smooth_bins));
+}
+
+const FieldList<PanoLayoutOptions>& PanoLayoutOptionFields() {
+  using O = PanoLayoutOptions;
+  static const FieldList<PanoLayoutOptions> kList = {
+      Bind(&O::width_px, {.name = "width_px", .description = "Working panorama width (height half of it), px.",
+                          .minimum = 64.0, .maximum = 8192.0}),
+      Bind(&O::min_distance_m, {.name = "min_distance_m", .description = "Nearest wall distance tried, m.",
+                                .exclusive_minimum = 0.0}),
+      Bind(&O::max_distance_m, {.name = "max_distance_m", .description = "Farthest wall distance tried, m.",
+                                .exclusive_minimum = 0.0}),
+      Bind(&O::distance_bins, {.name = "distance_bins", .description = "Log-spaced distance bins between them.",
+                               .minimum = 8.0, .maximum = 4096.0}),
+      Bind(&O::min_ceiling_m, {.name = "min_ceiling_m", .description = "Lowest ceiling height tried, m.",
+                               .exclusive_minimum = 0.0}),
+      Bind(&O::max_ceiling_m, {.name = "max_ceiling_m", .description = "Highest ceiling height tried, m.",
+                               .exclusive_minimum = 0.0}),
+      Bind(&O::ceiling_step_m, {.name = "ceiling_step_m", .description = "Step between ceiling heights tried, m.",
+                                .exclusive_minimum = 0.0}),
+      Bind(&O::floor_edge_weight,
+           {.name = "floor_edge_weight", .description = "Weight of the image's edge at a column's floor edge.",
+            .minimum = 0.0}),
+      Bind(&O::ceiling_edge_weight,
+           {.name = "ceiling_edge_weight", .description = "Weight of the image's edge at a column's ceiling edge.",
+            .minimum = 0.0}),
+      Bind(&O::label_weight_per_row,
+           {.name = "label_weight_per_row",
+            .description = "Weight per row of the labels agreeing with the wall band (0: labels unused).",
+            .minimum = 0.0}),
+      Bind(&O::max_edge_elevation_deg,
+           {.name = "max_edge_elevation_deg",
+            .description = "Edges count only this close to the horizon (not the camera mount or a ceiling light), deg.",
+            .exclusive_minimum = 0.0, .maximum = 90.0}),
+      Bind(&O::labels_below_horizon_only,
+           {.name = "labels_below_horizon_only",
+            .description = "Labels vote only below the horizon (a segmenter trained on renders takes a real "
+                           "white ceiling for wall)."}),
+      Bind(&O::smooth_cost_per_bin,
+           {.name = "smooth_cost_per_bin", .description = "Cost per distance bin changed between columns.",
+            .minimum = 0.0}),
+      Bind(&O::manhattan,
+           {.name = "manhattan",
+            .description = "Walls meet at right angles (one direction and its right angles); off: any distances."}),
+      Bind(&O::corner_cost,
+           {.name = "corner_cost", .description = "Manhattan: cost of a room corner (one wall meeting the next).",
+            .minimum = 0.0}),
+      Bind(&O::smooth_bins,
+           {.name = "smooth_bins", .description = "Largest smooth change between columns, bins.", .minimum = 0.0}),
+      Bind(&O::jump_cost,
+           {.name = "jump_cost", .description = "Cost of a larger change (one wall before another).",
+            .minimum = 0.0}),
+  };
+  return kList;
+}
+
+double PanoLayout::DistanceAlong(const Vec3& direction) const {
+  CheckArgument(!distance_m.empty(), "PanoLayout.distance_m is empty");
+  return distance_m[ColumnOf(direction, Columns())];
+}
+
+double PanoLayout::FloorElevation(const Vec3& direction) const {
+  return -std::atan2(camera_height_m, DistanceAlong(direction));
+}
+
+double PanoLayout::CeilingElevation(const Vec3& direction) const {
+  return std::atan2(ceiling_height_m - camera_height_m, DistanceAlong(direction));
+}
+
+std::string PanoLayout::BriefReport() const {
+  if (distance_m.empty()) return "layout: none";
+  std::vector<double> sorted = distance_m;
+  std::sort(sorted.begin(), sorted.end());
+  return fmt::format("layout: ceiling {:.2f} m, walls {:.1f}–{:.1f} m away (median {:.1f} m)", ceiling_height_m,
+                     sorted.front(), sorted.back(), sorted[sorted.size() / 2]);
+}
+
+PanoLayout EstimatePanoLayout(const cv::Mat& equirect_bgr, double camera_height_m, const cv::Mat& labels_equirect,
+                              const PanoLayoutOptions& options) {
+  options.Check();
+  CheckArgument(!equirect_bgr.empty() && equirect_bgr.type() == CV_8UC3 &&
+                    std::abs(equirect_bgr.cols - 2 * equirect_bgr.rows) <= 1,
+                fmt::format("EstimatePanoLayout: the panorama must be 8-bit BGR and 2:1, got {}x{} type {}",
+                            equirect_bgr.cols, equirect_bgr.rows, equirect_bgr.type()));
+  CheckArgument(std::isfinite(camera_height_m) && camera_height_m > 0,
+                fmt::format("EstimatePanoLayout: camera_height_m = {}, must be > 0", camera_height_m));
+  CheckArgument(labels_equirect.empty() || labels_equirect.type() == CV_8UC1,
+                "EstimatePanoLayout: labels_equirect must be CV_8UC1 label ids or empty");
+  const int columns = options.width_px, rows = columns / 2;
+  cv::Mat small;
+  cv::resize(equirect_bgr, small, cv::Size(columns, rows), 0, 0, cv::INTER_AREA);
+  const cv::Mat edges = HorizontalSteps(small, options.max_edge_elevation_deg);
+  const cv::Mat votes = CumulativeLabelVotes(labels_equirect, rows, columns, options.labels_below_horizon_only);
+
+  std::vector<double> distances_m(options.distance_bins);
+  const double log_step = std::log(options.max_distance_m / options.min_distance_m) / (options.distance_bins - 1);
+  for (int k = 0; k < options.distance_bins; ++k) distances_m[k] = options.min_distance_m * std::exp(k * log_step);
+  const int bins = options.distance_bins;
+  const std::vector<Vec2> directions = ColumnDirections(columns);
+  auto fit = [&](double ceiling_m, std::optional<double> wall_direction_rad) {
+    const std::vector<float> costs = ColumnCosts(edges, votes, distances_m, camera_height_m, ceiling_m, options);
+    return wall_direction_rad
+               ? FitManhattanPath(costs, columns, bins, *wall_direction_rad, directions, log_step, options)
+               : FitFreePath(costs, columns, bins, options);
+  };
+
+  // The walls' direction from a free path at a typical ceiling height, then
+  // the ceiling height under which the path fits best, then the direction
+  // refined at that height.
+  PanoLayout layout{.camera_height_m = camera_height_m};
+  const double lowest = std::max(options.min_ceiling_m, camera_height_m + 0.2);
+  CheckArgument(lowest <= options.max_ceiling_m,
+                fmt::format("EstimatePanoLayout: no ceiling height to try above the camera ({} m) up to "
+                            "max_ceiling_m = {}",
+                            camera_height_m, options.max_ceiling_m));
+  std::optional<double> direction;
+  if (options.manhattan) {
+    const PathFit rough = fit(std::clamp(camera_height_m + 1.0, lowest, options.max_ceiling_m), std::nullopt);
+    direction = DominantWallDirection(rough.bins, distances_m, directions);
+  }
+  PathFit best;
+  for (double h = lowest; h <= options.max_ceiling_m + 1e-9; h += options.ceiling_step_m) {
+    PathFit f = fit(h, direction);
+    if (f.score > best.score) {
+      best = std::move(f);
+      layout.ceiling_height_m = h;
+    }
+  }
+  if (direction) {
+    // Climb to the best direction nearby: steps of 2°, halved down to 0.25°.
+    for (double step_deg = 2.0; step_deg >= 0.25; step_deg /= 2) {
+      for (bool moved = true; moved;) {
+        moved = false;
+        for (const double sign : {-1.0, 1.0}) {
+          const double candidate = *direction + sign * DegToRad(step_deg);
+          PathFit f = fit(layout.ceiling_height_m, candidate);
+          if (f.score > best.score) {
+            best = std::move(f);
+            direction = candidate;
+            moved = true;
+            break;
+          }
+        }
+      }
+    }
+    layout.wall_direction_deg = std::fmod(RadToDeg(*direction) + 360.0, 90.0);
+  }
+  layout.score = best.score;
+  layout.distance_m.resize(columns);
+  for (int x = 0; x < columns; ++x) layout.distance_m[x] = distances_m[best.bins[x]];
+  return layout;
+}
+
+cv::Mat EquirectFromViewLabels(const std::vector<PanoView>& views, const std::vector<cv::Mat>& labels, int width_px) {
+  CheckArgument(views.size() == labels.size(), fmt::format("EquirectFromViewLabels: {} views but {} label maps",
+                                                           views.size(), labels.size()));
+  CheckArgument(width_px >= 2 && width_px % 2 == 0,
+                fmt::format("EquirectFromViewLabels: width_px = {}, must be even and >= 2", width_px));
+  const int rows = width_px / 2;
+  cv::Mat out(rows, width_px, CV_8UC1, cv::Scalar(kIgnoreLabel));
+  std::vector<Mat3> camera_from_world;
+  for (const PanoView& v : views) camera_from_world.push_back(v.WorldFromCamera().transpose());
+  for (int y = 0; y < rows; ++y) {
+    std::uint8_t* o = out.ptr<std::uint8_t>(y);
+    for (int x = 0; x < width_px; ++x) {
+      const Vec3 d = DirectionFromEquirectPixel(Vec2(x, y), width_px, rows);
+      double best_forward = 0.0;
+      for (std::size_t i = 0; i < views.size(); ++i) {
+        if (labels[i].empty()) continue;
+        const Vec3 c = camera_from_world[i] * d;
+        if (c.z() <= best_forward) continue;
+        const PinholeCamera& cam = views[i].camera;
+        const double u = cam.fx * c.x() / c.z() + cam.cx, v = cam.fy * c.y() / c.z() + cam.cy;
+        const int iu = static_cast<int>(std::lround(u)), iv = static_cast<int>(std::lround(v));
+        if (iu < 0 || iv < 0 || iu >= labels[i].cols || iv >= labels[i].rows) continue;
+        best_forward = c.z();
+        o[x] = labels[i].at<std::uint8_t>(iv, iu);
+      }
+    }
+  }
+  return out;
+}
+
+cv::Mat LayoutViewLabels(const PanoLayout& layout, const PanoView& view, const cv::Mat& view_labels) {
+  const PinholeCamera& cam = view.camera;
+  CheckArgument(view_labels.empty() || (view_labels.type() == CV_8UC1 && view_labels.cols == cam.width_px &&
+                                        view_labels.rows == cam.height_px),
+                fmt::format("LayoutViewLabels: labels {}x{} for a view {}x{}", view_labels.cols, view_labels.rows,
+                            cam.width_px, cam.height_px));
+  cv::Mat out(cam.height_px, cam.width_px, CV_8UC1, cv::Scalar(kBackground));
+  const Mat3 world_from_camera = view.WorldFromCamera();
+  for (int v = 0; v < cam.height_px; ++v) {
+    std::uint8_t* o = out.ptr<std::uint8_t>(v);
+    for (int u = 0; u < cam.width_px; ++u) {
+      const Vec3 d = world_from_camera * UnprojectToCamera(cam, Vec2(u, v), 1.0);
+      const double elevation = std::atan2(d.z(), std::hypot(d.x(), d.y()));
+      if (elevation < layout.FloorElevation(d) || elevation > layout.CeilingElevation(d)) continue;
+      const std::uint8_t l = view_labels.empty() ? kWall : view_labels.at<std::uint8_t>(v, u);
+      o[u] = (l == kDoor || l == kWindow) ? l : kWall;
+    }
+  }
+  return out;
+}
+
+cv::Mat DrawPanoLayout(const cv::Mat& equirect_bgr, const PanoLayout& layout) {
+  cv::Mat out = equirect_bgr.clone();
+  if (layout.distance_m.empty() || out.empty()) return out;
+  const int columns = layout.Columns(), rows = out.rows;
+  const double scale = static_cast<double>(out.cols) / columns;
+  const int thickness = std::max(1, out.cols / 1024);
+  auto curve = [&](bool ceiling, const cv::Scalar& colour) {
+    std::vector<cv::Point> points;
+    for (int x = 0; x < columns; ++x) {
+      const double d = layout.distance_m[x];
+      const double e = ceiling ? std::atan2(layout.ceiling_height_m - layout.camera_height_m, d)
+                               : -std::atan2(layout.camera_height_m, d);
+      points.emplace_back(static_cast<int>(std::lround((x + 0.5) * scale - 0.5)),
+                          static_cast<int>(std::lround(RowOfElevation(e, rows))));
+    }
+    cv::polylines(out, points, false, colour, thickness, cv::LINE_AA);
+  };
+  curve(false, cv::Scalar(0, 0, 255));
+  curve(true, cv::Scalar(0, 255, 0));
+  return out;
+}
+
+}  // namespace asbuilt
