@@ -139,6 +139,17 @@ std::string PooledTable(const Pooled& p, double iou_target, double recall_target
   return md;
 }
 
+// A shipped-model run: its time, label source, pooled figures against the
+// model targets, and its per-room table.
+std::string ModelRunSection(const std::vector<RoomRun>& runs, const Pooled& pooled, double seconds) {
+  std::string md = fmt::format("{:.1f} s a panorama on average. Labels from: {}.\n\n",
+                               runs.empty() ? 0.0 : seconds / runs.size(),
+                               runs.empty() ? "" : runs.front().summary.labels_source);
+  md += PooledTable(pooled, 0.85, 0.90, "") + "\n";
+  md += RunTable(runs) + "\n";
+  return md;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -243,11 +254,7 @@ int main(int argc, char** argv) {
   md += RunTable(by_labels) + "\n";
   if (with_model) {
     md += fmt::format("### With the shipped model (`{}`)\n\n", DefaultModelPath().filename().string());
-    md += fmt::format("{:.1f} s a panorama on average. Labels from: {}.\n\n",
-                      by_model.empty() ? 0.0 : model_seconds / by_model.size(),
-                      by_model.empty() ? "" : by_model.front().summary.labels_source);
-    md += PooledTable(model_pooled, 0.85, 0.90, "") + "\n";
-    md += RunTable(by_model) + "\n";
+    md += ModelRunSection(by_model, model_pooled, model_seconds);
     md += "Where it stands: the geometry is not the limit (the layout-label run above); the segmenter is. "
           "It was trained on rendered rooms only and scores mIoU 0.23 on these photos (bench/results/zind.md): "
           "its wall/floor and wall/ceiling edges wander, and furniture and open doors break the wall bases. "
@@ -259,11 +266,7 @@ int main(int argc, char** argv) {
           "not help (measured 2026-12-03 before one_viewpoint, with ASBUILT_BENCH_PANO_SEG=512x1024: IoU median "
           "0.575, wall recall 36/68, 27 s a panorama).\n\n";
     md += "### With the shipped model, redrawn on the panorama's layout (`--pano-layout`)\n\n";
-    md += fmt::format("{:.1f} s a panorama on average. Labels from: {}.\n\n",
-                      by_layout.empty() ? 0.0 : layout_seconds / by_layout.size(),
-                      by_layout.empty() ? "" : by_layout.front().summary.labels_source);
-    md += PooledTable(layout_pooled, 0.85, 0.90, "") + "\n";
-    md += RunTable(by_layout) + "\n";
+    md += ModelRunSection(by_layout, layout_pooled, layout_seconds);
     md += "The room's layout found from the panorama's own edges (pano/pano_layout.h, docs/survey.md \"The layout "
           "of a panorama\"): per column one wall distance, tying the floor edge and the ceiling edge together at "
           "the camera height, the walls at right angles, the segmenter's labels voting below the horizon only. "

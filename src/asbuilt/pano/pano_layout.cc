@@ -137,6 +137,31 @@ struct PathFit {
   double score = -std::numeric_limits<double>::infinity();
 };
 
+// The states of a dynamic programme's best path, step by step, from its
+// last costs and each step's back-pointers (steps × states); `score` gets
+// minus the path's cost.
+std::vector<int> Backtrack(const std::vector<float>& last_cost, const std::vector<std::int16_t>& from,
+                           double* score) {
+  const int states = static_cast<int>(last_cost.size());
+  const int steps = static_cast<int>(from.size() / last_cost.size());
+  int state = static_cast<int>(std::min_element(last_cost.begin(), last_cost.end()) - last_cost.begin());
+  *score = -last_cost[state];
+  std::vector<int> path(steps);
+  for (int step = steps - 1; step >= 0; --step) {
+    path[step] = state;
+    if (step > 0) state = from[static_cast<std::size_t>(step) * states + state];
+  }
+  return path;
+}
+
+// A path run twice round the panorama, per column once: its middle turn
+// (columns/2 … columns/2 + columns − 1), far from both ends.
+std::vector<int> MiddleTurn(const std::vector<int>& path, int columns) {
+  std::vector<int> out(columns, 0);
+  for (int step = columns / 2; step < columns / 2 + columns; ++step) out[step % columns] = path[step];
+  return out;
+}
+
 // Free dynamic programme over the columns: any distance per column, paying
 // for changes of bin. Run twice round the panorama and keep the middle turn,
 // so the seam has no start of its own.
@@ -162,16 +187,8 @@ PathFit FitFreePath(const std::vector<float>& costs, int columns, int bins, cons
     }
     std::swap(cost, next);
   }
-  int k = static_cast<int>(std::min_element(cost.begin(), cost.end()) - cost.begin());
   PathFit fit;
-  fit.score = -cost[k];
-  std::vector<int> path(steps);
-  for (int step = steps - 1; step >= 0; --step) {
-    path[step] = k;
-    if (step > 0) k = from[static_cast<std::size_t>(step) * bins + k];
-  }
-  fit.bins.assign(columns, 0);
-  for (int step = columns / 2; step < columns / 2 + columns; ++step) fit.bins[step % columns] = path[step];
+  fit.bins = MiddleTurn(Backtrack(cost, from, &fit.score), columns);
   return fit;
 }
 
@@ -276,17 +293,10 @@ PathFit FitManhattanPath(const std::vector<float>& costs, int columns, int bins,
     }
     std::swap(cost, next);
   }
-  int state = static_cast<int>(std::min_element(cost.begin(), cost.end()) - cost.begin());
   PathFit fit;
-  fit.score = -cost[state];
-  std::vector<int> path(steps);
-  for (int step = steps - 1; step >= 0; --step) {
-    path[step] = state;
-    if (step > 0) state = from[static_cast<std::size_t>(step) * states + state];
-  }
-  fit.bins.assign(columns, 0);
-  for (int step = columns / 2; step < columns / 2 + columns; ++step) {
-    const int x = step % columns, n = path[step] / bins, k = path[step] % bins;
+  fit.bins = MiddleTurn(Backtrack(cost, from, &fit.score), columns);
+  for (int x = 0; x < columns; ++x) {
+    const int n = fit.bins[x] / bins, k = fit.bins[x] % bins;
     fit.bins[x] = std::clamp(k + std::max(0, shift[n * columns + x]), 0, bins - 1);
   }
   return fit;
