@@ -133,7 +133,8 @@ std::vector<float> ColumnCosts(const cv::Mat& edges, const cv::Mat& votes, const
 
 // A best path round the panorama: per column its distance bin.
 struct PathFit {
-  std::vector<int> bins;  // Per column: the distance bin.
+  std::vector<int> bins;    // Per column: the distance bin.
+  std::vector<int> states;  // Manhattan: per column normal · bins + perpendicular distance bin.
   double score = -std::numeric_limits<double>::infinity();
 };
 
@@ -294,12 +295,157 @@ PathFit FitManhattanPath(const std::vector<float>& costs, int columns, int bins,
     std::swap(cost, next);
   }
   PathFit fit;
-  fit.bins = MiddleTurn(Backtrack(cost, from, &fit.score), columns);
+  fit.states = MiddleTurn(Backtrack(cost, from, &fit.score), columns);
+  fit.bins = fit.states;
   for (int x = 0; x < columns; ++x) {
-    const int n = fit.bins[x] / bins, k = fit.bins[x] % bins;
+    const int n = fit.states[x] / bins, k = fit.states[x] % bins;
     fit.bins[x] = std::clamp(k + std::max(0, shift[n * columns + x]), 0, bins - 1);
   }
   return fit;
+}
+
+// Whether each column's wall shows in the image: the median over the
+// columns around it of the edge strengths at its floor and ceiling rows.
+std::vector<bool> SupportedColumns(const cv::Mat& edges, const PanoLayout& layout, const PanoLayoutOptions& o) {
+  const int rows = edges.rows, columns = edges.cols;
+  std::vector<float> support(columns);
+  for (int x = 0; x < columns; ++x) {
+    const double d = layout.distance_m[x];
+    const int yf = std::clamp(
+        static_cast<int>(std::lround(RowOfElevation(-std::atan2(layout.camera_height_m, d), rows))), 0, rows - 1);
+    const int yc = std::clamp(static_cast<int>(std::lround(RowOfElevation(
+                                  std::atan2(layout.ceiling_height_m - layout.camera_height_m, d), rows))),
+                              0, rows - 1);
+    support[x] = edges.at<float>(yf, x) + edges.at<float>(yc, x);
+  }
+  std::vector<bool> out(columns);
+  std::vector<float> window;
+  for (int x = 0; x < columns; ++x) {
+    window.clear();
+    for (int t = -o.support_half_width; t <= o.support_half_width; ++t) {
+      window.push_back(support[(x + t + columns) % columns]);
+    }
+    std::nth_element(window.begin(), window.begin() + window.size() / 2, window.end());
+    out[x] = window[window.size() / 2] >= o.min_column_support;
+  }
+  return out;
+}
+
+// A wall of a Manhattan path: its line {p : p·normal = offset_m} and the
+// columns it holds, first … last (wrapping).
+struct PathWall {
+  Vec2 normal;
+  double offset_m = 0.0;
+  int state = 0;
+  int first = 0, last = 0, columns = 0, supported = 0;
+};
+
+// The room polygon (pano frame, camera at the origin, vertices in column
+// order) a Manhattan path describes, the way layout networks close theirs:
+// its walls, those held by at least min_wall_columns columns mostly
+// supported; neighbouring walls at right angles meet at their lines'
+// crossing when it lies between them, else (and for parallel walls) joined
+// along the ray between their runs (one wall stands before the other).
+// Empty when fewer than three walls or no right angle remain.
+std::vector<Vec2> ManhattanPolygon(const std::vector<int>& states, const std::vector<bool>& supported,
+                                   const std::vector<double>& distances_m, double wall_direction_rad,
+                                   const std::vector<Vec2>& directions, int min_wall_columns) {
+  const int columns = static_cast<int>(states.size()), bins = static_cast<int>(distances_m.size());
+  // Start at a change of state, so no run wraps past the first column.
+  int start = 0;
+  while (start < columns && states[start] == states[(start + columns - 1) % columns]) ++start;
+  if (start == columns) return {};
+  std::vector<PathWall> walls;
+  for (int i = 0; i < columns; ++i) {
+    const int x = (start + i) % columns;
+    if (walls.empty() || walls.back().state != states[x]) {
+      const int n = states[x] / bins;
+      const double a = wall_direction_rad + kPi / 2 + n * kPi / 2;
+      walls.push_back({.normal = Vec2(std::cos(a), std::sin(a)),
+                       .offset_m = distances_m[states[x] % bins],
+                       .state = states[x],
+                       .first = x});
+    }
+    PathWall& w = walls.back();
+    w.last = x;
+    ++w.columns;
+    w.supported += supported[x] ? 1 : 0;
+  }
+  std::vector<PathWall> kept;
+  for (const PathWall& w : walls) {
+    if (w.columns < min_wall_columns || 2 * w.supported < w.columns) continue;
+    if (!kept.empty() && kept.back().state == w.state) {
+      kept.back().last = w.last;
+      kept.back().columns += w.columns;
+      continue;
+    }
+    kept.push_back(w);
+  }
+  if (kept.size() > 1 && kept.front().state == kept.back().state) {
+    kept.front().first = kept.back().first;
+    kept.pop_back();
+  }
+  if (kept.size() < 3) return {};
+  // Bearing order: a point's column position, unwrapped after `from`.
+  auto column_of = [&](const Vec2& p) {
+    const double yaw = std::atan2(-p.x(), p.y());
+    double turn = -yaw / (2 * kPi);
+    turn -= std::floor(turn);
+    return turn * columns - 0.5;
+  };
+  auto ahead = [&](double column, int from) {  // Columns from `from` to `column`, in [0, columns).
+    double d = column - from;
+    while (d < 0) d += columns;
+    while (d >= columns) d -= columns;
+    return d;
+  };
+  std::vector<Vec2> polygon;
+  bool right_angle = false;
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    const PathWall& a = kept[i];
+    const PathWall& b = kept[(i + 1) % kept.size()];
+    const double cross = a.normal.x() * b.normal.y() - a.normal.y() * b.normal.x();
+    if (std::abs(cross) > 0.5) {
+      // Crossing of the two lines: normal_a·p = D_a, normal_b·p = D_b.
+      const Vec2 p((a.offset_m * b.normal.y() - b.offset_m * a.normal.y()) / cross,
+                   (b.offset_m * a.normal.x() - a.offset_m * b.normal.x()) / cross);
+      const double gap = ahead(b.first, a.last);
+      const double at = ahead(column_of(p), a.last);
+      if (at <= gap + 2 || at >= columns - 2) {
+        polygon.push_back(p);
+        right_angle = true;
+        continue;
+      }
+    }
+    // Joined along the ray midway between the two runs.
+    const double mid = a.last + 0.5 * ahead(b.first, a.last);
+    const int x = static_cast<int>(std::lround(mid)) % columns;
+    const Vec2 r = directions[x];
+    const double ca = r.dot(a.normal), cb = r.dot(b.normal);
+    if (ca < 0.05 || cb < 0.05) return {};
+    polygon.push_back(r * (a.offset_m / ca));
+    polygon.push_back(r * (b.offset_m / cb));
+  }
+  if (!right_angle) return {};
+  return polygon;
+}
+
+// Distance along a horizontal unit direction from the origin to a polygon
+// around it (the nearest crossing ahead; +inf when none).
+double RayPolygonDistance(const Vec2& direction, const std::vector<Vec2>& polygon) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Vec2& p = polygon[i];
+    const Vec2& q = polygon[(i + 1) % polygon.size()];
+    const Vec2 e = q - p;
+    const double det = direction.x() * (-e.y()) - direction.y() * (-e.x());
+    if (std::abs(det) < 1e-12) continue;
+    // Solve t·direction = p + s·e.
+    const double t = (p.x() * (-e.y()) - p.y() * (-e.x())) / det;
+    const double u = (direction.x() * p.y() - direction.y() * p.x()) / det;
+    if (t > 1e-9 && u >= -1e-9 && u <= 1 + 1e-9) best = std::min(best, t);
+  }
+  return best;
 }
 
 }  // namespace
@@ -324,10 +470,15 @@ void PanoLayoutOptions::Check() const {
                                     {"label_weight_per_row", label_weight_per_row},
                                     {"smooth_cost_per_bin", smooth_cost_per_bin},
                                     {"jump_cost", jump_cost},
-                                    {"corner_cost", corner_cost}}) {
+                                    {"corner_cost", corner_cost},
+                                    {"min_column_support", min_column_support}}) {
     CheckArgument(std::isfinite(value) && value >= 0,
                   fmt::format("PanoLayoutOptions.{} = {}, must be finite and >= 0", name, value));
   }
+  CheckArgument(min_wall_columns >= 1, fmt::format("PanoLayoutOptions.min_wall_columns = {}, must be >= 1",
+                                                   min_wall_columns));
+  CheckArgument(support_half_width >= 0 && support_half_width <= 256,
+                fmt::format("PanoLayoutOptions.support_half_width = {}, must be in 0..256", support_half_width));
   CheckArgument(smooth_bins >= 0 && smooth_bins < distance_bins,
                 fmt::format("PanoLayoutOptions.smooth_bins = {}, must be in 0..distance_bins − 1", smooth_bins));
 }
@@ -376,6 +527,24 @@ const FieldList<PanoLayoutOptions>& PanoLayoutOptionFields() {
       Bind(&O::corner_cost,
            {.name = "corner_cost", .description = "Manhattan: cost of a room corner (one wall meeting the next).",
             .minimum = 0.0}),
+      Bind(&O::min_column_support,
+           {.name = "min_column_support",
+            .description = "A column shows its wall when the median edge strength at its floor plus ceiling row, "
+                           "over the columns around it, is at least this (0: every column).",
+            .minimum = 0.0}),
+      Bind(&O::support_half_width,
+           {.name = "support_half_width", .description = "Columns each side in that median.", .minimum = 0.0,
+            .maximum = 256.0}),
+      Bind(&O::close_polygon,
+           {.name = "close_polygon",
+            .description = "Manhattan: redraw every column on the room polygon the path's walls close into."}),
+      Bind(&O::min_wall_columns,
+           {.name = "min_wall_columns",
+            .description = "A wall of that polygon holds at least this many columns, mostly supported.",
+            .minimum = 1.0}),
+      Bind(&O::openings_from_labels,
+           {.name = "openings_from_labels",
+            .description = "Survey: keep the segmenter's doors and windows inside the layout's wall band."}),
       Bind(&O::smooth_bins,
            {.name = "smooth_bins", .description = "Largest smooth change between columns, bins.", .minimum = 0.0}),
       Bind(&O::jump_cost,
@@ -390,6 +559,10 @@ double PanoLayout::DistanceAlong(const Vec3& direction) const {
   return distance_m[ColumnOf(direction, Columns())];
 }
 
+bool PanoLayout::Supported(const Vec3& direction) const {
+  return supported.empty() || supported[ColumnOf(direction, Columns())];
+}
+
 double PanoLayout::FloorElevation(const Vec3& direction) const {
   return -std::atan2(camera_height_m, DistanceAlong(direction));
 }
@@ -402,8 +575,12 @@ std::string PanoLayout::BriefReport() const {
   if (distance_m.empty()) return "layout: none";
   std::vector<double> sorted = distance_m;
   std::sort(sorted.begin(), sorted.end());
-  return fmt::format("layout: ceiling {:.2f} m, walls {:.1f}–{:.1f} m away (median {:.1f} m)", ceiling_height_m,
-                     sorted.front(), sorted.back(), sorted[sorted.size() / 2]);
+  const int shown = static_cast<int>(std::count(supported.begin(), supported.end(), true));
+  return fmt::format("layout: ceiling {:.2f} m, walls {:.1f}–{:.1f} m away (median {:.1f} m), {}", ceiling_height_m,
+                     sorted.front(), sorted.back(), sorted[sorted.size() / 2],
+                     polygon_m.empty() ? fmt::format("{} of {} columns shown", supported.empty() ? Columns() : shown,
+                                                     Columns())
+                                       : fmt::format("closed into a {}-corner polygon", polygon_m.size()));
 }
 
 PanoLayout EstimatePanoLayout(const cv::Mat& equirect_bgr, double camera_height_m, const cv::Mat& labels_equirect,
@@ -479,6 +656,22 @@ PanoLayout EstimatePanoLayout(const cv::Mat& equirect_bgr, double camera_height_
   layout.score = best.score;
   layout.distance_m.resize(columns);
   for (int x = 0; x < columns; ++x) layout.distance_m[x] = distances_m[best.bins[x]];
+  layout.supported = SupportedColumns(edges, layout, options);
+  if (direction && options.close_polygon) {
+    std::vector<Vec2> polygon = ManhattanPolygon(best.states, layout.supported, distances_m, *direction, directions,
+                                                 options.min_wall_columns);
+    std::vector<double> closed(columns);
+    bool inside = !polygon.empty();
+    for (int x = 0; x < columns && inside; ++x) {
+      closed[x] = RayPolygonDistance(directions[x], polygon);
+      inside = std::isfinite(closed[x]) && closed[x] > 0.05;
+    }
+    if (inside) {
+      layout.polygon_m = std::move(polygon);
+      layout.distance_m = std::move(closed);
+      layout.supported.assign(columns, true);
+    }
+  }
   return layout;
 }
 
@@ -525,6 +718,7 @@ cv::Mat LayoutViewLabels(const PanoLayout& layout, const PanoView& view, const c
     for (int u = 0; u < cam.width_px; ++u) {
       const Vec3 d = world_from_camera * UnprojectToCamera(cam, Vec2(u, v), 1.0);
       const double elevation = std::atan2(d.z(), std::hypot(d.x(), d.y()));
+      if (!layout.Supported(d)) continue;
       if (elevation < layout.FloorElevation(d) || elevation > layout.CeilingElevation(d)) continue;
       const std::uint8_t l = view_labels.empty() ? kWall : view_labels.at<std::uint8_t>(v, u);
       o[u] = (l == kDoor || l == kWindow) ? l : kWall;
@@ -541,14 +735,22 @@ cv::Mat DrawPanoLayout(const cv::Mat& equirect_bgr, const PanoLayout& layout) {
   const int thickness = std::max(1, out.cols / 1024);
   auto curve = [&](bool ceiling, const cv::Scalar& colour) {
     std::vector<cv::Point> points;
+    auto flush = [&] {
+      if (points.size() > 1) cv::polylines(out, points, false, colour, thickness, cv::LINE_AA);
+      points.clear();
+    };
     for (int x = 0; x < columns; ++x) {
+      if (!layout.supported.empty() && !layout.supported[x]) {
+        flush();
+        continue;
+      }
       const double d = layout.distance_m[x];
       const double e = ceiling ? std::atan2(layout.ceiling_height_m - layout.camera_height_m, d)
                                : -std::atan2(layout.camera_height_m, d);
       points.emplace_back(static_cast<int>(std::lround((x + 0.5) * scale - 0.5)),
                           static_cast<int>(std::lround(RowOfElevation(e, rows))));
     }
-    cv::polylines(out, points, false, colour, thickness, cv::LINE_AA);
+    flush();
   };
   curve(false, cv::Scalar(0, 0, 255));
   curve(true, cv::Scalar(0, 255, 0));

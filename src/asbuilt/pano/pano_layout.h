@@ -85,6 +85,20 @@ struct PanoLayoutOptions {
   // column, changing smoothly.
   bool manhattan = true;
   double corner_cost = 1.5;
+  // A column shows its wall when the median, over ±support_half_width
+  // columns, of its edge strength at the floor row plus at the ceiling row
+  // (each 0..1, unweighted) is at least this; 0 keeps every column.
+  double min_column_support = 0.5;
+  int support_half_width = 8;
+  // Manhattan: close the path's walls into the room's polygon (walls held
+  // by at least min_wall_columns columns, mostly supported; a gap, such as
+  // an open door leaf before the camera, bridged by the walls beside it) and
+  // take every column's distance from it.
+  bool close_polygon = true;
+  int min_wall_columns = 28;  // 10° of the panorama.
+  // Survey (pipeline/pano_layout_labels.h): keep the labels' doors and
+  // windows inside the layout's wall band; off: wall only.
+  bool openings_from_labels = true;
 
   void Check() const;  // Throws InvalidArgument naming a bad field.
 };
@@ -98,6 +112,15 @@ struct PanoLayout {
   // Per working column (width_px of PanoLayoutOptions; column u looks along
   // the yaw perspective.h gives pixel u): horizontal distance to the wall.
   std::vector<double> distance_m;
+  // Per working column: whether the image shows the wall there (an edge at
+  // its floor or its ceiling row, over the columns around it; see
+  // PanoLayoutOptions::min_column_support). An unsupported column's distance
+  // is the programme's guess across a gap (an open door leaf before the
+  // camera, a wall base below the view): no wall is drawn there.
+  std::vector<bool> supported;
+  // Manhattan with close_polygon: the room polygon, pano frame metres, the
+  // camera at the origin, vertices in column order (empty: none closed).
+  std::vector<Vec2> polygon_m;
   // Manhattan layouts: the walls' direction in the pano frame, degrees in
   // [0, 90) from +X (NaN: not Manhattan).
   double wall_direction_deg = std::numeric_limits<double>::quiet_NaN();
@@ -109,6 +132,9 @@ struct PanoLayout {
   double DistanceAlong(const Vec3& direction) const;
   // The floor edge's and ceiling edge's elevation, radians, along a yaw
   // (floor negative, ceiling positive).
+  // Whether the wall along a yaw shows in the image (true when `supported`
+  // is empty).
+  bool Supported(const Vec3& direction) const;
   double FloorElevation(const Vec3& direction) const;
   double CeilingElevation(const Vec3& direction) const;
   std::string BriefReport() const;  // "layout: ceiling 2.36 m, walls 1.2–4.8 m away (median 2.9 m)".

@@ -96,6 +96,22 @@ TEST(EstimatePanoLayout, RecoversABoxRoomsWallsAndCeilingFromItsEdges) {
   EXPECT_LT(errors[errors.size() * 95 / 100], 0.06) << "95th percentile (columns at the room's corners)";
 }
 
+TEST(EstimatePanoLayout, ClosesABoxRoomIntoItsFourCorners) {
+  const BoxRoom room;
+  const PanoLayout layout = EstimatePanoLayout(room.Render(1024, 11), room.camera_height_m, cv::Mat(), {});
+  ASSERT_EQ(layout.polygon_m.size(), 4u) << layout.BriefReport();
+  const double a = DegToRad(room.rotation_deg);
+  for (const Vec2& box : {room.min_m, Vec2(room.max_m.x(), room.min_m.y()), room.max_m,
+                          Vec2(room.min_m.x(), room.max_m.y())}) {
+    const Vec2 corner(std::cos(a) * box.x() - std::sin(a) * box.y(), std::sin(a) * box.x() + std::cos(a) * box.y());
+    double nearest = 1e9;
+    for (const Vec2& p : layout.polygon_m) nearest = std::min(nearest, (p - corner).norm());
+    EXPECT_LT(nearest, 0.08) << "corner " << corner.transpose();
+  }
+  // Every column's distance is then the polygon's.
+  EXPECT_EQ(std::count(layout.supported.begin(), layout.supported.end(), true), layout.Columns());
+}
+
 TEST(EstimatePanoLayout, FreePathsFindTheRoomToo) {
   const BoxRoom room{.rotation_deg = 0.0};
   const PanoLayout layout =

@@ -1,7 +1,9 @@
 // Surveys of mono and panorama captures (issue 22) on a synthetic box room
 // whose labels are drawn exactly from its geometry: the contact cue's
-// geometry end to end, with no segmenter.
+// geometry end to end, with no segmenter; and the same room painted as a
+// photo, surveyed with the panorama's layout (--pano-layout).
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 
@@ -13,6 +15,7 @@
 
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/pipeline/survey.h"
+#include "asbuilt/seg/segmenter.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
 
@@ -128,6 +131,53 @@ TEST(RunSurvey, PanoramaCaptureSaysWhenPartOfTheRoomWasNotSeen) {
   bool noted = false;
   for (const std::string& n : r.summary.notes) noted |= n.find("larger than what this capture sees") != std::string::npos;
   EXPECT_TRUE(noted);
+}
+
+// The box room as a photo: dark floor, light walls (each axis its own
+// shade), a white ceiling; 2048 × 1024.
+cv::Mat PaintBoxRoom() {
+  cv::Mat out(1024, 2048, CV_8UC3);
+  for (int y = 0; y < out.rows; ++y) {
+    for (int x = 0; x < out.cols; ++x) {
+      const Vec3 ray = DirectionFromEquirectPixel(Vec2(x, y), out.cols, out.rows);
+      double best = INFINITY;
+      int axis_hit = 0;
+      for (int axis = 0; axis < 2; ++axis) {
+        for (double plane : axis == 0 ? std::array{kX0, kX1} : std::array{kY0, kY1}) {
+          if (std::abs(ray[axis]) < 1e-12) continue;
+          const double t = (plane - kCamera[axis]) / ray[axis];
+          if (t > 0 && t < best) best = t, axis_hit = axis;
+        }
+      }
+      const double z = kCamera.z() + best * ray.z();
+      cv::Vec3b& p = out.at<cv::Vec3b>(y, x);
+      if (z < 0) {
+        p = {50, 80, 120};
+      } else if (z > kCeiling) {
+        p = {240, 240, 240};
+      } else {
+        p = axis_hit == 0 ? cv::Vec3b{190, 195, 200} : cv::Vec3b{170, 175, 180};
+      }
+    }
+  }
+  return out;
+}
+
+TEST(RunSurvey, PanoramaLayoutRecoversTheBoxRoomFromThePhoto) {
+  if (!SegmenterAvailable() || !fs::exists(DefaultModelPath())) GTEST_SKIP() << "no segmenter in this build";
+  const fs::path dir = Fresh("layout");
+  cv::imwrite((dir / "pano.png").string(), PaintBoxRoom());
+  const nlohmann::json capture = {{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"},
+                                  {"position_m", {kCamera.x(), kCamera.y(), kCamera.z()}}};
+  WriteFileAtomic(dir / "capture.json", capture.dump());
+  WritePlan(TruthPlan(), dir / "truth.json");
+  SurveyOptions options{.pano_layout = true, .write_report = true};
+  const SurveyResult r = RunSurvey(dir / "capture.json", dir / "out", options);
+  ASSERT_TRUE(r.summary.room_overlap) << r.summary.BriefReport();
+  EXPECT_GT(r.summary.room_overlap->Iou(), 0.9) << r.summary.BriefReport();
+  EXPECT_NEAR(r.summary.ceiling_height_m, kCeiling, 0.05);
+  EXPECT_TRUE(fs::exists(dir / "out" / "layout.png"));
+  EXPECT_NE(r.summary.labels_source.find("redrawn on the panorama's layout"), std::string::npos);
 }
 
 TEST(RunSurvey, MonoCaptureWithATiltedViewIsRefusedAndWritesNothing) {

@@ -201,6 +201,13 @@ std::string SurveyReportHtml(const SurveyReport& r) {
                       r.truth ? "; the truth plan dashed green" : "");
   html += "</div></section>\n";
 
+  if (!r.layout_jpeg.empty()) {
+    html += fmt::format("<section><h2>The panorama's layout</h2><figure>{}<figcaption>The room's floor edge (red) and "
+                        "ceiling edge (green) found from the panorama's own edges with the segmenter's labels as a "
+                        "guide ({}); the views' labels were redrawn on it (docs/survey.md \"The layout of a "
+                        "panorama\").</figcaption></figure></section>\n",
+                        Img(r.layout_jpeg, "image/jpeg", "panorama layout"), HtmlEscape(r.layout_caption));
+  }
   html += "<section><h2>Walls</h2>" + WallTable(r) + "</section>\n";
   html += "<section><h2>Doors and windows</h2>" + OpeningTable(r) + "</section>\n";
   html += ScoreSection(r);

@@ -33,6 +33,8 @@ struct SurveyReport {
   std::optional<Plan> truth;
   std::vector<ReportFrame> frames;
   std::string points_plot_png;       // Top-down plot of the class points.
+  std::string layout_jpeg;           // Panorama with its layout drawn (--pano-layout); may be empty.
+  std::string layout_caption;        // What the layout found (PanoLayout::BriefReport()).
   std::string plan_svg;              // The drawing (plan.svg text); may be empty.
 };
 

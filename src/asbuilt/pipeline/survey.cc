@@ -196,6 +196,7 @@ struct Survey {
   cv::Mat equirect;                 // A panorama's image (8-bit BGR), kept for its layout.
   std::vector<PanoView> pano_views;
   cv::Mat layout_picture;           // The panorama with its layout drawn (PanoLayoutLabels).
+  std::string layout_brief;         // PanoLayout::BriefReport().
   std::optional<Plan> truth;
   std::unique_ptr<LabelSource> labels;
   std::vector<ClassPoint> points;
@@ -290,6 +291,8 @@ void LabelSourceStage(Survey& s) {
                                                        options.layout);
       s.times.Add("segment + layout", layout->seconds());
       s.layout_picture = layout->picture();
+      s.layout_brief = layout->layout().BriefReport();
+      s.summary().notes.push_back(fmt::format("panorama {}", s.layout_brief));
       s.labels = std::move(layout);
     }
   }
@@ -461,6 +464,8 @@ void ReportStage(Survey& s) {
                       .truth = s.truth,
                       .frames = std::move(s.report_frames),
                       .points_plot_png = PointsPlotPng(s.points, plan, s.truth, s.rigs),
+                      .layout_jpeg = EncodeJpeg(s.layout_picture, 1600),
+                      .layout_caption = s.layout_brief,
                       .plan_svg = plan.walls.empty() ? std::string() : PlanToSvg(plan)};
   report.summary.stages.push_back({"report", Since(t)});
   WriteSurveyReport(report, s.out_dir / "report.html");
