@@ -98,7 +98,8 @@ TEST(EstimatePanoLayout, RecoversABoxRoomsWallsAndCeilingFromItsEdges) {
 
 TEST(EstimatePanoLayout, ClosesABoxRoomIntoItsFourCorners) {
   const BoxRoom room;
-  const PanoLayout layout = EstimatePanoLayout(room.Render(1024, 11), room.camera_height_m, cv::Mat(), {});
+  const PanoLayout layout =
+      EstimatePanoLayout(room.Render(1024, 11), room.camera_height_m, cv::Mat(), {.close_polygon = true});
   ASSERT_EQ(layout.polygon_m.size(), 4u) << layout.BriefReport();
   const double a = DegToRad(room.rotation_deg);
   for (const Vec2& box : {room.min_m, Vec2(room.max_m.x(), room.min_m.y()), room.max_m,

@@ -67,8 +67,8 @@ struct SurveyOptions {
   // room's layout, found from the panorama's own edges with the labels as a
   // guide (pano/pano_layout.h, docs/survey.md "The layout of a panorama").
   // Off by default: on the 13 ZInD rooms it finds more walls (wall recall
-  // 60 % against 50 %) but the room IoU median moves only 0.725 → 0.758, the
-  // mean drops 0.60 → 0.57, and some rooms get worse (bench/results/pano_survey.md); ZInD is a test set,
+  // 62 % against 50 %) but the room IoU median moves only 0.725 → 0.763, the
+  // mean 0.60 → 0.59, and some rooms get worse (bench/results/pano_survey.md); ZInD is a test set,
   // so its defaults are not tuned further on it. Label images given with
   // labels_dir are used as they are either way.
   bool pano_layout = false;
