@@ -542,6 +542,9 @@ const FieldList<PanoLayoutOptions>& PanoLayoutOptionFields() {
            {.name = "min_wall_columns",
             .description = "A wall of that polygon holds at least this many columns, mostly supported.",
             .minimum = 1.0}),
+      Bind(&O::polygon_gaps_only,
+           {.name = "polygon_gaps_only",
+            .description = "With close_polygon: take the polygon's distance only where the photo shows no wall."}),
       Bind(&O::openings_from_labels,
            {.name = "openings_from_labels",
             .description = "Survey: keep the segmenter's doors and windows inside the layout's wall band."}),
@@ -668,8 +671,11 @@ PanoLayout EstimatePanoLayout(const cv::Mat& equirect_bgr, double camera_height_
     }
     if (inside) {
       layout.polygon_m = std::move(polygon);
-      layout.distance_m = std::move(closed);
-      layout.supported.assign(columns, true);
+      for (int x = 0; x < columns; ++x) {
+        if (options.polygon_gaps_only && layout.supported[x]) continue;
+        layout.distance_m[x] = closed[x];
+        layout.supported[x] = true;
+      }
     }
   }
   return layout;

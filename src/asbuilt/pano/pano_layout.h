@@ -98,6 +98,9 @@ struct PanoLayoutOptions {
   // 0.651 with it, 0.76 without; docs/survey.md).
   bool close_polygon = false;
   int min_wall_columns = 28;  // 10° of the panorama.
+  // With close_polygon: only the columns the photo does not show take the
+  // polygon's distance (a gap bridged); the others keep their own.
+  bool polygon_gaps_only = false;
   // Survey (pipeline/pano_layout_labels.h): keep the labels' doors and
   // windows inside the layout's wall band; off: wall only.
   bool openings_from_labels = true;

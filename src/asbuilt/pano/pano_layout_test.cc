@@ -113,6 +113,30 @@ TEST(EstimatePanoLayout, ClosesABoxRoomIntoItsFourCorners) {
   EXPECT_EQ(std::count(layout.supported.begin(), layout.supported.end(), true), layout.Columns());
 }
 
+TEST(EstimatePanoLayout, BridgesColumnsThePhotoDoesNotShowWithTheWallsBesideThem) {
+  const BoxRoom room;
+  cv::Mat photo = room.Render(1024, 5);
+  // An open door leaf right before the lens hides 40° of the turn from
+  // floor to ceiling: no edge there.
+  photo(cv::Rect(300, 0, 114, 512)).setTo(cv::Scalar(60, 110, 170));
+  auto gap_error = [&](const PanoLayout& layout) {
+    double worst = 0.0;
+    for (int x = 310; x < 404; ++x) {
+      const Vec3 ray = DirectionFromEquirectPixel(Vec2(x, 255.5), 1024, 512);
+      const double truth = room.WallDistance(ray.head<2>().normalized());
+      worst = std::max(worst, std::abs(layout.distance_m[x] / truth - 1.0));
+    }
+    return worst;
+  };
+  const PanoLayout shown = EstimatePanoLayout(photo, room.camera_height_m, cv::Mat(), {});
+  EXPECT_FALSE(shown.supported[357]) << "the hidden columns are not shown";
+  const PanoLayout bridged = EstimatePanoLayout(photo, room.camera_height_m, cv::Mat(),
+                                                {.close_polygon = true, .polygon_gaps_only = true});
+  ASSERT_FALSE(bridged.polygon_m.empty()) << bridged.BriefReport();
+  EXPECT_TRUE(bridged.supported[357]);
+  EXPECT_LT(gap_error(bridged), 0.05) << "the walls beside the gap carry through it";
+}
+
 TEST(EstimatePanoLayout, FreePathsFindTheRoomToo) {
   const BoxRoom room{.rotation_deg = 0.0};
   const PanoLayout layout =

@@ -30,7 +30,7 @@ const Vec3 kCamera(0.4, -0.3, 1.4);
 
 unsigned char LabelOfRay(const Vec3& ray) {
   double best = INFINITY;
-  Vec3 hit;
+  Vec3 hit = Vec3::Zero();
   for (int axis = 0; axis < 2; ++axis) {
     for (double plane : axis == 0 ? std::array{kX0, kX1} : std::array{kY0, kY1}) {
       if (std::abs(ray[axis]) < 1e-12) continue;
