@@ -23,6 +23,18 @@ constexpr std::uint8_t kWindow = static_cast<std::uint8_t>(LabelClass::kWindow);
 // Row (fractional, OpenCV centres) of an elevation in a panorama `rows` high.
 double RowOfElevation(double elevation_rad, int rows) { return rows * (0.5 - elevation_rad / kPi) - 0.5; }
 
+// Elevations, radians, of a wall's floor edge and ceiling edge seen from a
+// camera camera_m above the floor, the wall distance_m away.
+double FloorEdgeElevation(double camera_m, double distance_m) { return -std::atan2(camera_m, distance_m); }
+double CeilingEdgeElevation(double camera_m, double ceiling_m, double distance_m) {
+  return std::atan2(ceiling_m - camera_m, distance_m);
+}
+
+// The row nearest an elevation, inside the panorama.
+int EdgeRow(double elevation_rad, int rows) {
+  return std::clamp(static_cast<int>(std::lround(RowOfElevation(elevation_rad, rows))), 0, rows - 1);
+}
+
 // Column of a direction's yaw in a panorama `columns` wide, rounded, wrapped.
 int ColumnOf(const Vec3& direction, int columns) {
   const Vec2 pixel = EquirectPixelFromDirection(direction, columns, columns / 2);
@@ -109,12 +121,8 @@ std::vector<float> ColumnCosts(const cv::Mat& edges, const cv::Mat& votes, const
   const int rows = edges.rows, columns = edges.cols, bins = static_cast<int>(distances_m.size());
   std::vector<int> floor_row(bins), ceiling_row(bins);
   for (int k = 0; k < bins; ++k) {
-    const double d = distances_m[k];
-    floor_row[k] = std::clamp(static_cast<int>(std::lround(RowOfElevation(-std::atan2(camera_height_m, d), rows))), 0,
-                              rows - 1);
-    ceiling_row[k] = std::clamp(
-        static_cast<int>(std::lround(RowOfElevation(std::atan2(ceiling_height_m - camera_height_m, d), rows))), 0,
-        rows - 1);
+    floor_row[k] = EdgeRow(FloorEdgeElevation(camera_height_m, distances_m[k]), rows);
+    ceiling_row[k] = EdgeRow(CeilingEdgeElevation(camera_height_m, ceiling_height_m, distances_m[k]), rows);
   }
   std::vector<float> costs(static_cast<std::size_t>(columns) * bins);
   for (int x = 0; x < columns; ++x) {
@@ -311,11 +319,8 @@ std::vector<bool> SupportedColumns(const cv::Mat& edges, const PanoLayout& layou
   std::vector<float> support(columns);
   for (int x = 0; x < columns; ++x) {
     const double d = layout.distance_m[x];
-    const int yf = std::clamp(
-        static_cast<int>(std::lround(RowOfElevation(-std::atan2(layout.camera_height_m, d), rows))), 0, rows - 1);
-    const int yc = std::clamp(static_cast<int>(std::lround(RowOfElevation(
-                                  std::atan2(layout.ceiling_height_m - layout.camera_height_m, d), rows))),
-                              0, rows - 1);
+    const int yf = EdgeRow(FloorEdgeElevation(layout.camera_height_m, d), rows);
+    const int yc = EdgeRow(CeilingEdgeElevation(layout.camera_height_m, layout.ceiling_height_m, d), rows);
     support[x] = edges.at<float>(yf, x) + edges.at<float>(yc, x);
   }
   std::vector<bool> out(columns);
@@ -388,10 +393,7 @@ std::vector<Vec2> ManhattanPolygon(const std::vector<int>& states, const std::ve
   if (kept.size() < 3) return {};
   // Bearing order: a point's column position, unwrapped after `from`.
   auto column_of = [&](const Vec2& p) {
-    const double yaw = std::atan2(-p.x(), p.y());
-    double turn = -yaw / (2 * kPi);
-    turn -= std::floor(turn);
-    return turn * columns - 0.5;
+    return EquirectPixelFromDirection(Vec3(p.x(), p.y(), 0.0), columns, columns / 2).x();
   };
   auto ahead = [&](double column, int from) {  // Columns from `from` to `column`, in [0, columns).
     double d = column - from;
@@ -557,21 +559,23 @@ const FieldList<PanoLayoutOptions>& PanoLayoutOptionFields() {
   return kList;
 }
 
-double PanoLayout::DistanceAlong(const Vec3& direction) const {
+int PanoLayout::ColumnAlong(const Vec3& direction) const {
   CheckArgument(!distance_m.empty(), "PanoLayout.distance_m is empty");
-  return distance_m[ColumnOf(direction, Columns())];
+  return ColumnOf(direction, Columns());
 }
 
+double PanoLayout::DistanceAlong(const Vec3& direction) const { return distance_m[ColumnAlong(direction)]; }
+
 bool PanoLayout::Supported(const Vec3& direction) const {
-  return supported.empty() || supported[ColumnOf(direction, Columns())];
+  return supported.empty() || supported[ColumnAlong(direction)];
 }
 
 double PanoLayout::FloorElevation(const Vec3& direction) const {
-  return -std::atan2(camera_height_m, DistanceAlong(direction));
+  return FloorEdgeElevation(camera_height_m, DistanceAlong(direction));
 }
 
 double PanoLayout::CeilingElevation(const Vec3& direction) const {
-  return std::atan2(ceiling_height_m - camera_height_m, DistanceAlong(direction));
+  return CeilingEdgeElevation(camera_height_m, ceiling_height_m, DistanceAlong(direction));
 }
 
 std::string PanoLayout::BriefReport() const {
@@ -718,14 +722,19 @@ cv::Mat LayoutViewLabels(const PanoLayout& layout, const PanoView& view, const c
                 fmt::format("LayoutViewLabels: labels {}x{} for a view {}x{}", view_labels.cols, view_labels.rows,
                             cam.width_px, cam.height_px));
   cv::Mat out(cam.height_px, cam.width_px, CV_8UC1, cv::Scalar(kBackground));
+  if (layout.distance_m.empty()) return out;
   const Mat3 world_from_camera = view.WorldFromCamera();
+  const double above_m = layout.ceiling_height_m - layout.camera_height_m;
   for (int v = 0; v < cam.height_px; ++v) {
     std::uint8_t* o = out.ptr<std::uint8_t>(v);
     for (int u = 0; u < cam.width_px; ++u) {
+      // One column per pixel; the band compared as slopes (tan elevation).
       const Vec3 d = world_from_camera * UnprojectToCamera(cam, Vec2(u, v), 1.0);
-      const double elevation = std::atan2(d.z(), std::hypot(d.x(), d.y()));
-      if (!layout.Supported(d)) continue;
-      if (elevation < layout.FloorElevation(d) || elevation > layout.CeilingElevation(d)) continue;
+      const int column = layout.ColumnAlong(d);
+      if (!layout.supported.empty() && !layout.supported[column]) continue;
+      const double distance = layout.distance_m[column];
+      const double slope = d.z() / std::hypot(d.x(), d.y());
+      if (slope < -layout.camera_height_m / distance || slope > above_m / distance) continue;
       const std::uint8_t l = view_labels.empty() ? kWall : view_labels.at<std::uint8_t>(v, u);
       o[u] = (l == kDoor || l == kWindow) ? l : kWall;
     }
@@ -751,8 +760,8 @@ cv::Mat DrawPanoLayout(const cv::Mat& equirect_bgr, const PanoLayout& layout) {
         continue;
       }
       const double d = layout.distance_m[x];
-      const double e = ceiling ? std::atan2(layout.ceiling_height_m - layout.camera_height_m, d)
-                               : -std::atan2(layout.camera_height_m, d);
+      const double e = ceiling ? CeilingEdgeElevation(layout.camera_height_m, layout.ceiling_height_m, d)
+                               : FloorEdgeElevation(layout.camera_height_m, d);
       points.emplace_back(static_cast<int>(std::lround((x + 0.5) * scale - 0.5)),
                           static_cast<int>(std::lround(RowOfElevation(e, rows))));
     }

@@ -132,6 +132,9 @@ struct PanoLayout {
   double score = 0.0;  // The best explanation's total (higher: edges and labels agree better).
 
   int Columns() const { return static_cast<int>(distance_m.size()); }
+  // The working column that looks along a direction's yaw (nearest;
+  // the direction need not be normalised). Throws InvalidArgument when empty.
+  int ColumnAlong(const Vec3& direction) const;
   // The wall distance along a direction's yaw (the nearest column's; a
   // direction need not be normalised).
   double DistanceAlong(const Vec3& direction) const;

@@ -193,7 +193,7 @@ struct Survey {
   StageTimes times;
   Capture capture;
   std::optional<MonoViews> views;  // A panorama's level views.
-  cv::Mat equirect;                 // A panorama's image (8-bit BGR), kept for its layout.
+  cv::Mat equirect;                 // With pano_layout: the panorama (8-bit BGR) and its views.
   std::vector<PanoView> pano_views;
   cv::Mat layout_picture;           // The panorama with its layout drawn (PanoLayoutLabels).
   std::string layout_brief;         // PanoLayout::BriefReport().
@@ -255,8 +255,10 @@ void ReadCaptureStage(Survey& s) {
     const CapturePanorama& pano = *s.capture.panorama;
     const Image equirect = ReadEquirect(s.capture.Resolve(pano.image));
     const std::vector<PanoView> views = TurnInPlaceViews(s.options.panorama_views);
-    s.equirect = AsMat(equirect).clone();
-    s.pano_views = views;
+    if (s.options.pano_layout && !s.options.labels_dir && !s.options.use_capture_labels) {
+      s.equirect = AsMat(equirect).clone();  // Only the layout reads it again.
+      s.pano_views = views;
+    }
     s.views = MonoViews{.kind = s.summary().capture_kind, .camera = views.front().camera};
     for (std::size_t i = 0; i < views.size(); ++i) {
       s.views->frames.push_back({.index = static_cast<int>(i),
