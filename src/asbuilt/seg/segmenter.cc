@@ -8,6 +8,7 @@
 
 #include "asbuilt/seg/model_io.h"
 #include "asbuilt/seg/seg_data.h"
+#include "asbuilt/seg/tflite_segmenter.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
@@ -165,7 +166,12 @@ SegmenterInfo InfoFromMeta(const nlohmann::json& meta, const std::string& file) 
   return info;
 }
 
+namespace {
+bool IsTflite(const std::filesystem::path& path) { return path.extension() == ".tflite"; }
+}  // namespace
+
 SegmenterInfo ReadSegmenterInfo(const std::filesystem::path& path) {
+  if (IsTflite(path)) return ReadTfliteSegmenterInfo(path);
   return InfoFromMeta(ReadCheckpointMeta(path), path.string());
 }
 
@@ -175,6 +181,7 @@ std::unique_ptr<Segmenter> MakeSegmenter(Segformer model, SegmenterInfo info, co
 
 std::unique_ptr<Segmenter> LoadSegmenter(const std::filesystem::path& path, const SegmentOptions& options) {
   options.Check();
+  if (IsTflite(path)) return LoadTfliteSegmenter(path, options);
   SegmenterInfo info = ReadSegmenterInfo(path);
   Segformer model(info.config);
   LoadWeights(path, model, nullptr, /*strict=*/true);

@@ -1,0 +1,142 @@
+#include "asbuilt/seg/tflite_segmenter.h"
+
+#include <cstring>
+
+#include <fmt/format.h>
+#include <opencv2/imgproc.hpp>
+
+#include "asbuilt/formats/tflite.h"
+#include "asbuilt/seg/model_io.h"
+#include "asbuilt/seg/seg_data.h"
+#include "asbuilt/seg/segformer.h"
+#include "asbuilt/seg/tflite_net.h"
+#include "asbuilt/util/error.h"
+
+namespace asbuilt {
+namespace {
+namespace F = torch::nn::functional;
+
+// BGR 8-bit images of one size → (B, 3, H, W) RGB float 0..255.
+torch::Tensor RgbTensor(const std::vector<cv::Mat>& images) {
+  std::vector<torch::Tensor> batch;
+  for (const cv::Mat& bgr : images) {
+    cv::Mat rgb;
+    cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+    batch.push_back(torch::from_blob(rgb.data, {rgb.rows, rgb.cols, 3}, torch::kUInt8)
+                        .permute({2, 0, 1})
+                        .to(torch::kFloat32));
+  }
+  return torch::stack(batch);
+}
+
+class TfliteSegmenter : public Segmenter {
+ public:
+  TfliteSegmenter(TfliteNet net, SegmenterInfo info, SegmentOptions options)
+      : net_(std::move(net)), info_(std::move(info)), options_(std::move(options)) {
+    options_.Check();
+    CheckArgument(options_.mode == "whole", "SegmentOptions.mode: TFLite segmenters run whole images only");
+    if (options_.scale_width_px == 0) {
+      options_.scale_width_px = info_.scale_width_px;
+      options_.scale_height_px = info_.scale_height_px;
+    }
+    // Channel groups: which of the file's classes sum into each asbuilt class.
+    std::vector<float> groups(static_cast<size_t>(4 * net_->num_classes()), 0.f);
+    for (int c = 0; c < net_->num_classes(); ++c) groups[4 * c + AsbuiltClassOfAde32(c)] = 1.f;
+    groups_ = torch::from_blob(groups.data(), {net_->num_classes(), 4}, torch::kFloat32).clone();
+  }
+
+  cv::Mat Segment(const cv::Mat& bgr) override { return SegmentBatch({bgr}).at(0); }
+
+  std::vector<cv::Mat> SegmentBatch(const std::vector<cv::Mat>& images) override {
+    std::vector<cv::Mat> out;
+    for (const cv::Mat& im : images) {
+      torch::Tensor p = GroupProbabilities(im);
+      torch::Tensor pred = p.argmax(0).to(torch::kUInt8).contiguous();
+      cv::Mat m(im.rows, im.cols, CV_8UC1);
+      std::memcpy(m.data, pred.data_ptr(), m.total());
+      out.push_back(m);
+    }
+    return out;
+  }
+
+  std::vector<cv::Mat> Probabilities(const cv::Mat& bgr) override {
+    torch::Tensor p = GroupProbabilities(bgr);
+    std::vector<cv::Mat> out;
+    for (int64_t c = 0; c < p.size(0); ++c) {
+      cv::Mat m(bgr.rows, bgr.cols, CV_32FC1);
+      std::memcpy(m.data, p[c].contiguous().data_ptr(), m.total() * sizeof(float));
+      out.push_back(m);
+    }
+    return out;
+  }
+
+  const SegmenterInfo& info() const override { return info_; }
+
+ private:
+  // (4, H, W) probabilities of asbuilt's classes at the image's size.
+  torch::Tensor GroupProbabilities(const cv::Mat& bgr) {
+    CheckArgument(bgr.type() == CV_8UC3, "Segmenter: images must be 8-bit BGR (CV_8UC3)");
+    UseAllCores();
+    torch::NoGradGuard no_grad;
+    net_->eval();
+    cv::Size scaled = FitSize(bgr.size(), options_.scale_width_px, options_.scale_height_px);
+    cv::Mat resized;
+    cv::resize(bgr, resized, scaled, 0, 0, cv::INTER_LINEAR);
+    torch::Tensor logits = net_->forward(RgbTensor({resized}));
+    logits = F::interpolate(logits, F::InterpolateFuncOptions()
+                                        .size(std::vector<int64_t>{bgr.rows, bgr.cols})
+                                        .mode(torch::kBilinear)
+                                        .align_corners(false));
+    torch::Tensor p = torch::softmax(logits[0], 0);  // (C, H, W)
+    return torch::einsum("chw,cg->ghw", {p, groups_});
+  }
+
+  TfliteNet net_;
+  SegmenterInfo info_;
+  SegmentOptions options_;
+  torch::Tensor groups_;  // (C, 4) 0/1.
+};
+
+SegmenterInfo InfoOf(const TfliteModel& model, const TfliteNet& net, const std::filesystem::path& path) {
+  SegmenterInfo info;
+  info.config.arch = "tflite";
+  info.config.num_classes = 4;
+  info.scale_width_px = net->input_width_px();
+  info.scale_height_px = net->input_height_px();
+  info.crop_width_px = info.scale_width_px;
+  info.crop_height_px = info.scale_height_px;
+  info.parameters = CountParameters(*net);
+  info.metadata = {{"format", "tflite"},
+                   {"file", path.filename().string()},
+                   {"description", model.description},
+                   {"source_classes", net->num_classes()},
+                   {"class_map", "ADE20K-Top31: 1 wall, 15 door, 9 windowpane; the rest background"}};
+  return info;
+}
+
+}  // namespace
+
+int AsbuiltClassOfAde32(int ade_class) {
+  switch (ade_class) {
+    case 1: return 1;   // wall
+    case 15: return 2;  // door; double door
+    case 9: return 3;   // windowpane
+    default: return 0;
+  }
+}
+
+std::unique_ptr<Segmenter> LoadTfliteSegmenter(const std::filesystem::path& path, const SegmentOptions& options) {
+  options.Check();
+  TfliteModel model = ReadTflite(path);
+  TfliteNet net(model, TfliteNetOptions{});
+  SegmenterInfo info = InfoOf(model, net, path);
+  return std::make_unique<TfliteSegmenter>(net, std::move(info), options);
+}
+
+SegmenterInfo ReadTfliteSegmenterInfo(const std::filesystem::path& path) {
+  TfliteModel model = ReadTflite(path);
+  TfliteNet net(model, TfliteNetOptions{});
+  return InfoOf(model, net, path);
+}
+
+}  // namespace asbuilt
