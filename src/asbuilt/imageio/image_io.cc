@@ -1,5 +1,9 @@
 #include "asbuilt/imageio/image_io.h"
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 
@@ -35,10 +39,38 @@ cv::Mat Decode(const fs::path& path, const std::string& field, int flags) {
 
 }  // namespace
 
+cv::Mat ToneMapToSrgb8(const cv::Mat& linear_bgr) {
+  CV_Assert(linear_bgr.type() == CV_32FC3);
+  // The white point: the 98th percentile of the mean channel.
+  std::vector<float> level;
+  level.reserve(linear_bgr.total());
+  for (int y = 0; y < linear_bgr.rows; ++y) {
+    const auto* row = linear_bgr.ptr<cv::Vec3f>(y);
+    for (int x = 0; x < linear_bgr.cols; ++x) level.push_back((row[x][0] + row[x][1] + row[x][2]) / 3.f);
+  }
+  auto nth = level.begin() + static_cast<std::ptrdiff_t>(0.98 * (level.size() - 1));
+  std::nth_element(level.begin(), nth, level.end());
+  const float white = *nth > 0 ? *nth : 1.f;
+  cv::Mat out(linear_bgr.size(), CV_8UC3);
+  for (int y = 0; y < linear_bgr.rows; ++y) {
+    const auto* in = linear_bgr.ptr<cv::Vec3f>(y);
+    auto* o = out.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < linear_bgr.cols; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        const float v = std::clamp(in[x][c] / white, 0.f, 1.f);
+        const float srgb = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.f / 2.4f) - 0.055f;
+        o[x][c] = static_cast<uchar>(std::lround(255.f * srgb));
+      }
+    }
+  }
+  return out;
+}
+
 // The decoder expands grey, drops alpha and applies EXIF orientation
 // (IMREAD_COLOR) while keeping the stored depth (IMREAD_ANYDEPTH).
 cv::Mat ReadColourImage(const fs::path& path, const std::string& field) {
   cv::Mat image = Decode(path, field, cv::IMREAD_COLOR | cv::IMREAD_ANYDEPTH);
+  if (image.depth() == CV_32F) return ToneMapToSrgb8(image);  // A linear HDR photo.
   if (image.depth() != CV_8U) {
     throw InputError(path.string(), field,
                      fmt::format("expected an 8-bit colour image, got {}", DepthName(image.depth())));

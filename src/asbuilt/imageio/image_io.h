@@ -16,8 +16,9 @@
 namespace asbuilt {
 
 // Reads a colour image as CV_8UC3 in OpenCV's BGR order (grey images are
-// expanded, alpha dropped, a JPEG's EXIF orientation applied; 16-bit files
-// are refused). Every reader throws InputError(path, field, …) when the file
+// expanded, alpha dropped, a JPEG's EXIF orientation applied; linear HDR
+// files (Radiance .hdr) tone-mapped by ToneMapToSrgb8; 16-bit files are
+// refused). Every reader throws InputError(path, field, …) when the file
 // is missing, cannot be decoded or has the wrong type; `field` names where
 // the path came from (e.g. "frames[3].left") and may be empty.
 cv::Mat ReadColourImage(const std::filesystem::path& path, const std::string& field = "");
@@ -26,6 +27,11 @@ cv::Mat ReadColourImage(const std::filesystem::path& path, const std::string& fi
 // CV_8UC3, CV_16UC3 or CV_32FC3 (Radiance .hdr; OpenEXR where the process has
 // set OPENCV_IO_ENABLE_OPENEXR). For linear high-dynamic-range photos.
 cv::Mat ReadColourImageAnyDepth(const std::filesystem::path& path, const std::string& field = "");
+
+// A linear high-dynamic-range BGR image (CV_32FC3) as a photo-like 8-bit sRGB
+// one: divided by the 98th percentile of the mean channel, clipped to 1, the
+// sRGB transfer curve. The rule ../shared/data/cc0-panoramas made its JPEGs by.
+cv::Mat ToneMapToSrgb8(const cv::Mat& linear_bgr);
 
 // Reads an image as 8-bit grey (CV_8UC1); colour files are converted.
 cv::Mat ReadGrayImage(const std::filesystem::path& path, const std::string& field = "");

@@ -62,6 +62,21 @@ TEST(ReadColourImage, NamesFileAndFieldOfEachFailure) {
             (dir / "bgr16.png").string() + ": expected an 8-bit colour image, got 16-bit");
 }
 
+TEST(ReadColourImage, ToneMapsALinearHdrPhoto) {
+  const fs::path dir = ImageIoTestDir();
+  // A linear gradient: the 98th percentile of the mean channel becomes white.
+  cv::Mat linear(10, 100, CV_32FC3);
+  for (int x = 0; x < 100; ++x) linear.col(x).setTo(cv::Scalar::all((x + 1) / 25.0));
+  ASSERT_TRUE(cv::imwrite((dir / "room.hdr").string(), linear));
+  const cv::Mat photo = ReadColourImage(dir / "room.hdr");
+  ASSERT_EQ(photo.type(), CV_8UC3);
+  EXPECT_EQ(photo.at<cv::Vec3b>(5, 99)[1], 255);  // Past the white point: clipped.
+  EXPECT_EQ(photo.at<cv::Vec3b>(5, 97)[1], 255);  // The white point (98th of 100 levels).
+  // Half of the white point is sRGB 0.5 → 188 (within the HDR format's rounding).
+  EXPECT_NEAR(photo.at<cv::Vec3b>(5, 48)[1], 188, 2);
+  EXPECT_LT(photo.at<cv::Vec3b>(5, 0)[1], photo.at<cv::Vec3b>(5, 10)[1]);
+}
+
 TEST(ReadColourImageAnyDepth, KeepsTheStoredDepth) {
   const fs::path dir = ImageIoTestDir();
   const cv::Mat deep = ReadColourImageAnyDepth(dir / "bgr16.png");
