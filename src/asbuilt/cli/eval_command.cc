@@ -11,6 +11,7 @@
 #include "asbuilt/cli/command.h"
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/formats/zind.h"
+#include "asbuilt/pipeline/survey.h"
 #include "asbuilt/pipeline/zind_eval.h"
 #include "asbuilt/plan/score.h"
 #include "asbuilt/seg/evaluate.h"
@@ -50,7 +51,7 @@ int RunEvalCommand(int argc, char** argv) {
   std::string seg_model, seg_manifest, seg_images, seg_labels, seg_json, seg_md, seg_split = "test";
   EvaluateOptions seg_options;
   SegmentOptions seg_segment;
-  seg_cmd->add_option("--model", seg_model, "checkpoint")->required();
+  seg_cmd->add_option("--model", seg_model, "a checkpoint, a .tflite file, or a shipped model's name (default, renders)")->required();
   seg_cmd->add_option("--manifest", seg_manifest, "dataset manifest (see --split)");
   seg_cmd->add_option("--split", seg_split, "manifest list to score: test, val or train")->capture_default_str();
   seg_cmd->add_option("--images", seg_images, "image folder (or a dataset folder without --labels)");
@@ -73,7 +74,7 @@ int RunEvalCommand(int argc, char** argv) {
   ZindEvalOptions zind_options;
   SegmentOptions zind_segment;
   bool zind_no_sheets = false;
-  zind_cmd->add_option("--model", zind_model, "checkpoint (e.g. models/segformer_b0_asbuilt.pt)")->required();
+  zind_cmd->add_option("--model", zind_model, "a checkpoint, a .tflite file, or a shipped model's name (default, renders)")->required();
   zind_cmd->add_option("--zind", zind_tour, "ZInD tour folder (with zind_data.json and panos/)")->required();
   zind_cmd->add_option("-o,--out", zind_out, "output folder (never commit it: derived from ZInD)")->capture_default_str();
   AddTurnInPlaceFlags(*zind_cmd, &zind_options.turn, &zind_size);
@@ -100,7 +101,7 @@ int RunEvalCommand(int argc, char** argv) {
     zind_segment.scale_height_px = zind_options.turn.height_px;
     ParseSizeFlag(zind_scale, "--seg-scale", zind_segment.scale_width_px, zind_segment.scale_height_px);
     const ZindTour tour = ReadZindTour(zind_tour);
-    auto segmenter = LoadSegmenter(zind_model, zind_segment);
+    auto segmenter = LoadSegmenter(ModelPathFor(zind_model), zind_segment);
     zind_options.segmenter_name =
         fmt::format("{} ({}, {} inference at {}x{})", std::filesystem::path(zind_model).filename().string(),
                     segmenter->info().ToString(), zind_segment.mode, zind_segment.scale_width_px,
@@ -127,7 +128,7 @@ int RunEvalCommand(int argc, char** argv) {
     } else {
       samples = SplitFromFolders(seg_images, seg_labels, 0.0).train;
     }
-    auto segmenter = LoadSegmenter(seg_model, seg_segment);
+    auto segmenter = LoadSegmenter(ModelPathFor(seg_model), seg_segment);
     ProgressPrinter printer;
     SegmentationMetrics m = EvaluateSegmentation(*segmenter, samples, seg_options, printer.Callback());
     printer.Finish();

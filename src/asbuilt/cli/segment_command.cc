@@ -12,6 +12,7 @@
 
 #include "asbuilt/cli/command.h"
 #include "asbuilt/imageio/image_io.h"
+#include "asbuilt/pipeline/survey.h"
 #include "asbuilt/seg/seg_data.h"
 #include "asbuilt/seg/segmenter.h"
 #include "asbuilt/util/error.h"
@@ -48,7 +49,7 @@ int RunSegmentCommand(int argc, char** argv) {
   bool overlay = false;
   SegmentOptions o;
   std::string scale;
-  app.add_option("--model", model, "checkpoint (e.g. models/segformer_b0_asbuilt.pt)")->required();
+  app.add_option("--model", model, "a checkpoint, a .tflite file, or a shipped model's name (default, renders)")->required();
   app.add_option("images", inputs, "image files or folders")->required();
   app.add_option("-o,--out", out, "output folder")->required();
   app.add_flag("--overlay", overlay, "also write colour overlays");
@@ -79,7 +80,7 @@ int RunSegmentCommand(int argc, char** argv) {
   // Read every input first: a bad file fails before anything is written.
   std::vector<cv::Mat> images;
   for (const fs::path& f : files) images.push_back(ReadColourImage(f));
-  auto segmenter = LoadSegmenter(model, o);
+  auto segmenter = LoadSegmenter(ModelPathFor(model), o);
   fs::create_directories(out);
   ProgressPrinter printer;
   for (size_t start = 0; start < images.size(); start += o.batch_size) {

@@ -131,18 +131,33 @@ void SurveyOptions::Check() const {
                 "SurveyOptions: give either labels_dir or use_capture_labels, not both");
 }
 
-fs::path DefaultModelPath() {
-  constexpr char kName[] = "segformer_b0_asbuilt.pt";
-  if (const char* env = std::getenv("ASBUILT_MODEL"); env != nullptr && *env != '\0') return env;
+namespace {
+// A file in models/: $ASBUILT_MODEL_DIR, else the first of <exe>/../models/,
+// <exe>/../share/asbuilt/models/ and the source tree's models/ that holds it.
+fs::path ShippedFile(const std::string& name) {
   fs::path exe_dir = ExecutableDir();
-  std::vector<fs::path> candidates = {exe_dir / ".." / "models" / kName,
-                                      exe_dir / ".." / "share" / "asbuilt" / "models" / kName,
-                                      fs::path(ASBUILT_SOURCE_DIR) / "models" / kName};
+  std::vector<fs::path> candidates = {exe_dir / ".." / "models" / name,
+                                      exe_dir / ".." / "share" / "asbuilt" / "models" / name,
+                                      fs::path(ASBUILT_SOURCE_DIR) / "models" / name};
   for (const fs::path& c : candidates) {
     std::error_code ec;
     if (fs::is_regular_file(c, ec)) return fs::weakly_canonical(c, ec);
   }
   return candidates.back();
+}
+}  // namespace
+
+fs::path DefaultModelPath() {
+  if (const char* env = std::getenv("ASBUILT_MODEL"); env != nullptr && *env != '\0') return env;
+  return ShippedFile(kShippedModels[0].file);
+}
+
+fs::path ModelPathFor(const std::string& name_or_path) {
+  if (name_or_path.empty() || name_or_path == "default") return DefaultModelPath();
+  for (const ShippedModel& m : kShippedModels) {
+    if (name_or_path == m.name) return ShippedFile(m.file);
+  }
+  return name_or_path;
 }
 
 std::string SurveySummary::BriefReport() const {

@@ -134,10 +134,24 @@ SurveyResult RunSurvey(const std::filesystem::path& capture_json,
                        const std::filesystem::path& out_dir, const SurveyOptions& options = {},
                        const ProgressCallback& progress = {});
 
-// The shipped segmentation model: $ASBUILT_MODEL if set, else the first of
+// The segmentation models shipped in models/, by name; the first is the default.
+struct ShippedModel {
+  const char* name;
+  const char* file;
+  const char* what;
+};
+inline constexpr ShippedModel kShippedModels[] = {
+    {"renders", "segformer_b0_asbuilt.pt", "SegFormer-B0 trained on asbuilt's renders only"},
+};
+
+// The default segmentation model: $ASBUILT_MODEL if set, else the first of
 // <exe>/../models/, <exe>/../share/asbuilt/models/ and the source tree's
-// models/ that holds it.
+// models/ that holds kShippedModels[0].
 std::filesystem::path DefaultModelPath();
+
+// `--model`'s argument: "default" (or empty), a shipped model's name
+// ("renders", …), or a path (a checkpoint or a .tflite file) as given.
+std::filesystem::path ModelPathFor(const std::string& name_or_path);
 
 }  // namespace asbuilt
 
