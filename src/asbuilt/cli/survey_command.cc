@@ -79,6 +79,9 @@ int RunSurveyCommand(int argc, char** argv) {
   app.add_flag("--pano-layout", options.pano_layout,
                "panorama captures: redraw the segmenter's labels on the room's layout found from the panorama's "
                "edges (writes layout.png; docs/survey.md)");
+  app.add_flag("--segment-turned", options.segment_wide_views,
+               "panorama captures: segment each tall view through three square views turned 40° up, level and "
+               "down (docs/seg.md)");
   // The short spellings are older flags that scripts use.
   FieldFlags plan_flags(app, SurveyPlanFields().Fields(options), {{"plan.epsilon_m", "--epsilon-m"}},
                         "Plan options (PlanOptions, docs/plan.md)");

@@ -180,6 +180,24 @@ TEST(RunSurvey, PanoramaLayoutRecoversTheBoxRoomFromThePhoto) {
   EXPECT_NE(r.summary.labels_source.find("redrawn on the panorama's layout"), std::string::npos);
 }
 
+TEST(RunSurvey, PanoramaSegmentedThroughTurnedViewsRecoversThePaintedRoom) {
+  if (!SegmenterAvailable() || !fs::exists(DefaultModelPath())) GTEST_SKIP() << "no segmenter in this build";
+  const fs::path dir = Fresh("turned");
+  cv::imwrite((dir / "pano.png").string(), PaintBoxRoom());
+  const nlohmann::json capture = {{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"},
+                                  {"position_m", {kCamera.x(), kCamera.y(), kCamera.z()}}};
+  WriteFileAtomic(dir / "capture.json", capture.dump());
+  WritePlan(TruthPlan(), dir / "truth.json");
+  SurveyOptions options{.write_report = false};
+  options.panorama_views = {.width_px = 256, .height_px = 512, .fx = 128.0};  // Quick: a quarter of the pixels.
+  options.segment_wide_views = true;
+  const SurveyResult r = RunSurvey(dir / "capture.json", dir / "out", options);
+  EXPECT_NE(r.summary.labels_source.find("three 40°-turned square views"), std::string::npos)
+      << r.summary.labels_source;
+  ASSERT_TRUE(r.summary.room_overlap) << r.summary.BriefReport();
+  EXPECT_GT(r.summary.room_overlap->Iou(), 0.8) << r.summary.BriefReport();
+}
+
 TEST(RunSurvey, MonoCaptureWithATiltedViewIsRefusedAndWritesNothing) {
   const fs::path dir = Fresh("tilted");
   cv::imwrite((dir / "v.png").string(), cv::Mat(48, 64, CV_8UC3, cv::Scalar(128, 128, 128)));

@@ -1,16 +1,35 @@
 #include "asbuilt/pipeline/segmenter_labels.h"
 
+#include <cmath>
 #include <tuple>
 
 #include <fmt/format.h>
+
+#include <opencv2/imgproc.hpp>
 
 #include "asbuilt/seg/seg_data.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
 
+namespace {
+
+constexpr double kTurnedPitchDeg = 40.0;
+
+// K of a pinhole camera.
+cv::Matx33d Intrinsics(double fx, double fy, double cx, double cy) { return {fx, 0, cx, 0, fy, cy, 0, 0, 1}; }
+
+// Rotation taking a ray in the image camera's frame (x right, y down, z
+// forward) to the frame of a camera pitched up by `pitch_rad` about x.
+cv::Matx33d PitchUp(double pitch_rad) {
+  const double c = std::cos(pitch_rad), s = std::sin(pitch_rad);
+  return {1, 0, 0, 0, c, s, 0, -s, c};
+}
+
+}  // namespace
+
 SegmenterLabels::SegmenterLabels(const std::filesystem::path& model, std::optional<std::pair<int, int>> scale_px,
-                                 cv::Size image_size) {
+                                 cv::Size image_size, std::optional<PinholeCamera> camera) {
   if (!SegmenterAvailable()) {
     throw Error("this build has no segmenter (built without LibTorch): pass --labels DIR");
   }
@@ -24,11 +43,80 @@ SegmenterLabels::SegmenterLabels(const std::filesystem::path& model, std::option
     segment.scale_width_px = scale.width;
     segment.scale_height_px = scale.height;
   }
+  if (camera && 2 * std::atan2(camera->height_px / 2.0, camera->fy) * 180 / CV_PI > kWideViewFovDeg) {
+    wide_camera_ = camera;
+    // The turned views are as wide as the image and square: segment them at
+    // the scale a square of that width gets.
+    if (!scale_px) {
+      const SegmenterInfo info = ReadSegmenterInfo(model);
+      const cv::Size square(image_size.width, image_size.width);
+      const cv::Size twice = FitSize(square, 2 * info.scale_width_px, 2 * info.scale_height_px);
+      const cv::Size scale = twice.width < square.width ? twice : square;
+      segment.scale_width_px = scale.width;
+      segment.scale_height_px = scale.height;
+    }
+  }
   segmenter_ = LoadSegmenter(model, segment);
   description_ = fmt::format("segmenter {} ({}) at {}", model.filename().string(), segmenter_->info().ToString(),
                              segment.scale_width_px > 0
                                  ? fmt::format("{}x{}", segment.scale_width_px, segment.scale_height_px)
                                  : std::string("its training scale"));
+  if (wide_camera_) {
+    description_ += fmt::format(", each view read as three {:.0f}°-turned square views", kTurnedPitchDeg);
+  }
+}
+
+cv::Mat SegmenterLabels::SegmentWide(const cv::Mat& bgr) const {
+  const PinholeCamera& cam = *wide_camera_;
+  const cv::Matx33d k_image = Intrinsics(cam.fx, cam.fy, cam.cx, cam.cy);
+  const int side = bgr.cols;
+  const double f_turned = side / 2.0;  // 90° across.
+  const cv::Matx33d k_turned = Intrinsics(f_turned, f_turned, (side - 1) / 2.0, (side - 1) / 2.0);
+  std::vector<cv::Mat> sum;  // Per class, weighted probabilities.
+  cv::Mat weight_sum(bgr.size(), CV_32F, cv::Scalar(0));
+  for (double pitch_deg : {-kTurnedPitchDeg, 0.0, kTurnedPitchDeg}) {
+    const cv::Matx33d rotation = PitchUp(pitch_deg * CV_PI / 180);
+    // image pixel → turned pixel.
+    const cv::Matx33d h = k_turned * rotation * k_image.inv();
+    cv::Mat turned;
+    cv::warpPerspective(bgr, turned, cv::Mat(h), cv::Size(side, side), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+    std::vector<cv::Mat> p = segmenter_->Probabilities(turned);
+    // Each image pixel's weight: how near its ray is to this view's axis,
+    // zero where the ray leaves the turned view.
+    cv::Mat weight(bgr.size(), CV_32F);
+    const cv::Matx33d to_turned = rotation * k_image.inv();
+    for (int v = 0; v < bgr.rows; ++v) {
+      auto* w = weight.ptr<float>(v);
+      for (int u = 0; u < bgr.cols; ++u) {
+        const cv::Vec3d d = to_turned * cv::Vec3d(u, v, 1);
+        const double z = d[2] / cv::norm(d);
+        const bool inside = d[2] > 0 && std::abs(d[0] / d[2]) <= 1 && std::abs(d[1] / d[2]) <= 1;
+        w[u] = inside ? static_cast<float>(std::pow(z, 8.0)) : 0.f;
+      }
+    }
+    if (sum.empty()) sum.assign(p.size(), cv::Mat());
+    for (std::size_t c = 0; c < p.size(); ++c) {
+      cv::Mat back;
+      cv::warpPerspective(p[c], back, cv::Mat(h), bgr.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+                          cv::BORDER_CONSTANT, cv::Scalar(0));
+      back = back.mul(weight);
+      if (sum[c].empty()) sum[c] = back; else sum[c] += back;
+    }
+    weight_sum += weight;
+  }
+  // argmax of the blended probabilities.
+  cv::Mat labels(bgr.size(), CV_8U, cv::Scalar(0));
+  for (int v = 0; v < bgr.rows; ++v) {
+    auto* out = labels.ptr<uchar>(v);
+    for (int u = 0; u < bgr.cols; ++u) {
+      float best = -1;
+      for (std::size_t c = 0; c < sum.size(); ++c) {
+        const float value = sum[c].at<float>(v, u);
+        if (value > best) best = value, out[u] = static_cast<uchar>(c);
+      }
+    }
+  }
+  return labels;
 }
 
 std::vector<FrameLabels> SegmenterLabels::Label(const std::vector<FrameImages>& frames) {
@@ -38,7 +126,12 @@ std::vector<FrameLabels> SegmenterLabels::Label(const std::vector<FrameImages>& 
     images.push_back(f.left);
     if (!f.right.empty()) images.push_back(f.right);
   }
-  std::vector<cv::Mat> segmented = segmenter_->SegmentBatch(images);
+  std::vector<cv::Mat> segmented;
+  if (wide_camera_) {
+    for (const cv::Mat& im : images) segmented.push_back(SegmentWide(im));
+  } else {
+    segmented = segmenter_->SegmentBatch(images);
+  }
   std::vector<FrameLabels> out;
   std::size_t next = 0;
   for (const FrameImages& f : frames) {

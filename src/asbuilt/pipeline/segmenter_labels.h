@@ -14,6 +14,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "asbuilt/geometry/rig.h"
 #include "asbuilt/seg/segmenter.h"
 #include "asbuilt/stereo/label_source.h"
 
@@ -25,8 +26,19 @@ class SegmenterLabels final : public LabelSource {
   // {0, 0}: its training scale), or, unset, at the images' own size
   // `image_size` up to twice the model's training scale. Throws Error when
   // this build has no segmenter, InputError for a bad model file.
+  //
+  // With `camera` (the images' pinhole camera) and a vertical field of view
+  // wider than kWideViewFovDeg (a panorama's tall turn-in-place views), each
+  // image is segmented through three level-width views turned about the
+  // camera's x axis (pitch −40°, 0°, +40°, 90° × 90°), warped from it by the
+  // rotation's homography, and their probabilities are warped back and
+  // blended by how near each pixel's ray lies to each view's axis: the
+  // segmenters were trained on ordinary photos, and read the stretched floor
+  // and ceiling at a tall view's ends as wall.
   SegmenterLabels(const std::filesystem::path& model, std::optional<std::pair<int, int>> scale_px,
-                  cv::Size image_size);
+                  cv::Size image_size, std::optional<PinholeCamera> camera = std::nullopt);
+
+  static constexpr double kWideViewFovDeg = 100.0;
 
   // Four images a pass (two stereo frames): per image the fastest batch of
   // the shipped model on CPU (docs/survey.md "Structure").
@@ -36,7 +48,11 @@ class SegmenterLabels final : public LabelSource {
   std::string StageName() const override { return "segment"; }
 
  private:
+  // Labels of one wide image through the turned views.
+  cv::Mat SegmentWide(const cv::Mat& bgr) const;
+
   std::unique_ptr<Segmenter> segmenter_;
+  std::optional<PinholeCamera> wide_camera_;  // Set when the images are wide views.
   std::string description_;
 };
 

@@ -299,8 +299,10 @@ void LabelSourceStage(Survey& s) {
     const auto t = Clock::now();
     const cv::Size image = s.views ? cv::Size(s.views->camera.width_px, s.views->camera.height_px)
                                    : cv::Size(s.capture.camera.width, s.capture.camera.height);
+    std::optional<PinholeCamera> wide;
+    if (s.views && options.segment_wide_views) wide = s.views->camera;
     s.labels = std::make_unique<SegmenterLabels>(
-        options.model_path.empty() ? DefaultModelPath() : options.model_path, options.segment_scale_px, image);
+        options.model_path.empty() ? DefaultModelPath() : options.model_path, options.segment_scale_px, image, wide);
     s.times.Add("load model", Since(t));
     if (s.views && options.pano_layout) {
       auto layout = std::make_unique<PanoLayoutLabels>(std::move(s.labels), s.equirect, s.pano_views,

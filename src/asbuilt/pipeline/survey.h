@@ -44,6 +44,10 @@ struct SurveyOptions {
   // 78 and 33 at its 320×240 training scale (bench/RESULTS.md). {0, 0}: the
   // training scale.
   std::optional<std::pair<int, int>> segment_scale_px;
+  // Panorama and mono captures: segment views taller than 100° through three
+  // turned square views (SegmenterLabels; docs/seg.md "Real-photo weights").
+  // Off: on the three annotated CC0 rooms it helped one room and hurt two.
+  bool segment_wide_views = false;
   // Use these label images (NNN.png per frame index; right view labels in
   // DIR/right/ when present) instead of segmenting.
   std::optional<std::filesystem::path> labels_dir;
