@@ -163,6 +163,10 @@ int main(int argc, char** argv) {
   const char* model_env = std::getenv("ASBUILT_BENCH_PANO_MODEL");
   const bool with_model = !(model_env != nullptr && std::string(model_env) == "0") && SegmenterAvailable() &&
                           fs::exists(DefaultModelPath());
+  // The ADE20K-trained teacher, zero-shot (issue 43), where the shared data has it.
+  const fs::path teacher =
+      fs::path(ASBUILT_SHARED_DATA_DIR) / "ade20k-teachers" / "deeplabv3_mnv2_ade20k32_uint8.tflite";
+  const bool with_teacher = with_model && fs::exists(teacher);
   const fs::path out = fs::path(ASBUILT_BINARY_DIR) / "bench" / "pano_survey";
   const ZindTour tour = ReadZindTour(tour_dir);
   std::vector<const ZindPanorama*> panos = tour.BenchmarkPanoramas();
@@ -179,8 +183,8 @@ int main(int argc, char** argv) {
   double load[1] = {0};
   const bool have_load = ::getloadavg(load, 1) == 1;
   const auto start = std::chrono::steady_clock::now();
-  std::vector<RoomRun> by_labels, by_model, by_layout;
-  double model_seconds = 0, layout_seconds = 0;
+  std::vector<RoomRun> by_labels, by_model, by_layout, by_teacher;
+  double model_seconds = 0, layout_seconds = 0, teacher_seconds = 0;
   for (const ZindPanorama* pano : panos) {
     const std::string name = pano->complete_room_id + "_" + pano->partial_room_id + "_" + pano->pano_id;
     const fs::path dir = out / name;
@@ -227,10 +231,18 @@ int main(int argc, char** argv) {
       by_layout.push_back(run("survey_layout", with_layout));
       layout_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     }
+    if (with_teacher) {
+      SurveyOptions with_ade = base;
+      with_ade.model_path = teacher;
+      const auto t2 = std::chrono::steady_clock::now();
+      by_teacher.push_back(run("survey_teacher", with_ade));
+      teacher_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t2).count();
+    }
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  Pooled labels_pooled, model_pooled, layout_pooled;
+  Pooled labels_pooled, model_pooled, layout_pooled, teacher_pooled;
+  for (const RoomRun& r : by_teacher) teacher_pooled.Add(r);
   for (const RoomRun& r : by_labels) labels_pooled.Add(r);
   for (const RoomRun& r : by_model) model_pooled.Add(r);
   for (const RoomRun& r : by_layout) layout_pooled.Add(r);
@@ -273,7 +285,16 @@ int main(int argc, char** argv) {
           "Off by default (SurveyOptions::pano_layout): it finds walls the segmenter's edges lose, but open doors, "
           "cabinets and faint white-on-white ceiling edges mislead it as well, and these 13 rooms are a test set, "
           "not a set to tune on.\n\n";
-  } else {
+  }
+  if (with_teacher) {
+    md += "### With the ADE20K-trained DeepLabV3-MobileNetV2, zero-shot (`--model …/deeplabv3_mnv2_ade20k32_uint8.tflite`)\n\n";
+    md += ModelRunSection(by_teacher, teacher_pooled, teacher_seconds);
+    md += "Issue 43's baseline (a): MLCommons' ADE20K-trained network, read from `../shared/data/ade20k-teachers` "
+          "at run time (seg/tflite_net.h), its 32 classes mapped onto ours (wall, door, windowpane; the rest "
+          "background), nothing trained by us. Not shippable as it is (the teacher's weights stay outside the "
+          "repository); the starting point of the model that will be.\n\n";
+  }
+  if (!with_model) {
     md += "The shipped-model run was skipped (no LibTorch, no model, or ASBUILT_BENCH_PANO_MODEL=0).\n\n";
   }
   WriteSection(results, md);
