@@ -68,6 +68,8 @@ HttpResponse HandleReviewRequest(ReviewSession& session, const std::string& toke
     if (host != fmt::format("127.0.0.1:{}", port) && host != fmt::format("localhost:{}", port)) {
       return JsonError(403, fmt::format("Host \"{}\" refused: use http://127.0.0.1:{}/", host, port));
     }
+    // Browsers ask for an icon on their own, without the token: none.
+    if (request.method == "GET" && request.path == "/favicon.ico") return {.status = 204, .body = ""};
     // The token.
     std::string given;
     const std::string auth = Header(request, "authorization");
