@@ -7,8 +7,9 @@
 //   OUT/review/input.json   the capture (kind, images, cameras and poses per
 //                           view), the plan settings, the ceiling, the labels'
 //                           origin
-//   OUT/review/points.txt   the plan's input points at full precision (the
-//                           points file format, docs/formats.md); each
+//   OUT/review/points.bin   the plan's input points, exactly (binary: a
+//                           header line, a count, 38 bytes a point — the
+//                           fields of points.txt at full precision); each
 //                           floor/ceiling contact is a labelled edge pixel of
 //                           its frame, placed on the floor or ceiling plane, so
 //                           projecting it through its frame's camera gives the
@@ -47,7 +48,7 @@ struct ReviewInput {
   std::string labels_source;
 };
 
-// Writes OUT/review/input.json and OUT/review/points.txt atomically.
+// Writes OUT/review/input.json and OUT/review/points.bin atomically.
 void WriteReviewInput(const std::filesystem::path& out_dir, const ReviewInput& input);
 
 // Reads them back. Throws InputError naming the file and field, or saying

@@ -86,6 +86,16 @@ TEST(ReviewSession, RefusesAFolderThatIsNotASurvey) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("not a folder written by `asbuilt survey`"), std::string::npos) << e.what();
   }
+  // A survey whose kept points were cut short: one message naming the file.
+  const fs::path out = PanoramaSurvey("truncated");
+  const std::string bytes = ReadFile(out / "review/points.bin");
+  WriteFileAtomic(out / "review/points.bin", bytes.substr(0, bytes.size() - 5));
+  try {
+    ReviewSession::Open(out);
+    FAIL() << "opened a survey with truncated points";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("points.bin"), std::string::npos) << e.what();
+  }
 }
 
 // One click on the true corner re-places it and re-fits both walls beside it
