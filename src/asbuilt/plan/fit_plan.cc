@@ -268,6 +268,23 @@ std::pair<Ring, std::vector<Vec2>> ConstrainedRing(const StagesHolder& h, const 
       xy[i] = 0.5 * (on_before + on_after);
     }
   }
+  // A room that crosses itself more than its corners as given: the free
+  // corners that moved most go back to their hints until it does not.
+  std::vector<Vec2> hints;
+  for (const PlanCorner& c : corners) hints.push_back(c.xy_m);
+  const int allowed = PolygonCrossings(hints);
+  if (PolygonCrossings(xy) > allowed) {
+    std::vector<int> order;
+    for (int i = 0; i < n; ++i) {
+      if (!corners[i].fixed) order.push_back(i);
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return (xy[a] - hints[a]).norm() > (xy[b] - hints[b]).norm(); });
+    for (int i : order) {
+      xy[i] = hints[i];
+      if (PolygonCrossings(xy) <= allowed) break;
+    }
+  }
   return {std::move(ring), std::move(xy)};
 }
 
@@ -309,6 +326,18 @@ std::vector<PlanOpening> PlaceOpenings(const std::vector<PlanUserOpening>& given
 }
 
 }  // namespace
+
+int PolygonCrossings(const std::vector<Vec2>& p) {
+  const int n = static_cast<int>(p.size());
+  int count = 0;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue;
+      count += SegmentsCross(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n]);
+    }
+  }
+  return count;
+}
 
 PlanOptions ResolvePlanOptions(const PlanInput& input, const PlanOptions& options) {
   PlanOptions o = options;

@@ -22,8 +22,10 @@
 //    and snapped to the Manhattan frame where the room has one. A wall
 //    between two free (survey) corners keeps the survey's line when both
 //    corners are the survey's, else takes the best-supported survey line in
-//    its bearings. A free corner is where its walls cross. So one click fixes
-//    a wall and its neighbours, not just a point.
+//    its bearings. A free corner is where its walls cross (unless that makes
+//    the room cross itself more than its corners as given do: then the free
+//    corners that moved most go back to where they were given, one by one).
+//    So one click fixes a wall and its neighbours, not just a point.
 
 #include <cmath>
 #include <memory>
@@ -93,6 +95,10 @@ struct PlanConstraints {
   // an edit that adds a crossing).
   void Check() const;
 };
+
+// Pairs of non-neighbouring edges of the closed polygon that cross each
+// other (0 for a simple polygon).
+int PolygonCrossings(const std::vector<Vec2>& polygon);
 
 // Keeps stages 1–4 of a fit (per ceiling height) so that a re-fit with new
 // corners or openings runs only the stages they touch (milliseconds).

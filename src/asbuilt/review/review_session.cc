@@ -126,22 +126,10 @@ PlanConstraints ConstraintsOf(const Layout& l) {
   return c;
 }
 
-// Pairs of non-neighbouring edges of the closed polygon that cross.
-int Crossings(const std::vector<Vec2>& p) {
-  const int n = static_cast<int>(p.size());
-  auto cross = [](const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-    const double d1 = Cross(b - a, c - a), d2 = Cross(b - a, d - a);
-    const double d3 = Cross(d - c, a - c), d4 = Cross(d - c, b - c);
-    return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
-  };
-  int count = 0;
-  for (int i = 0; i < n; ++i) {
-    for (int j = i + 2; j < n; ++j) {
-      if (i == 0 && j == n - 1) continue;
-      count += cross(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n]);
-    }
-  }
-  return count;
+std::vector<Vec2> CornerPoints(const Layout& l) {
+  std::vector<Vec2> out;
+  for (const Corner& c : l.corners) out.push_back(c.xy_m);
+  return out;
 }
 
 // Reads a finite number field of an edit.
@@ -371,8 +359,12 @@ struct ReviewSession::Impl {
     return l;
   }
 
-  // The plan under `l`; throws EditError when it cannot be fitted or crosses itself.
-  PlanResult FitUnder(const Layout& l) const {
+  // The plan under `l`; throws EditError when its corners cross each other
+  // where the current ones do not, or when it cannot be fitted.
+  PlanResult FitUnder(const Layout& l, bool new_edit) const {
+    if (new_edit && l.corners_edited && PolygonCrossings(CornerPoints(l)) > PolygonCrossings(CornerPoints(layout))) {
+      throw EditError("the room would cross itself: put the corner where it follows its neighbours along the walls");
+    }
     PlanResult r;
     try {
       r = fitter->Fit(ConstraintsOf(l));
@@ -381,11 +373,7 @@ struct ReviewSession::Impl {
     } catch (const Error& e) {
       throw EditError(fmt::format("no plan under this edit: {}", e.what()));
     }
-    // A room that crosses itself where it did not (the survey's own may).
-    const int before = fit.plan.rooms.empty() ? 0 : Crossings(fit.plan.rooms[0].polygon);
-    if (r.plan.rooms.empty() || Crossings(r.plan.rooms[0].polygon) > before) {
-      throw EditError("the room would cross itself: put the corner where it follows its neighbours along the walls");
-    }
+    if (r.plan.rooms.empty()) throw EditError("no room under this edit");
     return r;
   }
 
@@ -413,9 +401,9 @@ struct ReviewSession::Impl {
     }
   }
 
-  void Refit(const Layout& l) {
+  void Refit(const Layout& l, bool new_edit = false) {
     const auto t = Clock::now();
-    PlanResult r = FitUnder(l);
+    PlanResult r = FitUnder(l, new_edit);
     fit_seconds = std::chrono::duration<double>(Clock::now() - t).count();
     fit = std::move(r);
     layout = l;
@@ -669,7 +657,7 @@ nlohmann::json ReviewSession::Edit(const nlohmann::json& edit) {
     from.pop_back();
     to.push_back(before);
   } else {
-    s.Refit(s.Apply(edit));
+    s.Refit(s.Apply(edit), /*new_edit=*/true);
     s.undo.push_back(before);
     s.redo.clear();
   }
