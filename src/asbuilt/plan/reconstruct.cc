@@ -240,6 +240,8 @@ PlanResult PlanFromRingStages(const RingStages& stages, const Ring& ring, const 
   s = stages.summary;
   s.inferred_walls = ring.inferred_walls;
   s.closed = ring.walls.size() >= 3;
+  s.wall_inferred.clear();
+  for (const WallLine& l : ring.walls) s.wall_inferred.push_back(l.inferred);
 
   // 5. Walls and room with their ±.
   result.plan = PlanFromRing(ring, PropagateRingSigmas(stages.planar.walls, ring.walls, options), corners);

@@ -537,7 +537,8 @@ struct ReviewSession::Impl {
     js["walls"] = nlohmann::json::array();
     for (std::size_t w = 0; w < fit.plan.walls.size(); ++w) {
       const PlanWall& wall = fit.plan.walls[w];
-      nlohmann::json wj = {{"index", w}, {"length_m", wall.Length()}};
+      nlohmann::json wj = {{"index", w}, {"length_m", wall.Length()},
+                           {"inferred", w < fit.summary.wall_inferred.size() && fit.summary.wall_inferred[w]}};
       wj["sigma_m"] = wall.length_sigma_m ? nlohmann::json(*wall.length_sigma_m) : nlohmann::json();
       js["walls"].push_back(wj);
     }
