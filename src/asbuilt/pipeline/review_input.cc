@@ -114,17 +114,19 @@ void WriteReviewInput(const fs::path& out_dir, const ReviewInput& input) {
     js["frames"].push_back(
         {{"index", f.index}, {"position_m", Vec3Json(f.position_m)}, {"camera_m", Vec3Json(f.camera_m)}});
   }
+  auto image_json = [&](const ReviewImage& im) {
+    return nlohmann::json{{"frame", im.frame},
+                          {"image", PathForOut(im.image, out_dir)},
+                          {"width_px", im.width_px},
+                          {"height_px", im.height_px},
+                          {"camera", {{"fx", im.camera.fx}, {"fy", im.camera.fy}, {"cx", im.camera.cx}, {"cy", im.camera.cy}}},
+                          {"yaw_deg", im.yaw_deg},
+                          {"camera_m", Vec3Json(im.camera_m)}};
+  };
+  js["labels"] = nlohmann::json::array();
+  for (const ReviewImage& im : input.labels) js["labels"].push_back(image_json(im));
   js["images"] = nlohmann::json::array();
-  for (const ReviewImage& im : input.images) {
-    js["images"].push_back({{"frame", im.frame},
-                            {"image", PathForOut(im.image, out_dir)},
-                            {"width_px", im.width_px},
-                            {"height_px", im.height_px},
-                            {"camera",
-                             {{"fx", im.camera.fx}, {"fy", im.camera.fy}, {"cx", im.camera.cx}, {"cy", im.camera.cy}}},
-                            {"yaw_deg", im.yaw_deg},
-                            {"camera_m", Vec3Json(im.camera_m)}});
-  }
+  for (const ReviewImage& im : input.images) js["images"].push_back(image_json(im));
   nlohmann::json options = nlohmann::json::object();
   for (const auto& f : PlanOptionFields().bound()) {
     nlohmann::json v = f.get(input.plan_options);
@@ -182,9 +184,12 @@ ReviewInput ReadReviewInput(const fs::path& out_dir) {
     }
     const nlohmann::json& images = need(js, "images", "");
     if (!images.is_array() || images.empty()) throw InputError(name, "images", "expected at least one image");
-    for (std::size_t i = 0; i < images.size(); ++i) {
-      const nlohmann::json& im = images[i];
-      const std::string path = fmt::format("images[{}].", i);
+    const nlohmann::json labels = js.value("labels", nlohmann::json::array());
+    for (std::size_t i = 0; i < images.size() + labels.size(); ++i) {
+      const bool is_label = i >= images.size();
+      const nlohmann::json& im = is_label ? labels[i - images.size()] : images[i];
+      const std::string path =
+          is_label ? fmt::format("labels[{}].", i - images.size()) : fmt::format("images[{}].", i);
       ReviewImage r;
       r.frame = need(im, "frame", path).get<int>();
       r.image = fs::absolute(out_dir / need(im, "image", path).get<std::string>());
@@ -202,7 +207,7 @@ ReviewInput ReadReviewInput(const fs::path& out_dir) {
                   .cy = need(cam, "cy", path + "camera.").get<double>()};
       r.yaw_deg = need(im, "yaw_deg", path).get<double>();
       r.camera_m = vec3(need(im, "camera_m", path), path + "camera_m");
-      in.images.push_back(r);
+      (is_label ? in.labels : in.images).push_back(r);
     }
     if (in.kind == "panorama" && in.images.size() != 1) {
       throw InputError(name, "images", "a panorama survey has exactly one image");

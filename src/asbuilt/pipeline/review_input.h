@@ -7,6 +7,8 @@
 //   OUT/review/input.json   the capture (kind, images, cameras and poses per
 //                           view), the plan settings, the ceiling, the labels'
 //                           origin
+//   OUT/review/labels/     each frame's labels (NNN.png, label ids) as the
+//                           survey read them: the segmenter's or those given
 //   OUT/review/points.bin   the plan's input points, exactly (binary: a
 //                           header line, a count, 38 bytes a point — the
 //                           fields of points.txt at full precision); each
@@ -43,6 +45,9 @@ struct ReviewInput {
   std::string kind;                   // "stereo", "mono" or "panorama".
   std::filesystem::path capture_json;  // Absolute once read.
   std::vector<ReviewImage> images;    // The panorama alone, or one per frame in capture order.
+  // Each frame's labels (label ids, OUT/review/labels/NNN.png) with the
+  // camera of the frame they label: a panorama's level views, or the frames.
+  std::vector<ReviewImage> labels;
   PlanInput plan_input;
   PlanOptions plan_options;           // As the survey was given them (FitPlan resolves them again).
   std::string labels_source;

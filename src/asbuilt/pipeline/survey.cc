@@ -204,6 +204,11 @@ struct Survey {
   std::unique_ptr<LabelSource> labels;
   std::vector<ClassPoint> points;
   PlanInput plan_input;  // What the plan was fitted from (review/ re-fits it).
+  struct LabelPng {
+    int frame, width_px, height_px;
+    std::string png;
+  };
+  std::vector<LabelPng> label_pngs;  // Each frame's labels, PNG-encoded, for review/labels/.
   std::vector<Vec2> rigs;
   double coverage_deg = 360.0;      // Of the turn around the camera.
   std::vector<ReportFrame> report_frames;
@@ -228,6 +233,11 @@ class SurveyFrameObserver final : public FrameObserver {
       survey_.summary().notes.push_back(
           stereo ? fmt::format("frame {}: no points (no labelled structure with stereo evidence)", frame.index)
                  : fmt::format("view {}: no floor or ceiling contact of a wall", frame.index));
+    }
+    if (!labels.empty()) {  // Kept for asbuilt review; written with the other outputs.
+      std::vector<uchar> png;
+      cv::imencode(".png", labels, png);
+      survey_.label_pngs.push_back({frame.index, labels.cols, labels.rows, std::string(png.begin(), png.end())});
     }
     const int wanted = survey_.options.report_frames;
     if (wanted != 0 && static_cast<int>(survey_.report_frames.size()) >= wanted) return;
@@ -447,6 +457,25 @@ ReviewInput SurveyReviewInput(const Survey& s) {
                  .plan_input = s.plan_input,
                  .plan_options = s.options.plan,
                  .labels_source = s.result.summary.labels_source};
+  // Each frame's labels (the segmenter's, or those given) beside the cameras they belong to.
+  const PinholeCamera frame_camera = s.views ? s.views->camera : s.capture.camera.Pinhole();
+  for (const Survey::LabelPng& l : s.label_pngs) {
+    const fs::path file = s.out_dir / "review" / "labels" / fmt::format("{:03d}.png", l.frame);
+    fs::create_directories(file.parent_path());
+    WriteFileAtomic(file, l.png);
+    const auto frame = std::find_if(s.frames().begin(), s.frames().end(),
+                                    [&](const CaptureFrame& f) { return f.index == l.frame; });
+    const auto planned = std::find_if(s.plan_input.frames.begin(), s.plan_input.frames.end(),
+                                      [&](const PlanFrame& f) { return f.index == l.frame; });
+    if (frame == s.frames().end() || planned == s.plan_input.frames.end()) continue;
+    in.labels.push_back({.frame = l.frame,
+                         .image = file,
+                         .width_px = l.width_px,
+                         .height_px = l.height_px,
+                         .camera = frame_camera,
+                         .yaw_deg = frame->yaw_deg,
+                         .camera_m = planned->camera_m});
+  }
   if (s.capture.panorama) {
     const CapturePanorama& pano = *s.capture.panorama;
     in.images.push_back({.frame = -1,

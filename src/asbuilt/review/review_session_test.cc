@@ -8,11 +8,13 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/pano/perspective.h"
 #include "asbuilt/plan/room_iou.h"
 #include "asbuilt/review/review_test_fixtures.h"
+#include "asbuilt/review/view_geometry.h"
 #include "asbuilt/util/file.h"
 
 namespace asbuilt {
@@ -72,6 +74,25 @@ TEST(ReviewSession, StartsFromTheSurveysPlan) {
   }
   ASSERT_EQ(state["openings"].size(), 1u);
   EXPECT_EQ(state["openings"][0]["kind"], "door");
+  // The survey kept each view's labels, and each floor contact projects back
+  // onto its view's wall/floor label edge.
+  const ReviewInput input = ReadReviewInput(out);
+  ASSERT_EQ(input.labels.size(), 12u);
+  int checked = 0;
+  for (const ClassPoint& p : input.plan_input.points) {
+    if (p.source != PointSource::kContact || p.position_m.z() > 0.01 || p.label != LabelClass::kWall) continue;
+    const ReviewImage& view = input.labels.at(p.frame);
+    const cv::Mat labels = cv::imread(view.image.string(), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(labels.cols, view.width_px);
+    const std::optional<Vec2> px = PixelOfPoint(view, p.position_m);
+    ASSERT_TRUE(px);
+    const int u = static_cast<int>(std::lround(px->x())), v = static_cast<int>(std::lround(px->y()));
+    if (u < 0 || u >= labels.cols || v < 2 || v + 2 >= labels.rows) continue;
+    EXPECT_EQ(labels.at<unsigned char>(v - 2, u), 1) << "above a floor contact: wall";
+    EXPECT_EQ(labels.at<unsigned char>(v + 2, u), 0) << "below a floor contact: floor";
+    if (++checked == 50) break;
+  }
+  EXPECT_EQ(checked, 50);
   EXPECT_FALSE(state["lines"].empty());
   EXPECT_NE(state["svg"].get<std::string>().find("<svg"), std::string::npos);
 }
