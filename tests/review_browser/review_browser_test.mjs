@@ -5,6 +5,8 @@
 // plan's numbers change, undoes, drags again, saves with Ctrl-S and checks
 // the written plan.json. Exit 77 (skip) without chromium.
 //
+// It also draws a window (w, drag a box) and checks plan.json has it.
+//
 //   node review_browser_test.mjs ASBUILT [SCREENSHOT.png]
 import {spawn, spawnSync} from "node:child_process";
 import fs from "node:fs";
@@ -167,6 +169,19 @@ async function checkSurvey(browser, name, out) {
     if ((await area(page)) !== before) fail(`${name}: undo did not restore the area (${await area(page)} vs ${before})`);
     await dragCorner(page, 30, 20);
     await page.waitForFunction(() => document.querySelector("#rv-edits").textContent === "3", null, {timeout: 20000});
+    // A window: a box across the middle of the view.
+    const openings = async () => Number((await page.locator("#rv-summary").textContent()).match(/(\d+) openings/)[1]);
+    const before_openings = await openings();
+    const viewer = await page.locator("#rv-photo").boundingBox();
+    const cx = viewer.x + viewer.width / 2, cy = viewer.y + viewer.height / 2;
+    await page.keyboard.press("w");
+    await page.mouse.move(cx - 30, cy - 25);
+    await page.mouse.down();
+    await page.mouse.move(cx + 30, cy + 15, {steps: 5});
+    await page.mouse.up();
+    await page.waitForFunction(() => document.querySelector("#rv-edits").textContent === "4", null, {timeout: 20000});
+    if ((await openings()) !== before_openings + 1) fail(`${name}: drawing a window did not add an opening`);
+    await page.keyboard.press("c");
     const saved = await area(page);
     await page.keyboard.press("?");
     await page.waitForSelector("#rv-help", {state: "visible"});
@@ -178,7 +193,8 @@ async function checkSurvey(browser, name, out) {
     const written = plan.rooms[0].area_m2.toFixed(2);
     if (written !== saved) fail(`${name}: plan.json has ${written} m², the page showed ${saved} m²`);
     const corrections = JSON.parse(fs.readFileSync(path.join(out, "review", "corrections.json"), "utf8"));
-    if (corrections.edits.length !== 3) fail(`${name}: corrections.json has ${corrections.edits.length} edits, not 3`);
+    if (corrections.edits.length !== 4) fail(`${name}: corrections.json has ${corrections.edits.length} edits, not 4`);
+    if (!plan.openings.some(o => o.kind === "window")) fail(`${name}: plan.json has no window`);
     if (errors.length) fail(`${name}: console errors: ${errors.join("; ")}`);
     console.log(`${name}: ${before} → ${dragged} m² after a drag, undo back to ${before}, saved ${saved} m²: ok`);
   } finally {

@@ -164,6 +164,9 @@ ReviewInput ReadReviewInput(const fs::path& out_dir) {
   };
   ReviewInput in;
   try {
+    if (js.value("points", "") != "points.bin") {
+      throw InputError(name, "points", "written by an older asbuilt survey: survey the capture again to review it");
+    }
     in.kind = need(js, "kind", "").get<std::string>();
     if (in.kind != "stereo" && in.kind != "mono" && in.kind != "panorama") {
       throw InputError(name, "kind", fmt::format("unknown kind \"{}\"", in.kind));

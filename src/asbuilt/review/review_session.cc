@@ -465,6 +465,12 @@ struct ReviewSession::Impl {
       js["v"] = px->y();
     }
     if (im.frame >= 0) js["frame"] = im.frame;
+    // Every image that sees it (a stereo or mono capture's frames overlap).
+    js["views"] = nlohmann::json::array();
+    for (std::size_t j = 0; j < input.images.size(); ++j) {
+      const auto px = PixelOfPoint(input.images[j], p);
+      if (px && PixelInside(input.images[j], *px)) js["views"].push_back({{"image", j}, {"u", px->x()}, {"v", px->y()}});
+    }
     // How sure the fit is of it: the larger ± of the two walls it joins.
     const int n = static_cast<int>(fit.plan.walls.size());
     if (n == static_cast<int>(layout.corners.size())) {
