@@ -12,6 +12,7 @@
 
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/pano/perspective.h"
+#include "asbuilt/plan/fit_plan.h"
 #include "asbuilt/plan/room_iou.h"
 #include "asbuilt/review/review_test_fixtures.h"
 #include "asbuilt/review/view_geometry.h"
@@ -167,6 +168,39 @@ TEST(ReviewSession, ACornerAddedOnAStraightWallKeepsItStraight) {
     if (std::abs(w.start.y() - kY0) < 0.05 && std::abs(w.end.y() - kY0) < 0.05 && std::abs(d.y()) < 0.01) ++along;
   }
   EXPECT_EQ(along, 2);
+}
+
+// An L-shaped room seen from one wing: the corner of the far wing hides
+// behind the wall y = 1.5. Clicked where it would be seen through that wall,
+// it goes into the outline between its true neighbours.
+TEST(ReviewSession, AHiddenCornerClickedThroughAWallGoesWhereItBelongs) {
+  ReviewSession session = ReviewSession::Open(LRoomSurvey("hidden"));
+  const std::vector<Vec2> truth = LRoomCorners();
+  nlohmann::json state = session.State();
+  // First the far wing's visible corner, then the hidden one.
+  for (const Vec2& c : {truth[2], truth[3]}) {
+    if (WorstCornerError(PlanOf(state), {c}) < 0.05) continue;
+    state = session.Edit(Click("add_corner", LRoomPanoPixel(Vec3(c.x(), c.y(), 0.0))));
+  }
+  const Plan plan = PlanOf(state);
+  const std::vector<Vec2>& polygon = plan.rooms[0].polygon;
+  const auto at = std::find_if(polygon.begin(), polygon.end(), [&](const Vec2& p) { return (p - truth[3]).norm() < 0.05; });
+  ASSERT_NE(at, polygon.end()) << state["corners"].dump();
+  // Its neighbours in the outline: toward (2, 3.5) on one side, toward (0.5, 1.5) on the other.
+  const std::size_t i = at - polygon.begin(), n = polygon.size();
+  const Vec2 before = polygon[(i + n - 1) % n], after = polygon[(i + 1) % n];
+  EXPECT_GT(before.x(), 1.0) << "previous corner " << before.transpose();
+  EXPECT_LT(after.y(), 3.0) << "next corner " << after.transpose();
+  EXPECT_EQ(PolygonCrossings(polygon), 0);
+  // Then the reflex corner where the wings meet, and the survey's corner
+  // that closed the room across the wing's opening goes: the L, whole.
+  state = session.Edit(Click("add_corner", LRoomPanoPixel(Vec3(truth[4].x(), truth[4].y(), 0.0))));
+  state = session.Edit({{"op", "delete_corner"}, {"id", CornerNear(state, {2.0, 1.5})}});
+  Plan truth_plan;
+  truth_plan.rooms.push_back({.polygon = truth, .area_m2 = 13.0});
+  EXPECT_EQ(state["corners"].size(), 6u);
+  EXPECT_LE(WorstCornerError(PlanOf(state), truth), 0.05);
+  EXPECT_GE(RoomPolygonOverlap(PlanOf(state), truth_plan)->Iou(), 0.98);
 }
 
 TEST(ReviewSession, DeleteUndoRedo) {

@@ -73,6 +73,49 @@ fs::path MakePanoramaSurvey() {
   return dir / "out";
 }
 
+// The label a ray from kLCamera sees in the L room (walls only, no openings).
+unsigned char LRoomLabelOfRay(const Vec3& ray) {
+  const std::vector<Vec2> c = LRoomCorners();
+  double best = INFINITY;
+  const Vec2 o = kLCamera.head<2>(), d = ray.head<2>();
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const Vec2 a = c[i], e = c[(i + 1) % c.size()] - a;
+    const double denom = Cross(d, e);
+    if (std::abs(denom) < 1e-12) continue;
+    const double t = Cross(a - o, e) / denom, s = Cross(a - o, d) / denom;
+    if (t > 0 && s >= 0 && s <= 1) best = std::min(best, t);
+  }
+  if (!std::isfinite(best)) return 0;
+  const double z = kLCamera.z() + best * ray.z();
+  return z >= 0 && z <= kCeiling ? 1 : 0;
+}
+
+fs::path MakeLRoomSurvey() {
+  const fs::path dir = Root() / "lroom_source";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "labels");
+  cv::Mat pano(kPanoHeight, kPanoWidth, CV_8UC3, cv::Scalar(180, 180, 180));
+  cv::imwrite((dir / "pano.png").string(), pano);
+  const nlohmann::json capture = {{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"},
+                                  {"position_m", {kLCamera.x(), kLCamera.y(), kLCamera.z()}}};
+  WriteFileAtomic(dir / "capture.json", capture.dump());
+  SurveyOptions options{.write_report = false};
+  options.panorama_views = {.width_px = 128, .height_px = 256, .fx = 64.0};
+  const std::vector<PanoView> views = TurnInPlaceViews(options.panorama_views);
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    cv::Mat labels(views[i].camera.height_px, views[i].camera.width_px, CV_8U);
+    for (int v = 0; v < labels.rows; ++v) {
+      for (int u = 0; u < labels.cols; ++u) {
+        labels.at<unsigned char>(v, u) = LRoomLabelOfRay(views[i].RayInWorld(Vec2(u, v)));
+      }
+    }
+    cv::imwrite((dir / "labels" / fmt::format("{:03d}.png", i)).string(), labels);
+  }
+  options.labels_dir = dir / "labels";
+  RunSurvey(dir / "capture.json", dir / "out", options);
+  return dir / "out";
+}
+
 fs::path MakeClassroomSurvey() {
   const fs::path dir = Root() / "classroom";
   fs::remove_all(dir);
@@ -105,6 +148,17 @@ fs::path ClassroomSurvey(const std::string& name) {
   std::call_once(once, [] { source = MakeClassroomSurvey(); });
   return FreshCopy(source, name);
 }
+
+std::vector<Vec2> LRoomCorners() { return {{-2, -1.5}, {2, -1.5}, {2, 3.5}, {0.5, 3.5}, {0.5, 1.5}, {-2, 1.5}}; }
+
+fs::path LRoomSurvey(const std::string& name) {
+  static std::once_flag once;
+  static fs::path source;
+  std::call_once(once, [] { source = MakeLRoomSurvey(); });
+  return FreshCopy(source, name);
+}
+
+Vec2 LRoomPanoPixel(const Vec3& p) { return EquirectPixelFromDirection(p - kLCamera, kPanoWidth, kPanoHeight); }
 
 Plan ClassroomTruth() { return ReadPlan(Root() / "classroom" / "capture" / "truth.json"); }
 

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/geometry/rig.h"
@@ -29,6 +30,13 @@ Plan ClassroomTruth();
 
 // The panorama pixel of a world point (docs/formats.md).
 Vec2 PanoPixel(const Vec3& p);
+
+// An L-shaped room seen from one wing: its corner (0.5, 3.5) is hidden
+// behind the wall y = 1.5 (camera at kLCamera, ceiling 2.5 m, exact labels).
+std::vector<Vec2> LRoomCorners();
+inline const Vec3 kLCamera(-1.0, -0.5, 1.4);
+std::filesystem::path LRoomSurvey(const std::string& name);
+Vec2 LRoomPanoPixel(const Vec3& p);
 
 }  // namespace asbuilt::review_test
 
