@@ -19,16 +19,16 @@
 //   env ASBUILT_BENCH_REVIEW_PANORAMAS  at most N panoramas (default all)
 //       ASBUILT_BENCH_REVIEW_REUSE      1: reuse surveys already in the build folder
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <random>
-#include <tuple>
-#include <string>
-#include <vector>
-
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+#include <tuple>
+#include <vector>
 
 #include "asbuilt/formats/zind.h"
 #include "asbuilt/pano/perspective.h"
@@ -83,8 +83,7 @@ RoomResult Correct(const fs::path& survey, const ZindPanorama& pano, std::mt1993
       state = session.Edit(e);
       r.refit_ms.push_back(state["refit_ms"].get<double>());
       std::fprintf(stderr, "bench_review: %s: %s → %zu corners, IoU %.3f, %.1f ms\n", pano.pano_id.c_str(),
-                   e["op"].get<std::string>().c_str(), state["corners"].size(), Iou(state, truth),
-                   r.refit_ms.back());
+                   e["op"].get<std::string>().c_str(), state["corners"].size(), Iou(state, truth), r.refit_ms.back());
       return true;
     } catch (const EditError& error) {
       std::fprintf(stderr, "bench_review: %s: %s refused: %s\n", pano.pano_id.c_str(), e.dump().c_str(), error.what());
@@ -150,8 +149,9 @@ RoomResult Correct(const fs::path& survey, const ZindPanorama& pano, std::mt1993
     for (std::size_t i = 0; i < plan_corners.size(); ++i) {
       const int t = truth_of[i] >= 0 ? truth_of[i] : nearest(corners, plan_corners[i]).first;
       const Vec2 px = pixel(Vec3(corners[t].x(), corners[t].y(), 0.0));
-      moves.push_back({(plan_corners[i] - corners[t]).norm(),
-                       {{"op", "move_corner"}, {"id", ids[i]}, {"u", std::clamp(px.x(), 0.0, width - 1.0)}, {"v", px.y()}}});
+      moves.push_back(
+          {(plan_corners[i] - corners[t]).norm(),
+           {{"op", "move_corner"}, {"id", ids[i]}, {"u", std::clamp(px.x(), 0.0, width - 1.0)}, {"v", px.y()}}});
     }
     std::stable_sort(moves.begin(), moves.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     for (const auto& m : moves) candidates.push_back(m.second);
@@ -180,7 +180,8 @@ int main(int argc, char** argv) {
   const fs::path out = fs::path(ASBUILT_BINARY_DIR) / "bench" / "review";
   const ZindTour tour = ReadZindTour(tour_dir);
   std::vector<const ZindPanorama*> panos = tour.BenchmarkPanoramas();
-  if (const int n = EnvPositiveInt("ASBUILT_BENCH_REVIEW_PANORAMAS", 0); n > 0 && n < int(panos.size())) panos.resize(n);
+  if (const int n = EnvPositiveInt("ASBUILT_BENCH_REVIEW_PANORAMAS", 0); n > 0 && n < int(panos.size()))
+    panos.resize(n);
   const bool reuse = EnvPositiveInt("ASBUILT_BENCH_REVIEW_REUSE", 0) > 0;
   std::mt19937 rng(1);
   std::vector<RoomResult> rooms;
@@ -211,8 +212,9 @@ int main(int argc, char** argv) {
 
   std::vector<double> noc, refits;
   int within = 0, total_edits = 0;
-  std::string table = "| panorama | room | IoU start | IoU end | NoC@0.95 | edits (refused) | re-fit median ms |\n"
-                      "|---|---|---|---|---|---|---|\n";
+  std::string table =
+      "| panorama | room | IoU start | IoU end | NoC@0.95 | edits (refused) | re-fit median ms |\n"
+      "|---|---|---|---|---|---|---|\n";
   for (const RoomResult& r : rooms) {
     if (!r.error.empty()) {
       table += fmt::format("| {} | {} | error: {} ||||\n", r.pano, r.label, r.error);

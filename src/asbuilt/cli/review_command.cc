@@ -2,11 +2,11 @@
 // browser (docs/review.md). The first line of stdout is the page's address
 // with its token; logs go to stderr; Ctrl-C ends it.
 
+#include <fmt/format.h>
+
 #include <csignal>
 #include <cstdio>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "asbuilt/cli/command.h"
 #include "asbuilt/review/http.h"

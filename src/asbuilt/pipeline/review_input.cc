@@ -1,10 +1,10 @@
 #include "asbuilt/pipeline/review_input.h"
 
+#include <fmt/format.h>
+
 #include <bit>
 #include <cstdint>
 #include <cstring>
-
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "asbuilt/formats/points_file.h"
@@ -115,13 +115,14 @@ void WriteReviewInput(const fs::path& out_dir, const ReviewInput& input) {
         {{"index", f.index}, {"position_m", Vec3Json(f.position_m)}, {"camera_m", Vec3Json(f.camera_m)}});
   }
   auto image_json = [&](const ReviewImage& im) {
-    return nlohmann::json{{"frame", im.frame},
-                          {"image", PathForOut(im.image, out_dir)},
-                          {"width_px", im.width_px},
-                          {"height_px", im.height_px},
-                          {"camera", {{"fx", im.camera.fx}, {"fy", im.camera.fy}, {"cx", im.camera.cx}, {"cy", im.camera.cy}}},
-                          {"yaw_deg", im.yaw_deg},
-                          {"camera_m", Vec3Json(im.camera_m)}};
+    return nlohmann::json{
+        {"frame", im.frame},
+        {"image", PathForOut(im.image, out_dir)},
+        {"width_px", im.width_px},
+        {"height_px", im.height_px},
+        {"camera", {{"fx", im.camera.fx}, {"fy", im.camera.fy}, {"cx", im.camera.cx}, {"cy", im.camera.cy}}},
+        {"yaw_deg", im.yaw_deg},
+        {"camera_m", Vec3Json(im.camera_m)}};
   };
   js["labels"] = nlohmann::json::array();
   for (const ReviewImage& im : input.labels) js["labels"].push_back(image_json(im));
@@ -191,8 +192,7 @@ ReviewInput ReadReviewInput(const fs::path& out_dir) {
     for (std::size_t i = 0; i < images.size() + labels.size(); ++i) {
       const bool is_label = i >= images.size();
       const nlohmann::json& im = is_label ? labels[i - images.size()] : images[i];
-      const std::string path =
-          is_label ? fmt::format("labels[{}].", i - images.size()) : fmt::format("images[{}].", i);
+      const std::string path = is_label ? fmt::format("labels[{}].", i - images.size()) : fmt::format("images[{}].", i);
       ReviewImage r;
       r.frame = need(im, "frame", path).get<int>();
       r.image = fs::absolute(out_dir / need(im, "image", path).get<std::string>());

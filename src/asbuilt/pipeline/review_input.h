@@ -33,23 +33,23 @@ namespace asbuilt {
 // One image a review shows: a perspective frame (stereo: its left image) or
 // the panorama.
 struct ReviewImage {
-  int frame = -1;                 // Capture frame index; −1 for the panorama.
-  std::filesystem::path image;    // Absolute once read.
+  int frame = -1;               // Capture frame index; −1 for the panorama.
+  std::filesystem::path image;  // Absolute once read.
   int width_px = 0, height_px = 0;
-  PinholeCamera camera;           // Perspective frames.
-  double yaw_deg = 0.0;           // World yaw of the optical axis (panorama: of its left edge, capture.json's yaw_deg).
-  Vec3 camera_m = Vec3::Zero();   // Optical centre, world m.
+  PinholeCamera camera;          // Perspective frames.
+  double yaw_deg = 0.0;          // World yaw of the optical axis (panorama: of its left edge, capture.json's yaw_deg).
+  Vec3 camera_m = Vec3::Zero();  // Optical centre, world m.
 };
 
 struct ReviewInput {
-  std::string kind;                   // "stereo", "mono" or "panorama".
+  std::string kind;                    // "stereo", "mono" or "panorama".
   std::filesystem::path capture_json;  // Absolute once read.
-  std::vector<ReviewImage> images;    // The panorama alone, or one per frame in capture order.
+  std::vector<ReviewImage> images;     // The panorama alone, or one per frame in capture order.
   // Each frame's labels (label ids, OUT/review/labels/NNN.png) with the
   // camera of the frame they label: a panorama's level views, or the frames.
   std::vector<ReviewImage> labels;
   PlanInput plan_input;
-  PlanOptions plan_options;           // As the survey was given them (FitPlan resolves them again).
+  PlanOptions plan_options;  // As the survey was given them (FitPlan resolves them again).
   std::string labels_source;
 };
 

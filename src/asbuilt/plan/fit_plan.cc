@@ -1,10 +1,10 @@
 #include "asbuilt/plan/fit_plan.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "asbuilt/plan/plan_stages.h"
 #include "asbuilt/util/error.h"
@@ -43,8 +43,8 @@ std::vector<ClassPoint> WithCeilingAt(const PlanInput& input, double ceiling_m) 
   std::vector<ClassPoint> out = input.points;
   for (ClassPoint& p : out) {
     if (p.source != PointSource::kContact || p.position_m.z() < kCeilingContactMinZ) continue;
-    const auto frame = std::find_if(input.frames.begin(), input.frames.end(),
-                                    [&](const PlanFrame& f) { return f.index == p.frame; });
+    const auto frame =
+        std::find_if(input.frames.begin(), input.frames.end(), [&](const PlanFrame& f) { return f.index == p.frame; });
     if (frame == input.frames.end()) continue;
     const Vec3 cam = frame->camera_m;
     const double above = p.position_m.z() - cam.z();
@@ -381,8 +381,7 @@ void PlanConstraints::Check() const {
   if (openings) {
     for (std::size_t i = 0; i < openings->size(); ++i) {
       const PlanUserOpening& g = (*openings)[i];
-      CheckArgument(g.start_m.allFinite() && g.end_m.allFinite() && std::isfinite(g.bottom_m) &&
-                        std::isfinite(g.top_m),
+      CheckArgument(g.start_m.allFinite() && g.end_m.allFinite() && std::isfinite(g.bottom_m) && std::isfinite(g.top_m),
                     fmt::format("PlanConstraints.openings[{}] is not finite", i));
       CheckArgument(g.top_m > g.bottom_m && g.bottom_m >= -0.05,
                     fmt::format("PlanConstraints.openings[{}]: head {:.3f} m must be above sill {:.3f} m >= 0", i,
@@ -420,8 +419,8 @@ PlanResult PlanFitter::Fit(const PlanConstraints& constraints) const {
   const auto start_time = std::chrono::steady_clock::now();
   const State& s = *state_;
   const StagesHolder* h = s.measured.get();
-  const bool new_ceiling = constraints.ceiling_height_m &&
-                           !(std::abs(*constraints.ceiling_height_m - s.input.ceiling_height_m) < 1e-6);
+  const bool new_ceiling =
+      constraints.ceiling_height_m && !(std::abs(*constraints.ceiling_height_m - s.input.ceiling_height_m) < 1e-6);
   if (new_ceiling) {
     if (!s.ceiling_m || std::abs(*s.ceiling_m - *constraints.ceiling_height_m) > 1e-9) {
       s.at_ceiling.reset();

@@ -1,8 +1,8 @@
 #include "asbuilt/plan/fit_plan.h"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "asbuilt/plan/plan_test_rooms.h"
 #include "asbuilt/plan/room_iou.h"
@@ -92,9 +92,11 @@ TEST(FitPlan, GivenOpeningsGoOnTheirNearestWall) {
   const Plan truth = RectangleRoom();
   PlanFitter fitter(RoomInput(truth, Vec3(2.0, 1.8, 1.5)), {});
   const Vec2 a = truth.walls[0].start, b = truth.walls[0].end;
-  PlanConstraints c{.openings = std::vector<PlanUserOpening>{
-                        {.kind = OpeningKind::kWindow, .start_m = a + 0.2 * (b - a) + Vec2(0, 0.05),
-                         .end_m = a + 0.4 * (b - a), .bottom_m = 0.9, .top_m = 2.0}}};
+  PlanConstraints c{.openings = std::vector<PlanUserOpening>{{.kind = OpeningKind::kWindow,
+                                                              .start_m = a + 0.2 * (b - a) + Vec2(0, 0.05),
+                                                              .end_m = a + 0.4 * (b - a),
+                                                              .bottom_m = 0.9,
+                                                              .top_m = 2.0}}};
   const PlanResult r = fitter.Fit(c);
   ASSERT_EQ(r.plan.openings.size(), 1u);
   EXPECT_EQ(r.plan.openings[0].kind, OpeningKind::kWindow);

@@ -18,7 +18,7 @@
 namespace asbuilt {
 
 struct RingStages {
-  PlanPoints planar;    // Points into the caller's points, which must outlive this.
+  PlanPoints planar;  // Points into the caller's points, which must outlive this.
   DirectionFrame frame;
   Ring ring;            // The ring the points give on their own.
   PlanSummary summary;  // Counts of stages 1–4 (input, wall, door, window points, lines, directions).

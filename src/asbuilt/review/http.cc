@@ -1,16 +1,16 @@
 #include "asbuilt/review/http.h"
 
+#include <fmt/format.h>
+#include <httplib.h>
+#include <spdlog/spdlog.h>
+
 #include <atomic>
 #include <csignal>
 #include <cstdlib>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <thread>
-
-#include <fmt/format.h>
-#include <httplib.h>
-#include <nlohmann/json.hpp>
-#include <spdlog/spdlog.h>
 
 #include "asbuilt/util/file.h"
 
@@ -60,8 +60,8 @@ std::string NewReviewToken() {
   return token;
 }
 
-HttpResponse HandleReviewRequest(ReviewSession& session, const std::string& token, int port,
-                                 const HttpRequest& request, std::size_t max_body_bytes) {
+HttpResponse HandleReviewRequest(ReviewSession& session, const std::string& token, int port, const HttpRequest& request,
+                                 std::size_t max_body_bytes) {
   try {
     // Host: only this server's own names (DNS rebinding).
     const std::string host = Header(request, "host");

@@ -25,9 +25,9 @@
 namespace asbuilt {
 
 struct HttpRequest {
-  std::string method;                         // "GET", "POST", …
-  std::string path;                           // Without the query.
-  std::map<std::string, std::string> params;  // Query parameters.
+  std::string method;                          // "GET", "POST", …
+  std::string path;                            // Without the query.
+  std::map<std::string, std::string> params;   // Query parameters.
   std::map<std::string, std::string> headers;  // Names in lower case.
   std::string body;
 };
@@ -39,10 +39,10 @@ struct HttpResponse {
 };
 
 struct ReviewServerOptions {
-  int port = 0;                             // 0: a free port.
-  bool open_browser = true;                 // Start the default browser on the page (xdg-open).
-  std::size_t max_body_bytes = 1u << 20;    // Larger bodies: 413.
-  void Check() const;                       // Throws InvalidArgument (port out of 0..65535).
+  int port = 0;                           // 0: a free port.
+  bool open_browser = true;               // Start the default browser on the page (xdg-open).
+  std::size_t max_body_bytes = 1u << 20;  // Larger bodies: 413.
+  void Check() const;                     // Throws InvalidArgument (port out of 0..65535).
 };
 
 // A random token of 128 bits (32 hex digits) from the system's random device.
@@ -50,8 +50,8 @@ std::string NewReviewToken();
 
 // Answers one request; `port` is the one the server listens on (for the
 // Host and Origin checks). Never throws.
-HttpResponse HandleReviewRequest(ReviewSession& session, const std::string& token, int port,
-                                 const HttpRequest& request, std::size_t max_body_bytes = 1u << 20);
+HttpResponse HandleReviewRequest(ReviewSession& session, const std::string& token, int port, const HttpRequest& request,
+                                 std::size_t max_body_bytes = 1u << 20);
 
 // Serves the session on 127.0.0.1 until SIGINT/SIGTERM (or `stop` returns
 // true, polled every 100 ms). `on_listening(url)` is called once the port is

@@ -1,12 +1,12 @@
 #include "asbuilt/review/http.h"
 
-#include <atomic>
-#include <filesystem>
-#include <thread>
-
 #include <gtest/gtest.h>
 #include <httplib.h>
+
+#include <atomic>
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/review/review_test_fixtures.h"
@@ -21,7 +21,9 @@ constexpr char kToken[] = "0123456789abcdef0123456789abcdef";
 constexpr int kPort = 8765;
 
 HttpRequest Get(const std::string& path) {
-  return {.method = "GET", .path = path, .headers = {{"host", "127.0.0.1:8765"}, {"authorization", std::string("Bearer ") + kToken}}};
+  return {.method = "GET",
+          .path = path,
+          .headers = {{"host", "127.0.0.1:8765"}, {"authorization", std::string("Bearer ") + kToken}}};
 }
 HttpRequest Post(const std::string& path, const nlohmann::json& body) {
   HttpRequest r = Get(path);
@@ -65,8 +67,8 @@ TEST_F(ReviewHttp, EveryOpThroughTheApi) {
   state = Ok(Post("/api/edit", {{"op", "ceiling"}, {"u", c.x()}, {"v", c.y()}}));
   const Vec2 o0 = PanoPixel(Vec3(-1.0, kY0, 1.4)), o1 = PanoPixel(Vec3(0.0, kY0, 1.4));
   const Vec2 top = PanoPixel(Vec3(-0.5, kY0, 2.0)), bottom = PanoPixel(Vec3(-0.5, kY0, 0.9));
-  nlohmann::json opening = {{"op", "add_opening"}, {"kind", "window"}, {"u0", o0.x()}, {"u1", o1.x()},
-                            {"v_top", top.y()}, {"v_bottom", bottom.y()}};
+  nlohmann::json opening = {{"op", "add_opening"}, {"kind", "window"}, {"u0", o0.x()},
+                            {"u1", o1.x()},        {"v_top", top.y()}, {"v_bottom", bottom.y()}};
   state = Ok(Post("/api/edit", opening));
   const int window = state["openings"].back()["id"];
   opening["op"] = "move_opening";

@@ -1,12 +1,12 @@
 #include "asbuilt/review/review_session.h"
 
-#include <algorithm>
-#include <chrono>
-#include <array>
-#include <cmath>
-
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
 
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/pipeline/report.h"
@@ -95,14 +95,14 @@ Layout LayoutFromJson(const nlohmann::json& js, const std::string& name) {
                            .user = c.at("by").get<std::string>() == "user"});
     }
     for (const nlohmann::json& o : js.at("openings")) {
-      l.openings.push_back({.id = o.at("id").get<int>(),
-                            .kind = o.at("kind").get<std::string>() == "window" ? OpeningKind::kWindow
-                                                                                : OpeningKind::kDoor,
-                            .start_m = XyFrom(o.at("start_m"), name),
-                            .end_m = XyFrom(o.at("end_m"), name),
-                            .bottom_m = o.at("bottom_m").get<double>(),
-                            .top_m = o.at("top_m").get<double>(),
-                            .user = o.at("by").get<std::string>() == "user"});
+      l.openings.push_back(
+          {.id = o.at("id").get<int>(),
+           .kind = o.at("kind").get<std::string>() == "window" ? OpeningKind::kWindow : OpeningKind::kDoor,
+           .start_m = XyFrom(o.at("start_m"), name),
+           .end_m = XyFrom(o.at("end_m"), name),
+           .bottom_m = o.at("bottom_m").get<double>(),
+           .top_m = o.at("top_m").get<double>(),
+           .user = o.at("by").get<std::string>() == "user"});
     }
   } catch (const nlohmann::json::exception& e) {
     throw InputError(name, "layout", fmt::format("unexpected value: {}", e.what()));
@@ -193,9 +193,10 @@ struct ReviewSession::Impl {
     }
     const double d = (*xy - image.camera_m.head<2>()).norm();
     if (d > kMaxFloorDistanceM) {
-      throw EditError(fmt::format("{}: ({:.1f}, {:.1f}) meets the floor {:.1f} m away (more than {:.0f} m): click "
-                                  "lower, on the wall's base",
-                                  edit.value("op", ""), pixel.x(), pixel.y(), d, kMaxFloorDistanceM));
+      throw EditError(
+          fmt::format("{}: ({:.1f}, {:.1f}) meets the floor {:.1f} m away (more than {:.0f} m): click "
+                      "lower, on the wall's base",
+                      edit.value("op", ""), pixel.x(), pixel.y(), d, kMaxFloorDistanceM));
     }
     return *xy;
   }
@@ -238,15 +239,16 @@ struct ReviewSession::Impl {
   // An opening from its two end columns, head and sill rows, on the walls of the current plan.
   Opening OpeningFrom(const nlohmann::json& edit, int id) const {
     const std::string op = edit.value("op", "");
-    if (!edit.contains("kind") || !edit["kind"].is_string() ||
-        (edit["kind"] != "door" && edit["kind"] != "window")) {
+    if (!edit.contains("kind") || !edit["kind"].is_string() || (edit["kind"] != "door" && edit["kind"] != "window")) {
       throw EditError(fmt::format("{}: \"kind\" must be \"door\" or \"window\"", op));
     }
     const ReviewImage& image = ImageOf(edit);
     const double v_top = Number(edit, "v_top"), v_bottom = Number(edit, "v_bottom");
     const Vec2 p0 = PixelOf(edit, image, "u0", "v_top"), p1 = PixelOf(edit, image, "u1", "v_bottom");
-    if (!(v_top < v_bottom)) throw EditError(fmt::format("{}: v_top ({}) must be above v_bottom ({})", op, v_top, v_bottom));
-    if (std::abs(p0.x() - p1.x()) < 1.0) throw EditError(fmt::format("{}: u0 and u1 must differ by a pixel or more", op));
+    if (!(v_top < v_bottom))
+      throw EditError(fmt::format("{}: v_top ({}) must be above v_bottom ({})", op, v_top, v_bottom));
+    if (std::abs(p0.x() - p1.x()) < 1.0)
+      throw EditError(fmt::format("{}: u0 and u1 must differ by a pixel or more", op));
     const double v_mid = 0.5 * (v_top + v_bottom);
     double u_mid = 0.5 * (p0.x() + p1.x());
     if (image.frame < 0 && std::abs(p0.x() - p1.x()) > 0.5 * image.width_px) {
@@ -256,8 +258,11 @@ struct ReviewSession::Impl {
     const auto b = WallOfPixel(image, fit.plan, {p1.x(), v_mid});
     const auto m = WallOfPixel(image, fit.plan, {u_mid, v_mid});
     if (!a || !b || !m) throw EditError(fmt::format("{}: the columns u0..u1 do not all meet a wall of the plan", op));
-    Opening o{.id = id, .kind = edit["kind"] == "window" ? OpeningKind::kWindow : OpeningKind::kDoor,
-              .start_m = a->xy_m, .end_m = b->xy_m, .user = true};
+    Opening o{.id = id,
+              .kind = edit["kind"] == "window" ? OpeningKind::kWindow : OpeningKind::kDoor,
+              .start_m = a->xy_m,
+              .end_m = b->xy_m,
+              .user = true};
     o.top_m = HeightAtDistance(image, {u_mid, v_top}, m->distance_m);
     o.bottom_m = std::max(0.0, HeightAtDistance(image, {u_mid, v_bottom}, m->distance_m));
     if (o.kind == OpeningKind::kDoor && o.bottom_m < 0.1) o.bottom_m = 0.0;
@@ -331,13 +336,15 @@ struct ReviewSession::Impl {
       const Vec2 pixel = PixelOf(edit, image, "u", "v");
       const std::optional<double> distance = WallDistanceInColumn(image, pixel);
       if (!distance) {
-        throw EditError(fmt::format("ceiling: ({:.1f}, {:.1f}) does not look at a wall of the plan", pixel.x(), pixel.y()));
+        throw EditError(
+            fmt::format("ceiling: ({:.1f}, {:.1f}) does not look at a wall of the plan", pixel.x(), pixel.y()));
       }
       const double h = HeightAtDistance(image, pixel, *distance);
       if (h < image.camera_m.z() + 0.1 || h > kMaxCeilingM) {
-        throw EditError(fmt::format("ceiling: ({:.1f}, {:.1f}) puts the ceiling at {:.2f} m; a wall–ceiling line is "
-                                    "above the camera ({:.2f} m) and below {:.0f} m",
-                                    pixel.x(), pixel.y(), h, image.camera_m.z(), kMaxCeilingM));
+        throw EditError(
+            fmt::format("ceiling: ({:.1f}, {:.1f}) puts the ceiling at {:.2f} m; a wall–ceiling line is "
+                        "above the camera ({:.2f} m) and below {:.0f} m",
+                        pixel.x(), pixel.y(), h, image.camera_m.z(), kMaxCeilingM));
       }
       l.ceiling_m = h;
     } else if (op == "add_opening") {
@@ -352,9 +359,10 @@ struct ReviewSession::Impl {
       const int i = OpeningIndex(l, Integer(edit, "id"), op);
       l.openings.erase(l.openings.begin() + i);
     } else {
-      throw EditError(fmt::format("unknown op \"{}\" (add_corner, move_corner, delete_corner, ceiling, add_opening, "
-                                  "move_opening, delete_opening, undo, redo)",
-                                  op));
+      throw EditError(
+          fmt::format("unknown op \"{}\" (add_corner, move_corner, delete_corner, ceiling, add_opening, "
+                      "move_opening, delete_opening, undo, redo)",
+                      op));
     }
     return l;
   }
@@ -435,8 +443,8 @@ struct ReviewSession::Impl {
           for (int s = 0; s <= kSamples; ++s) {
             const Vec2 xy = wall.start + (wall.end - wall.start) * (double(s) / kSamples);
             const std::optional<Vec2> px = PixelOfPoint(im, Vec3(xy.x(), xy.y(), z));
-            const bool usable = px && std::abs(px->x()) < 4.0 * im.width_px + 1 &&
-                                std::abs(px->y()) < 4.0 * im.height_px + 1;
+            const bool usable =
+                px && std::abs(px->x()) < 4.0 * im.width_px + 1 && std::abs(px->y()) < 4.0 * im.height_px + 1;
             if (!usable || (last && im.frame < 0 && std::abs(px->x() - last->x()) > 0.5 * im.width_px)) {
               if (!runs.back().empty()) runs.emplace_back();
             }
@@ -455,7 +463,8 @@ struct ReviewSession::Impl {
 
   nlohmann::json CornerJson(std::size_t i) const {
     const Corner& c = layout.corners[i];
-    const Vec2 xy = fit.plan.rooms.at(0).polygon.size() == layout.corners.size() ? fit.plan.rooms[0].polygon[i] : c.xy_m;
+    const Vec2 xy =
+        fit.plan.rooms.at(0).polygon.size() == layout.corners.size() ? fit.plan.rooms[0].polygon[i] : c.xy_m;
     const Vec3 p(xy.x(), xy.y(), 0.0);
     const int k = BestImageFor(input.images, p);
     const ReviewImage& im = input.images[k];
@@ -469,7 +478,8 @@ struct ReviewSession::Impl {
     js["views"] = nlohmann::json::array();
     for (std::size_t j = 0; j < input.images.size(); ++j) {
       const auto px = PixelOfPoint(input.images[j], p);
-      if (px && PixelInside(input.images[j], *px)) js["views"].push_back({{"image", j}, {"u", px->x()}, {"v", px->y()}});
+      if (px && PixelInside(input.images[j], *px))
+        js["views"].push_back({{"image", j}, {"u", px->x()}, {"v", px->y()}});
     }
     // How sure the fit is of it: the larger ± of the two walls it joins.
     const int n = static_cast<int>(fit.plan.walls.size());
@@ -543,7 +553,8 @@ struct ReviewSession::Impl {
     js["walls"] = nlohmann::json::array();
     for (std::size_t w = 0; w < fit.plan.walls.size(); ++w) {
       const PlanWall& wall = fit.plan.walls[w];
-      nlohmann::json wj = {{"index", w}, {"length_m", wall.Length()},
+      nlohmann::json wj = {{"index", w},
+                           {"length_m", wall.Length()},
                            {"inferred", w < fit.summary.wall_inferred.size() && fit.summary.wall_inferred[w]}};
       wj["sigma_m"] = wall.length_sigma_m ? nlohmann::json(*wall.length_sigma_m) : nlohmann::json();
       js["walls"].push_back(wj);
@@ -699,8 +710,8 @@ std::vector<std::string> ReviewSession::Save(const ReviewSaveOptions& options) {
   summary.ceiling_height_sigma_m = s.layout.ceiling_m ? 0.0 : s.input.plan_input.ceiling_height_sigma_m;
   summary.frames = static_cast<int>(s.input.plan_input.frames.size());
   summary.points = static_cast<int>(s.input.plan_input.points.size());
-  summary.notes.push_back(fmt::format("corrected by a person in asbuilt review: {} edit(s), review/corrections.json",
-                                      s.log.size()));
+  summary.notes.push_back(
+      fmt::format("corrected by a person in asbuilt review: {} edit(s), review/corrections.json", s.log.size()));
   for (const nlohmann::json& n : s.survey_summary.value("notes", nlohmann::json::array())) {
     if (n.is_string()) summary.notes.push_back("survey: " + n.get<std::string>());
   }
@@ -720,10 +731,10 @@ std::vector<std::string> ReviewSession::Save(const ReviewSaveOptions& options) {
                                       {"layout_in_images", s.LayoutInImages()},
                                       {"plan", PlanToJson(plan)}};
   WriteFileAtomic(staging / "review" / "corrections.json", corrections.dump(1) + "\n");
-  WriteFileAtomic(staging / "review" / "state.json",
-                  nlohmann::json({{"layout", LayoutJson(s.layout)}, {"initial", LayoutJson(s.initial)}, {"edits", s.log}})
-                          .dump(1) +
-                      "\n");
+  WriteFileAtomic(
+      staging / "review" / "state.json",
+      nlohmann::json({{"layout", LayoutJson(s.layout)}, {"initial", LayoutJson(s.initial)}, {"edits", s.log}}).dump(1) +
+          "\n");
   std::vector<std::string> files;
   for (const auto& entry : fs::recursive_directory_iterator(staging)) {
     if (entry.is_regular_file() && !IsAtomicTempName(entry.path())) {

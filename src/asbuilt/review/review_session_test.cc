@@ -1,12 +1,12 @@
 #include "asbuilt/review/review_session.h"
 
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-
-#include <fmt/format.h>
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -143,8 +143,8 @@ TEST(ReviewSession, AClickedCornerRefitsItsWallsFromTheImage) {
   EXPECT_GE(RoomPolygonOverlap(fixed, BoxTruth())->Iou(), 0.97);
   for (const PlanWall& w : fixed.walls) {
     const Vec2 d = w.end - w.start;
-    const double off_axis_deg = RadToDeg(std::min(std::abs(std::atan2(d.y(), d.x())),
-                                                  std::abs(std::atan2(d.x(), d.y()))));
+    const double off_axis_deg =
+        RadToDeg(std::min(std::abs(std::atan2(d.y(), d.x())), std::abs(std::atan2(d.x(), d.y()))));
     EXPECT_LE(std::min(off_axis_deg, std::abs(90 - off_axis_deg)), 1.0) << "wall off the room's axes";
   }
   int by_user = 0;
@@ -184,7 +184,8 @@ TEST(ReviewSession, AHiddenCornerClickedThroughAWallGoesWhereItBelongs) {
   }
   const Plan plan = PlanOf(state);
   const std::vector<Vec2>& polygon = plan.rooms[0].polygon;
-  const auto at = std::find_if(polygon.begin(), polygon.end(), [&](const Vec2& p) { return (p - truth[3]).norm() < 0.05; });
+  const auto at =
+      std::find_if(polygon.begin(), polygon.end(), [&](const Vec2& p) { return (p - truth[3]).norm() < 0.05; });
   ASSERT_NE(at, polygon.end()) << state["corners"].dump();
   // Its neighbours in the outline: toward (2, 3.5) on one side, toward (0.5, 1.5) on the other.
   const std::size_t i = at - polygon.begin(), n = polygon.size();
@@ -251,8 +252,8 @@ TEST(ReviewSession, OpeningsAreAddedMovedAndDeleted) {
     const Vec3 ray = DirectionFromEquirectPixel(Vec2(0.5 * (a.x() + b.x()), 100.0), kPanoWidth, kPanoHeight);
     const double x_mid = kCamera.x() + (kY0 - kCamera.y()) / ray.y() * ray.x();
     const Vec2 top = PanoPixel(Vec3(x_mid, kY0, 2.0)), bottom = PanoPixel(Vec3(x_mid, kY0, 0.9));
-    return nlohmann::json{{"op", op}, {"kind", "window"}, {"u0", a.x()}, {"u1", b.x()}, {"v_top", top.y()},
-                          {"v_bottom", bottom.y()}};
+    return nlohmann::json{{"op", op},    {"kind", "window"}, {"u0", a.x()},
+                          {"u1", b.x()}, {"v_top", top.y()}, {"v_bottom", bottom.y()}};
   };
   nlohmann::json state = session.Edit(window("add_opening", -1.0, 0.0));
   ASSERT_EQ(state["openings"].size(), 2u);  // The survey's door and the new window.
@@ -382,8 +383,8 @@ TEST(ReviewSession, StereoClassroomCornerClickInAFrame) {
   const Vec2 inside = xy + 0.4 * (centre - xy).normalized();
   state = session.Edit({{"op", "move_corner"}, {"id", corner["id"]}, {"xy_m", {inside.x(), inside.y()}}});
   EXPECT_LT(RoomPolygonOverlap(PlanOf(state), truth)->Iou(), 0.99);
-  nlohmann::json click = {{"op", "move_corner"}, {"id", corner["id"]}, {"frame", corner["frame"]},
-                          {"u", corner["u"]}, {"v", corner["v"]}};
+  nlohmann::json click = {
+      {"op", "move_corner"}, {"id", corner["id"]}, {"frame", corner["frame"]}, {"u", corner["u"]}, {"v", corner["v"]}};
   state = session.Edit(click);
   EXPECT_GE(RoomPolygonOverlap(PlanOf(state), truth)->Iou(), 0.95);
   const auto t = std::chrono::steady_clock::now();

@@ -1,10 +1,10 @@
 #include "asbuilt/review/review_test_fixtures.h"
 
+#include <fmt/format.h>
+
 #include <array>
 #include <cmath>
 #include <mutex>
-
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -45,14 +45,16 @@ fs::path MakePanoramaSurvey() {
     for (int u = 0; u < kPanoWidth; ++u) {
       const Vec3 ray = DirectionFromEquirectPixel(Vec2(u, v), kPanoWidth, kPanoHeight);
       const unsigned char label = LabelOfRay(ray);
-      pano.at<cv::Vec3b>(v, u) = label == 2   ? cv::Vec3b(60, 90, 140)
-                                 : label == 1 ? cv::Vec3b(200, 205, 210)
+      pano.at<cv::Vec3b>(v, u) = label == 2    ? cv::Vec3b(60, 90, 140)
+                                 : label == 1  ? cv::Vec3b(200, 205, 210)
                                  : ray.z() > 0 ? cv::Vec3b(250, 250, 250)
                                                : cv::Vec3b(90, 100, 110);
     }
   }
   cv::imwrite((dir / "pano.png").string(), pano);
-  const nlohmann::json capture = {{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"},
+  const nlohmann::json capture = {{"version", 1},
+                                  {"kind", "panorama"},
+                                  {"panorama", "pano.png"},
                                   {"position_m", {kCamera.x(), kCamera.y(), kCamera.z()}}};
   WriteFileAtomic(dir / "capture.json", capture.dump());
   SurveyOptions options{.write_report = false};
@@ -96,7 +98,9 @@ fs::path MakeLRoomSurvey() {
   fs::create_directories(dir / "labels");
   cv::Mat pano(kPanoHeight, kPanoWidth, CV_8UC3, cv::Scalar(180, 180, 180));
   cv::imwrite((dir / "pano.png").string(), pano);
-  const nlohmann::json capture = {{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"},
+  const nlohmann::json capture = {{"version", 1},
+                                  {"kind", "panorama"},
+                                  {"panorama", "pano.png"},
                                   {"position_m", {kLCamera.x(), kLCamera.y(), kLCamera.z()}}};
   WriteFileAtomic(dir / "capture.json", capture.dump());
   SurveyOptions options{.write_report = false};

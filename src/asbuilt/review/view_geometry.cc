@@ -57,10 +57,11 @@ std::optional<WallHit> WallOfPixel(const ReviewImage& image, const Plan& plan, c
     const Vec2 a = plan.walls[w].start, e = plan.walls[w].end - a;
     const double denom = Cross(dir, e);
     if (std::abs(denom) < 1e-12) continue;
-    const double t = Cross(a - c, e) / denom;   // Along the ray.
+    const double t = Cross(a - c, e) / denom;    // Along the ray.
     const double s = Cross(a - c, dir) / denom;  // Along the wall.
     if (t <= 1e-6 || s < -1e-6 || s > 1 + 1e-6) continue;
-    if (!best || t < best->distance_m) best = WallHit{.xy_m = c + t * dir, .wall = static_cast<int>(w), .distance_m = t};
+    if (!best || t < best->distance_m)
+      best = WallHit{.xy_m = c + t * dir, .wall = static_cast<int>(w), .distance_m = t};
   }
   return best;
 }
