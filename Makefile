@@ -10,6 +10,7 @@ all: build
 deps:
 	@bash scripts/install-deps.sh
 	@bash tests/mcp_client/install.sh
+	@bash tests/review_browser/install.sh
 
 $(BUILD)/build.ninja:
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)

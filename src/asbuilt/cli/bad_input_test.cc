@@ -315,6 +315,14 @@ std::vector<Case> Cases() {
        "points {d}/capture.json --labels {d}/labels -o {d}/out", 1, {"{d}/capture.json", "no point"}},
 
       // ---------------------------------------------------------------- plan / eval
+      {"ReviewNotASurvey", {{"a.txt", "x"}}, "review {d} --no-open", 1, {"not a folder written by `asbuilt survey`"}},
+      {"ReviewMissingFolder", {}, "review {d}/nope --no-open", 1, {"{d}/nope", "not a folder"}},
+      {"ReviewBrokenInput", {{"review/input.json", "{\"kind\": "}}, "review {d} --no-open", 1, {"input.json"}},
+      {"ReviewUnknownKind", {{"review/input.json", R"({"points": "points.bin", "kind": "sphere"})"}}, "review {d} --no-open", 1,
+       {"input.json", "sphere"}},
+      {"ReviewOlderSurvey", {{"review/input.json", R"({"points": "points.txt", "kind": "panorama"})"}},
+       "review {d} --no-open", 1, {"input.json", "older asbuilt survey"}},
+      {"ReviewBadPort", {{"a.txt", "x"}}, "review {d} --port 70000 --no-open", 2, {"port", "70000"}},
       {"PlanMissingPoints", {}, "plan {d}/p.txt -o {d}/out", 1, {"{d}/p.txt"}},
       {"PlanEmptyPoints", {{"p.txt", ""}}, "plan {d}/p.txt -o {d}/out", 1, {"{d}/p.txt"}},
       {"PlanMalformedLine", {{"p.txt", "wall 1 2\n"}}, "plan {d}/p.txt -o {d}/out", 1, {"{d}/p.txt", "line 1"}},

@@ -35,6 +35,8 @@ std::span<const Command> Commands() {
       {"disparity", "dense disparity of a rectified pair → float PFM + colour picture", &RunDisparityCommand},
       {"points", "world points by class (wall/door/window) from a capture and its labels → points.txt, PLY",
        &RunPointsCommand},
+      {"review", "check and correct a survey in the browser: drag corners, set the ceiling, openings; re-fit per edit",
+       &RunReviewCommand},
       {"mcp", "MCP server on stdio: scene-building and rendering tools for LLM agents (Claude Desktop)",
        &RunMcpCommand},
       {"labels", "ID maps → label maps (calibrate, convert), real annotations in (ADE20K, NYUv2, LabelMe), compare",

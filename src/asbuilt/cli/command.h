@@ -82,6 +82,7 @@ int RunRectifyCommand(int argc, char** argv);
 int RunDisparityCommand(int argc, char** argv);
 int RunPointsCommand(int argc, char** argv);
 int RunMcpCommand(int argc, char** argv);
+int RunReviewCommand(int argc, char** argv);
 int RunLabelsCommand(int argc, char** argv);
 int RunDatasetCommand(int argc, char** argv);
 int RunVersionCommand(int argc, char** argv);

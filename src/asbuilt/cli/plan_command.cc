@@ -17,7 +17,7 @@
 #include "asbuilt/formats/points_file.h"
 #include "asbuilt/plan/drawing.h"
 #include "asbuilt/plan/label_points.h"
-#include "asbuilt/plan/reconstruct.h"
+#include "asbuilt/plan/fit_plan.h"
 
 namespace asbuilt::cli {
 
@@ -68,7 +68,9 @@ int RunPlanCommand(int argc, char** argv) {
   } else {
     points = ReadPoints(input);
   }
-  PlanResult result = ReconstructPlan(points, options, input);
+  // Points alone say nothing of where they were seen from: the viewpoint is
+  // the flag's (or a capture's first frame), the labels count as segmented.
+  PlanResult result = FitPlan({.points = std::move(points), .source = input}, options);
   WritePlanFiles(result.plan, out_dir, drawing, ifc);
   fmt::print("{}: {}\n", out_dir, result.summary.BriefReport());
   return 0;

@@ -21,8 +21,10 @@
 #include "asbuilt/pipeline/pano_layout_labels.h"
 #include "asbuilt/pipeline/points_plot.h"
 #include "asbuilt/pipeline/report.h"
+#include "asbuilt/pipeline/review_input.h"
 #include "asbuilt/pipeline/segmenter_labels.h"
 #include "asbuilt/plan/drawing.h"
+#include "asbuilt/plan/fit_plan.h"
 #include "asbuilt/seg/segmenter.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
@@ -210,13 +212,19 @@ struct Survey {
   std::optional<MonoViews> views;  // A panorama's level views.
   cv::Mat equirect;                 // With pano_layout: the panorama (8-bit BGR) and its views.
   std::vector<PanoView> pano_views;
+  std::pair<int, int> pano_size_px{0, 0};  // The panorama's width and height.
   cv::Mat layout_picture;           // The panorama with its layout drawn (PanoLayoutLabels).
   std::string layout_brief;         // PanoLayout::BriefReport().
   std::optional<Plan> truth;
   std::unique_ptr<LabelSource> labels;
   std::vector<ClassPoint> points;
+  PlanInput plan_input;  // What the plan was fitted from (review/ re-fits it).
+  struct LabelPng {
+    int frame, width_px, height_px;
+    std::string png;
+  };
+  std::vector<LabelPng> label_pngs;  // Each frame's labels, PNG-encoded, for review/labels/.
   std::vector<Vec2> rigs;
-  std::optional<Vec3> viewpoint_m;  // Mean camera / rig position.
   double coverage_deg = 360.0;      // Of the turn around the camera.
   std::vector<ReportFrame> report_frames;
   std::string plan_svg;  // The drawing, for the report (empty: no walls).
@@ -240,6 +248,11 @@ class SurveyFrameObserver final : public FrameObserver {
       survey_.summary().notes.push_back(
           stereo ? fmt::format("frame {}: no points (no labelled structure with stereo evidence)", frame.index)
                  : fmt::format("view {}: no floor or ceiling contact of a wall", frame.index));
+    }
+    if (!labels.empty()) {  // Kept for asbuilt review; written with the other outputs.
+      std::vector<uchar> png;
+      cv::imencode(".png", labels, png);
+      survey_.label_pngs.push_back({frame.index, labels.cols, labels.rows, std::string(png.begin(), png.end())});
     }
     const int wanted = survey_.options.report_frames;
     if (wanted != 0 && static_cast<int>(survey_.report_frames.size()) >= wanted) return;
@@ -269,6 +282,7 @@ void ReadCaptureStage(Survey& s) {
   if (s.capture.kind == CaptureKind::kPanorama) {
     const CapturePanorama& pano = *s.capture.panorama;
     const Image equirect = ReadEquirect(s.capture.Resolve(pano.image));
+    s.pano_size_px = {equirect.width(), equirect.height()};
     const std::vector<PanoView> views = TurnInPlaceViews(s.options.panorama_views);
     if (s.options.pano_layout && !s.options.labels_dir && !s.options.use_capture_labels) {
       s.equirect = AsMat(equirect).clone();  // Only the layout reads it again.
@@ -326,12 +340,7 @@ void PointsStage(Survey& s, const ProgressCallback& progress) {
   CapturePointsResult gathered = s.views ? ComputeCapturePoints(*s.views, *s.labels, options, &observer, progress)
                                          : ComputeCapturePoints(s.capture, *s.labels, options, &observer, progress);
   SurveySummary& summary = s.summary();
-  Vec3 rig_sum = Vec3::Zero();
-  for (const CaptureFrame& f : s.frames()) {
-    s.rigs.push_back(f.position_m.head<2>());
-    rig_sum += f.position_m;
-  }
-  if (!s.frames().empty()) s.viewpoint_m = rig_sum / static_cast<double>(s.frames().size());
+  for (const CaptureFrame& f : s.frames()) s.rigs.push_back(f.position_m.head<2>());
   s.coverage_deg = YawCoverageDeg(s.frames(), gathered.camera);
   s.points = std::move(gathered.points);
   summary.points = static_cast<int>(s.points.size());
@@ -396,29 +405,35 @@ void DescribeWallEvidence(Survey& s) {
       list, unseen.size() == 1 ? "is" : "are", unseen.size() == 1 ? "its" : "their", unseen.size() == 1 ? "" : "s"));
 }
 
+// What the plan stage needs to know of this survey (plan/fit_plan.h decides
+// the plan settings from it): the points, where each frame's camera stood,
+// the capture's kind, the labels' origin and the ceiling.
+PlanInput SurveyPlanInput(const Survey& s) {
+  PlanInput input{.points = s.points,
+                  .source = s.capture_json.string(),
+                  .one_camera = s.capture.kind != CaptureKind::kStereo,
+                  .exact_labels = s.options.use_capture_labels,
+                  .ceiling_height_m = s.result.summary.ceiling_height_m,
+                  .ceiling_height_sigma_m = s.result.summary.ceiling_height_sigma_m};
+  const bool stereo = s.capture.kind == CaptureKind::kStereo;
+  for (const CaptureFrame& f : s.frames()) {
+    const RigPose pose{.position_m = f.position_m, .yaw_rad = DegToRad(f.yaw_deg)};
+    input.frames.push_back({.index = f.index,
+                            .position_m = f.position_m,
+                            .camera_m = stereo ? EyeCentre(pose, s.capture.camera.baseline_m, StereoEye::kLeft)
+                                               : f.position_m});
+  }
+  return input;
+}
+
 // The plan from the points, and what it rests on.
 void PlanStage(Survey& s) {
   const auto t = Clock::now();
   SurveySummary& summary = s.summary();
   Plan& plan = s.result.plan;
-  PlanOptions plan_options = s.options.plan;
-  if (!plan_options.viewpoint_m) plan_options.viewpoint_m = s.viewpoint_m;
-  plan_options = plan_options.ForLabels(s.options.use_capture_labels);
-  // The ceiling estimate's σ as a share of its height above the rig: a
-  // ceiling contact's distance is proportional to H − h (docs/plan.md, "±").
-  if (s.viewpoint_m && std::isfinite(summary.ceiling_height_m) && std::isfinite(summary.ceiling_height_sigma_m) &&
-      summary.ceiling_height_m - s.viewpoint_m->z() > 0.1 && !plan_options.ceiling_scale_sigma) {
-    plan_options.ceiling_scale_sigma = summary.ceiling_height_sigma_m / (summary.ceiling_height_m - s.viewpoint_m->z());
-  }
-  // One camera turning in place: every point was seen from the viewpoint
-  // (turned on here for such captures; `--plan.one-viewpoint` forces it on).
-  if (!plan_options.one_viewpoint && s.capture.kind != CaptureKind::kStereo && s.viewpoint_m) {
-    bool one_spot = true;
-    for (const Vec2& rig : s.rigs) one_spot = one_spot && (rig - s.viewpoint_m->head<2>()).norm() < 0.05;
-    plan_options.one_viewpoint = one_spot;
-  }
+  s.plan_input = SurveyPlanInput(s);
   try {
-    PlanResult reconstructed = ReconstructPlan(s.points, plan_options, s.capture_json.string());
+    PlanResult reconstructed = FitPlan(s.plan_input, s.options.plan);
     plan = std::move(reconstructed.plan);
     summary.plan = reconstructed.summary;
     if (!reconstructed.summary.closed && !plan.walls.empty()) {
@@ -452,6 +467,56 @@ void ScoreStage(Survey& s) {
   s.summary().room_overlap = RoomPolygonOverlap(s.result.plan, *s.truth);
 }
 
+// What `asbuilt review` needs to re-fit this survey's plan (pipeline/review_input.h).
+ReviewInput SurveyReviewInput(const Survey& s) {
+  ReviewInput in{.kind = s.result.summary.capture_kind,
+                 .capture_json = s.capture_json,
+                 .plan_input = s.plan_input,
+                 .plan_options = s.options.plan,
+                 .labels_source = s.result.summary.labels_source};
+  // Each frame's labels (the segmenter's, or those given) beside the cameras they belong to.
+  const PinholeCamera frame_camera = s.views ? s.views->camera : s.capture.camera.Pinhole();
+  for (const Survey::LabelPng& l : s.label_pngs) {
+    const fs::path file = s.out_dir / "review" / "labels" / fmt::format("{:03d}.png", l.frame);
+    fs::create_directories(file.parent_path());
+    WriteFileAtomic(file, l.png);
+    const auto frame = std::find_if(s.frames().begin(), s.frames().end(),
+                                    [&](const CaptureFrame& f) { return f.index == l.frame; });
+    const auto planned = std::find_if(s.plan_input.frames.begin(), s.plan_input.frames.end(),
+                                      [&](const PlanFrame& f) { return f.index == l.frame; });
+    if (frame == s.frames().end() || planned == s.plan_input.frames.end()) continue;
+    in.labels.push_back({.frame = l.frame,
+                         .image = file,
+                         .width_px = l.width_px,
+                         .height_px = l.height_px,
+                         .camera = frame_camera,
+                         .yaw_deg = frame->yaw_deg,
+                         .camera_m = planned->camera_m});
+  }
+  if (s.capture.panorama) {
+    const CapturePanorama& pano = *s.capture.panorama;
+    in.images.push_back({.frame = -1,
+                         .image = s.capture.Resolve(pano.image),
+                         .width_px = s.pano_size_px.first,
+                         .height_px = s.pano_size_px.second,
+                         .yaw_deg = pano.yaw_deg,
+                         .camera_m = pano.position_m});
+    return in;
+  }
+  const PinholeCamera camera = s.capture.camera.Pinhole();
+  for (std::size_t i = 0; i < s.capture.frames.size(); ++i) {
+    const CaptureFrame& f = s.capture.frames[i];
+    in.images.push_back({.frame = f.index,
+                         .image = s.capture.Resolve(f.left),
+                         .width_px = camera.width_px,
+                         .height_px = camera.height_px,
+                         .camera = camera,
+                         .yaw_deg = f.yaw_deg,
+                         .camera_m = i < s.plan_input.frames.size() ? s.plan_input.frames[i].camera_m : f.position_m});
+  }
+  return in;
+}
+
 // plan.json and, with walls, its drawings (each once); the points; the score.
 void WriteOutputsStage(Survey& s) {
   const auto t = Clock::now();
@@ -468,6 +533,7 @@ void WriteOutputsStage(Survey& s) {
   if (s.summary().score) {
     WriteFileAtomic(s.out_dir / "score.json", PlanScoreToJson(*s.summary().score).dump(2) + "\n");
   }
+  WriteReviewInput(s.out_dir, SurveyReviewInput(s));
   s.times.Add("write outputs", Since(t));
 }
 

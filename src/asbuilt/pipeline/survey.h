@@ -131,7 +131,9 @@ struct SurveyResult {
 
 // Runs the whole survey (any capture kind) and writes into `out_dir`: plan.json, plan.svg,
 // plan.dxf, plan.pdf, plan.png, plan.ifc, points.txt, points.ply, score.json (with a
-// truth), summary.json and report.html. Every file is written atomically.
+// truth), summary.json, report.html, and what `asbuilt review` re-fits from
+// (review/input.json, review/points.bin; pipeline/review_input.h). Every
+// file is written atomically.
 // Throws InputError for bad captures, images or models (naming the file);
 // nothing is written then.
 SurveyResult RunSurvey(const std::filesystem::path& capture_json,

@@ -12,6 +12,7 @@
 #include "asbuilt/plan/plan_openings.h"
 #include "asbuilt/plan/plan_points.h"
 #include "asbuilt/plan/plan_ring.h"
+#include "asbuilt/plan/plan_stages.h"
 #include "asbuilt/plan/plan_uncertainty.h"
 #include "asbuilt/util/error.h"
 
@@ -52,8 +53,8 @@ void RequireTwoLines(int lines, int wall_points, const std::string& points_sourc
 // polygon, with their ±. A polygon running clockwise (the viewpoint was
 // outside the room's kernel) is reported with its area's absolute value
 // and a warning.
-Plan PlanFromRing(const Ring& ring, const RingSigmas& sigmas) {
-  const std::vector<Vec2> corners = RingCorners(ring.walls);
+Plan PlanFromRing(const Ring& ring, const RingSigmas& sigmas, const std::vector<Vec2>* given_corners) {
+  const std::vector<Vec2> corners = given_corners ? *given_corners : RingCorners(ring.walls);
   const int n = static_cast<int>(corners.size());
   double height = 0;
   for (const WallLine& l : ring.walls) height = std::max(height, l.z_top);
@@ -203,48 +204,67 @@ std::vector<std::pair<double, double>> WallPiecesBetweenOpenings(const Plan& pla
   return pieces;
 }
 
+RingStages FitRingStages(const std::vector<ClassPoint>& points, const PlanOptions& options,
+                         const std::string& points_source) {
+  RingStages out;
+  PlanSummary& s = out.summary;
+  s.input_points = static_cast<int>(points.size());
+
+  // 1. Planarize.
+  out.planar = PlanarizePoints(points, options);
+  s.wall_points = static_cast<int>(out.planar.walls.points.size());
+  s.door_points = out.planar.door_points;
+  s.window_points = out.planar.window_points;
+  RequireEnoughWallPoints(s.wall_points, options, points_source);
+
+  // 2. Lines.
+  FittedLines fitted = FindWallLines(out.planar.walls, options);
+  s.lines_found = fitted.ransac_lines;
+
+  // 3. Dominant directions, Manhattan frame, snapping.
+  SnappedLines snapped = SnapToDominantDirections(out.planar.walls, std::move(fitted.lines), options);
+  s.manhattan = snapped.frame.manhattan;
+  for (const Direction& d : snapped.frame.directions) s.dominant_directions_deg.push_back(RadToDeg(d.theta));
+  RequireTwoLines(static_cast<int>(snapped.lines.size()), s.wall_points, points_source);
+  out.frame = snapped.frame;
+
+  // 4. Close the room around the viewpoint.
+  out.ring = CloseRoom(out.planar.walls, std::move(snapped.lines), out.planar.vertices, snapped.frame, options);
+  return out;
+}
+
+PlanResult PlanFromRingStages(const RingStages& stages, const Ring& ring, const PlanOptions& options,
+                              const std::vector<Vec2>* corners, bool skip_openings) {
+  PlanResult result;
+  PlanSummary& s = result.summary;
+  s = stages.summary;
+  s.inferred_walls = ring.inferred_walls;
+  s.closed = ring.walls.size() >= 3;
+  s.wall_inferred.clear();
+  for (const WallLine& l : ring.walls) s.wall_inferred.push_back(l.inferred);
+
+  // 5. Walls and room with their ±.
+  result.plan = PlanFromRing(ring, PropagateRingSigmas(stages.planar.walls, ring.walls, options), corners);
+  s.walls = static_cast<int>(result.plan.walls.size());
+  s.area_m2 = result.plan.rooms[0].area_m2;
+  SummarizeResiduals(stages.planar.walls, ring, s);
+  if (skip_openings) return result;
+
+  // 6. Openings on the walls.
+  FoundOpenings openings = FindOpenings(stages.planar.openings, result.plan.walls, ring.viewpoint, options);
+  result.plan.openings = std::move(openings.openings);
+  s.door_leaves = openings.door_leaves;
+  s.openings = static_cast<int>(result.plan.openings.size());
+  return result;
+}
+
 PlanResult ReconstructPlan(const std::vector<ClassPoint>& points, const PlanOptions& options,
                            const std::string& points_source) {
   options.Check();
   const auto start_time = std::chrono::steady_clock::now();
-  PlanResult result;
-  PlanSummary& s = result.summary;
-  s.input_points = static_cast<int>(points.size());
-
-  // 1. Planarize.
-  const PlanPoints planar = PlanarizePoints(points, options);
-  s.wall_points = static_cast<int>(planar.walls.points.size());
-  s.door_points = planar.door_points;
-  s.window_points = planar.window_points;
-  RequireEnoughWallPoints(s.wall_points, options, points_source);
-
-  // 2. Lines.
-  FittedLines fitted = FindWallLines(planar.walls, options);
-  s.lines_found = fitted.ransac_lines;
-
-  // 3. Dominant directions, Manhattan frame, snapping.
-  SnappedLines snapped = SnapToDominantDirections(planar.walls, std::move(fitted.lines), options);
-  s.manhattan = snapped.frame.manhattan;
-  for (const Direction& d : snapped.frame.directions) s.dominant_directions_deg.push_back(RadToDeg(d.theta));
-  RequireTwoLines(static_cast<int>(snapped.lines.size()), s.wall_points, points_source);
-
-  // 4. Close the room around the viewpoint.
-  const Ring ring = CloseRoom(planar.walls, std::move(snapped.lines), planar.vertices, snapped.frame, options);
-  s.inferred_walls = ring.inferred_walls;
-  s.closed = ring.walls.size() >= 3;
-
-  // 5. Walls and room with their ±.
-  result.plan = PlanFromRing(ring, PropagateRingSigmas(planar.walls, ring.walls, options));
-  s.walls = static_cast<int>(result.plan.walls.size());
-  s.area_m2 = result.plan.rooms[0].area_m2;
-  SummarizeResiduals(planar.walls, ring, s);
-
-  // 6. Openings on the walls.
-  FoundOpenings openings = FindOpenings(planar.openings, result.plan.walls, ring.viewpoint, options);
-  result.plan.openings = std::move(openings.openings);
-  s.door_leaves = openings.door_leaves;
-  s.openings = static_cast<int>(result.plan.openings.size());
-  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  const RingStages stages = FitRingStages(points, options, points_source);
+  PlanResult result = PlanFromRingStages(stages, stages.ring, options);
+  result.summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;
 }
 

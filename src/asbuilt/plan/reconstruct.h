@@ -54,6 +54,7 @@ struct PlanSummary {
   int lines_found = 0;         // Lines before ordering/merging.
   int walls = 0;
   int inferred_walls = 0;      // Connecting walls with no points of their own.
+  std::vector<bool> wall_inferred;  // Per wall of the plan: inferred (no points of its own).
   int openings = 0;
   int door_leaves = 0;         // Door widths taken from an open leaf (hinge side hidden).
   bool closed = false;         // Walls form a closed room polygon.

@@ -1,0 +1,43 @@
+// `asbuilt review OUT/` — check and correct a survey on its photo in the
+// browser (docs/review.md). The first line of stdout is the page's address
+// with its token; logs go to stderr; Ctrl-C ends it.
+
+#include <fmt/format.h>
+
+#include <csignal>
+#include <cstdio>
+#include <string>
+
+#include "asbuilt/cli/command.h"
+#include "asbuilt/review/http.h"
+#include "asbuilt/review/review_session.h"
+
+namespace asbuilt::cli {
+
+int RunReviewCommand(int argc, char** argv) {
+  CLI::App app(
+      "Check and correct a survey in the browser: its photo with the floor and ceiling lines, corners and\n"
+      "openings drawn over it, the live plan beside it; every edit re-fits the walls it touches from the\n"
+      "image evidence. Serves 127.0.0.1 only, with a random token; prints the address as the first line.",
+      "asbuilt review");
+  AddCommonFlags(app);
+  std::string out_dir;
+  ReviewServerOptions options;
+  bool no_open = false;
+  app.add_option("out", out_dir, "a folder written by `asbuilt survey -o`")->required();
+  app.add_option("--port", options.port, "port on 127.0.0.1 (0: a free one)")->capture_default_str();
+  app.add_flag("--no-open", no_open, "do not start a browser");
+  Parse(app, argc, argv);
+  options.open_browser = !no_open;
+  options.Check();
+
+  ReviewSession session = ReviewSession::Open(out_dir);
+  std::signal(SIGPIPE, SIG_IGN);
+  RunReviewServer(session, options, [](const std::string& url) {
+    fmt::print("asbuilt review: {}\n", url);
+    std::fflush(stdout);
+  });
+  return 0;
+}
+
+}  // namespace asbuilt::cli

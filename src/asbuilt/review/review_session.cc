@@ -1,0 +1,762 @@
+#include "asbuilt/review/review_session.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+
+#include "asbuilt/formats/plan_file.h"
+#include "asbuilt/pipeline/report.h"
+#include "asbuilt/pipeline/review_input.h"
+#include "asbuilt/plan/drawing.h"
+#include "asbuilt/plan/fit_plan.h"
+#include "asbuilt/review/view_geometry.h"
+#include "asbuilt/util/file.h"
+#include "asbuilt/util/json_reader.h"
+
+namespace asbuilt {
+namespace fs = std::filesystem;
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A corner: the person's point (user) or the survey's (a hint the fit re-places).
+struct Corner {
+  int id = 0;
+  Vec2 xy_m = Vec2::Zero();
+  bool user = false;
+};
+
+struct Opening {
+  int id = 0;
+  OpeningKind kind = OpeningKind::kDoor;
+  Vec2 start_m = Vec2::Zero(), end_m = Vec2::Zero();
+  double bottom_m = 0.0, top_m = 2.0;
+  bool user = false;
+};
+
+// What the person has said: the constraints of the fit.
+struct Layout {
+  std::vector<Corner> corners;
+  bool corners_edited = false;  // Else the corners are the fit's own (no corner constraint).
+  std::vector<Opening> openings;
+  bool openings_edited = false;  // Else the openings are the fit's own.
+  std::optional<double> ceiling_m;
+  int next_id = 0;
+};
+
+constexpr double kMaxFloorDistanceM = 30.0;
+constexpr double kMaxCeilingM = 10.0;
+
+nlohmann::json Xy(const Vec2& v) { return {v.x(), v.y()}; }
+
+nlohmann::json LayoutJson(const Layout& l) {
+  nlohmann::json js = {{"corners", nlohmann::json::array()},
+                       {"corners_edited", l.corners_edited},
+                       {"openings", nlohmann::json::array()},
+                       {"openings_edited", l.openings_edited},
+                       {"next_id", l.next_id}};
+  js["ceiling_height_m"] = l.ceiling_m ? nlohmann::json(*l.ceiling_m) : nlohmann::json();
+  for (const Corner& c : l.corners) {
+    js["corners"].push_back({{"id", c.id}, {"xy_m", Xy(c.xy_m)}, {"by", c.user ? "user" : "survey"}});
+  }
+  for (const Opening& o : l.openings) {
+    js["openings"].push_back({{"id", o.id},
+                              {"kind", OpeningKindName(o.kind)},
+                              {"start_m", Xy(o.start_m)},
+                              {"end_m", Xy(o.end_m)},
+                              {"bottom_m", o.bottom_m},
+                              {"top_m", o.top_m},
+                              {"by", o.user ? "user" : "survey"}});
+  }
+  return js;
+}
+
+Vec2 XyFrom(const nlohmann::json& v, const std::string& what) {
+  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number()) {
+    throw InputError(what, "", "expected [x, y]");
+  }
+  return Vec2(v[0].get<double>(), v[1].get<double>());
+}
+
+Layout LayoutFromJson(const nlohmann::json& js, const std::string& name) {
+  Layout l;
+  try {
+    l.corners_edited = js.at("corners_edited").get<bool>();
+    l.openings_edited = js.at("openings_edited").get<bool>();
+    l.next_id = js.at("next_id").get<int>();
+    if (js.at("ceiling_height_m").is_number()) l.ceiling_m = js["ceiling_height_m"].get<double>();
+    for (const nlohmann::json& c : js.at("corners")) {
+      l.corners.push_back({.id = c.at("id").get<int>(),
+                           .xy_m = XyFrom(c.at("xy_m"), name),
+                           .user = c.at("by").get<std::string>() == "user"});
+    }
+    for (const nlohmann::json& o : js.at("openings")) {
+      l.openings.push_back(
+          {.id = o.at("id").get<int>(),
+           .kind = o.at("kind").get<std::string>() == "window" ? OpeningKind::kWindow : OpeningKind::kDoor,
+           .start_m = XyFrom(o.at("start_m"), name),
+           .end_m = XyFrom(o.at("end_m"), name),
+           .bottom_m = o.at("bottom_m").get<double>(),
+           .top_m = o.at("top_m").get<double>(),
+           .user = o.at("by").get<std::string>() == "user"});
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(name, "layout", fmt::format("unexpected value: {}", e.what()));
+  }
+  return l;
+}
+
+PlanConstraints ConstraintsOf(const Layout& l) {
+  PlanConstraints c;
+  if (l.corners_edited) {
+    for (const Corner& k : l.corners) c.corners.push_back({.xy_m = k.xy_m, .fixed = k.user});
+  }
+  if (l.openings_edited) {
+    c.openings.emplace();
+    for (const Opening& o : l.openings) {
+      c.openings->push_back(
+          {.kind = o.kind, .start_m = o.start_m, .end_m = o.end_m, .bottom_m = o.bottom_m, .top_m = o.top_m});
+    }
+  }
+  c.ceiling_height_m = l.ceiling_m;
+  return c;
+}
+
+std::vector<Vec2> CornerPoints(const Layout& l) {
+  std::vector<Vec2> out;
+  for (const Corner& c : l.corners) out.push_back(c.xy_m);
+  return out;
+}
+
+// Reads a finite number field of an edit.
+double Number(const nlohmann::json& edit, const char* key) {
+  const std::string op = edit.value("op", "");
+  if (!edit.contains(key)) throw EditError(fmt::format("{}: \"{}\" is missing", op, key));
+  const nlohmann::json& v = edit[key];
+  if (!v.is_number() || !std::isfinite(v.get<double>())) {
+    throw EditError(fmt::format("{}: \"{}\" must be a finite number, got {}", op, key, v.dump()));
+  }
+  return v.get<double>();
+}
+
+int Integer(const nlohmann::json& edit, const char* key) {
+  const std::string op = edit.value("op", "");
+  if (!edit.contains(key)) throw EditError(fmt::format("{}: \"{}\" is missing", op, key));
+  const nlohmann::json& v = edit[key];
+  if (!v.is_number_integer()) throw EditError(fmt::format("{}: \"{}\" must be an integer, got {}", op, key, v.dump()));
+  return v.get<int>();
+}
+
+}  // namespace
+
+struct ReviewSession::Impl {
+  fs::path out_dir;
+  ReviewInput input;
+  std::unique_ptr<PlanFitter> fitter;
+  nlohmann::json survey_summary;  // OUT/summary.json, when readable.
+  Layout initial;
+  Layout layout;
+  PlanResult fit;
+  std::vector<Layout> undo, redo;
+  nlohmann::json log = nlohmann::json::array();  // Every edit in order (corrections.json).
+  double fit_seconds = 0.0;
+
+  const ReviewImage& ImageOf(const nlohmann::json& edit) const {
+    if (input.kind == "panorama") return input.images.front();
+    const int frame = Integer(edit, "frame");
+    for (const ReviewImage& im : input.images) {
+      if (im.frame == frame) return im;
+    }
+    throw EditError(fmt::format("{}: no frame {} in this capture", edit.value("op", ""), frame));
+  }
+
+  Vec2 PixelOf(const nlohmann::json& edit, const ReviewImage& image, const char* u_key, const char* v_key) const {
+    const Vec2 pixel(Number(edit, u_key), Number(edit, v_key));
+    if (!PixelInside(image, pixel)) {
+      throw EditError(fmt::format("{}: ({}, {}) = ({:.1f}, {:.1f}) is outside the {}×{} image", edit.value("op", ""),
+                                  u_key, v_key, pixel.x(), pixel.y(), image.width_px, image.height_px));
+    }
+    return pixel;
+  }
+
+  Vec2 FloorPoint(const nlohmann::json& edit) const {
+    const ReviewImage& image = ImageOf(edit);
+    const Vec2 pixel = PixelOf(edit, image, "u", "v");
+    const std::optional<Vec2> xy = FloorPointOfPixel(image, pixel);
+    if (!xy) {
+      throw EditError(fmt::format("{}: ({:.1f}, {:.1f}) is at or above the horizon: a floor corner is seen below it",
+                                  edit.value("op", ""), pixel.x(), pixel.y()));
+    }
+    const double d = (*xy - image.camera_m.head<2>()).norm();
+    if (d > kMaxFloorDistanceM) {
+      throw EditError(
+          fmt::format("{}: ({:.1f}, {:.1f}) meets the floor {:.1f} m away (more than {:.0f} m): click "
+                      "lower, on the wall's base",
+                      edit.value("op", ""), pixel.x(), pixel.y(), d, kMaxFloorDistanceM));
+    }
+    return *xy;
+  }
+
+  // The horizontal distance to the wall seen in pixel's column: from its
+  // floor edge (the median of the floor contacts within ±1.5° of its bearing,
+  // which a ceiling height does not move), else from the plan's walls.
+  std::optional<double> WallDistanceInColumn(const ReviewImage& image, const Vec2& pixel) const {
+    const Vec3 ray = RayOfPixel(image, pixel);
+    const double bearing = std::atan2(ray.y(), ray.x());
+    std::vector<double> distances;
+    for (const ClassPoint& p : input.plan_input.points) {
+      if (p.source != PointSource::kContact || p.label != LabelClass::kWall || p.position_m.z() > 0.1) continue;
+      const Vec2 q = p.position_m.head<2>() - image.camera_m.head<2>();
+      const double diff = std::remainder(std::atan2(q.y(), q.x()) - bearing, 2 * kPi);
+      if (std::abs(diff) <= DegToRad(1.5)) distances.push_back(q.norm());
+    }
+    if (distances.size() >= 3) {
+      std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
+      return distances[distances.size() / 2];
+    }
+    const auto hit = WallOfPixel(image, fit.plan, pixel);
+    if (!hit) return std::nullopt;
+    return hit->distance_m;
+  }
+
+  int CornerIndex(const Layout& l, int id, const std::string& op) const {
+    for (std::size_t i = 0; i < l.corners.size(); ++i) {
+      if (l.corners[i].id == id) return static_cast<int>(i);
+    }
+    throw EditError(fmt::format("{}: no corner with id {}", op, id));
+  }
+  int OpeningIndex(const Layout& l, int id, const std::string& op) const {
+    for (std::size_t i = 0; i < l.openings.size(); ++i) {
+      if (l.openings[i].id == id) return static_cast<int>(i);
+    }
+    throw EditError(fmt::format("{}: no opening with id {}", op, id));
+  }
+
+  // An opening from its two end columns, head and sill rows, on the walls of the current plan.
+  Opening OpeningFrom(const nlohmann::json& edit, int id) const {
+    const std::string op = edit.value("op", "");
+    if (!edit.contains("kind") || !edit["kind"].is_string() || (edit["kind"] != "door" && edit["kind"] != "window")) {
+      throw EditError(fmt::format("{}: \"kind\" must be \"door\" or \"window\"", op));
+    }
+    const ReviewImage& image = ImageOf(edit);
+    const double v_top = Number(edit, "v_top"), v_bottom = Number(edit, "v_bottom");
+    const Vec2 p0 = PixelOf(edit, image, "u0", "v_top"), p1 = PixelOf(edit, image, "u1", "v_bottom");
+    if (!(v_top < v_bottom))
+      throw EditError(fmt::format("{}: v_top ({}) must be above v_bottom ({})", op, v_top, v_bottom));
+    if (std::abs(p0.x() - p1.x()) < 1.0)
+      throw EditError(fmt::format("{}: u0 and u1 must differ by a pixel or more", op));
+    const double v_mid = 0.5 * (v_top + v_bottom);
+    double u_mid = 0.5 * (p0.x() + p1.x());
+    if (image.frame < 0 && std::abs(p0.x() - p1.x()) > 0.5 * image.width_px) {
+      u_mid = std::fmod(u_mid + 0.5 * image.width_px, image.width_px);  // Across the panorama's seam.
+    }
+    const auto a = WallOfPixel(image, fit.plan, {p0.x(), v_mid});
+    const auto b = WallOfPixel(image, fit.plan, {p1.x(), v_mid});
+    const auto m = WallOfPixel(image, fit.plan, {u_mid, v_mid});
+    if (!a || !b || !m) throw EditError(fmt::format("{}: the columns u0..u1 do not all meet a wall of the plan", op));
+    Opening o{.id = id,
+              .kind = edit["kind"] == "window" ? OpeningKind::kWindow : OpeningKind::kDoor,
+              .start_m = a->xy_m,
+              .end_m = b->xy_m,
+              .user = true};
+    o.top_m = HeightAtDistance(image, {u_mid, v_top}, m->distance_m);
+    o.bottom_m = std::max(0.0, HeightAtDistance(image, {u_mid, v_bottom}, m->distance_m));
+    if (o.kind == OpeningKind::kDoor && o.bottom_m < 0.1) o.bottom_m = 0.0;
+    if (!(o.top_m > o.bottom_m + 0.05)) {
+      throw EditError(fmt::format("{}: head ({:.2f} m) and sill ({:.2f} m) leave no opening", op, o.top_m, o.bottom_m));
+    }
+    return o;
+  }
+
+  // The openings as a list the person edits (the fit's own, until edited).
+  void MaterializeOpenings(Layout& l) const {
+    if (l.openings_edited) return;
+    l.openings_edited = true;
+    l.openings.clear();
+    for (const PlanOpening& o : fit.plan.openings) {
+      l.openings.push_back({.id = l.next_id++,
+                            .kind = o.kind,
+                            .start_m = o.start,
+                            .end_m = o.end,
+                            .bottom_m = o.sill.value_or(0.0),
+                            .top_m = o.sill.value_or(0.0) + o.height.value_or(2.0),
+                            .user = false});
+    }
+  }
+
+  Layout Apply(const nlohmann::json& edit) const {
+    if (!edit.is_object()) throw EditError("an edit is a JSON object with \"op\"");
+    if (!edit.contains("op") || !edit["op"].is_string()) throw EditError("an edit needs \"op\" (a string)");
+    const std::string op = edit["op"];
+    Layout l = layout;
+    if (op == "add_corner") {
+      const Vec2 xy = FloorPoint(edit);
+      l.corners_edited = true;
+      // Where it lengthens the outline least: between the two corners it belongs between.
+      const int n = static_cast<int>(l.corners.size());
+      const std::vector<Vec2>& at = fit.plan.rooms.at(0).polygon;
+      int best = 0;
+      double best_cost = INFINITY;
+      for (int i = 0; i < n; ++i) {
+        const Vec2 a = at[i], b = at[(i + 1) % n];
+        const double cost = (xy - a).norm() + (xy - b).norm() - (b - a).norm();
+        if (cost < best_cost) {
+          best_cost = cost;
+          best = i;
+        }
+      }
+      l.corners.insert(l.corners.begin() + best + 1, Corner{.id = l.next_id++, .xy_m = xy, .user = true});
+    } else if (op == "move_corner") {
+      const int i = CornerIndex(l, Integer(edit, "id"), op);
+      Vec2 xy;
+      if (edit.contains("xy_m")) {
+        const nlohmann::json& v = edit["xy_m"];
+        if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number() ||
+            !std::isfinite(v[0].get<double>()) || !std::isfinite(v[1].get<double>())) {
+          throw EditError("move_corner: \"xy_m\" must be [x, y], two finite numbers");
+        }
+        xy = Vec2(v[0].get<double>(), v[1].get<double>());
+      } else {
+        xy = FloorPoint(edit);
+      }
+      l.corners_edited = true;
+      l.corners[i].xy_m = xy;
+      l.corners[i].user = true;
+    } else if (op == "delete_corner") {
+      const int i = CornerIndex(l, Integer(edit, "id"), op);
+      if (l.corners.size() <= 3) throw EditError("delete_corner: a room needs at least 3 corners");
+      l.corners_edited = true;
+      l.corners.erase(l.corners.begin() + i);
+    } else if (op == "ceiling") {
+      const ReviewImage& image = ImageOf(edit);
+      const Vec2 pixel = PixelOf(edit, image, "u", "v");
+      const std::optional<double> distance = WallDistanceInColumn(image, pixel);
+      if (!distance) {
+        throw EditError(
+            fmt::format("ceiling: ({:.1f}, {:.1f}) does not look at a wall of the plan", pixel.x(), pixel.y()));
+      }
+      const double h = HeightAtDistance(image, pixel, *distance);
+      if (h < image.camera_m.z() + 0.1 || h > kMaxCeilingM) {
+        throw EditError(
+            fmt::format("ceiling: ({:.1f}, {:.1f}) puts the ceiling at {:.2f} m; a wall–ceiling line is "
+                        "above the camera ({:.2f} m) and below {:.0f} m",
+                        pixel.x(), pixel.y(), h, image.camera_m.z(), kMaxCeilingM));
+      }
+      l.ceiling_m = h;
+    } else if (op == "add_opening") {
+      MaterializeOpenings(l);
+      l.openings.push_back(OpeningFrom(edit, l.next_id++));
+    } else if (op == "move_opening") {
+      MaterializeOpenings(l);
+      const int i = OpeningIndex(l, Integer(edit, "id"), op);
+      l.openings[i] = OpeningFrom(edit, l.openings[i].id);
+    } else if (op == "delete_opening") {
+      MaterializeOpenings(l);
+      const int i = OpeningIndex(l, Integer(edit, "id"), op);
+      l.openings.erase(l.openings.begin() + i);
+    } else {
+      throw EditError(
+          fmt::format("unknown op \"{}\" (add_corner, move_corner, delete_corner, ceiling, add_opening, "
+                      "move_opening, delete_opening, undo, redo)",
+                      op));
+    }
+    return l;
+  }
+
+  // The plan under `l`; throws EditError when its corners cross each other
+  // where the current ones do not, or when it cannot be fitted.
+  PlanResult FitUnder(const Layout& l, bool new_edit) const {
+    if (new_edit && l.corners_edited && PolygonCrossings(CornerPoints(l)) > PolygonCrossings(CornerPoints(layout))) {
+      throw EditError("the room would cross itself: put the corner where it follows its neighbours along the walls");
+    }
+    PlanResult r;
+    try {
+      r = fitter->Fit(ConstraintsOf(l));
+    } catch (const InvalidArgument& e) {
+      throw EditError(e.what());
+    } catch (const Error& e) {
+      throw EditError(fmt::format("no plan under this edit: {}", e.what()));
+    }
+    if (r.plan.rooms.empty()) throw EditError("no room under this edit");
+    return r;
+  }
+
+  // The fit's own corners and openings where the person has not edited them.
+  void FollowFit(Layout& l) const {
+    if (!l.corners_edited) {
+      const std::vector<Vec2>& polygon = fit.plan.rooms.at(0).polygon;
+      if (l.corners.size() != polygon.size()) {
+        l.corners.clear();
+        for (const Vec2& p : polygon) l.corners.push_back({.id = l.next_id++, .xy_m = p});
+      } else {
+        for (std::size_t i = 0; i < polygon.size(); ++i) l.corners[i].xy_m = polygon[i];
+      }
+    }
+    if (!l.openings_edited) {
+      l.openings.clear();
+      for (const PlanOpening& o : fit.plan.openings) {
+        l.openings.push_back({.id = l.next_id++,
+                              .kind = o.kind,
+                              .start_m = o.start,
+                              .end_m = o.end,
+                              .bottom_m = o.sill.value_or(0.0),
+                              .top_m = o.sill.value_or(0.0) + o.height.value_or(2.0)});
+      }
+    }
+  }
+
+  void Refit(const Layout& l, bool new_edit = false) {
+    const auto t = Clock::now();
+    PlanResult r = FitUnder(l, new_edit);
+    fit_seconds = std::chrono::duration<double>(Clock::now() - t).count();
+    fit = std::move(r);
+    layout = l;
+    FollowFit(layout);
+  }
+
+  double CeilingM() const {
+    if (layout.ceiling_m) return *layout.ceiling_m;
+    if (std::isfinite(input.plan_input.ceiling_height_m)) return input.plan_input.ceiling_height_m;
+    for (const PlanWall& w : fit.plan.walls) {
+      if (w.height) return *w.height;
+    }
+    return 2.5;
+  }
+
+  // The floor and ceiling lines of the plan's walls in each image, as polylines of pixels.
+  nlohmann::json LinesInImages() const {
+    nlohmann::json out = nlohmann::json::array();
+    const double ceiling = CeilingM();
+    for (std::size_t i = 0; i < input.images.size(); ++i) {
+      const ReviewImage& im = input.images[i];
+      for (std::size_t w = 0; w < fit.plan.walls.size(); ++w) {
+        const PlanWall& wall = fit.plan.walls[w];
+        for (const char* kind : {"floor", "ceiling"}) {
+          const double z = std::string(kind) == "floor" ? 0.0 : ceiling;
+          std::vector<std::vector<std::array<double, 2>>> runs(1);
+          std::optional<Vec2> last;
+          constexpr int kSamples = 48;
+          for (int s = 0; s <= kSamples; ++s) {
+            const Vec2 xy = wall.start + (wall.end - wall.start) * (double(s) / kSamples);
+            const std::optional<Vec2> px = PixelOfPoint(im, Vec3(xy.x(), xy.y(), z));
+            const bool usable =
+                px && std::abs(px->x()) < 4.0 * im.width_px + 1 && std::abs(px->y()) < 4.0 * im.height_px + 1;
+            if (!usable || (last && im.frame < 0 && std::abs(px->x() - last->x()) > 0.5 * im.width_px)) {
+              if (!runs.back().empty()) runs.emplace_back();
+            }
+            if (usable) runs.back().push_back({px->x(), px->y()});
+            last = usable ? px : std::nullopt;
+          }
+          for (const auto& run : runs) {
+            if (run.size() < 2) continue;
+            out.push_back({{"image", i}, {"kind", kind}, {"wall", w}, {"points", run}});
+          }
+        }
+      }
+    }
+    return out;
+  }
+
+  nlohmann::json CornerJson(std::size_t i) const {
+    const Corner& c = layout.corners[i];
+    const Vec2 xy =
+        fit.plan.rooms.at(0).polygon.size() == layout.corners.size() ? fit.plan.rooms[0].polygon[i] : c.xy_m;
+    const Vec3 p(xy.x(), xy.y(), 0.0);
+    const int k = BestImageFor(input.images, p);
+    const ReviewImage& im = input.images[k];
+    nlohmann::json js = {{"id", c.id}, {"xy_m", Xy(xy)}, {"by", c.user ? "user" : "survey"}, {"image", k}};
+    if (const auto px = PixelOfPoint(im, p)) {
+      js["u"] = px->x();
+      js["v"] = px->y();
+    }
+    if (im.frame >= 0) js["frame"] = im.frame;
+    // Every image that sees it (a stereo or mono capture's frames overlap).
+    js["views"] = nlohmann::json::array();
+    for (std::size_t j = 0; j < input.images.size(); ++j) {
+      const auto px = PixelOfPoint(input.images[j], p);
+      if (px && PixelInside(input.images[j], *px))
+        js["views"].push_back({{"image", j}, {"u", px->x()}, {"v", px->y()}});
+    }
+    // How sure the fit is of it: the larger ± of the two walls it joins.
+    const int n = static_cast<int>(fit.plan.walls.size());
+    if (n == static_cast<int>(layout.corners.size())) {
+      const double s = std::max(fit.plan.walls[(i + n - 1) % n].length_sigma_m.value_or(0),
+                                fit.plan.walls[i].length_sigma_m.value_or(0));
+      js["sigma_m"] = s;
+    }
+    return js;
+  }
+
+  nlohmann::json OpeningJson(std::size_t i) const {
+    const Opening& o = layout.openings[i];
+    const Vec2 mid = 0.5 * (o.start_m + o.end_m);
+    const double z_mid = 0.5 * (o.bottom_m + o.top_m);
+    const int k = BestImageFor(input.images, Vec3(mid.x(), mid.y(), z_mid));
+    const ReviewImage& im = input.images[k];
+    nlohmann::json js = {{"id", o.id},
+                         {"kind", OpeningKindName(o.kind)},
+                         {"by", o.user ? "user" : "survey"},
+                         {"image", k},
+                         {"start_m", Xy(o.start_m)},
+                         {"end_m", Xy(o.end_m)},
+                         {"bottom_m", o.bottom_m},
+                         {"top_m", o.top_m}};
+    const auto a = PixelOfPoint(im, Vec3(o.start_m.x(), o.start_m.y(), z_mid));
+    const auto b = PixelOfPoint(im, Vec3(o.end_m.x(), o.end_m.y(), z_mid));
+    const auto top = PixelOfPoint(im, Vec3(mid.x(), mid.y(), o.top_m));
+    const auto bottom = PixelOfPoint(im, Vec3(mid.x(), mid.y(), o.bottom_m));
+    if (a && b && top && bottom) {
+      js["u0"] = a->x();
+      js["u1"] = b->x();
+      js["v_top"] = top->y();
+      js["v_bottom"] = bottom->y();
+    }
+    if (im.frame >= 0) js["frame"] = im.frame;
+    // The wall it lies on in the plan.
+    for (const PlanOpening& p : fit.plan.openings) {
+      if ((p.Centre() - mid).norm() < 0.05 + 0.5 * (o.end_m - o.start_m).norm()) {
+        js["wall"] = p.wall;
+        break;
+      }
+    }
+    if (!js.contains("wall")) js["wall"] = nullptr;
+    return js;
+  }
+
+  nlohmann::json StateJson() const {
+    nlohmann::json js;
+    js["kind"] = input.kind;
+    js["plan"] = PlanToJson(fit.plan);
+    js["corners"] = nlohmann::json::array();
+    for (std::size_t i = 0; i < layout.corners.size(); ++i) js["corners"].push_back(CornerJson(i));
+    js["openings"] = nlohmann::json::array();
+    for (std::size_t i = 0; i < layout.openings.size(); ++i) js["openings"].push_back(OpeningJson(i));
+    js["ceiling_height_m"] = CeilingM();
+    js["ceiling_by"] = layout.ceiling_m ? "user" : "survey";
+    js["edits"] = log.size();
+    js["can_undo"] = !undo.empty();
+    js["can_redo"] = !redo.empty();
+    js["refit_ms"] = 1000.0 * fit_seconds;
+    js["summary"] = fit.summary.BriefReport();
+    js["images"] = nlohmann::json::array();
+    for (std::size_t i = 0; i < input.images.size(); ++i) {
+      const ReviewImage& im = input.images[i];
+      nlohmann::json image = {{"index", i}, {"width", im.width_px}, {"height", im.height_px}, {"yaw_deg", im.yaw_deg}};
+      if (im.frame >= 0) image["frame"] = im.frame;
+      js["images"].push_back(image);
+    }
+    js["lines"] = LinesInImages();
+    js["walls"] = nlohmann::json::array();
+    for (std::size_t w = 0; w < fit.plan.walls.size(); ++w) {
+      const PlanWall& wall = fit.plan.walls[w];
+      nlohmann::json wj = {{"index", w},
+                           {"length_m", wall.Length()},
+                           {"inferred", w < fit.summary.wall_inferred.size() && fit.summary.wall_inferred[w]}};
+      wj["sigma_m"] = wall.length_sigma_m ? nlohmann::json(*wall.length_sigma_m) : nlohmann::json();
+      js["walls"].push_back(wj);
+    }
+    js["notes"] = survey_summary.value("notes", nlohmann::json::array());
+    js["wall_cues"] = survey_summary.value("wall_cues", nlohmann::json::array());
+    try {
+      js["svg"] = fit.plan.walls.empty() ? std::string() : PlanToSvg(fit.plan);
+    } catch (const Error& e) {
+      js["svg"] = "";
+    }
+    return js;
+  }
+
+  // The corrected layout in image coordinates, for corrections.json.
+  nlohmann::json LayoutInImages() const {
+    nlohmann::json js = StateJson();
+    return {{"corners", js["corners"]},
+            {"openings", js["openings"]},
+            {"ceiling_height_m", js["ceiling_height_m"]},
+            {"lines", js["lines"]}};
+  }
+};
+
+ReviewSession::ReviewSession() : impl_(std::make_unique<Impl>()) {}
+ReviewSession::~ReviewSession() = default;
+ReviewSession::ReviewSession(ReviewSession&&) noexcept = default;
+ReviewSession& ReviewSession::operator=(ReviewSession&&) noexcept = default;
+
+const fs::path& ReviewSession::out_dir() const { return impl_->out_dir; }
+double ReviewSession::last_fit_seconds() const { return impl_->fit_seconds; }
+std::vector<fs::path> ReviewSession::ImagePaths() const {
+  std::vector<fs::path> out;
+  for (const ReviewImage& im : impl_->input.images) out.push_back(im.image);
+  return out;
+}
+
+namespace {
+
+constexpr char kJournal[] = "save-journal.json";
+constexpr char kStaging[] = ".save";
+
+// Finishes a save whose journal was written (moves what is left of its
+// files into place), or drops one whose journal was not (the old outputs stay).
+void RecoverSave(const fs::path& out_dir) {
+  const fs::path review = out_dir / "review";
+  const fs::path journal = review / kJournal;
+  std::error_code ec;
+  if (fs::exists(journal, ec)) {
+    JsonDiagnostics diag(journal.string());
+    const nlohmann::json js = ParseJsonFile(journal, diag);
+    diag.ThrowIfErrors();
+    for (const nlohmann::json& f : js.at("files")) {
+      const fs::path from = review / kStaging / f.get<std::string>();
+      if (fs::exists(from, ec)) fs::rename(from, out_dir / f.get<std::string>());
+    }
+    spdlog::info("review: finished the save interrupted in {}", out_dir.string());
+    fs::remove(journal, ec);
+  }
+  fs::remove_all(review / kStaging, ec);
+}
+
+}  // namespace
+
+ReviewSession ReviewSession::Open(const fs::path& out_dir) {
+  ReviewSession session;
+  Impl& s = *session.impl_;
+  s.out_dir = out_dir;
+  s.input = ReadReviewInput(out_dir);
+  RecoverSave(out_dir);
+  std::error_code ec;
+  if (fs::is_regular_file(out_dir / "summary.json", ec)) {
+    JsonDiagnostics diag((out_dir / "summary.json").string());
+    nlohmann::json js = ParseJsonFile(out_dir / "summary.json", diag);
+    if (diag.ok() && js.is_object()) s.survey_summary = js;
+  }
+  const auto t = Clock::now();
+  try {
+    s.fitter = std::make_unique<PlanFitter>(s.input.plan_input, s.input.plan_options);
+    s.fit = s.fitter->Fit();
+  } catch (const InvalidArgument& e) {
+    throw InputError(s.input.plan_input.source, "", fmt::format("the survey's plan cannot be fitted: {}", e.what()));
+  }
+  s.fit_seconds = std::chrono::duration<double>(Clock::now() - t).count();
+  s.FollowFit(s.initial);
+  s.layout = s.initial;
+  const fs::path state = out_dir / "review" / "state.json";
+  if (fs::is_regular_file(state, ec)) {
+    JsonDiagnostics diag(state.string());
+    const nlohmann::json js = ParseJsonFile(state, diag);
+    diag.ThrowIfErrors();
+    if (!js.is_object() || !js.contains("layout") || !js.contains("edits") || !js["edits"].is_array()) {
+      throw InputError(state.string(), "", "expected {\"layout\": …, \"edits\": […]}");
+    }
+    const Layout saved = LayoutFromJson(js["layout"], state.string());
+    try {
+      s.Refit(saved);
+    } catch (const EditError& e) {
+      throw InputError(state.string(), "layout", fmt::format("the saved review cannot be re-fitted: {}", e.what()));
+    }
+    s.log = js["edits"];
+    if (js.contains("initial")) s.initial = LayoutFromJson(js["initial"], state.string());
+  }
+  return session;
+}
+
+nlohmann::json ReviewSession::State() const { return impl_->StateJson(); }
+
+nlohmann::json ReviewSession::Edit(const nlohmann::json& edit) {
+  Impl& s = *impl_;
+  const std::string op = edit.is_object() && edit.contains("op") && edit["op"].is_string() ? edit["op"] : "";
+  const Layout before = s.layout;
+  if (op == "undo" || op == "redo") {
+    std::vector<Layout>& from = op == "undo" ? s.undo : s.redo;
+    std::vector<Layout>& to = op == "undo" ? s.redo : s.undo;
+    if (from.empty()) throw EditError(fmt::format("{}: nothing to {}", op, op));
+    s.Refit(from.back());
+    from.pop_back();
+    to.push_back(before);
+  } else {
+    s.Refit(s.Apply(edit), /*new_edit=*/true);
+    s.undo.push_back(before);
+    s.redo.clear();
+  }
+  s.log.push_back({{"edit", edit},
+                   {"before", LayoutJson(before)},
+                   {"after", LayoutJson(s.layout)},
+                   {"refit_ms", 1000.0 * s.fit_seconds},
+                   {"area_m2", s.fit.plan.rooms.empty() ? 0.0 : s.fit.plan.rooms[0].area_m2}});
+  return s.StateJson();
+}
+
+std::vector<std::string> ReviewSession::Save(const ReviewSaveOptions& options) {
+  Impl& s = *impl_;
+  const fs::path review = s.out_dir / "review";
+  const fs::path staging = review / kStaging;
+  std::error_code ec;
+  fs::remove_all(staging, ec);
+  fs::create_directories(staging / "review");
+
+  // 1. Every output, staged.
+  const Plan& plan = s.fit.plan;
+  if (plan.walls.empty()) {
+    WritePlan(plan, staging / "plan.json");
+  } else {
+    WritePlanFiles(plan, staging);
+  }
+  SurveySummary summary;
+  summary.capture_kind = s.input.kind;
+  summary.labels_source = s.input.labels_source;
+  summary.plan = s.fit.summary;
+  summary.ceiling_height_m = s.CeilingM();
+  summary.ceiling_height_sigma_m = s.layout.ceiling_m ? 0.0 : s.input.plan_input.ceiling_height_sigma_m;
+  summary.frames = static_cast<int>(s.input.plan_input.frames.size());
+  summary.points = static_cast<int>(s.input.plan_input.points.size());
+  summary.notes.push_back(
+      fmt::format("corrected by a person in asbuilt review: {} edit(s), review/corrections.json", s.log.size()));
+  for (const nlohmann::json& n : s.survey_summary.value("notes", nlohmann::json::array())) {
+    if (n.is_string()) summary.notes.push_back("survey: " + n.get<std::string>());
+  }
+  WriteSurveyReport({.title = fmt::format("Survey of {} (reviewed)", s.input.capture_json.filename().string()),
+                     .capture_path = s.input.capture_json,
+                     .summary = summary,
+                     .plan = plan,
+                     .plan_svg = plan.walls.empty() ? std::string() : PlanToSvg(plan)},
+                    staging / "report.html");
+  const nlohmann::json corrections = {{"version", 1},
+                                      {"kind", s.input.kind},
+                                      {"capture", s.input.capture_json.string()},
+                                      {"images", s.StateJson()["images"]},
+                                      {"initial", LayoutJson(s.initial)},
+                                      {"edits", s.log},
+                                      {"final", LayoutJson(s.layout)},
+                                      {"layout_in_images", s.LayoutInImages()},
+                                      {"plan", PlanToJson(plan)}};
+  WriteFileAtomic(staging / "review" / "corrections.json", corrections.dump(1) + "\n");
+  WriteFileAtomic(
+      staging / "review" / "state.json",
+      nlohmann::json({{"layout", LayoutJson(s.layout)}, {"initial", LayoutJson(s.initial)}, {"edits", s.log}}).dump(1) +
+          "\n");
+  std::vector<std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(staging)) {
+    if (entry.is_regular_file() && !IsAtomicTempName(entry.path())) {
+      files.push_back(entry.path().lexically_relative(staging).string());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  if (options.stop_before_commit) throw Error("review save stopped before its commit (test)");
+
+  // 2. The commit: the journal names the files; from here on the save is done.
+  WriteFileAtomic(review / kJournal, nlohmann::json({{"files", files}}).dump(1) + "\n");
+
+  // 3. Into place.
+  int moved = 0;
+  for (const std::string& f : files) {
+    if (moved == options.stop_after_files) throw Error("review save stopped while moving its files (test)");
+    fs::rename(staging / f, s.out_dir / f);
+    ++moved;
+  }
+  fs::remove(review / kJournal);
+  fs::remove_all(staging, ec);
+  return files;
+}
+
+}  // namespace asbuilt
