@@ -17,7 +17,7 @@ void SegmentOptions::Check() const {
 }
 
 std::string SegmenterInfo::ToString() const {
-  if (metadata.value("format", "") == "tflite") {
+  if (metadata.is_object() && metadata.value("format", "") == "tflite") {
     return fmt::format("TFLite {} ({:.2f}M params, {} ADE20K classes mapped to {}), read at {}x{}",
                        metadata.value("file", "?"), parameters / 1e6, metadata.value("source_classes", 0),
                        config.num_classes, scale_width_px, scale_height_px);
