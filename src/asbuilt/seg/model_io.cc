@@ -128,6 +128,17 @@ int LoadWeights(const fs::path& path, Segformer& model, torch::optim::Optimizer*
   return loaded;
 }
 
+std::vector<cv::Mat> ClassMaps(const torch::Tensor& chw) {
+  const torch::Tensor p = chw.to(torch::kFloat32).contiguous();
+  std::vector<cv::Mat> out;
+  for (int64_t c = 0; c < p.size(0); ++c) {
+    cv::Mat m(static_cast<int>(p.size(1)), static_cast<int>(p.size(2)), CV_32FC1);
+    std::memcpy(m.data, p[c].data_ptr(), m.total() * sizeof(float));
+    out.push_back(m);
+  }
+  return out;
+}
+
 torch::Tensor ImagesToTensor(const std::vector<cv::Mat>& bgr) {
   const int h = bgr.at(0).rows, w = bgr.at(0).cols;
   torch::Tensor out = torch::empty({static_cast<int64_t>(bgr.size()), 3, h, w}, torch::kFloat32);

@@ -45,6 +45,8 @@ int LoadWeights(const std::filesystem::path& path, Segformer& model, torch::opti
 torch::Tensor ImagesToTensor(const std::vector<cv::Mat>& bgr);
 // Labels CV_8U → int64 tensor (B, H, W).
 torch::Tensor LabelsToTensor(const std::vector<cv::Mat>& labels);
+// Per-class maps (C, H, W) float → one CV_32F Mat per class (copies).
+std::vector<cv::Mat> ClassMaps(const torch::Tensor& chw);
 
 // A Segmenter over a model in memory (shares its weights; switches it to
 // eval mode while segmenting and restores the previous mode).

@@ -57,16 +57,7 @@ class TorchSegmenter : public Segmenter {
     return out;
   }
 
-  std::vector<cv::Mat> Probabilities(const cv::Mat& bgr) override {
-    torch::Tensor p = torch::softmax(Logits({bgr}), 1)[0].contiguous();
-    std::vector<cv::Mat> out;
-    for (int64_t c = 0; c < p.size(0); ++c) {
-      cv::Mat m(bgr.rows, bgr.cols, CV_32FC1);
-      std::memcpy(m.data, p[c].contiguous().data_ptr(), m.total() * sizeof(float));
-      out.push_back(m);
-    }
-    return out;
-  }
+  std::vector<cv::Mat> Probabilities(const cv::Mat& bgr) override { return ClassMaps(torch::softmax(Logits({bgr}), 1)[0]); }
 
   const SegmenterInfo& info() const override { return info_; }
 

@@ -59,16 +59,7 @@ class TfliteSegmenter : public Segmenter {
     return out;
   }
 
-  std::vector<cv::Mat> Probabilities(const cv::Mat& bgr) override {
-    torch::Tensor p = GroupProbabilities(bgr);
-    std::vector<cv::Mat> out;
-    for (int64_t c = 0; c < p.size(0); ++c) {
-      cv::Mat m(bgr.rows, bgr.cols, CV_32FC1);
-      std::memcpy(m.data, p[c].contiguous().data_ptr(), m.total() * sizeof(float));
-      out.push_back(m);
-    }
-    return out;
-  }
+  std::vector<cv::Mat> Probabilities(const cv::Mat& bgr) override { return ClassMaps(GroupProbabilities(bgr)); }
 
   const SegmenterInfo& info() const override { return info_; }
 
