@@ -7,13 +7,12 @@
 #include <cmath>
 
 #include "asbuilt/plan/plan_stages.h"
+#include "asbuilt/plan/plan_uncertainty.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
 namespace {
 
-// Floor contacts lie at z = 0, ceiling ones at the ceiling's height.
-constexpr double kCeilingContactMinZ = 0.1;
 // The position σ of a corner a person placed, m: it enters the ± of the
 // walls through it.
 constexpr double kFixedCornerSigmaM = 0.01;

@@ -11,8 +11,6 @@
 namespace asbuilt {
 namespace {
 
-// Floor contacts lie at z = 0, ceiling ones at the ceiling's height.
-constexpr double kCeilingContactMinZ = 0.1;
 
 double MedianOf(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());

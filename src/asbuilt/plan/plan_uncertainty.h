@@ -29,6 +29,10 @@
 
 namespace asbuilt {
 
+// Floor contacts lie at z = 0, ceiling ones at the ceiling's height: a contact
+// point above this height (m) is a ceiling contact.
+inline constexpr double kCeilingContactMinZ = 0.1;
+
 struct RingSigmas {
   std::vector<double> wall_length_m;  // Per wall of the ring, from corner i to corner i + 1.
   double area_m2 = 0;                 // Of |area of the corner polygon|.
