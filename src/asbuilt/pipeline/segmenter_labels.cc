@@ -45,6 +45,7 @@ SegmenterLabels::SegmenterLabels(const std::filesystem::path& model, std::option
   }
   if (camera && 2 * std::atan2(camera->height_px / 2.0, camera->fy) * 180 / CV_PI > kWideViewFovDeg) {
     wide_camera_ = camera;
+    turned_ = TurnedViews(*camera);
     // The turned views are as wide as the image and square: segment them at
     // the scale a square of that width gets.
     if (!scale_px) {
@@ -66,43 +67,50 @@ SegmenterLabels::SegmenterLabels(const std::filesystem::path& model, std::option
   }
 }
 
-cv::Mat SegmenterLabels::SegmentWide(const cv::Mat& bgr) const {
-  const PinholeCamera& cam = *wide_camera_;
+std::vector<SegmenterLabels::TurnedView> SegmenterLabels::TurnedViews(const PinholeCamera& cam) {
   const cv::Matx33d k_image = Intrinsics(cam.fx, cam.fy, cam.cx, cam.cy);
-  const int side = bgr.cols;
+  const int side = cam.width_px;
   const double f_turned = side / 2.0;  // 90° across.
   const cv::Matx33d k_turned = Intrinsics(f_turned, f_turned, (side - 1) / 2.0, (side - 1) / 2.0);
-  std::vector<cv::Mat> sum;  // Per class, weighted probabilities.
-  cv::Mat weight_sum(bgr.size(), CV_32F, cv::Scalar(0));
+  std::vector<TurnedView> views;
   for (double pitch_deg : {-kTurnedPitchDeg, 0.0, kTurnedPitchDeg}) {
     const cv::Matx33d rotation = PitchUp(pitch_deg * CV_PI / 180);
-    // image pixel → turned pixel.
-    const cv::Matx33d h = k_turned * rotation * k_image.inv();
-    cv::Mat turned;
-    cv::warpPerspective(bgr, turned, cv::Mat(h), cv::Size(side, side), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
-    std::vector<cv::Mat> p = segmenter_->Probabilities(turned);
+    TurnedView view{.image_to_turned = cv::Mat(k_turned * rotation * k_image.inv()), .side_px = side};
     // Each image pixel's weight: how near its ray is to this view's axis,
     // zero where the ray leaves the turned view.
-    cv::Mat weight(bgr.size(), CV_32F);
+    view.weight.create(cam.height_px, cam.width_px, CV_32F);
     const cv::Matx33d to_turned = rotation * k_image.inv();
-    for (int v = 0; v < bgr.rows; ++v) {
-      auto* w = weight.ptr<float>(v);
-      for (int u = 0; u < bgr.cols; ++u) {
+    for (int v = 0; v < cam.height_px; ++v) {
+      auto* w = view.weight.ptr<float>(v);
+      for (int u = 0; u < cam.width_px; ++u) {
         const cv::Vec3d d = to_turned * cv::Vec3d(u, v, 1);
         const double z = d[2] / cv::norm(d);
         const bool inside = d[2] > 0 && std::abs(d[0] / d[2]) <= 1 && std::abs(d[1] / d[2]) <= 1;
         w[u] = inside ? static_cast<float>(std::pow(z, 8.0)) : 0.f;
       }
     }
+    views.push_back(std::move(view));
+  }
+  return views;
+}
+
+cv::Mat SegmenterLabels::SegmentWide(const cv::Mat& bgr) const {
+  CheckArgument(bgr.cols == wide_camera_->width_px && bgr.rows == wide_camera_->height_px,
+                "SegmenterLabels: a wide view is not the size of its camera");
+  std::vector<cv::Mat> sum;  // Per class, weighted probabilities.
+  for (const TurnedView& view : turned_) {
+    cv::Mat turned;
+    cv::warpPerspective(bgr, turned, view.image_to_turned, cv::Size(view.side_px, view.side_px), cv::INTER_LINEAR,
+                        cv::BORDER_REPLICATE);
+    std::vector<cv::Mat> p = segmenter_->Probabilities(turned);
     if (sum.empty()) sum.assign(p.size(), cv::Mat());
     for (std::size_t c = 0; c < p.size(); ++c) {
       cv::Mat back;
-      cv::warpPerspective(p[c], back, cv::Mat(h), bgr.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+      cv::warpPerspective(p[c], back, view.image_to_turned, bgr.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
                           cv::BORDER_CONSTANT, cv::Scalar(0));
-      back = back.mul(weight);
+      back = back.mul(view.weight);
       if (sum[c].empty()) sum[c] = back; else sum[c] += back;
     }
-    weight_sum += weight;
   }
   // argmax of the blended probabilities.
   cv::Mat labels(bgr.size(), CV_8U, cv::Scalar(0));

@@ -48,11 +48,20 @@ class SegmenterLabels final : public LabelSource {
   std::string StageName() const override { return "segment"; }
 
  private:
+  // One turned view: the homography from the wide image to it, and each wide
+  // pixel's blending weight for it (they depend on the camera only).
+  struct TurnedView {
+    cv::Mat image_to_turned;
+    int side_px = 0;
+    cv::Mat weight;  // CV_32F, the wide image's size.
+  };
+  static std::vector<TurnedView> TurnedViews(const PinholeCamera& camera);
   // Labels of one wide image through the turned views.
   cv::Mat SegmentWide(const cv::Mat& bgr) const;
 
   std::unique_ptr<Segmenter> segmenter_;
   std::optional<PinholeCamera> wide_camera_;  // Set when the images are wide views.
+  std::vector<TurnedView> turned_;
   std::string description_;
 };
 
