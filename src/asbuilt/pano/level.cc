@@ -40,8 +40,8 @@ constexpr int kIrlsIterations = 50;
 
 // One detected segment as a constraint on the up direction.
 struct Segment {
-  Vec3 normal;       // Unit normal of the plane through the centre and the segment.
-  Vec3 midpoint;     // Unit ray to the segment's midpoint.
+  Vec3 normal;        // Unit normal of the plane through the centre and the segment.
+  Vec3 midpoint;      // Unit ray to the segment's midpoint.
   double length_rad;  // Angle the segment spans, seen from the centre.
   bool vertical;      // Its plane passes within the max tilt of the frame's up.
 };
@@ -67,11 +67,10 @@ std::vector<Segment> DetectSegments(const cv::Mat& grey, const LevelOptions& opt
   const int height = static_cast<int>(std::ceil(2 * f * std::tan(DegToRad(0.5 * options.view_vertical_fov_deg))));
   std::vector<PanoView> views;
   for (int set = 0; set < kViewSets; ++set) {
-    for (const PanoView& view : TurnInPlaceViews({.width_px = width, .height_px = height, .fx = f, .views = options.views,
-                                                  .yaw_step_deg = sector_deg,
-                                                  .first_yaw_deg = set * sector_deg / kViewSets})) {
-      views.push_back(view);
-    }
+    const std::vector<PanoView> turn =
+        TurnInPlaceViews({.width_px = width, .height_px = height, .fx = f, .views = options.views,
+                          .yaw_step_deg = sector_deg, .first_yaw_deg = set * sector_deg / kViewSets});
+    views.insert(views.end(), turn.begin(), turn.end());
   }
   const Image pano = AsImage(grey);
   const cv::Ptr<cv::LineSegmentDetector> lsd = cv::createLineSegmentDetector(cv::LSD_REFINE_STD);
@@ -99,11 +98,12 @@ std::vector<Segment> DetectSegments(const cv::Mat& grey, const LevelOptions& opt
   return segments;
 }
 
-// The relative 1σ of a segment's residual n · u: its plane turns about its
-// midpoint by (end point noise) / length, which moves the plane at u by that
-// times the sine of the angle from the midpoint to u.
-double ResidualScale(const Segment& s, const Vec3& up) {
-  return std::max(s.midpoint.cross(up).norm(), 0.05) / s.length_rad;
+// The relative 1σ of a segment's residual n · a against a vanishing
+// direction a: its plane turns about its midpoint by (end point noise) /
+// length, which moves the plane at a by that times the sine of the angle
+// from the midpoint to a (floored: a segment pointing at a still shifts).
+double ResidualScale(const Segment& s, const Vec3& axis) {
+  return std::max(s.midpoint.cross(axis).norm(), 0.05) / s.length_rad;
 }
 
 double Median(std::vector<double> values) {

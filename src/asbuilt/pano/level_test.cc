@@ -131,8 +131,8 @@ TEST(EstimatePanoTilt, RecoversAKnownTiltAndLevellingRemovesIt) {
     const PanoTilt after = EstimatePanoTilt(LevelPanorama(tilted, tilt));
     ASSERT_TRUE(after.found) << after.BriefReport();
     EXPECT_LT(after.tilt_deg, 0.1) << after.BriefReport();
-    std::printf("%.1f° toward yaw %.0f°: error %.3f°, %s; levelled: %.3f°\n", c.tilt_deg, std::fmod(c.axis_yaw_deg + 90, 360.0), error_deg,
-                tilt.BriefReport().c_str(), after.tilt_deg);
+    std::printf("%.1f° toward yaw %.0f°: error %.3f°, %s; levelled: %.3f°\n", c.tilt_deg,
+                std::fmod(c.axis_yaw_deg + 90, 360.0), error_deg, tilt.BriefReport().c_str(), after.tilt_deg);
   }
 }
 
@@ -198,7 +198,8 @@ TEST(PanoTilt, BriefReportSaysHowMuchWhichWayAndOnWhat) {
   const PanoTilt tilt{.up_in_pano = Vec3::UnitZ(), .tilt_deg = 0.8, .toward_yaw_deg = 327.6, .lines_used = 412,
                       .vertical_lines = 130, .sigma_deg = 0.031, .found = true};
   EXPECT_EQ(tilt.BriefReport(), "tilted 0.80° toward yaw 328° ± 0.03°, 412 lines (130 vertical)");
-  EXPECT_EQ(tilt.BriefReport(1024), "tilted 0.80° toward yaw 328° (column 92 of 1024) ± 0.03°, 412 lines (130 vertical)");
+  EXPECT_EQ(tilt.BriefReport(1024),
+            "tilted 0.80° toward yaw 328° (column 92 of 1024) ± 0.03°, 412 lines (130 vertical)");
 }
 
 // The CC0 photos of ../shared/data (skipped without them): the tilts a
