@@ -2,6 +2,8 @@
 // panorama turned into turn-in-place perspective views, written as a mono
 // capture (pano/pano_views.h); with --zind, also layout labels and the
 // room's truth plan from the tour's annotation.
+// `asbuilt pano level PANO -o OUT [--estimate-only]` — the panorama's tilt
+// from its own lines, and the panorama resampled level (pano/level.h).
 
 #include <filesystem>
 #include <string>
@@ -10,6 +12,8 @@
 
 #include "asbuilt/cli/command.h"
 #include "asbuilt/formats/zind.h"
+#include "asbuilt/imageio/image_io.h"
+#include "asbuilt/pano/level.h"
 #include "asbuilt/pano/pano_views.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/progress.h"
@@ -63,7 +67,38 @@ int RunPanoCommand(int argc, char** argv) {
   views_cmd->add_option("--layout", layout, "ZInD layout the labels come from: raw, complete, visible")
       ->capture_default_str();
   views_cmd->add_flag("--overlay", options.overlays, "with --zind: also DIR/overlays/NNN.png (labels over the views)");
+
+  CLI::App* level_cmd = app.add_subcommand(
+      "level",
+      "estimate a panorama's tilt from its own vertical and horizontal lines and write it resampled level\n"
+      "(the smallest rotation that makes the estimated up the image's up; no turn about the vertical).\n"
+      "Prints e.g. 'tilted 0.76° toward yaw 328° (column 90 of 1024) ± 0.11°, 1031 lines (244 vertical)'.");
+  std::string level_in, level_out;
+  bool estimate_only = false, vertical_only = false;
+  LevelOptions level_options;
+  level_cmd->add_option("panorama", level_in, "equirectangular image (2:1; .hdr is tone-mapped)")->required();
+  level_cmd->add_option("-o,--out", level_out, "the levelled panorama (same size; format from the extension)");
+  level_cmd->add_flag("--estimate-only", estimate_only, "print the tilt, write nothing");
+  level_cmd->add_option("--max-tilt-deg", level_options.max_tilt_deg, "largest tilt searched, degrees")
+      ->capture_default_str();
+  level_cmd->add_option("--min-segment-deg", level_options.min_segment_deg, "shortest line segment used, degrees")
+      ->capture_default_str();
+  level_cmd->add_flag("--vertical-only", vertical_only, "use vertical lines only (a room that is not square)");
   Parse(app, argc, argv);
+
+  if (level_cmd->parsed()) {
+    if (level_out.empty() && !estimate_only) throw CLI::RequiredError("--out (or --estimate-only)");
+    level_options.use_horizontal_lines = !vertical_only;
+    level_options.Check();
+    const Image equirect = ReadEquirect(level_in);
+    const PanoTilt tilt = EstimatePanoTilt(equirect, level_options);
+    fmt::print("{}\n", tilt.BriefReport(equirect.width()));
+    if (estimate_only) return 0;
+    if (!tilt.found) throw Error(fmt::format("{}: no tilt estimate, {} not written", level_in, level_out));
+    WriteImageAtomic(level_out, LevelPanorama(equirect, tilt));
+    fmt::print("levelled → {}\n", level_out);
+    return 0;
+  }
 
   ApplyTurnInPlaceSize(size, options.turn);
   if (camera_height_m != 0) options.camera_height_m = camera_height_m;

@@ -1,14 +1,17 @@
 // CLI tests of `asbuilt pano views` and `asbuilt eval zind` on the ZInD
-// sample tour in ../shared/data (skipped without it). Outputs go to the
-// temporary folder: they are derived from ZInD and never kept.
+// sample tour in ../shared/data (skipped without it), and of `asbuilt pano
+// level` on a CC0 panorama there. Outputs go to the temporary folder: they
+// are derived from ZInD and never kept.
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include "asbuilt/cli/cli_test_util.h"
 #include "asbuilt/util/file.h"
@@ -64,6 +67,51 @@ TEST(PanoCommand, EvalZindScoresTheShippedModelAndSaysZindIsForResearchOnly) {
   EXPECT_NE(r.out.find("Upper half (above the horizon)"), std::string::npos) << r.out;
   for (const char* f : {"metrics.json", "metrics.md", "report.html"}) EXPECT_TRUE(fs::exists(d / f)) << f;
   EXPECT_NE(ReadFile(d / "metrics.md").find(kNotice), std::string::npos);
+  fs::remove_all(d);
+}
+
+// The tilt in `asbuilt pano level`'s first line ("tilted 0.76° toward …"), NaN if none.
+double PrintedTiltDeg(const std::string& out) {
+  const std::size_t at = out.find("tilted ");
+  return at == std::string::npos ? NAN : std::stod(out.substr(at + 7));
+}
+
+TEST(PanoCommand, LevelsATiltedPhotoAndPrintsItsTilt) {
+  const fs::path photo = testing_util::kData / "cc0-panoramas/annotated/pine_attic/pano.jpg";
+  if (!fs::exists(photo)) GTEST_SKIP() << "shared data not present: " << photo;
+  const fs::path d = PanoTempDir("level");
+  auto r = RunAsbuilt(fmt::format("pano level {} -o {}", photo.string(), (d / "level.jpg").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NEAR(PrintedTiltDeg(r.out), 0.8, 0.1) << r.out;
+  EXPECT_NE(r.out.find("(column "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("levelled → "), std::string::npos) << r.out;
+  const cv::Mat levelled = cv::imread((d / "level.jpg").string());
+  EXPECT_EQ(levelled.cols, 1024);
+  EXPECT_EQ(levelled.rows, 512);
+  // The levelled photo, estimated only: level now, and nothing written.
+  r = RunAsbuilt(fmt::format("pano level {} --estimate-only", (d / "level.jpg").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_LT(PrintedTiltDeg(r.out), 0.15) << r.out;
+  EXPECT_EQ(r.out.find("levelled → "), std::string::npos) << r.out;
+  fs::remove_all(d);
+}
+
+TEST(PanoCommand, LevelSaysWhatIsMissingOrWrong) {
+  const fs::path d = PanoTempDir("level_bad");
+  fs::create_directories(d);
+  auto r = RunAsbuilt(fmt::format("pano level {}", (d / "any.jpg").string()));
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("--out (or --estimate-only) is required"), std::string::npos) << r.out;
+  cv::imwrite((d / "square.png").string(), cv::Mat(64, 64, CV_8UC3, cv::Scalar(1, 2, 3)));
+  r = RunAsbuilt(fmt::format("pano level {} --estimate-only", (d / "square.png").string()));
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_NE(r.out.find("64x64 is not an equirectangular panorama"), std::string::npos) << r.out;
+  // A blank panorama has no lines: said, and no image written.
+  cv::imwrite((d / "blank.png").string(), cv::Mat(64, 128, CV_8UC3, cv::Scalar(1, 2, 3)));
+  r = RunAsbuilt(fmt::format("pano level {} -o {}", (d / "blank.png").string(), (d / "out.png").string()));
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_NE(r.out.find("no tilt estimate: 0 vertical lines, too few"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(d / "out.png"));
   fs::remove_all(d);
 }
 
