@@ -606,6 +606,7 @@ ResolvedContacts PendingContacts::Resolve(const FramePointsOptions& options) con
     }
   }
   for (const PairedFloor& f : paired_floor) {
+    out.ceiling_samples.push_back({f.point.position_m, f.point.frame, f.ceiling_sample_m});
     const bool agrees =
         !out.ceiling || std::abs(f.ceiling_sample_m - out.ceiling->height_m) <= std::max(0.03, 3 * f.sample_sigma_m);
     if (agrees) {

@@ -1,0 +1,152 @@
+#include "asbuilt/plan/verdict.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "asbuilt/util/error.h"
+
+namespace asbuilt {
+namespace {
+
+// A 4 × 3 m room seen from a level camera 1.5 m above (0.5, 0.2): a floor
+// and a ceiling contact (ceiling 2.6 m) every 0.25° of the turn.
+constexpr double kX0 = -2.0, kX1 = 2.0, kY0 = -1.5, kY1 = 1.5, kCeiling = 2.6;
+const Vec3 kCamera(0.5, 0.2, 1.5);
+
+Plan BoxPlan(double east_x = kX1) {
+  Plan p;
+  const std::vector<Vec2> c = {{kX0, kY0}, {east_x, kY0}, {east_x, kY1}, {kX0, kY1}};
+  for (int i = 0; i < 4; ++i) p.walls.push_back({.start = c[i], .end = c[(i + 1) % 4], .length_sigma_m = 0.01});
+  p.rooms.push_back({.polygon = c, .area_m2 = PolygonArea(c), .area_sigma_m2 = 0.02});
+  return p;
+}
+
+PlanInput BoxInput() {
+  PlanInput in{.source = "box", .one_camera = true, .ceiling_height_m = kCeiling, .ceiling_height_sigma_m = 0.005};
+  in.frames.push_back({.index = 0, .position_m = kCamera, .camera_m = kCamera});
+  for (double deg = 0; deg < 360; deg += 0.25) {
+    const Vec2 d(std::cos(DegToRad(deg)), std::sin(DegToRad(deg)));
+    double t = INFINITY;
+    if (d.x() > 1e-9) t = std::min(t, (kX1 - kCamera.x()) / d.x());
+    if (d.x() < -1e-9) t = std::min(t, (kX0 - kCamera.x()) / d.x());
+    if (d.y() > 1e-9) t = std::min(t, (kY1 - kCamera.y()) / d.y());
+    if (d.y() < -1e-9) t = std::min(t, (kY0 - kCamera.y()) / d.y());
+    const Vec2 xy = kCamera.head<2>() + t * d;
+    for (double z : {0.0, kCeiling}) {
+      in.points.push_back({.label = LabelClass::kWall, .position_m = Vec3(xy.x(), xy.y(), z), .sigma_m = 0.01,
+                           .source = PointSource::kContact, .frame = 0});
+    }
+  }
+  return in;
+}
+
+PlanResult Fit(const Plan& plan) {
+  PlanResult r{.plan = plan};
+  r.summary.closed = true;
+  r.summary.manhattan = true;
+  r.summary.area_m2 = plan.rooms.at(0).area_m2;
+  r.summary.wall_inferred.assign(plan.walls.size(), false);
+  return r;
+}
+
+TEST(JudgePlan, APlanWhereThePhotoPutsTheWallsIsGood) {
+  const PlanVerdict v = JudgePlan(BoxInput(), Fit(BoxPlan()));
+  EXPECT_EQ(v.verdict, Verdict::kGood) << v.BriefReport();
+  EXPECT_NEAR(v.agreement, 1.0, 1e-9);
+  EXPECT_NEAR(v.coverage, 1.0, 1e-9);
+  EXPECT_GE(v.confidence, 0.95);
+  for (const WallVerdict& w : v.walls) EXPECT_EQ(w.verdict, Verdict::kGood) << v.BriefReport();
+}
+
+TEST(JudgePlan, AWallWhereThePhotoSaysNothingIsDoubtedWithItsNeighbours) {
+  // The east wall drawn 0.6 m short of where its floor and ceiling edges are.
+  const PlanVerdict v = JudgePlan(BoxInput(), Fit(BoxPlan(kX1 - 0.6)));
+  ASSERT_EQ(v.walls.size(), 4u);
+  EXPECT_NE(v.verdict, Verdict::kGood) << v.BriefReport();
+  EXPECT_EQ(v.walls[1].verdict, Verdict::kUnreliable) << v.BriefReport();
+  ASSERT_FALSE(v.walls[1].reasons.empty());
+  EXPECT_NE(v.walls[1].reasons[0].find("beyond it"), std::string::npos) << v.walls[1].reasons[0];
+  EXPECT_NE(v.walls[0].verdict, Verdict::kGood);  // Its length ends at the doubted wall.
+  EXPECT_NE(v.walls[2].verdict, Verdict::kGood);
+  EXPECT_EQ(v.walls[3].verdict, Verdict::kGood);
+  EXPECT_LT(v.confidence, 0.8);
+}
+
+TEST(JudgePlan, AWallConfirmedByAPersonIsGood) {
+  VerdictContext context;
+  context.confirmed_walls = {false, true, false, false};
+  const PlanVerdict v = JudgePlan(BoxInput(), Fit(BoxPlan(kX1 - 0.6)), {}, context);
+  EXPECT_EQ(v.walls[1].verdict, Verdict::kGood);
+  EXPECT_EQ(v.walls[1].reasons, std::vector<std::string>{"placed by a person"});
+}
+
+TEST(JudgePlan, NoWallsIsUnreliable) {
+  const PlanVerdict v = JudgePlan(BoxInput(), PlanResult{});
+  EXPECT_EQ(v.verdict, Verdict::kUnreliable);
+  EXPECT_EQ(v.confidence, 0.0);
+}
+
+TEST(JudgePlan, AnImplausibleCeilingNamesTheCameraHeight) {
+  PlanInput in = BoxInput();
+  in.ceiling_height_m = 1.7;
+  const PlanVerdict v = JudgePlan(in, Fit(BoxPlan()));
+  EXPECT_EQ(v.verdict, Verdict::kUnreliable);
+  EXPECT_NE(v.BriefReport().find("camera height"), std::string::npos) << v.BriefReport();
+}
+
+TEST(TiltFromCeilingSamples, RecoversALeanAndIgnoresTopsOfFurniture) {
+  // Samples as a camera leaning 1.2° toward bearing 60° gives them: each
+  // column's rays seem ε = g·u higher than they are.
+  const PlanInput in = BoxInput();
+  const double lean = DegToRad(1.2), toward = DegToRad(60.0);
+  const Vec2 g(lean * std::cos(toward), lean * std::sin(toward));
+  std::vector<VerdictContext::CeilingSample> samples;
+  for (const ClassPoint& p : in.points) {
+    if (p.position_m.z() > 0.1) continue;
+    const Vec2 rel = p.position_m.head<2>() - kCamera.head<2>();
+    const double d = rel.norm(), h = kCamera.z();
+    const double eps = g.dot(rel / d);
+    const double beta = std::atan2(h, d) - eps, alpha = std::atan2(kCeiling - h, d) + eps;
+    const double d_seen = h / std::tan(beta);
+    samples.push_back({.floor_m = p.position_m, .frame = 0, .height_m = h + d_seen * std::tan(alpha)});
+  }
+  // A sideboard's top taken for the floor edge along a quarter of the turn.
+  for (std::size_t i = 0; i < samples.size() / 4; ++i) samples[i].height_m += 1.2 + 0.001 * i;
+  const LabelTilt t = TiltFromCeilingSamples(in, samples);
+  EXPECT_NEAR(t.tilt_deg, 1.2, 0.05);
+  EXPECT_NEAR(t.toward_deg, 60.0, 3.0);
+  EXPECT_NEAR(t.ceiling_m, kCeiling, 0.02);
+  EXPECT_TRUE(t.Found());
+  EXPECT_LT(t.sigma_deg, 0.1);
+}
+
+TEST(TiltFromCeilingSamples, TooFewSamplesSayNothing) {
+  const LabelTilt t = TiltFromCeilingSamples(BoxInput(), {{.floor_m = Vec3(1, 1, 0), .frame = 0, .height_m = 2.5}});
+  EXPECT_FALSE(t.Found());
+  EXPECT_TRUE(std::isnan(t.tilt_deg));
+}
+
+TEST(MarkPlan, AnUnreliableWallLosesItsPlusMinus) {
+  const PlanVerdict v = JudgePlan(BoxInput(), Fit(BoxPlan(kX1 - 0.6)));
+  Plan plan = BoxPlan(kX1 - 0.6);
+  MarkPlan(v, plan);
+  ASSERT_TRUE(plan.verdict);
+  EXPECT_EQ(plan.verdict->verdict, VerdictName(v.verdict));
+  EXPECT_EQ(plan.walls[1].verdict, "unreliable");
+  EXPECT_FALSE(plan.walls[1].length_sigma_m);
+  EXPECT_EQ(plan.walls[3].verdict, "good");
+  EXPECT_TRUE(plan.walls[3].length_sigma_m);
+}
+
+TEST(VerdictOptions, BoundsAreChecked) {
+  VerdictOptions o;
+  o.good_agreement = 0.5;  // Below the unreliable bound.
+  EXPECT_THROW(o.Check(), InvalidArgument);
+  o = {};
+  o.bin_deg = 0;
+  EXPECT_THROW(o.Check(), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace asbuilt
