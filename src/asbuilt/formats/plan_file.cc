@@ -26,7 +26,7 @@ void ReadOptionalNonNegative(const JsonField& parent, const char* key,
 Plan ParsePlan(const nlohmann::json& root, JsonDiagnostics& diag) {
   Plan plan;
   JsonField doc(root, diag);
-  if (!doc.Object({"version", "units", "walls", "openings", "rooms"})) return plan;
+  if (!doc.Object({"version", "units", "verdict", "walls", "openings", "rooms"})) return plan;
   if (auto v = doc.Required("version").Integer()) {
     if (*v != 1) doc.Required("version").AddError(fmt::format("unsupported version {}, expected 1", *v));
   }
@@ -34,12 +34,32 @@ Plan ParsePlan(const nlohmann::json& root, JsonDiagnostics& diag) {
     if (*u != "m") doc.Optional("units").AddError(fmt::format("expected \"m\", got \"{}\"", *u));
   }
 
+  if (JsonField v = doc.Optional("verdict"); v.present() && v.Object({"verdict", "confidence", "reasons"})) {
+    PlanVerdictNote note;
+    if (auto word = v.Required("verdict").String()) {
+      if (!IsVerdictWord(*word)) {
+        v.Required("verdict").AddError(fmt::format("expected \"good\", \"check\" or \"unreliable\", got \"{}\"", *word));
+      }
+      note.verdict = *word;
+    }
+    if (auto c = v.Required("confidence").NonNegative()) {
+      if (*c > 1) v.Required("confidence").AddError(fmt::format("{} is above 1", *c));
+      note.confidence = *c;
+    }
+    JsonField reasons = v.Optional("reasons");
+    auto n = reasons.present() ? reasons.ArraySize() : std::optional<std::size_t>(0);
+    for (std::size_t i = 0; n && i < *n; ++i) {
+      if (auto r = reasons.At(i).String()) note.reasons.push_back(*r);
+    }
+    plan.verdict = std::move(note);
+  }
+
   JsonField walls = doc.Required("walls");
   auto n_walls = walls.ArraySize();
   for (std::size_t i = 0; n_walls && i < *n_walls; ++i) {
     JsonField w = walls.At(i);
     PlanWall wall;
-    if (!w.Object({"start", "end", "thickness", "height", "length_sigma_m"})) continue;
+    if (!w.Object({"start", "end", "thickness", "height", "length_sigma_m", "verdict"})) continue;
     auto s = ReadPoint(w.Required("start"));
     auto e = ReadPoint(w.Required("end"));
     if (s) wall.start = *s;
@@ -50,6 +70,14 @@ Plan ParsePlan(const nlohmann::json& root, JsonDiagnostics& diag) {
     JsonField h = w.Optional("height");
     if (h.present()) wall.height = h.Positive();
     ReadOptionalNonNegative(w, "length_sigma_m", wall.length_sigma_m);
+    if (JsonField v = w.Optional("verdict"); v.present()) {
+      if (auto word = v.String()) {
+        if (!IsVerdictWord(*word)) {
+          v.AddError(fmt::format("expected \"good\", \"check\" or \"unreliable\", got \"{}\"", *word));
+        }
+        wall.verdict = *word;
+      }
+    }
     plan.walls.push_back(wall);
   }
 
@@ -118,6 +146,8 @@ nlohmann::json PointJson(const Vec2& p) { return nlohmann::json::array({p.x(), p
 
 }  // namespace
 
+bool IsVerdictWord(const std::string& word) { return word == "good" || word == "check" || word == "unreliable"; }
+
 const char* OpeningKindName(OpeningKind kind) {
   return kind == OpeningKind::kDoor ? "door" : "window";
 }
@@ -168,12 +198,18 @@ nlohmann::json PlanToJson(const Plan& plan) {
   nlohmann::json j;
   j["version"] = plan.version;
   j["units"] = "m";
+  if (plan.verdict) {
+    j["verdict"] = {{"verdict", plan.verdict->verdict},
+                    {"confidence", plan.verdict->confidence},
+                    {"reasons", plan.verdict->reasons}};
+  }
   nlohmann::json walls = nlohmann::json::array();
   for (const PlanWall& w : plan.walls) {
     nlohmann::json jw = {{"start", PointJson(w.start)}, {"end", PointJson(w.end)}};
     if (w.thickness) jw["thickness"] = *w.thickness;
     if (w.height) jw["height"] = *w.height;
     if (w.length_sigma_m) jw["length_sigma_m"] = *w.length_sigma_m;
+    if (w.verdict) jw["verdict"] = *w.verdict;
     walls.push_back(std::move(jw));
   }
   j["walls"] = std::move(walls);

@@ -25,6 +25,9 @@ struct PlanWall {
   std::optional<double> thickness;  // Outwards from the inner face.
   std::optional<double> height;
   std::optional<double> length_sigma_m;
+  // asbuilt's verdict on this wall's length: "good", "check" or
+  // "unreliable" (plan/verdict.h); an unreliable wall has no ±.
+  std::optional<std::string> verdict;
 
   double Length() const { return (end - start).norm(); }
 };
@@ -53,8 +56,19 @@ struct PlanRoom {
   std::optional<double> area_sigma_m2;
 };
 
+// asbuilt's verdict on a measured plan (plan/verdict.h): whether it can be
+// used as it is. Absent in truth files and plans from elsewhere.
+struct PlanVerdictNote {
+  std::string verdict;  // "good", "check" or "unreliable".
+  double confidence = 0.0;
+  std::vector<std::string> reasons;
+};
+// Whether `word` is one of "good", "check", "unreliable".
+bool IsVerdictWord(const std::string& word);
+
 struct Plan {
   int version = 1;
+  std::optional<PlanVerdictNote> verdict;
   std::vector<PlanWall> walls;
   std::vector<PlanOpening> openings;
   std::vector<PlanRoom> rooms;

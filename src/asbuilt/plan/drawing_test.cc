@@ -14,6 +14,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "asbuilt/plan/dxf.h"
+#include "asbuilt/plan/ifc.h"
 #include "asbuilt/util/file.h"
 
 namespace asbuilt {
@@ -309,6 +311,26 @@ TEST(PlanDrawings, AnnotationLargerThanTheLimitAtAnyScale) {
   ASSERT_NO_THROW(WritePlanPng(RoomWithAFarCorner(500), path, tiny));
   auto [width_px, height_px] = PngSize(ReadFile(path));
   EXPECT_LE(std::max(width_px, height_px), 64);
+}
+
+TEST(PlanDrawings, AnUnreliablePlanSaysSoInEveryDrawing) {
+  Plan plan = RoomWithDoorAndWindow();
+  plan.verdict = PlanVerdictNote{.verdict = "unreliable", .confidence = 0.1, .reasons = {"walls found in 20 % of the turn"}};
+  plan.walls[1].verdict = "unreliable";
+  plan.walls[1].length_sigma_m.reset();
+  const std::string svg = PlanToSvg(plan);
+  EXPECT_NE(svg.find("UNRELIABLE - NOT A MEASUREMENT: walls found in 20 % of the turn"), std::string::npos);
+  EXPECT_NE(svg.find("unreliable"), std::string::npos);  // Wall 1's length carries the word, not a ±.
+  const std::string dxf = PlanToDxf(plan);
+  EXPECT_NE(dxf.find("\nUNRELIABLE_NOT_A_MEASUREMENT\n"), std::string::npos);  // The layer, and text on it.
+  EXPECT_EQ(dxf.find("CHECK_BEFORE_USE"), std::string::npos);
+  const std::string ifc = PlanToIfc(plan);
+  EXPECT_NE(ifc.find("'Verdict',"), std::string::npos);
+  EXPECT_NE(ifc.find("IFCLABEL('unreliable')"), std::string::npos);
+  // A plan with no verdict, or a good one, has no verdict layer or line.
+  plan.verdict->verdict = "good";
+  EXPECT_EQ(PlanToDxf(plan).find("NOT_A_MEASUREMENT"), std::string::npos);
+  EXPECT_EQ(PlanToSvg(plan).find("NOT A MEASUREMENT"), std::string::npos);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "asbuilt/plan/dxf.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <variant>
@@ -304,13 +305,20 @@ void WriteDxfTables(DxfOut& b, const DxfHandles& h, const SheetDimensionStyle& s
     int colour;
     int lineweight;  // 1/100 mm.
   };
-  const LayerDef layers[] = {{"0", 7, -3},
+  std::vector<LayerDef> layers = {{"0", 7, -3},
                              {SheetLayerName(SheetLayer::kWalls), 7, 50},
                              {SheetLayerName(SheetLayer::kDoors), 3, 25},
                              {SheetLayerName(SheetLayer::kWindows), 5, 25},
                              {SheetLayerName(SheetLayer::kDimensions), 1, 13},
                              {SheetLayerName(SheetLayer::kText), 7, 18}};
-  table("LAYER", h.layer_table, static_cast<int>(std::size(layers)));
+  // A verdict layer only when the plan carries that verdict (its name is the message).
+  for (SheetLayer verdict : {SheetLayer::kCheck, SheetLayer::kUnreliable}) {
+    const char* name = SheetLayerName(verdict);
+    if (std::any_of(model.entities.begin(), model.entities.end(), [&](const Entity& e) { return e.layer == name; })) {
+      layers.push_back({name, 1, 25});
+    }
+  }
+  table("LAYER", h.layer_table, static_cast<int>(layers.size()));
   for (const LayerDef& l : layers) {
     record("LAYER", h.layer_table, "AcDbLayerTableRecord");
     b.Code(2, l.name);

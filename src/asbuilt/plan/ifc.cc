@@ -331,6 +331,9 @@ class IfcModel {
   static Property Flag(const std::string& name, bool v, const std::string& description) {
     return {name, v ? "IFCBOOLEAN(.T.)" : "IFCBOOLEAN(.F.)", description};
   }
+  static Property Label(const std::string& name, const std::string& v, const std::string& description) {
+    return {name, fmt::format("IFCLABEL({})", StepString(v)), description};
+  }
   static Property Integer(const std::string& name, int v, const std::string& description) {
     return {name, fmt::format("IFCINTEGER({})", v), description};
   }
@@ -402,6 +405,7 @@ class IfcModel {
     std::vector<Property> props = {Integer("PlanIndex", index, "index in plan.json walls"),
                                    Length("Length", w.length_m)};
     if (pw.length_sigma_m) props.push_back(Sigma("LengthSigma", *pw.length_sigma_m));
+    if (pw.verdict) props.push_back(Label("Verdict", *pw.verdict, "asbuilt's verdict on this length: good, check or unreliable"));
     props.push_back(Length("Thickness", w.thickness_m));
     props.push_back(Flag("ThicknessIsDefault", w.thickness_default,
                          w.thickness_default ? "not measured: the exporter's default thickness" : "measured"));
@@ -489,6 +493,17 @@ class IfcModel {
     if (room.area_sigma_m2) {
       props.push_back({"AreaSigma", fmt::format("IFCAREAMEASURE({})", StepReal(*room.area_sigma_m2)),
                        "1 sigma (standard uncertainty, 68 %), m2"});
+    }
+    if (plan_.verdict) {
+      const PlanVerdictNote& v = *plan_.verdict;
+      props.push_back(Label("Verdict", v.verdict,
+                            v.verdict == "good" ? "asbuilt's verdict on this plan: good to use"
+                            : v.verdict == "check" ? "asbuilt's verdict on this plan: check before use"
+                                                   : "asbuilt's verdict on this plan: unreliable, not a measurement"));
+      props.push_back({"Confidence", fmt::format("IFCRATIOMEASURE({})", StepReal(v.confidence)), "0 to 1"});
+      for (std::size_t k = 0; k < v.reasons.size(); ++k) {
+        props.push_back({fmt::format("VerdictReason{}", k + 1), fmt::format("IFCTEXT({})", StepString(v.reasons[k])), ""});
+      }
     }
     PropertySet(space, "Asbuilt_Dimensions", props);
     Quantities(space, "Qto_SpaceBaseQuantities", {{"NetFloorArea", "IFCQUANTITYAREA", room.area_m2},

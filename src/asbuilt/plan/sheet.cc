@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <fmt/format.h>
 
@@ -15,7 +16,8 @@ const SheetColour kSheetBlack{0, 0, 0};
 const SheetColour kSheetWall{0.22, 0.22, 0.22};
 const SheetColour kSheetWhite{1, 1, 1};
 const SheetColour kSheetGlass{0.2, 0.45, 0.75};
-const SheetColour kSheetHatch{0.5, 0.5, 0.5};  // Model view only (the DXF writes fills in grey).
+const SheetColour kSheetHatch{0.5, 0.5, 0.5};
+const SheetColour kSheetWarning{0.75, 0.1, 0.05};  // Model view only (the DXF writes fills in grey).
 
 // A mitre farther from the wall corner than this many wall thicknesses (two
 // walls folding back on each other) is drawn as a bevel instead; 4 is SVG's
@@ -257,9 +259,13 @@ void AddWallDimensions(PlanSheet& sheet, const LayoutContext& c) {
       }
       overall_offset = th + 0.85 * paper;
     }
-    AddPaperDimension(sheet, c, MakeSheetDimension(w.start, w.end, out, overall_offset, len, w.length_sigma_m, c.o));
-    sheet.Add(SheetLayer::kDimensions, SheetView::kModel,
-              MakeSheetDimension(w.start, w.end, out, th + 0.85 * paper, len, w.length_sigma_m, c.o));
+    // An unreliable wall's length carries the word instead of a ±.
+    const bool unreliable = w.verdict && *w.verdict == "unreliable";
+    SheetDimension overall = MakeSheetDimension(w.start, w.end, out, overall_offset, len, w.length_sigma_m, c.o);
+    if (unreliable) overall.tolerance_text = " unreliable";
+    AddPaperDimension(sheet, c, overall);
+    overall.offset_m = th + 0.85 * paper;
+    sheet.Add(SheetLayer::kDimensions, SheetView::kModel, overall);
   }
   for (const PlanOpening& op : plan.openings) {
     const PlanWall& w = plan.walls[op.wall];
@@ -345,6 +351,33 @@ void AddRoomLabels(PlanSheet& sheet, const LayoutContext& c) {
   }
 }
 
+// Text for the DXF's model space, which writes ASCII: the few signs our
+// messages use spelled out, any other non-ASCII character as '?'.
+std::string AsciiText(const std::string& utf8) {
+  static const std::pair<const char*, const char*> kSpelled[] = {
+      {"\u00b0", " deg"}, {"\u00b1", "+/-"}, {"\u00b2", "2"}, {"\u2014", "-"}, {"\u2013", "-"}, {"\u2019", "'"}};
+  std::string out;
+  for (std::size_t i = 0; i < utf8.size();) {
+    const unsigned char ch = static_cast<unsigned char>(utf8[i]);
+    if (ch < 0x80) {
+      out += utf8[i++];
+      continue;
+    }
+    bool spelled = false;
+    for (const auto& [sign, text] : kSpelled) {
+      if (utf8.compare(i, std::strlen(sign), sign) == 0) {
+        out += text, i += std::strlen(sign), spelled = true;
+        break;
+      }
+    }
+    if (spelled) continue;
+    out += '?';
+    for (++i; i < utf8.size() && (static_cast<unsigned char>(utf8[i]) & 0xC0) == 0x80; ++i) {
+    }
+  }
+  return out;
+}
+
 // Paper: scale bar (four alternating blocks of a round length, 0.5 m at
 // options.scale) and title block under the plan, stating the scale drawn at.
 void AddScaleBarAndTitle(PlanSheet& sheet, const LayoutContext& c) {
@@ -378,7 +411,28 @@ void AddScaleBarAndTitle(PlanSheet& sheet, const LayoutContext& c) {
     sheet.Add(SheetLayer::kText, SheetView::kPaper,
               SheetText{title_at, 0, 0.8 * text_height_m, 0, note, false, kSheetBlack});
   }
-  sheet.Grow(base - Vec2(0, 0.35 * paper));
+  double bottom = 0.35 * paper;
+  // A plan that is not "good" says so under the title, in both views (the
+  // DXF's model space too), on a layer named for it.
+  if (c.plan.verdict && c.plan.verdict->verdict != "good") {
+    const bool unreliable = c.plan.verdict->verdict == "unreliable";
+    std::string line = unreliable ? "UNRELIABLE - NOT A MEASUREMENT" : "CHECK BEFORE USE";
+    if (!c.plan.verdict->reasons.empty()) line.append(": ").append(c.plan.verdict->reasons.front());
+    constexpr std::size_t kMaxBytes = 140;
+    if (line.size() > kMaxBytes) {  // Cut at a character boundary.
+      std::size_t cut = kMaxBytes - 3;
+      while (cut > 0 && (static_cast<unsigned char>(line[cut]) & 0xC0) == 0x80) --cut;
+      line.resize(cut);
+      line.append("...");
+    }
+    const Vec2 at = title_at - Vec2(0, 0.45 * paper);
+    const SheetLayer layer = unreliable ? SheetLayer::kUnreliable : SheetLayer::kCheck;
+    sheet.Add(layer, SheetView::kPaper, SheetText{at, 0, text_height_m, 0, line, true, kSheetWarning});
+    sheet.Add(layer, SheetView::kModel, SheetText{at, 0, text_height_m, 0, AsciiText(line), true, kSheetWarning});
+    title_width = std::max(title_width, text_width(line, text_height_m));
+    bottom = 0.6 * paper;
+  }
+  sheet.Grow(base - Vec2(0, bottom));
   sheet.Grow(base + Vec2(std::max(6.5 * paper, title_at.x() - base.x() + title_width), 0));
 }
 
@@ -396,6 +450,8 @@ const char* SheetLayerName(SheetLayer layer) {
     case SheetLayer::kDimensions: return "DIMENSIONS";
     case SheetLayer::kText: return "TEXT";
     case SheetLayer::kOverlay: return "OVERLAY";
+    case SheetLayer::kCheck: return "CHECK_BEFORE_USE";
+    case SheetLayer::kUnreliable: return "UNRELIABLE_NOT_A_MEASUREMENT";
   }
   return "?";
 }

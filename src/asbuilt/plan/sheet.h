@@ -41,8 +41,11 @@ struct SheetColour {
 
 // The CAD layer a primitive is on (the DXF writes it by SheetLayerName).
 // kOverlay: preview content, never in the model view.
-enum class SheetLayer : std::uint8_t { kWalls, kDoors, kWindows, kDimensions, kText, kOverlay };
-const char* SheetLayerName(SheetLayer layer);  // "WALLS", "DOORS", …, "OVERLAY".
+// kCheck and kUnreliable hold the verdict line of a plan that is not
+// "good" (formats/plan_file.h PlanVerdictNote): their names say it in a CAD
+// program's layer list.
+enum class SheetLayer : std::uint8_t { kWalls, kDoors, kWindows, kDimensions, kText, kOverlay, kCheck, kUnreliable };
+const char* SheetLayerName(SheetLayer layer);  // "WALLS", "DOORS", …, "OVERLAY", "CHECK_BEFORE_USE", "UNRELIABLE_NOT_A_MEASUREMENT".
 
 // Which drawings a primitive belongs to (a bit set).
 enum class SheetView : std::uint8_t { kPaper = 1, kModel = 2, kBoth = 3 };
