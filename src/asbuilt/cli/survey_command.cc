@@ -79,6 +79,10 @@ int RunSurveyCommand(int argc, char** argv) {
   app.add_flag("--pano-layout", options.pano_layout,
                "panorama captures: redraw the segmenter's labels on the room's layout found from the panorama's "
                "edges (writes layout.png; docs/survey.md)");
+  app.add_flag("--level,!--no-level", options.level_panorama,
+               "panorama captures read by the segmenter: estimate the photo's tilt from its lines and level it "
+               "before the survey (default on; docs/survey.md \"Levelling a panorama\")")
+      ->capture_default_str();
   app.add_flag("--segment-turned", options.segment_wide_views,
                "panorama captures: segment each tall view through three square views turned 40° up, level and "
                "down (docs/seg.md)");
@@ -119,6 +123,14 @@ int RunSurveyCommand(int argc, char** argv) {
   for (const std::string& n : result.summary.notes) fmt::print(stderr, "note: {}\n", n);
   if (result.summary.score) fmt::print("{}", result.summary.score->Table());
   fmt::print("{}\n", result.summary.BriefReport());
+  fmt::print("verdict: {}\n", result.summary.verdict.BriefReport());
+  for (std::size_t w = 0; w < result.summary.verdict.walls.size(); ++w) {
+    const WallVerdict& v = result.summary.verdict.walls[w];
+    if (v.verdict == Verdict::kGood) continue;
+    std::string why;
+    for (const std::string& r : v.reasons) why += (why.empty() ? "" : "; ") + r;
+    fmt::print("  wall {}: {} — {}\n", w, VerdictName(v.verdict), why);
+  }
   return 0;
 }
 

@@ -134,12 +134,13 @@ TEST(RunSurvey, PanoramaCaptureSaysWhenPartOfTheRoomWasNotSeen) {
 }
 
 // The box room as a photo: dark floor, light walls (each axis its own
-// shade), a white ceiling; 2048 × 1024.
-cv::Mat PaintBoxRoom() {
+// shade), a white ceiling; 2048 × 1024; taken by a camera turned by `lean`.
+// `panelled`: walls of 0.6 m panels (vertical lines to level by).
+cv::Mat PaintBoxRoom(const Eigen::Matrix3d& lean = Eigen::Matrix3d::Identity(), bool panelled = false) {
   cv::Mat out(1024, 2048, CV_8UC3);
   for (int y = 0; y < out.rows; ++y) {
     for (int x = 0; x < out.cols; ++x) {
-      const Vec3 ray = DirectionFromEquirectPixel(Vec2(x, y), out.cols, out.rows);
+      const Vec3 ray = lean * DirectionFromEquirectPixel(Vec2(x, y), out.cols, out.rows);
       double best = INFINITY;
       int axis_hit = 0;
       for (int axis = 0; axis < 2; ++axis) {
@@ -157,6 +158,9 @@ cv::Mat PaintBoxRoom() {
         p = {240, 240, 240};
       } else {
         p = axis_hit == 0 ? cv::Vec3b{190, 195, 200} : cv::Vec3b{170, 175, 180};
+        const Vec3 hit = kCamera + best * ray;
+        const double along = axis_hit == 0 ? hit.y() : hit.x();
+        if (panelled && std::abs(std::remainder(along, 0.6)) < 0.01) p -= cv::Vec3b(30, 30, 30);
       }
     }
   }
@@ -196,6 +200,32 @@ TEST(RunSurvey, PanoramaSegmentedThroughTurnedViewsRecoversThePaintedRoom) {
       << r.summary.labels_source;
   ASSERT_TRUE(r.summary.room_overlap) << r.summary.BriefReport();
   EXPECT_GT(r.summary.room_overlap->Iou(), 0.8) << r.summary.BriefReport();
+}
+
+TEST(RunSurvey, ATiltedPanoramaIsLevelledAndSurveyedAsWellAsALevelOne) {
+  if (!SegmenterAvailable() || !fs::exists(DefaultModelPath())) GTEST_SKIP() << "no segmenter in this build";
+  auto survey = [](const std::string& name, const Eigen::Matrix3d& lean) {
+    const fs::path dir = Fresh(name);
+    cv::imwrite((dir / "pano.png").string(), PaintBoxRoom(lean, /*panelled=*/true));
+    const nlohmann::json capture = {{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"},
+                                    {"position_m", {kCamera.x(), kCamera.y(), kCamera.z()}}};
+    WriteFileAtomic(dir / "capture.json", capture.dump());
+    WritePlan(TruthPlan(), dir / "truth.json");
+    SurveyOptions options{.write_report = false};
+    options.panorama_views = {.width_px = 256, .height_px = 512, .fx = 128.0};  // Quick: a quarter of the pixels.
+    return RunSurvey(dir / "capture.json", dir / "out", options);
+  };
+  const SurveyResult level = survey("level", Eigen::Matrix3d::Identity());
+  const SurveyResult tilted =
+      survey("leaning", Eigen::AngleAxisd(DegToRad(1.5), Vec3(1, 1, 0).normalized()).toRotationMatrix());
+  ASSERT_TRUE(tilted.summary.panorama_tilt);
+  EXPECT_TRUE(tilted.summary.panorama_levelled);
+  EXPECT_NEAR(tilted.summary.panorama_tilt->tilt_deg, 1.5, 0.1) << tilted.summary.panorama_tilt->BriefReport();
+  ASSERT_TRUE(level.summary.room_overlap && tilted.summary.room_overlap)
+      << "level: " << level.summary.BriefReport() << "\ntilted: " << tilted.summary.BriefReport();
+  EXPECT_GT(tilted.summary.room_overlap->Iou(), level.summary.room_overlap->Iou() - 0.02)
+      << "level: " << level.summary.BriefReport() << "\ntilted: " << tilted.summary.BriefReport();
+  EXPECT_TRUE(fs::exists(fs::temp_directory_path() / "asbuilt_pano_survey_leaning/out/review/panorama.jpg"));
 }
 
 TEST(RunSurvey, MonoCaptureWithATiltedViewIsRefusedAndWritesNothing) {

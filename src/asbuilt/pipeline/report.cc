@@ -147,6 +147,39 @@ std::string HtmlEscape(std::string_view text) {
   return out;
 }
 
+namespace {
+
+// First in the report: can the plan be used, and which walls to check.
+std::string VerdictSection(const PlanVerdict& v) {
+  const char* css = v.verdict == Verdict::kGood ? "good" : v.verdict == Verdict::kCheck ? "warn" : "bad";
+  const char* headline = v.verdict == Verdict::kGood    ? "Good: the evidence supports this plan"
+                         : v.verdict == Verdict::kCheck ? "Check before use: parts of this plan rest on weak evidence"
+                                                        : "Unreliable: this plan is not a measurement";
+  std::string html = fmt::format(
+      "<section class=\"verdict\" id=\"verdict\"><h2>Verdict</h2><p class=\"{}\"><b>{}</b> (confidence {:.2f})</p>",
+      css, headline, v.confidence);
+  if (!v.reasons.empty()) {
+    html += "<ul>";
+    for (const std::string& r : v.reasons) html += fmt::format("<li>{}</li>", HtmlEscape(r));
+    html += "</ul>";
+  }
+  std::string walls;
+  for (std::size_t w = 0; w < v.walls.size(); ++w) {
+    const WallVerdict& wv = v.walls[w];
+    if (wv.verdict == Verdict::kGood) continue;
+    std::string why;
+    for (const std::string& r : wv.reasons) why += (why.empty() ? "" : "; ") + r;
+    walls += fmt::format("<tr><td>{}</td><td class=\"l {}\">{}</td><td class=\"l\">{}</td></tr>", w,
+                         wv.verdict == Verdict::kCheck ? "warn" : "bad", VerdictName(wv.verdict), HtmlEscape(why));
+  }
+  if (!walls.empty()) {
+    html += "<table><tr><th>wall</th><th class=\"l\">verdict</th><th class=\"l\">why</th></tr>" + walls + "</table>";
+  }
+  return html + "</section>\n";
+}
+
+}  // namespace
+
 std::string SurveyReportHtml(const SurveyReport& r) {
   const SurveySummary& s = r.summary;
   std::string html;
@@ -157,6 +190,8 @@ std::string SurveyReportHtml(const SurveyReport& r) {
       HtmlEscape(r.title), kStyle);
   html += fmt::format("<header><h1>{}</h1><p>{}</p></header><main>\n", HtmlEscape(r.title),
                       HtmlEscape(s.BriefReport()));
+
+  html += VerdictSection(s.verdict);
 
   // Key figures.
   double area = s.plan.area_m2;

@@ -121,6 +121,10 @@ void SurveyOptions::Check() const {
   CheckArgument(report_frames >= 0, fmt::format("SurveyOptions.report_frames = {}, must be >= 0", report_frames));
   panorama_views.Check();
   layout.Check();
+  level.Check();
+  CheckArgument(min_level_tilt_deg >= 0,
+                fmt::format("SurveyOptions.min_level_tilt_deg = {}, must be >= 0", min_level_tilt_deg));
+  verdict.Check();
   CheckArgument(std::abs(panorama_views.pitch_deg) < 1e-9,
                 fmt::format("SurveyOptions.panorama_views.pitch_deg = {}, must be 0: contacts need level views",
                             panorama_views.pitch_deg));
@@ -213,11 +217,13 @@ struct Survey {
   cv::Mat equirect;                 // With pano_layout: the panorama (8-bit BGR) and its views.
   std::vector<PanoView> pano_views;
   std::pair<int, int> pano_size_px{0, 0};  // The panorama's width and height.
+  std::string levelled_jpeg;        // The panorama as surveyed, when it was levelled (review/panorama.jpg).
   cv::Mat layout_picture;           // The panorama with its layout drawn (PanoLayoutLabels).
   std::string layout_brief;         // PanoLayout::BriefReport().
   std::optional<Plan> truth;
   std::unique_ptr<LabelSource> labels;
   std::vector<ClassPoint> points;
+  VerdictContext verdict_context;  // What the verdict reads beyond the points.
   PlanInput plan_input;  // What the plan was fitted from (review/ re-fits it).
   struct LabelPng {
     int frame, width_px, height_px;
@@ -273,6 +279,27 @@ class SurveyFrameObserver final : public FrameObserver {
   Survey& survey_;
 };
 
+// A panorama read by the segmenter: its tilt from its own lines, and the
+// panorama resampled level when it leans enough to matter.
+void LevelStage(Survey& s, Image& equirect) {
+  const SurveyOptions& o = s.options;
+  if (!o.level_panorama || o.labels_dir || o.use_capture_labels) return;
+  const auto t = Clock::now();
+  SurveySummary& summary = s.summary();
+  summary.panorama_tilt = EstimatePanoTilt(equirect, o.level);
+  const PanoTilt& tilt = *summary.panorama_tilt;
+  if (tilt.found && tilt.tilt_deg >= o.min_level_tilt_deg) {
+    equirect = LevelPanorama(equirect, tilt);
+    summary.panorama_levelled = true;
+    s.levelled_jpeg = EncodeJpeg(AsMat(equirect), equirect.width());
+    summary.notes.push_back(fmt::format("the panorama was levelled before the survey: {}", tilt.BriefReport(equirect.width())));
+  } else if (!tilt.found) {
+    summary.notes.push_back(fmt::format("the panorama's tilt could not be estimated ({}): surveyed as level", tilt.BriefReport()));
+  }
+  spdlog::info("survey: panorama {}", tilt.BriefReport(equirect.width()));
+  s.times.Add("level", Since(t));
+}
+
 // capture.json, the truth plan, and a panorama's level views (in memory).
 void ReadCaptureStage(Survey& s) {
   const auto t = Clock::now();
@@ -281,8 +308,9 @@ void ReadCaptureStage(Survey& s) {
   s.truth = ReadTruth(s.options, s.capture_json);
   if (s.capture.kind == CaptureKind::kPanorama) {
     const CapturePanorama& pano = *s.capture.panorama;
-    const Image equirect = ReadEquirect(s.capture.Resolve(pano.image));
+    Image equirect = ReadEquirect(s.capture.Resolve(pano.image));
     s.pano_size_px = {equirect.width(), equirect.height()};
+    LevelStage(s, equirect);
     const std::vector<PanoView> views = TurnInPlaceViews(s.options.panorama_views);
     if (s.options.pano_layout && !s.options.labels_dir && !s.options.use_capture_labels) {
       s.equirect = AsMat(equirect).clone();  // Only the layout reads it again.
@@ -350,6 +378,9 @@ void PointsStage(Survey& s, const ProgressCallback& progress) {
   for (std::size_t i = 0; i < s.report_frames.size(); ++i) s.report_frames[i].cues = summary.frame_cues[i].BriefReport();
   if (!gathered.contacts_used) return;
   const ResolvedContacts& contacts = gathered.contacts;
+  for (const ResolvedContacts::CeilingSample& c : contacts.ceiling_samples) {
+    s.verdict_context.ceiling_samples.push_back({.floor_m = c.floor_m, .frame = c.frame, .height_m = c.height_m});
+  }
   spdlog::info("survey: ceiling height {} ({}); {} floor contact(s) rejected as tops of things before a wall{}",
                contacts.ceiling ? fmt::format("{:.3f} ± {:.3f} m", contacts.ceiling->height_m, contacts.ceiling->sigma_m)
                                 : "not measured",
@@ -434,7 +465,13 @@ void PlanStage(Survey& s) {
   s.plan_input = SurveyPlanInput(s);
   try {
     PlanResult reconstructed = FitPlan(s.plan_input, s.options.plan);
+    if (summary.panorama_tilt && summary.panorama_tilt->found) {
+      s.verdict_context.photo_tilt_deg = summary.panorama_tilt->tilt_deg;
+      s.verdict_context.photo_tilt_sigma_deg = summary.panorama_tilt->sigma_deg;
+    }
+    summary.verdict = JudgePlan(s.plan_input, reconstructed, s.options.verdict, s.verdict_context);
     plan = std::move(reconstructed.plan);
+    MarkPlan(summary.verdict, plan);
     summary.plan = reconstructed.summary;
     if (!reconstructed.summary.closed && !plan.walls.empty()) {
       summary.notes.push_back("the walls found do not close into a room: the area is not measured");
@@ -444,7 +481,10 @@ void PlanStage(Survey& s) {
   } catch (const InvalidArgument& e) {
     summary.notes.push_back(fmt::format("no plan: {}", e.what()));
   }
-  if (plan.walls.empty()) summary.notes.push_back("no walls could be measured from this capture");
+  if (plan.walls.empty()) {
+    summary.notes.push_back("no walls could be measured from this capture");
+    summary.verdict = JudgePlan(s.plan_input, {}, s.options.verdict, s.verdict_context);
+  }
   // Views that do not go round the room cannot close it (a real capture of
   // one direction, e.g. EuRoC): say what the closed polygon rests on.
   if (s.coverage_deg < 359.5 && !plan.walls.empty()) {
@@ -495,8 +535,14 @@ ReviewInput SurveyReviewInput(const Survey& s) {
   }
   if (s.capture.panorama) {
     const CapturePanorama& pano = *s.capture.panorama;
+    fs::path image = s.capture.Resolve(pano.image);
+    if (!s.levelled_jpeg.empty()) {  // The review draws on the panorama as surveyed.
+      image = s.out_dir / "review" / "panorama.jpg";
+      fs::create_directories(image.parent_path());
+      WriteFileAtomic(image, s.levelled_jpeg);
+    }
     in.images.push_back({.frame = -1,
-                         .image = s.capture.Resolve(pano.image),
+                         .image = image,
                          .width_px = s.pano_size_px.first,
                          .height_px = s.pano_size_px.second,
                          .yaw_deg = pano.yaw_deg,
@@ -556,6 +602,29 @@ void ReportStage(Survey& s) {
   WriteSurveyReport(report, s.out_dir / "report.html");
 }
 
+// The figures behind the verdict, plan-wide and per wall (null: not measured).
+nlohmann::json VerdictEvidenceJson(const PlanVerdict& v) {
+  auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+  nlohmann::json js = {{"agreement", number(v.agreement)},         {"coverage", number(v.coverage)},
+                       {"floor_ceiling", number(v.floor_ceiling)}, {"short_walls", v.short_walls},
+                       {"odd_corners", v.odd_corners},             {"walls", nlohmann::json::array()}};
+  if (std::isfinite(v.tilt.tilt_deg)) {
+    js["tilt_from_edges"] = {{"tilt_deg", v.tilt.tilt_deg},          {"sigma_deg", v.tilt.sigma_deg},
+                             {"toward_deg", v.tilt.toward_deg},      {"samples", v.tilt.samples},
+                             {"inlier_share", v.tilt.inlier_share},  {"scatter_m", v.tilt.scatter_m}};
+  }
+  for (const WallVerdict& w : v.walls) {
+    js["walls"].push_back({{"verdict", VerdictName(w.verdict)},
+                           {"confidence", w.confidence},
+                           {"reasons", w.reasons},
+                           {"seen", w.evidence.seen},
+                           {"agreement", number(w.evidence.agreement)},
+                           {"floor_ceiling", number(w.evidence.floor_ceiling)},
+                           {"median_error", number(w.evidence.median_error)}});
+  }
+  return js;
+}
+
 void WriteSummaryStage(const SurveySummary& summary, const fs::path& out_dir) {
   nlohmann::json js = {{"brief", summary.BriefReport()}, {"capture_kind", summary.capture_kind},
                        {"frames", summary.frames},       {"points", summary.points},
@@ -565,10 +634,23 @@ void WriteSummaryStage(const SurveySummary& summary, const fs::path& out_dir) {
   js["wall_cues"] = summary.wall_cues;
   js["walls_unseen"] = summary.walls_unseen;
   for (const StageTiming& s : summary.stages) js["stages"][s.stage] = s.seconds;
+  if (summary.panorama_tilt) {
+    const PanoTilt& t = *summary.panorama_tilt;
+    js["panorama_tilt"] = {{"found", t.found},
+                           {"tilt_deg", t.tilt_deg},
+                           {"toward_yaw_deg", t.toward_yaw_deg},
+                           {"sigma_deg", std::isfinite(t.sigma_deg) ? nlohmann::json(t.sigma_deg) : nlohmann::json()},
+                           {"lines", t.lines_used},
+                           {"levelled", summary.panorama_levelled}};
+  }
   if (std::isfinite(summary.ceiling_height_m)) {
     js["ceiling_height_m"] = summary.ceiling_height_m;
     js["ceiling_height_sigma_m"] = summary.ceiling_height_sigma_m;
   }
+  js["verdict"] = VerdictName(summary.verdict.verdict);
+  js["confidence"] = summary.verdict.confidence;
+  js["verdict_reasons"] = summary.verdict.reasons;
+  js["verdict_evidence"] = VerdictEvidenceJson(summary.verdict);
   if (summary.score) js["score"] = PlanScoreToJson(*summary.score);
   if (summary.room_overlap) {
     js["room_iou"] = summary.room_overlap->Iou();

@@ -24,11 +24,13 @@
 #include <vector>
 
 #include "asbuilt/formats/plan_file.h"
+#include "asbuilt/pano/level.h"
 #include "asbuilt/pano/pano_layout.h"
 #include "asbuilt/pano/perspective.h"
 #include "asbuilt/plan/reconstruct.h"
 #include "asbuilt/plan/room_iou.h"
 #include "asbuilt/plan/score.h"
+#include "asbuilt/plan/verdict.h"
 #include "asbuilt/stereo/capture_points.h"
 #include "asbuilt/util/progress.h"
 
@@ -59,6 +61,7 @@ struct SurveyOptions {
   std::optional<std::filesystem::path> truth_path;
   FramePointsOptions points;
   PlanOptions plan;
+  VerdictOptions verdict;
   // Panorama captures: the level views it is resampled into,
   // TurnInPlaceViews(panorama_views); frame i is view i (its labels:
   // DIR/NNN.png with --labels DIR), at world yaw panorama yaw + view yaw. Wide and tall, so one
@@ -77,6 +80,13 @@ struct SurveyOptions {
   // labels_dir are used as they are either way.
   bool pano_layout = false;
   PanoLayoutOptions layout;
+  // Panorama captures read by the segmenter: estimate the photo's tilt from
+  // its own lines and resample it level first (pano/level.h) when it leans
+  // at least min_level_tilt_deg. Label images given (labels_dir) belong to
+  // the panorama as it is, so it is then left as it is.
+  bool level_panorama = true;
+  double min_level_tilt_deg = 0.1;
+  LevelOptions level;
   // Per-wall cues: a wall seen (points within 0.1 m of it) along less than
   // this fraction of its length is reported as partly unseen.
   double min_seen_fraction = 0.5;
@@ -111,7 +121,13 @@ struct SurveySummary {
   // From the wall–ceiling/floor contacts (NaN: not measured).
   double ceiling_height_m = NAN;
   double ceiling_height_sigma_m = NAN;
+  // A panorama's tilt as estimated from its lines (unset: not estimated),
+  // and whether the survey resampled it level.
+  std::optional<PanoTilt> panorama_tilt;
+  bool panorama_levelled = false;
   PlanSummary plan;
+  // Can the plan be used as it is, and where to look (plan/verdict.h).
+  PlanVerdict verdict;
   std::optional<PlanScore> score;
   std::optional<RoomOverlap> room_overlap;  // With a truth: the rooms' 2D IoU.
   std::vector<StageTiming> stages;
