@@ -149,6 +149,27 @@ async function dragCorner(page, dx, dy) {
 const area = page => page.locator("#rv-area").textContent();
 const edits = page => page.locator("#rv-edits").textContent();
 
+// The verdict is shown first, and the doubtful walls are listed first,
+// haloed on the photo, and `n` jumps to them. Returns the banner's verdict,
+// or with `count` the number of doubtful walls.
+async function checkVerdict(page, name, count = false) {
+  const verdict = await page.locator("#rv-verdict").getAttribute("class");
+  if (!["good", "check", "unreliable"].includes(verdict)) fail(`${name}: no verdict banner (class ${verdict})`);
+  const state = await page.evaluate(() => state);
+  const doubtful = state.walls.filter(w => w.verdict !== "good").length;
+  const rows = await page.locator("#rv-walls tr.doubt").count();
+  if (rows !== doubtful) fail(`${name}: ${doubtful} doubtful walls in the state, ${rows} marked rows`);
+  if (doubtful > 0) {
+    const first = await page.locator("#rv-walls tr[data-wall]").first().getAttribute("class");
+    if (!first.includes("doubt")) fail(`${name}: the first wall row is not a doubtful one`);
+    const viewBefore = await page.locator("#rv-photo").getAttribute("viewBox");
+    await page.keyboard.press("n");
+    if ((await page.locator("#rv-photo").getAttribute("viewBox")) === viewBefore) fail(`${name}: n did not move the view`);
+    await page.keyboard.press("0");
+  }
+  return count ? doubtful : verdict;
+}
+
 async function checkSurvey(browser, name, out) {
   const {child, url} = await startReview(out);
   const page = await browser.newPage({viewport: {width: 1400, height: 800}});
@@ -159,10 +180,12 @@ async function checkSurvey(browser, name, out) {
     await page.goto(url);
     await page.waitForSelector("body[data-ready='1']", {timeout: 30000});
     await page.waitForSelector("circle.corner");
+    const verdict = await checkVerdict(page, name);
     const before = await area(page);
     await dragCorner(page, 60, 40);
     await page.waitForFunction(() => document.querySelector("#rv-edits").textContent === "1", null, {timeout: 20000});
     const dragged = await area(page);
+    const doubtful = await checkVerdict(page, name + " after a drag", true);
     if (dragged === before) fail(`${name}: the area did not change after a drag (${before} m²)`);
     await page.keyboard.press("Control+z");
     await page.waitForFunction(() => document.querySelector("#rv-edits").textContent === "2", null, {timeout: 20000});
@@ -196,7 +219,8 @@ async function checkSurvey(browser, name, out) {
     if (corrections.edits.length !== 4) fail(`${name}: corrections.json has ${corrections.edits.length} edits, not 4`);
     if (!plan.openings.some(o => o.kind === "window")) fail(`${name}: plan.json has no window`);
     if (errors.length) fail(`${name}: console errors: ${errors.join("; ")}`);
-    console.log(`${name}: ${before} → ${dragged} m² after a drag, undo back to ${before}, saved ${saved} m²: ok`);
+    if (!plan.verdict || !["good", "check", "unreliable"].includes(plan.verdict.verdict)) fail(`${name}: plan.json has no verdict`);
+    console.log(`${name}: verdict ${verdict}, ${doubtful} wall(s) to check after a drag; ${before} → ${dragged} m² after a drag, undo back to ${before}, saved ${saved} m²: ok`);
   } finally {
     await page.close();
     child.kill("SIGINT");

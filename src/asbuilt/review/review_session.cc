@@ -13,6 +13,7 @@
 #include "asbuilt/pipeline/review_input.h"
 #include "asbuilt/plan/drawing.h"
 #include "asbuilt/plan/fit_plan.h"
+#include "asbuilt/plan/verdict.h"
 #include "asbuilt/review/view_geometry.h"
 #include "asbuilt/util/file.h"
 #include "asbuilt/util/json_reader.h"
@@ -418,6 +419,20 @@ struct ReviewSession::Impl {
     FollowFit(layout);
   }
 
+  // The verdict on the current plan (plan/verdict.h); a wall between two
+  // corners the person set is theirs, and good.
+  PlanVerdict Judge() const {
+    VerdictContext context;
+    if (layout.corners_edited) {
+      auto by_user = [&](const Vec2& p) {
+        return std::any_of(layout.corners.begin(), layout.corners.end(),
+                           [&](const Corner& c) { return c.user && (c.xy_m - p).norm() < 0.01; });
+      };
+      for (const PlanWall& w : fit.plan.walls) context.confirmed_walls.push_back(by_user(w.start) && by_user(w.end));
+    }
+    return JudgePlan(input.plan_input, fit, {}, context);
+  }
+
   double CeilingM() const {
     if (layout.ceiling_m) return *layout.ceiling_m;
     if (std::isfinite(input.plan_input.ceiling_height_m)) return input.plan_input.ceiling_height_m;
@@ -530,7 +545,10 @@ struct ReviewSession::Impl {
   nlohmann::json StateJson() const {
     nlohmann::json js;
     js["kind"] = input.kind;
-    js["plan"] = PlanToJson(fit.plan);
+    const PlanVerdict verdict = Judge();
+    Plan marked = fit.plan;
+    MarkPlan(verdict, marked);
+    js["plan"] = PlanToJson(marked);
     js["corners"] = nlohmann::json::array();
     for (std::size_t i = 0; i < layout.corners.size(); ++i) js["corners"].push_back(CornerJson(i));
     js["openings"] = nlohmann::json::array();
@@ -550,19 +568,27 @@ struct ReviewSession::Impl {
       js["images"].push_back(image);
     }
     js["lines"] = LinesInImages();
+    js["verdict"] = {{"verdict", VerdictName(verdict.verdict)},
+                     {"confidence", verdict.confidence},
+                     {"reasons", verdict.reasons}};
     js["walls"] = nlohmann::json::array();
-    for (std::size_t w = 0; w < fit.plan.walls.size(); ++w) {
-      const PlanWall& wall = fit.plan.walls[w];
+    for (std::size_t w = 0; w < marked.walls.size(); ++w) {
+      const PlanWall& wall = marked.walls[w];
       nlohmann::json wj = {{"index", w},
                            {"length_m", wall.Length()},
                            {"inferred", w < fit.summary.wall_inferred.size() && fit.summary.wall_inferred[w]}};
+      if (w < verdict.walls.size()) {
+        wj["verdict"] = VerdictName(verdict.walls[w].verdict);
+        wj["confidence"] = verdict.walls[w].confidence;
+        wj["reasons"] = verdict.walls[w].reasons;
+      }
       wj["sigma_m"] = wall.length_sigma_m ? nlohmann::json(*wall.length_sigma_m) : nlohmann::json();
       js["walls"].push_back(wj);
     }
     js["notes"] = survey_summary.value("notes", nlohmann::json::array());
     js["wall_cues"] = survey_summary.value("wall_cues", nlohmann::json::array());
     try {
-      js["svg"] = fit.plan.walls.empty() ? std::string() : PlanToSvg(fit.plan);
+      js["svg"] = marked.walls.empty() ? std::string() : PlanToSvg(marked);
     } catch (const Error& e) {
       js["svg"] = "";
     }
@@ -695,8 +721,10 @@ std::vector<std::string> ReviewSession::Save(const ReviewSaveOptions& options) {
   fs::remove_all(staging, ec);
   fs::create_directories(staging / "review");
 
-  // 1. Every output, staged.
-  const Plan& plan = s.fit.plan;
+  // 1. Every output, staged, marked with the verdict the page shows.
+  const PlanVerdict verdict = s.Judge();
+  Plan plan = s.fit.plan;
+  MarkPlan(verdict, plan);
   if (plan.walls.empty()) {
     WritePlan(plan, staging / "plan.json");
   } else {
@@ -706,6 +734,7 @@ std::vector<std::string> ReviewSession::Save(const ReviewSaveOptions& options) {
   summary.capture_kind = s.input.kind;
   summary.labels_source = s.input.labels_source;
   summary.plan = s.fit.summary;
+  summary.verdict = verdict;
   summary.ceiling_height_m = s.CeilingM();
   summary.ceiling_height_sigma_m = s.layout.ceiling_m ? 0.0 : s.input.plan_input.ceiling_height_sigma_m;
   summary.frames = static_cast<int>(s.input.plan_input.frames.size());
