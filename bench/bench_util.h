@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <functional>
 #include <string>
 #include <vector>
@@ -55,6 +56,14 @@ inline int EnvPositiveInt(const char* name, int fallback) {
 inline std::string ResultsPath(int argc, char** argv, const std::string& name) {
   if (argc > 1) return argv[1];
   return std::string(ASBUILT_SOURCE_DIR) + "/bench/results/" + name + ".md";
+}
+
+// Today's date, YYYY-MM-DD (local time), for "measured on" lines.
+inline std::string Today() {
+  const std::time_t now = std::time(nullptr);
+  char buf[16];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d", std::localtime(&now));
+  return buf;
 }
 
 inline void WriteSection(const std::string& path, const std::string& markdown) {

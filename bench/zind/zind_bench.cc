@@ -28,13 +28,6 @@
 
 namespace {
 
-std::string Today() {
-  const std::time_t now = std::time(nullptr);
-  char buf[16];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d", std::localtime(&now));
-  return buf;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
