@@ -59,6 +59,34 @@ TEST(PlanFile, RejectsBadFieldsWithPaths) {
   }
 }
 
+TEST(PlanFile, CarriesTheVerdictAndRejectsUnknownWords) {
+  Plan plan = RectangleWithDoor();
+  plan.verdict = PlanVerdictNote{.verdict = "check", .confidence = 0.62, .reasons = {"wall 2 seen along 30 %"}};
+  plan.walls[2].verdict = "unreliable";
+  const Plan back = PlanFromJson(PlanToJson(plan), "plan.json");
+  ASSERT_TRUE(back.verdict);
+  EXPECT_EQ(back.verdict->verdict, "check");
+  EXPECT_EQ(back.verdict->confidence, 0.62);
+  EXPECT_EQ(back.verdict->reasons, std::vector<std::string>{"wall 2 seen along 30 %"});
+  EXPECT_EQ(back.walls[2].verdict, "unreliable");
+  EXPECT_FALSE(back.walls[0].verdict);
+  nlohmann::json j = PlanToJson(plan);
+  j["verdict"]["verdict"] = "fine";
+  j["verdict"]["confidence"] = 1.5;
+  j["walls"][1]["verdict"] = "maybe";
+  try {
+    PlanFromJson(j, "plan.json");
+    FAIL();
+  } catch (const InputError& e) {
+    ASSERT_EQ(e.problems().size(), 3u);
+    EXPECT_EQ(e.problems()[0].ToString(),
+              "plan.json: verdict.verdict: expected \"good\", \"check\" or \"unreliable\", got \"fine\"");
+    EXPECT_EQ(e.problems()[1].ToString(), "plan.json: verdict.confidence: 1.5 is above 1");
+    EXPECT_EQ(e.problems()[2].ToString(),
+              "plan.json: walls[1].verdict: expected \"good\", \"check\" or \"unreliable\", got \"maybe\"");
+  }
+}
+
 TEST(PlanFile, RejectsDegeneratePolygonAndZeroLengthWall) {
   nlohmann::json j = PlanToJson(RectangleWithDoor());
   j["walls"][0]["end"] = j["walls"][0]["start"];
