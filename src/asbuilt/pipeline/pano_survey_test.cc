@@ -167,16 +167,23 @@ cv::Mat PaintBoxRoom(const Eigen::Matrix3d& lean = Eigen::Matrix3d::Identity(), 
   return out;
 }
 
-TEST(RunSurvey, PanoramaLayoutRecoversTheBoxRoomFromThePhoto) {
-  if (!SegmenterAvailable() || !fs::exists(DefaultModelPath())) GTEST_SKIP() << "no segmenter in this build";
-  const fs::path dir = Fresh("layout");
-  cv::imwrite((dir / "pano.png").string(), PaintBoxRoom());
+// A panorama capture of the painted box room in a fresh folder, its truth beside it.
+fs::path WritePaintedCapture(const std::string& name, const cv::Mat& pano) {
+  const fs::path dir = Fresh(name);
+  cv::imwrite((dir / "pano.png").string(), pano);
   const nlohmann::json capture = {{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"},
                                   {"position_m", {kCamera.x(), kCamera.y(), kCamera.z()}}};
   WriteFileAtomic(dir / "capture.json", capture.dump());
   WritePlan(TruthPlan(), dir / "truth.json");
+  return dir / "capture.json";
+}
+
+TEST(RunSurvey, PanoramaLayoutRecoversTheBoxRoomFromThePhoto) {
+  if (!SegmenterAvailable() || !fs::exists(DefaultModelPath())) GTEST_SKIP() << "no segmenter in this build";
+  const fs::path capture = WritePaintedCapture("layout", PaintBoxRoom());
+  const fs::path dir = capture.parent_path();
   SurveyOptions options{.pano_layout = true, .write_report = true};
-  const SurveyResult r = RunSurvey(dir / "capture.json", dir / "out", options);
+  const SurveyResult r = RunSurvey(capture, dir / "out", options);
   ASSERT_TRUE(r.summary.room_overlap) << r.summary.BriefReport();
   EXPECT_GT(r.summary.room_overlap->Iou(), 0.9) << r.summary.BriefReport();
   EXPECT_NEAR(r.summary.ceiling_height_m, kCeiling, 0.05);
@@ -186,16 +193,12 @@ TEST(RunSurvey, PanoramaLayoutRecoversTheBoxRoomFromThePhoto) {
 
 TEST(RunSurvey, PanoramaSegmentedThroughTurnedViewsRecoversThePaintedRoom) {
   if (!SegmenterAvailable() || !fs::exists(DefaultModelPath())) GTEST_SKIP() << "no segmenter in this build";
-  const fs::path dir = Fresh("turned");
-  cv::imwrite((dir / "pano.png").string(), PaintBoxRoom());
-  const nlohmann::json capture = {{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"},
-                                  {"position_m", {kCamera.x(), kCamera.y(), kCamera.z()}}};
-  WriteFileAtomic(dir / "capture.json", capture.dump());
-  WritePlan(TruthPlan(), dir / "truth.json");
+  const fs::path capture = WritePaintedCapture("turned", PaintBoxRoom());
+  const fs::path dir = capture.parent_path();
   SurveyOptions options{.write_report = false};
   options.panorama_views = {.width_px = 256, .height_px = 512, .fx = 128.0};  // Quick: a quarter of the pixels.
   options.segment_wide_views = true;
-  const SurveyResult r = RunSurvey(dir / "capture.json", dir / "out", options);
+  const SurveyResult r = RunSurvey(capture, dir / "out", options);
   EXPECT_NE(r.summary.labels_source.find("three 40°-turned square views"), std::string::npos)
       << r.summary.labels_source;
   ASSERT_TRUE(r.summary.room_overlap) << r.summary.BriefReport();
@@ -205,15 +208,10 @@ TEST(RunSurvey, PanoramaSegmentedThroughTurnedViewsRecoversThePaintedRoom) {
 TEST(RunSurvey, ATiltedPanoramaIsLevelledAndSurveyedAsWellAsALevelOne) {
   if (!SegmenterAvailable() || !fs::exists(DefaultModelPath())) GTEST_SKIP() << "no segmenter in this build";
   auto survey = [](const std::string& name, const Eigen::Matrix3d& lean) {
-    const fs::path dir = Fresh(name);
-    cv::imwrite((dir / "pano.png").string(), PaintBoxRoom(lean, /*panelled=*/true));
-    const nlohmann::json capture = {{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"},
-                                    {"position_m", {kCamera.x(), kCamera.y(), kCamera.z()}}};
-    WriteFileAtomic(dir / "capture.json", capture.dump());
-    WritePlan(TruthPlan(), dir / "truth.json");
+    const fs::path capture = WritePaintedCapture(name, PaintBoxRoom(lean, /*panelled=*/true));
     SurveyOptions options{.write_report = false};
     options.panorama_views = {.width_px = 256, .height_px = 512, .fx = 128.0};  // Quick: a quarter of the pixels.
-    return RunSurvey(dir / "capture.json", dir / "out", options);
+    return RunSurvey(capture, capture.parent_path() / "out", options);
   };
   const SurveyResult level = survey("level", Eigen::Matrix3d::Identity());
   const SurveyResult tilted =

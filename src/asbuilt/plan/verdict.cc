@@ -66,7 +66,8 @@ struct BinStats {
   bool hidden_floor = false;  // Ceiling contacts but no floor contact.
   double median_error = NAN;
   double floor_ceiling = NAN;
-  int wall = -1;  // The plan wall the bin's centre ray meets.
+  int wall = -1;  // The plan wall the bin's centre ray meets…
+  double plan_distance_m = NAN;  // …this far from the viewpoint.
 };
 
 std::string Percent(double x) { return fmt::format("{:.0f} %", 100 * x); }
@@ -172,7 +173,9 @@ std::vector<BinStats> BinEvidence(const PlanInput& input, const Plan& plan, cons
   std::vector<BinStats> out(n_bins);
   for (int b = 0; b < n_bins; ++b) {
     const double deg = (b + 0.5) * options.bin_deg * kPi / 180.0;
-    out[b].wall = CastRay(plan, viewpoint, Vec2(std::cos(deg), std::sin(deg))).wall;
+    const Hit centre = CastRay(plan, viewpoint, Vec2(std::cos(deg), std::sin(deg)));
+    out[b].wall = centre.wall;
+    out[b].plan_distance_m = centre.distance;
     const Bin& bin = bins[b];
     if (!bin.Seen()) continue;
     out[b].seen = true;
@@ -200,7 +203,7 @@ void JudgeWallLines(const std::vector<BinStats>& bins, const PlanSummary& summar
       continue;
     }
     int total = 0, seen = 0, agree = 0, hidden = 0, beyond = 0, before = 0;
-    std::vector<double> fc, errors;
+    std::vector<double> fc, errors, offsets;
     for (const BinStats& b : bins) {
       if (b.wall != static_cast<int>(w)) continue;
       ++total;
@@ -210,6 +213,7 @@ void JudgeWallLines(const std::vector<BinStats>& bins, const PlanSummary& summar
       hidden += b.hidden_floor;
       if (!b.agrees) (b.median_error > 0 ? beyond : before)++;
       errors.push_back(b.median_error);
+      if (std::isfinite(b.plan_distance_m)) offsets.push_back(std::abs(b.median_error) * b.plan_distance_m);
       if (std::isfinite(b.floor_ceiling)) fc.push_back(b.floor_ceiling);
     }
     WallVerdict& v = walls[w];
@@ -220,6 +224,10 @@ void JudgeWallLines(const std::vector<BinStats>& bins, const PlanSummary& summar
     e.floor_ceiling = fc.size() >= 2 ? Median(fc) : NAN;
     e.median_error = Median(errors);
     e.hidden_floor = seen > 0 ? double(hidden) / seen : 0.0;
+    if (!offsets.empty()) {  // The 68th percentile: a 1σ of where its points put it.
+      std::sort(offsets.begin(), offsets.end());
+      e.offset_sigma_m = offsets[std::min(offsets.size() - 1, static_cast<std::size_t>(0.68 * offsets.size()))];
+    }
     const bool inferred = w < summary.wall_inferred.size() && summary.wall_inferred[w];
     if (inferred || seen == 0) {
       v.verdict = Verdict::kUnreliable;
@@ -571,9 +579,23 @@ PlanVerdict JudgePlan(const PlanInput& input, const PlanResult& fit, const Verdi
 void MarkPlan(const PlanVerdict& verdict, Plan& plan) {
   plan.verdict = PlanVerdictNote{
       .verdict = VerdictName(verdict.verdict), .confidence = verdict.confidence, .reasons = verdict.reasons};
-  for (std::size_t w = 0; w < plan.walls.size() && w < verdict.walls.size(); ++w) {
-    plan.walls[w].verdict = VerdictName(verdict.walls[w].verdict);
-    if (verdict.walls[w].verdict == Verdict::kUnreliable) plan.walls[w].length_sigma_m.reset();
+  const std::size_t n = std::min(plan.walls.size(), verdict.walls.size());
+  for (std::size_t w = 0; w < n; ++w) {
+    PlanWall& wall = plan.walls[w];
+    wall.verdict = VerdictName(verdict.walls[w].verdict);
+    if (verdict.walls[w].verdict == Verdict::kUnreliable) {
+      wall.length_sigma_m.reset();
+      continue;
+    }
+    // Its ends are where its neighbours' lines cross it: where the points
+    // scatter about those lines, the length is that much less sure.
+    if (!wall.length_sigma_m) continue;
+    double variance = *wall.length_sigma_m * *wall.length_sigma_m;
+    for (std::size_t k : {(w + n - 1) % n, (w + 1) % n}) {
+      const double offset = verdict.walls[k].evidence.offset_sigma_m;
+      if (k != w && std::isfinite(offset)) variance += offset * offset;
+    }
+    wall.length_sigma_m = std::sqrt(variance);
   }
   if (verdict.verdict == Verdict::kUnreliable) {
     for (PlanRoom& room : plan.rooms) room.area_sigma_m2.reset();

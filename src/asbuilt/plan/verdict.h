@@ -114,6 +114,7 @@ struct WallEvidenceFigures {
   double floor_ceiling = NAN;  // Median relative floor/ceiling distance disagreement (NaN: not measured).
   double median_error = NAN;   // Median signed relative distance error of its points ((point − plan) / plan).
   double hidden_floor = 0.0;   // Share of its seen span with ceiling contacts but no floor contact.
+  double offset_sigma_m = NAN; // 68th percentile of its bins' |median distance error|, m: how far its points scatter off it.
 };
 
 struct WallVerdict {
@@ -149,7 +150,9 @@ PlanVerdict JudgePlan(const PlanInput& input, const PlanResult& fit, const Verdi
 
 // Writes the verdict into the plan (formats/plan_file.h): the plan's
 // PlanVerdictNote and each wall's word; an unreliable wall loses its ±, and
-// an unreliable plan its area's ±.
+// an unreliable plan its area's ±. Every other wall's ± takes in, in
+// quadrature, how far the points scatter about its two neighbours (their
+// offset_sigma_m): its ends are where they cross it.
 void MarkPlan(const PlanVerdict& verdict, Plan& plan);
 
 // Worse of two verdicts.

@@ -136,7 +136,13 @@ TEST(MarkPlan, AnUnreliableWallLosesItsPlusMinus) {
   EXPECT_EQ(plan.walls[1].verdict, "unreliable");
   EXPECT_FALSE(plan.walls[1].length_sigma_m);
   EXPECT_EQ(plan.walls[3].verdict, "good");
-  EXPECT_TRUE(plan.walls[3].length_sigma_m);
+  ASSERT_TRUE(plan.walls[3].length_sigma_m);
+  EXPECT_NEAR(*plan.walls[3].length_sigma_m, 0.01, 1e-3);  // Its neighbours' points lie on them.
+  // Walls 0 and 2 end at wall 1, whose points lie 0.6 m beyond it: their ± takes that in.
+  ASSERT_TRUE(plan.walls[0].length_sigma_m && plan.walls[2].length_sigma_m);
+  EXPECT_GT(*plan.walls[0].length_sigma_m, 0.4);
+  EXPECT_LT(*plan.walls[0].length_sigma_m, 0.8);
+  EXPECT_GT(*plan.walls[2].length_sigma_m, 0.4);
 }
 
 TEST(VerdictOptions, BoundsAreChecked) {
