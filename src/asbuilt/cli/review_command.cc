@@ -11,6 +11,7 @@
 #include "asbuilt/cli/command.h"
 #include "asbuilt/review/http.h"
 #include "asbuilt/review/review_session.h"
+#include "asbuilt/review/training_example.h"
 
 namespace asbuilt::cli {
 
@@ -23,15 +24,23 @@ int RunReviewCommand(int argc, char** argv) {
   AddCommonFlags(app);
   std::string out_dir;
   ReviewServerOptions options;
-  bool no_open = false;
+  bool no_open = false, export_training = false;
   app.add_option("out", out_dir, "a folder written by `asbuilt survey -o`")->required();
   app.add_option("--port", options.port, "port on 127.0.0.1 (0: a free one)")->capture_default_str();
   app.add_flag("--no-open", no_open, "do not start a browser");
+  app.add_flag("--export-training", export_training,
+               "write the saved review as a labelled real example (OUT/review/training/: the views, their labels "
+               "drawn from the corrected plan, manifest.json, truth.json) and exit; every save writes it too");
   Parse(app, argc, argv);
   options.open_browser = !no_open;
   options.Check();
 
   ReviewSession session = ReviewSession::Open(out_dir);
+  if (export_training) {
+    const TrainingExample example = session.ExportTraining();
+    fmt::print("{} views with labels from the corrected plan → {}\n", example.views, example.dir.string());
+    return 0;
+  }
   std::signal(SIGPIPE, SIG_IGN);
   RunReviewServer(session, options, [](const std::string& url) {
     fmt::print("asbuilt review: {}\n", url);

@@ -14,6 +14,7 @@
 #include "asbuilt/plan/drawing.h"
 #include "asbuilt/plan/fit_plan.h"
 #include "asbuilt/plan/verdict.h"
+#include "asbuilt/review/training_example.h"
 #include "asbuilt/review/view_geometry.h"
 #include "asbuilt/util/file.h"
 #include "asbuilt/util/json_reader.h"
@@ -635,7 +636,10 @@ void RecoverSave(const fs::path& out_dir) {
     diag.ThrowIfErrors();
     for (const nlohmann::json& f : js.at("files")) {
       const fs::path from = review / kStaging / f.get<std::string>();
-      if (fs::exists(from, ec)) fs::rename(from, out_dir / f.get<std::string>());
+      if (fs::exists(from, ec)) {
+        fs::create_directories((out_dir / f.get<std::string>()).parent_path(), ec);
+        fs::rename(from, out_dir / f.get<std::string>());
+      }
     }
     spdlog::info("review: finished the save interrupted in {}", out_dir.string());
     fs::remove(journal, ec);
@@ -713,6 +717,19 @@ nlohmann::json ReviewSession::Edit(const nlohmann::json& edit) {
   return s.StateJson();
 }
 
+TrainingExample ReviewSession::ExportTraining() const {
+  const Impl& s = *impl_;
+  const fs::path corrections = s.out_dir / "review" / "corrections.json";
+  if (!fs::exists(corrections)) {
+    throw InputError(s.out_dir.string(), "",
+                     "has no review/corrections.json: no review was saved here (open it with `asbuilt review` and "
+                     "save first)");
+  }
+  Plan plan = s.fit.plan;
+  MarkPlan(s.Judge(), plan);
+  return WriteTrainingExample(s.input, plan, s.CeilingM(), s.out_dir / "review" / "training");
+}
+
 std::vector<std::string> ReviewSession::Save(const ReviewSaveOptions& options) {
   Impl& s = *impl_;
   const fs::path review = s.out_dir / "review";
@@ -760,6 +777,8 @@ std::vector<std::string> ReviewSession::Save(const ReviewSaveOptions& options) {
                                       {"layout_in_images", s.LayoutInImages()},
                                       {"plan", PlanToJson(plan)}};
   WriteFileAtomic(staging / "review" / "corrections.json", corrections.dump(1) + "\n");
+  // The corrected survey as a labelled real example (review/training_example.h).
+  if (!plan.walls.empty()) WriteTrainingExample(s.input, plan, s.CeilingM(), staging / "review" / "training");
   WriteFileAtomic(
       staging / "review" / "state.json",
       nlohmann::json({{"layout", LayoutJson(s.layout)}, {"initial", LayoutJson(s.initial)}, {"edits", s.log}}).dump(1) +
@@ -780,6 +799,7 @@ std::vector<std::string> ReviewSession::Save(const ReviewSaveOptions& options) {
   int moved = 0;
   for (const std::string& f : files) {
     if (moved == options.stop_after_files) throw Error("review save stopped while moving its files (test)");
+    fs::create_directories((s.out_dir / f).parent_path());
     fs::rename(staging / f, s.out_dir / f);
     ++moved;
   }

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "asbuilt/review/training_example.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
@@ -65,6 +66,10 @@ class ReviewSession {
   // file, then moved into place; an interrupted move is finished by the next
   // Open). Returns the files written, relative to OUT.
   std::vector<std::string> Save(const ReviewSaveOptions& options = {});
+  // Writes the saved review as a labelled real example into
+  // OUT/review/training/ (review/training_example.h; Save writes it too).
+  // Throws InputError when OUT holds no saved review.
+  TrainingExample ExportTraining() const;
 
   const std::filesystem::path& out_dir() const;
   // The image files the page shows, in State()'s "images" order.

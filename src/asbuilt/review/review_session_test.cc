@@ -10,11 +10,13 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "asbuilt/dataset/manifest.h"
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/pano/perspective.h"
 #include "asbuilt/plan/fit_plan.h"
 #include "asbuilt/plan/room_iou.h"
 #include "asbuilt/review/review_test_fixtures.h"
+#include "asbuilt/review/training_example.h"
 #include "asbuilt/review/view_geometry.h"
 #include "asbuilt/util/file.h"
 
@@ -338,6 +340,42 @@ TEST(ReviewSession, SaveWritesThePlanAndTheCorrectionsAndReopensThere) {
   EXPECT_EQ(reopened["plan"].dump(), state["plan"].dump());
   EXPECT_EQ(reopened["edits"], 1);
   EXPECT_EQ(reopened["corners"].dump(), state["corners"].dump());
+}
+
+TEST(ReviewSession, SaveWritesTheCorrectedSurveyAsALabelledRealExample) {
+  // Saved as surveyed (exact labels), the layout's labels are the survey's
+  // own wherever the box room's walls decide the pixel.
+  const fs::path out = PanoramaSurvey("training");
+  ReviewSession session = ReviewSession::Open(out);
+  try {
+    session.ExportTraining();
+    FAIL() << "exported a review that was never saved";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no review was saved here"), std::string::npos) << e.what();
+  }
+  const std::vector<std::string> files = session.Save();
+  EXPECT_NE(std::find(files.begin(), files.end(), "review/training/manifest.json"), files.end());
+  const Manifest manifest = ReadManifest(out / "review/training/manifest.json", {.verify_checksums = true});
+  const ReviewInput input = ReadReviewInput(out);
+  ASSERT_EQ(manifest.train.size(), input.labels.size());
+  ASSERT_FALSE(manifest.train.empty());
+  long agree = 0, total = 0;
+  for (std::size_t i = 0; i < manifest.train.size(); ++i) {
+    EXPECT_EQ(manifest.train[i].source, PairSource::kReal);
+    const cv::Mat drawn = cv::imread(manifest.Resolve(manifest.train[i].label).string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat surveyed = cv::imread(input.labels[i].image.string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat image = cv::imread(manifest.Resolve(manifest.train[i].image).string());
+    ASSERT_EQ(drawn.size(), surveyed.size());
+    ASSERT_EQ(image.size(), surveyed.size());
+    agree += cv::countNonZero(drawn == surveyed);
+    total += static_cast<long>(drawn.total());
+  }
+  EXPECT_GT(double(agree) / total, 0.97) << agree << " of " << total << " pixels";
+  const Plan truth = ReadPlan(out / "review/training/truth.json");
+  EXPECT_EQ(PlanToJson(truth).dump(), PlanToJson(ReadPlan(out / "plan.json")).dump());
+  EXPECT_EQ(session.ExportTraining().views, static_cast<int>(manifest.train.size()));
+  // A plan without walls makes no example.
+  EXPECT_THROW(WriteTrainingExample(input, Plan{}, 2.5, out / "none"), InvalidArgument);
 }
 
 TEST(ReviewSession, AnInterruptedSaveLeavesTheOldOutputsOrTheNew) {
