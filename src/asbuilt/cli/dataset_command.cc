@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -28,10 +29,13 @@ int RunDatasetCommand(int argc, char** argv) {
 
   // mix
   CLI::App* mix = app.add_subcommand("mix", "real + synthetic → manifest.json (train / val / held-out real test)");
-  std::string mix_real, mix_synth, mix_test, mix_out;
+  std::vector<std::string> mix_real;
+  std::string mix_synth, mix_test, mix_out;
   MixOptions mix_options;
   bool no_checksums = false;
-  mix->add_option("--real", mix_real, "real dataset folder (images/ + labels/, at any depth)");
+  mix->add_option("--real", mix_real,
+                  "real dataset folder (images/ + labels/, at any depth); repeat it for several, e.g. survey "
+                  "folders whose reviews were saved (OUT/review/training/). Test rooms are held out whole");
   mix->add_option("--synthetic", mix_synth, "synthetic dataset folder (left/ + labels/ captures, or images/ + labels/)");
   mix->add_option("--test", mix_test, "explicit real test folder (default: hold out --test-fraction of --real)");
   mix->add_option("--config", mix_options.config, "R100, S100, RS5050, RS8020, RS2080 or any RSxxyy")
@@ -67,7 +71,8 @@ int RunDatasetCommand(int argc, char** argv) {
       throw CLI::ValidationError("--real/--synthetic", "give at least one of --real and --synthetic");
     }
     ProgressPrinter printer;
-    MixSummary summary = MixDataset(mix_options, mix_real, mix_synth, mix_test, mix_out, printer.Callback());
+    const std::vector<std::filesystem::path> real_dirs(mix_real.begin(), mix_real.end());
+    MixSummary summary = MixDataset(mix_options, real_dirs, mix_synth, mix_test, mix_out, printer.Callback());
     printer.Finish();
     fmt::print("{}\nwrote {}\n", summary.BriefReport(), mix_out);
     return 0;

@@ -38,6 +38,14 @@ void Shuffle(std::vector<T>& v, std::uint64_t seed) {
 
 // Independent streams from one seed.
 constexpr std::uint64_t kTestStream = 0x7465737400000000ULL;   // "test"
+
+// The room a pair shows: the folder part of its name ("kitchen/review/
+// training/003" → "kitchen/review/training"); a pair named without one is
+// a room of its own (a folder of single photos).
+std::string RoomOf(const ImagePair& p) {
+  const std::size_t slash = p.name.rfind('/');
+  return slash == std::string::npos ? p.name : p.name.substr(0, slash);
+}
 constexpr std::uint64_t kRealStream = 0x7265616c00000000ULL;   // "real"
 constexpr std::uint64_t kSynthStream = 0x73796e7400000000ULL;  // "synt"
 constexpr std::uint64_t kOrderStream = 0x6f72646500000000ULL;  // "orde"
@@ -113,11 +121,27 @@ MixSummary BuildMix(const MixOptions& options, const MixSources& sources, const 
       return dup;
     });
   } else if (!real.empty() && options.test_fraction > 0) {
-    Shuffle(real, options.seed ^ kTestStream);
-    const std::size_t n_test =
-        std::min(real.size() - 1, static_cast<std::size_t>(std::ceil(options.test_fraction * real.size())));
-    test.assign(real.begin(), real.begin() + n_test);
-    real.erase(real.begin(), real.begin() + n_test);
+    // Whole rooms are held out, never single views of one (RoomOf).
+    std::map<std::string, std::vector<ImagePair>> by_room;
+    for (ImagePair& p : real) by_room[RoomOf(p)].push_back(std::move(p));
+    std::vector<std::string> rooms;
+    for (const auto& [room, pairs] : by_room) rooms.push_back(room);
+    if (rooms.size() < 2) {
+      throw Error(fmt::format(
+          "the real pairs are all of one room ({}): a test room must be another one, never views of the same room; "
+          "give the reviews of more rooms, or --test-fraction 0 (and --test DIR)",
+          rooms.front()));
+    }
+    Shuffle(rooms, options.seed ^ kTestStream);
+    const std::size_t wanted = static_cast<std::size_t>(std::ceil(options.test_fraction * real.size()));
+    real.clear();
+    for (std::size_t i = 0; i < rooms.size(); ++i) {
+      std::vector<ImagePair>& pairs = by_room[rooms[i]];
+      // Test until it holds `wanted` pairs, but never the last room.
+      const bool to_test = test.size() < wanted && i + 1 < rooms.size();
+      std::vector<ImagePair>& into = to_test ? test : real;
+      into.insert(into.end(), pairs.begin(), pairs.end());
+    }
     test = Sorted(std::move(test));
     real = Sorted(std::move(real));
   }
@@ -213,7 +237,7 @@ MixSummary BuildMix(const MixOptions& options, const MixSources& sources, const 
   return summary;
 }
 
-MixSummary MixDataset(const MixOptions& options, const fs::path& real_dir, const fs::path& synthetic_dir,
+MixSummary MixDataset(const MixOptions& options, const std::vector<fs::path>& real_dirs, const fs::path& synthetic_dir,
                       const fs::path& real_test_dir, const fs::path& manifest_path, const ProgressCallback& progress) {
   options.Check();
   MixSources sources;
@@ -224,7 +248,15 @@ MixSummary MixDataset(const MixOptions& options, const fs::path& real_dir, const
     for (const fs::path& p : l.labels_without_image) spdlog::warn("mix: {} label without image: {}", what, p.string());
     return l.pairs;
   };
-  sources.real = list(real_dir, "real");
+  for (const fs::path& dir : real_dirs) {
+    std::vector<ImagePair> pairs = list(dir, "real");
+    if (real_dirs.size() > 1) {  // Each folder its own name, so each stays its own room.
+      const std::string prefix = fs::path(dir).lexically_normal().filename().string();
+      const std::string own = prefix.empty() ? fs::path(dir).lexically_normal().parent_path().filename().string() : prefix;
+      for (ImagePair& p : pairs) p.name = own + "/" + p.name;
+    }
+    sources.real.insert(sources.real.end(), pairs.begin(), pairs.end());
+  }
   sources.synthetic = list(synthetic_dir, "synthetic");
   sources.real_test = list(real_test_dir, "real test");
   fs::path dir = manifest_path.parent_path();
@@ -232,6 +264,11 @@ MixSummary MixDataset(const MixOptions& options, const fs::path& real_dir, const
   if (summary.manifest.test.empty()) spdlog::warn("mix: no real test pairs (no real data given)");
   WriteManifest(summary.manifest, manifest_path);
   return summary;
+}
+
+MixSummary MixDataset(const MixOptions& options, const fs::path& real_dir, const fs::path& synthetic_dir,
+                      const fs::path& real_test_dir, const fs::path& manifest_path, const ProgressCallback& progress) {
+  return MixDataset(options, std::vector<fs::path>{real_dir}, synthetic_dir, real_test_dir, manifest_path, progress);
 }
 
 }  // namespace asbuilt

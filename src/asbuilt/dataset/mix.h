@@ -42,8 +42,11 @@ struct MixOptions {
   // synthetic in the mix's ratio); 0.9 = the paper's 9:1.
   double split = 0.9;
   // Fraction of the real pairs held out as the test list (ignored when an
-  // explicit test set is given). Rounded up, so a real set of any size gives
-  // at least one test pair.
+  // explicit test set is given). Whole rooms are held out, never single views
+  // of one: a room is the folder part of a pair's name ("kitchen/review/
+  // training/003"), a pair named without one a room of its own. Rooms are
+  // drawn until the list holds this fraction (rounded up), the last room
+  // always left for training.
   double test_fraction = 0.1;
   std::uint64_t seed = 1;
   // Record SHA-256 of every image and label (reads every file once).
@@ -82,7 +85,12 @@ MixSummary BuildMix(const MixOptions& options, const MixSources& sources, const 
                     const ProgressCallback& progress = {});
 
 // Lists the dataset folders (ListDatasetPairs; empty paths are skipped),
-// builds the mix and writes the manifest atomically.
+// builds the mix and writes the manifest atomically. Several real folders
+// (say, survey folders whose reviews were saved: OUT/review/training/) are
+// listed each under its own name ("kitchen/…"), so each stays its own room.
+MixSummary MixDataset(const MixOptions& options, const std::vector<std::filesystem::path>& real_dirs,
+                      const std::filesystem::path& synthetic_dir, const std::filesystem::path& real_test_dir,
+                      const std::filesystem::path& manifest_path, const ProgressCallback& progress = {});
 MixSummary MixDataset(const MixOptions& options, const std::filesystem::path& real_dir,
                       const std::filesystem::path& synthetic_dir, const std::filesystem::path& real_test_dir,
                       const std::filesystem::path& manifest_path, const ProgressCallback& progress = {});

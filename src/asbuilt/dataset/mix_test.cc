@@ -122,6 +122,47 @@ TEST_F(MixTest, TestSetIsHeldOutAndTheSameForEveryConfig) {
   }
 }
 
+TEST_F(MixTest, ReviewedRoomsAreHeldOutWholeNeverByView) {
+  // Five survey folders whose reviews were saved, 12 views each, given one
+  // by one as a surveyor would: every test room's views are all in test.
+  std::vector<fs::path> rooms;
+  for (const char* room : {"kitchen", "hall", "bedroom", "bath", "attic"}) {
+    rooms.push_back(dir_ / "surveys" / room);
+    MakeDataset(rooms.back() / "review" / "training", 12, 3);
+  }
+  for (int seed = 1; seed <= 5; ++seed) {
+    const MixSummary s = MixDataset({.config = "RS5050", .test_fraction = 0.25, .seed = static_cast<std::uint64_t>(seed),
+                                     .checksums = false},
+                                    rooms, sources_ / "synth", {}, dir_ / "out/rooms.json");
+    auto room_of = [](const ManifestEntry& e) {
+      const std::string tail = e.image.substr(e.image.find("surveys/") + 8);
+      return tail.substr(0, tail.find('/'));
+    };
+    std::set<std::string> test_rooms, train_rooms;
+    for (const ManifestEntry& e : s.manifest.test) test_rooms.insert(room_of(e));
+    for (const auto* list : {&s.manifest.train, &s.manifest.val}) {
+      for (const ManifestEntry& e : *list) {
+        if (e.source == PairSource::kReal) train_rooms.insert(room_of(e));
+      }
+    }
+    EXPECT_EQ(s.manifest.test.size() % 12, 0u) << "seed " << seed;
+    EXPECT_EQ(test_rooms.size(), 2u) << "seed " << seed;  // 25 % of 60 views: 15, so two rooms of 12.
+    for (const std::string& r : test_rooms) EXPECT_FALSE(train_rooms.count(r)) << r << ", seed " << seed;
+  }
+}
+
+TEST_F(MixTest, OneReviewedRoomCannotBeItsOwnTest) {
+  MakeDataset(dir_ / "one" / "review" / "training", 12, 3);
+  try {
+    MixDataset({.config = "R100", .checksums = false}, std::vector<fs::path>{dir_ / "one"}, {}, {},
+               dir_ / "out/one.json");
+    FAIL() << "a one-room mix was built";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("all of one room (review/training)"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "out/one.json"));
+}
+
 TEST_F(MixTest, DefaultTotalIsTheLargestMixTheSourcesAllow) {
   // 108 real after the hold-out, 400 synthetic.
   MixSummary r100 = Mix({.config = "R100", .checksums = false});
