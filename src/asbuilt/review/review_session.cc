@@ -135,6 +135,16 @@ std::vector<Vec2> CornerPoints(const Layout& l) {
 }
 
 // Reads a finite number field of an edit.
+// A plan point [x, y] (metres) from edit[key]; EditError naming `what` when it is not two finite numbers.
+Vec2 PlanPoint(const nlohmann::json& edit, const char* key, const std::string& what) {
+  const nlohmann::json* v = edit.contains(key) ? &edit[key] : nullptr;
+  if (v == nullptr || !v->is_array() || v->size() != 2 || !(*v)[0].is_number() || !(*v)[1].is_number() ||
+      !std::isfinite((*v)[0].get<double>()) || !std::isfinite((*v)[1].get<double>())) {
+    throw EditError(fmt::format("{}: \"{}\" must be [x, y], two finite numbers", what, key));
+  }
+  return Vec2((*v)[0].get<double>(), (*v)[1].get<double>());
+}
+
 double Number(const nlohmann::json& edit, const char* key) {
   const std::string op = edit.value("op", "");
   if (!edit.contains(key)) throw EditError(fmt::format("{}: \"{}\" is missing", op, key));
@@ -244,6 +254,20 @@ struct ReviewSession::Impl {
     if (!edit.contains("kind") || !edit["kind"].is_string() || (edit["kind"] != "door" && edit["kind"] != "window")) {
       throw EditError(fmt::format("{}: \"kind\" must be \"door\" or \"window\"", op));
     }
+    if (edit.contains("start_m")) {  // In plan metres (scripts): ends on the floor, sill and head heights.
+      Opening o{.id = id,
+                .kind = edit["kind"] == "window" ? OpeningKind::kWindow : OpeningKind::kDoor,
+                .start_m = PlanPoint(edit, "start_m", op),
+                .end_m = PlanPoint(edit, "end_m", op),
+                .bottom_m = Number(edit, "bottom_m"),
+                .top_m = Number(edit, "top_m"),
+                .user = true};
+      if (!((o.end_m - o.start_m).norm() >= 0.05)) throw EditError(fmt::format("{}: start_m and end_m must be 5 cm or more apart", op));
+      if (!(o.bottom_m >= 0 && o.top_m > o.bottom_m + 0.05 && o.top_m < kMaxCeilingM)) {
+        throw EditError(fmt::format("{}: bottom_m ({}) and top_m ({}) leave no opening", op, o.bottom_m, o.top_m));
+      }
+      return o;
+    }
     const ReviewImage& image = ImageOf(edit);
     const double v_top = Number(edit, "v_top"), v_bottom = Number(edit, "v_bottom");
     const Vec2 p0 = PixelOf(edit, image, "u0", "v_top"), p1 = PixelOf(edit, image, "u1", "v_bottom");
@@ -328,11 +352,26 @@ struct ReviewSession::Impl {
       l.corners_edited = true;
       l.corners[i].xy_m = xy;
       l.corners[i].user = true;
+    } else if (op == "set_corners") {  // The whole outline at once (scripts): every corner the person's.
+      if (!edit.contains("corners_m") || !edit["corners_m"].is_array() || edit["corners_m"].size() < 3) {
+        throw EditError("set_corners: \"corners_m\" must be a list of 3 or more [x, y] floor points, in room order");
+      }
+      l.corners.clear();
+      for (std::size_t k = 0; k < edit["corners_m"].size(); ++k) {
+        const nlohmann::json point = {{"xy", edit["corners_m"][k]}};
+        l.corners.push_back(Corner{.id = l.next_id++, .xy_m = PlanPoint(point, "xy", fmt::format("set_corners: corner {}", k)), .user = true});
+      }
+      if (PolygonCrossings(CornerPoints(l)) > 0) throw EditError("set_corners: the corners cross each other: give them in the room's order");
+      l.corners_edited = true;
     } else if (op == "delete_corner") {
       const int i = CornerIndex(l, Integer(edit, "id"), op);
       if (l.corners.size() <= 3) throw EditError("delete_corner: a room needs at least 3 corners");
       l.corners_edited = true;
       l.corners.erase(l.corners.begin() + i);
+    } else if (op == "ceiling" && edit.contains("height_m")) {  // A number (scripts), not a click.
+      const double h = Number(edit, "height_m");
+      if (!(h > 0.5 && h < kMaxCeilingM)) throw EditError(fmt::format("ceiling: height_m {} is not a room's", h));
+      l.ceiling_m = h;
     } else if (op == "ceiling") {
       const ReviewImage& image = ImageOf(edit);
       const Vec2 pixel = PixelOf(edit, image, "u", "v");
@@ -362,7 +401,7 @@ struct ReviewSession::Impl {
       l.openings.erase(l.openings.begin() + i);
     } else {
       throw EditError(
-          fmt::format("unknown op \"{}\" (add_corner, move_corner, delete_corner, ceiling, add_opening, "
+          fmt::format("unknown op \"{}\" (add_corner, move_corner, set_corners, delete_corner, ceiling, add_opening, "
                       "move_opening, delete_opening, undo, redo)",
                       op));
     }

@@ -342,6 +342,33 @@ TEST(ReviewSession, SaveWritesThePlanAndTheCorrectionsAndReopensThere) {
   EXPECT_EQ(reopened["corners"].dump(), state["corners"].dump());
 }
 
+TEST(ReviewSession, AScriptSetsTheWholeLayoutInMetres) {
+  const fs::path out = PanoramaSurvey("set_corners");
+  ReviewSession session = ReviewSession::Open(out);
+  // A room 0.2 m narrower than the survey's, 2.40 m high, a window on the south wall.
+  const nlohmann::json corners = {{kX0, kY0}, {kX1 - 0.2, kY0}, {kX1 - 0.2, kY1}, {kX0, kY1}};
+  nlohmann::json state = session.Edit({{"op", "set_corners"}, {"corners_m", corners}});
+  state = session.Edit({{"op", "ceiling"}, {"height_m", 2.4}});
+  state = session.Edit({{"op", "add_opening"}, {"kind", "window"}, {"start_m", {-1.0, kY0}}, {"end_m", {0.2, kY0}},
+                        {"bottom_m", 0.9}, {"top_m", 2.1}});
+  const Plan plan = PlanFromJson(state["plan"], "state");
+  ASSERT_EQ(plan.rooms.size(), 1u);
+  EXPECT_NEAR(plan.rooms[0].area_m2, (kX1 - 0.2 - kX0) * (kY1 - kY0), 0.01);
+  EXPECT_NEAR(state["ceiling_height_m"].get<double>(), 2.4, 1e-9);
+  bool window = false;
+  for (const PlanOpening& o : plan.openings) window |= o.kind == OpeningKind::kWindow && std::abs(o.width - 1.2) < 0.01;
+  EXPECT_TRUE(window) << state["plan"].dump();
+  for (const nlohmann::json& w : state["walls"]) {  // Each between two corners the script set: theirs.
+    EXPECT_EQ(w["verdict"], "good") << w.dump();
+  }
+  // Corners that cross, or too few, are refused and change nothing.
+  const nlohmann::json crossing = {{kX0, kY0}, {kX1, kY1}, {kX1, kY0}, {kX0, kY1}};
+  EXPECT_THROW(session.Edit({{"op", "set_corners"}, {"corners_m", crossing}}), EditError);
+  EXPECT_THROW(session.Edit({{"op", "set_corners"}, {"corners_m", {{0, 0}, {1, 0}}}}), EditError);
+  EXPECT_THROW(session.Edit({{"op", "ceiling"}, {"height_m", 40.0}}), EditError);
+  EXPECT_EQ(session.State()["edits"], 3);
+}
+
 TEST(ReviewSession, SaveWritesTheCorrectedSurveyAsALabelledRealExample) {
   // Saved as surveyed (exact labels), the layout's labels are the survey's
   // own wherever the box room's walls decide the pixel.
