@@ -127,9 +127,7 @@ int RunSurveyCommand(int argc, char** argv) {
   for (std::size_t w = 0; w < result.summary.verdict.walls.size(); ++w) {
     const WallVerdict& v = result.summary.verdict.walls[w];
     if (v.verdict == Verdict::kGood) continue;
-    std::string why;
-    for (const std::string& r : v.reasons) why += (why.empty() ? "" : "; ") + r;
-    fmt::print("  wall {}: {} — {}\n", w, VerdictName(v.verdict), why);
+    fmt::print("  wall {}: {} — {}\n", w, VerdictName(v.verdict), v.Why());
   }
   return 0;
 }

@@ -167,10 +167,8 @@ std::string VerdictSection(const PlanVerdict& v) {
   for (std::size_t w = 0; w < v.walls.size(); ++w) {
     const WallVerdict& wv = v.walls[w];
     if (wv.verdict == Verdict::kGood) continue;
-    std::string why;
-    for (const std::string& r : wv.reasons) why += (why.empty() ? "" : "; ") + r;
     walls += fmt::format("<tr><td>{}</td><td class=\"l {}\">{}</td><td class=\"l\">{}</td></tr>", w,
-                         wv.verdict == Verdict::kCheck ? "warn" : "bad", VerdictName(wv.verdict), HtmlEscape(why));
+                         wv.verdict == Verdict::kCheck ? "warn" : "bad", VerdictName(wv.verdict), HtmlEscape(wv.Why()));
   }
   if (!walls.empty()) {
     html += "<table><tr><th>wall</th><th class=\"l\">verdict</th><th class=\"l\">why</th></tr>" + walls + "</table>";

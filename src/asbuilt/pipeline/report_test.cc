@@ -30,5 +30,23 @@ TEST(SurveyReportHtml, IsSelfContainedAndListsWallsWithSigmas) {
   EXPECT_EQ(html.find("<script"), std::string::npos);
 }
 
+TEST(SurveyReportHtml, StartsWithTheVerdictAndTheWallsToCheck) {
+  SurveyReport r;
+  r.summary.verdict.verdict = Verdict::kCheck;
+  r.summary.verdict.confidence = 0.62;
+  r.summary.verdict.reasons = {"walls were found in only 45 % of the directions around the camera"};
+  r.summary.verdict.walls.resize(2);
+  r.summary.verdict.walls[1] = {.verdict = Verdict::kUnreliable, .reasons = {"inferred: no point of it was seen"}};
+  const std::string html = SurveyReportHtml(r);
+  const std::size_t verdict = html.find("id=\"verdict\""), summary = html.find("<h2>Summary</h2>");
+  ASSERT_NE(verdict, std::string::npos);
+  EXPECT_LT(verdict, summary);
+  EXPECT_NE(html.find("Check before use"), std::string::npos);
+  EXPECT_NE(html.find("confidence 0.62"), std::string::npos);
+  EXPECT_NE(html.find("only 45 % of the directions"), std::string::npos);
+  EXPECT_NE(html.find("<td>1</td><td class=\"l bad\">unreliable</td>"), std::string::npos);
+  EXPECT_EQ(html.find("<td>0</td><td class=\"l"), std::string::npos);  // A good wall is not listed.
+}
+
 }  // namespace
 }  // namespace asbuilt

@@ -80,6 +80,8 @@ std::string JoinReasons(const std::vector<std::string>& reasons) {
 
 }  // namespace
 
+std::string WallVerdict::Why() const { return JoinReasons(reasons); }
+
 const char* VerdictName(Verdict v) {
   switch (v) {
     case Verdict::kGood: return "good";

@@ -123,6 +123,8 @@ struct WallVerdict {
   double confidence = 1.0;  // 0–1.
   std::vector<std::string> reasons;
   WallEvidenceFigures evidence;
+
+  std::string Why() const;  // The reasons, joined by "; ".
 };
 
 struct PlanVerdict {
