@@ -484,6 +484,7 @@ void PlanStage(Survey& s) {
   if (plan.walls.empty()) {
     summary.notes.push_back("no walls could be measured from this capture");
     summary.verdict = JudgePlan(s.plan_input, {}, s.options.verdict, s.verdict_context);
+    MarkPlan(summary.verdict, plan);  // An empty plan.json says why it is empty.
   }
   // Views that do not go round the room cannot close it (a real capture of
   // one direction, e.g. EuRoC): say what the closed polygon rests on.

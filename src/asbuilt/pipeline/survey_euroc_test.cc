@@ -151,7 +151,12 @@ TEST_F(SurveyEuroc, ShippedModelRunsEndToEndAndSaysWhatItCannotMeasure) {
     EXPECT_NE(std::find(r.summary.notes.begin(), r.summary.notes.end(),
                         "no walls could be measured from this capture"),
               r.summary.notes.end());
+    // The empty plan.json says why it is empty: it is no measurement.
+    const Plan written = ReadPlan(out / "plan.json");
+    ASSERT_TRUE(written.verdict);
+    EXPECT_EQ(written.verdict->verdict, "unreliable");
   }
+  EXPECT_NE(r.summary.verdict.verdict, Verdict::kGood);  // A real capture of one direction is never good.
   ExpectCoverageNote(r);
   const std::string html = ReadFile(out / "report.html");
   for (const std::string& note : r.summary.notes) {
