@@ -38,7 +38,7 @@ int RunDemoCommand(int argc, char** argv) {
              summary.render_seconds, summary.survey.labels_source);
   if (!summary.comparison.empty()) fmt::print("{}\n", summary.comparison);
   for (const std::string& n : summary.survey.notes) fmt::print("note: {}\n", n);
-  fmt::print("{}\nreport: {}\n", summary.survey.BriefReport(),
+  fmt::print("{}\nverdict: {}\nreport: {}\n", summary.survey.BriefReport(), summary.survey.verdict.BriefReport(),
              (summary.out_dir / "survey" / "report.html").string());
   return 0;
 }

@@ -301,7 +301,9 @@ TEST(Render, AGlazedDoorIsDoorOverItsWholeOpeningAndShowsTheOutside) {
   glazed.rooms[0].openings[0].glazed = true;
   for (const MeshObject& o : BuildSceneMesh(glazed).objects) {
     EXPECT_EQ(o.name.find("closet"), std::string::npos) << o.name;  // Nothing walls off the view outside.
-    if (o.role == SurfaceRole::kGlass && o.name.find("door") != std::string::npos) EXPECT_EQ(o.label, kLabelDoor);
+    if (o.role == SurfaceRole::kGlass && o.name.find("door") != std::string::npos) {
+      EXPECT_EQ(o.label, kLabelDoor);
+    }
   }
   StereoCamera cam = SmallCamera({Vec3(2.35, 0.6, 1.2), 0.0, 0.0}, 60.0);
   RenderedView a = SceneRenderer(solid).Render(cam, FastOptions(), 0, false);
@@ -318,7 +320,9 @@ TEST(Render, AGlazedDoorIsDoorOverItsWholeOpeningAndShowsTheOutside) {
   glazed.rooms[0].openings[0].offset_m = 0.9;
   glazed.rooms[0].openings[0].open_deg = 70.0;
   for (const MeshObject& o : BuildSceneMesh(glazed).objects) {
-    if (o.role == SurfaceRole::kGlass && o.label == kLabelDoor) EXPECT_EQ(o.triangles.size(), 4u) << "two panes";
+    if (o.role == SurfaceRole::kGlass && o.label == kLabelDoor) {
+      EXPECT_EQ(o.triangles.size(), 4u) << "two panes";
+    }
   }
 }
 

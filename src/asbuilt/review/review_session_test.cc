@@ -275,7 +275,9 @@ TEST(ReviewSession, OpeningsAreAddedMovedAndDeleted) {
   move["id"] = id;
   state = session.Edit(move);
   for (const PlanOpening& o : PlanOf(state).openings) {
-    if (o.kind == OpeningKind::kWindow) EXPECT_NEAR(o.width, 1.5, 0.03);
+    if (o.kind == OpeningKind::kWindow) {
+      EXPECT_NEAR(o.width, 1.5, 0.03);
+    }
   }
   state = session.Edit({{"op", "delete_opening"}, {"id", id}});
   EXPECT_EQ(state["openings"].size(), 1u);

@@ -191,7 +191,9 @@ TEST(RandomScene, GlassDoorsCeilingsLikeWallsAndWallArtDoWhatTheySay) {
       EXPECT_EQ(op.glazed, op.kind == OpeningKind::kDoor) << "seed " << seed;  // Every door, no window.
       doors += op.kind == OpeningKind::kDoor;
       widened += op.width_m > plain.rooms[0].openings[k].width_m;
-      if (op.glazed && op.width_m > plain.rooms[0].openings[k].width_m) EXPECT_GE(op.width_m, 1.4);
+      if (op.glazed && op.width_m > plain.rooms[0].openings[k].width_m) {
+        EXPECT_GE(op.width_m, 1.4);
+      }
     }
     // The ceiling is the walls' own material (same paint, same photo).
     EXPECT_EQ(room.ceiling_material, room.wall_material);
