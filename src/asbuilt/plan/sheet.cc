@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "asbuilt/geometry/polygon.h"
 #include "asbuilt/plan/reconstruct.h"
 #include "asbuilt/util/error.h"
 
@@ -39,20 +40,6 @@ SheetPath SheetPolygon(std::vector<Vec2> points, const SheetColour& fill, const 
 double SheetWrapPositive(double a) {
   a = std::fmod(a, 2 * kPi);
   return a < 0 ? a + 2 * kPi : a;
-}
-
-// Whether `p` lies inside `polygon` (even-odd rule).
-bool SheetInside(const std::vector<Vec2>& polygon, const Vec2& p) {
-  bool inside = false;
-  for (size_t k = 0, m = polygon.size() - 1; k < polygon.size(); m = k++) {
-    const Vec2& a = polygon[k];
-    const Vec2& b = polygon[m];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y())) {
-      inside = !inside;
-    }
-  }
-  return inside;
 }
 
 // Largest length of the 1-2-5 series (…, 0.5, 1, 2, 5, 10, …) not above x > 0.
@@ -335,7 +322,7 @@ void AddRoomLabels(PlanSheet& sheet, const LayoutContext& c) {
     mean /= static_cast<double>(room.polygon.size());
     centroid /= 3 * a;
     const bool finite = std::isfinite(centroid.x()) && std::isfinite(centroid.y());
-    const Vec2 at = finite && SheetInside(room.polygon, centroid) ? centroid : mean;
+    const Vec2 at = finite && PointInPolygon(room.polygon, centroid) ? centroid : mean;
     const bool sigma = c.o.show_uncertainty && room.area_sigma_m2.has_value();
     const double sigma_m2 = sigma ? std::max(0.01, *room.area_sigma_m2) : 0.0;
     std::string area = sigma ? fmt::format("{:.2f} ± {:.2f} m²", room.area_m2, sigma_m2)

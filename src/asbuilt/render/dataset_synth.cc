@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
+#include "asbuilt/geometry/polygon.h"
 #include "asbuilt/imageio/image_io.h"
 #include "asbuilt/scene/furnish.h"
 #include "asbuilt/util/error.h"
@@ -27,21 +28,10 @@ double DistanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
   return (a + t * ab - p).norm();
 }
 
-bool InsidePolygon(const std::vector<Vec2>& poly, const Vec2& p) {
-  bool inside = false;
-  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    if ((poly[i].y() > p.y()) != (poly[j].y() > p.y()) &&
-        p.x() < (poly[j].x() - poly[i].x()) * (p.y() - poly[i].y()) / (poly[j].y() - poly[i].y()) + poly[i].x()) {
-      inside = !inside;
-    }
-  }
-  return inside;
-}
-
 // A camera spot inside the room, clear of walls and furniture.
 bool FreeSpot(const Scene& scene, const Room& room, const Vec3& p) {
   Vec2 q = p.head<2>();
-  if (!InsidePolygon(room.polygon, q)) return false;
+  if (!PointInPolygon(room.polygon, q)) return false;
   const int n = static_cast<int>(room.polygon.size());
   for (int i = 0; i < n; ++i) {
     if (DistanceToSegment(q, room.polygon[i], room.polygon[(i + 1) % n]) < kMinWallClearanceM) return false;

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "asbuilt/geometry/polygon.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
@@ -76,19 +77,6 @@ void AddPrism(MeshObject& o, const std::vector<Vec2>& poly, double z0, double z1
   }
 }
 
-
-bool PointInPolygon(const std::vector<Vec2>& poly, const Vec2& p) {
-  bool inside = false;
-  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const Vec2& a = poly[i];
-    const Vec2& b = poly[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
-      inside = !inside;
-    }
-  }
-  return inside;
-}
 
 class MeshBuilder {
  public:

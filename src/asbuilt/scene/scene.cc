@@ -315,20 +315,6 @@ std::string WallCompassName(const Room& room, int wall) {
   return kNames[sector];
 }
 
-bool PointInPolygon(const std::vector<Vec2>& polygon, const Vec2& point) {
-  bool inside = false;
-  const std::size_t n = polygon.size();
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Vec2& a = polygon[i];
-    const Vec2& b = polygon[j];
-    if ((a.y() > point.y()) != (b.y() > point.y())) {
-      double x = a.x() + (point.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
-      if (point.x() < x) inside = !inside;
-    }
-  }
-  return inside;
-}
-
 Vec2 PolygonCentroid(const std::vector<Vec2>& polygon) {
   double area2 = 0.0;
   Vec2 c = Vec2::Zero();

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "asbuilt/formats/plan_file.h"
+#include "asbuilt/geometry/polygon.h"
 #include "asbuilt/geometry/rig.h"
 
 namespace asbuilt {
@@ -193,8 +194,6 @@ Vec2 WallOutwardNormal(const Room& room, int wall);
 // Compass name of the way a wall faces outwards, north = +Y, east = +X:
 // "north", "north-east", "east", … (nearest of eight).
 std::string WallCompassName(const Room& room, int wall);
-// True when the point lies strictly inside the polygon (even-odd rule).
-bool PointInPolygon(const std::vector<Vec2>& polygon, const Vec2& point);
 // Centroid of the polygon's area (vertex mean for degenerate polygons).
 Vec2 PolygonCentroid(const std::vector<Vec2>& polygon);
 // Where a surveyor sets the tripod in a counter-clockwise room polygon: a
