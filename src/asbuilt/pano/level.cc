@@ -16,6 +16,7 @@
 #include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/pano/perspective.h"
 #include "asbuilt/util/error.h"
+#include "asbuilt/util/stats.h"
 
 namespace asbuilt {
 namespace {
@@ -104,13 +105,6 @@ std::vector<Segment> DetectSegments(const cv::Mat& grey, const LevelOptions& opt
 // from the midpoint to a (floored: a segment pointing at a still shifts).
 double ResidualScale(const Segment& s, const Vec3& axis) {
   return std::max(s.midpoint.cross(axis).norm(), 0.05) / s.length_rad;
-}
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return NAN;
-  const auto mid = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), mid, values.end());
-  return *mid;
 }
 
 struct UpFit {

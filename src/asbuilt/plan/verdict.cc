@@ -11,20 +11,12 @@
 #include <fmt/format.h>
 
 #include "asbuilt/util/error.h"
+#include "asbuilt/util/stats.h"
 
 namespace asbuilt {
 namespace {
 
 
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  const std::size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + mid, v.end());
-  double m = v[mid];
-  if (v.size() % 2 == 0) m = 0.5 * (m + *std::max_element(v.begin(), v.begin() + mid));
-  return m;
-}
 
 // 0 at `bad`, 1 at `good`, linear between (either order).
 double Ramp(double x, double bad, double good) {

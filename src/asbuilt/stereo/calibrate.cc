@@ -9,6 +9,7 @@
 
 #include "asbuilt/imageio/image_io.h"
 #include "asbuilt/util/error.h"
+#include "asbuilt/util/stats.h"
 
 namespace asbuilt {
 namespace {
@@ -30,12 +31,6 @@ std::vector<cv::Point2f> FindBoard(const cv::Mat& gray, cv::Size board, int subp
     }
   }
   return {};
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
 }
 
 // Mean distance of each point to its epipolar line, both images (as OpenCV's
