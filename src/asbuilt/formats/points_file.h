@@ -47,6 +47,15 @@ const char* LabelClassName(LabelClass c);  // "background", "wall", "door", "win
 enum class PointSource : std::uint8_t { kCorner, kDense, kEdge, kOther, kBoundary, kContact, kVertex };
 const char* PointSourceName(PointSource s);
 
+// A floor contact whose image column also saw the wall's ceiling edge, and
+// the ceiling height that column implies: stereo/contacts.h measures them,
+// plan/verdict.h reads a tilted photo from how they vary round the room.
+struct CeilingSample {
+  Vec3 floor_m = Vec3::Zero();  // The floor contact, world m.
+  int frame = -1;
+  double height_m = 0.0;
+};
+
 struct ClassPoint {
   LabelClass label = LabelClass::kWall;
   Vec3 position_m = Vec3::Zero();  // World frame.

@@ -378,9 +378,7 @@ void PointsStage(Survey& s, const ProgressCallback& progress) {
   for (std::size_t i = 0; i < s.report_frames.size(); ++i) s.report_frames[i].cues = summary.frame_cues[i].BriefReport();
   if (!gathered.contacts_used) return;
   const ResolvedContacts& contacts = gathered.contacts;
-  for (const ResolvedContacts::CeilingSample& c : contacts.ceiling_samples) {
-    s.verdict_context.ceiling_samples.push_back({.floor_m = c.floor_m, .frame = c.frame, .height_m = c.height_m});
-  }
+  s.verdict_context.ceiling_samples = contacts.ceiling_samples;
   spdlog::info("survey: ceiling height {} ({}); {} floor contact(s) rejected as tops of things before a wall{}",
                contacts.ceiling ? fmt::format("{:.3f} ± {:.3f} m", contacts.ceiling->height_m, contacts.ceiling->sigma_m)
                                 : "not measured",

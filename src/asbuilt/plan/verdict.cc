@@ -433,7 +433,7 @@ void JudgeWholePlan(const PlanInput& input, const PlanResult& fit, const std::ve
 
 }  // namespace
 
-LabelTilt TiltFromCeilingSamples(const PlanInput& input, const std::vector<VerdictContext::CeilingSample>& samples) {
+LabelTilt TiltFromCeilingSamples(const PlanInput& input, const std::vector<CeilingSample>& samples) {
   // Samples are correlated along a wall: the σ assumes at most this many independent ones.
   constexpr double kIndependentSamples = 100;
   constexpr int kMinSamples = 30;
@@ -451,7 +451,7 @@ LabelTilt TiltFromCeilingSamples(const PlanInput& input, const std::vector<Verdi
   };
   std::vector<Row> rows;
   std::vector<double> heights;
-  for (const VerdictContext::CeilingSample& s : samples) {
+  for (const CeilingSample& s : samples) {
     if (s.frame < 0 || s.frame >= static_cast<int>(cameras.size()) || !std::isfinite(s.height_m)) continue;
     const Vec3& c = cameras[s.frame];
     const double d = (s.floor_m.head<2>() - c.head<2>()).norm();

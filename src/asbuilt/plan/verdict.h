@@ -71,13 +71,7 @@ struct VerdictOptions {
 
 // What the capture adds to the points (each part optional).
 struct VerdictContext {
-  // Floor contacts whose column also saw the wall's ceiling edge, with the
-  // ceiling height that column implies (ResolvedContacts::ceiling_samples).
-  struct CeilingSample {
-    Vec3 floor_m = Vec3::Zero();
-    int frame = -1;
-    double height_m = 0.0;
-  };
+  // ResolvedContacts::ceiling_samples (formats/points_file.h).
   std::vector<CeilingSample> ceiling_samples;
   // Per plan wall: placed by a person (asbuilt review: both its corners
   // set by hand). Such a wall is good, and the photo's evidence about it
@@ -105,7 +99,7 @@ struct LabelTilt {
     return std::isfinite(tilt_deg) && inlier_share >= 0.6 && scatter_m <= max_scatter_m;
   }
 };
-LabelTilt TiltFromCeilingSamples(const PlanInput& input, const std::vector<VerdictContext::CeilingSample>& samples);
+LabelTilt TiltFromCeilingSamples(const PlanInput& input, const std::vector<CeilingSample>& samples);
 
 // The evidence behind one wall's verdict.
 struct WallEvidenceFigures {

@@ -101,7 +101,7 @@ TEST(TiltFromCeilingSamples, RecoversALeanAndIgnoresTopsOfFurniture) {
   const PlanInput in = BoxInput();
   const double lean = DegToRad(1.2), toward = DegToRad(60.0);
   const Vec2 g(lean * std::cos(toward), lean * std::sin(toward));
-  std::vector<VerdictContext::CeilingSample> samples;
+  std::vector<CeilingSample> samples;
   for (const ClassPoint& p : in.points) {
     if (p.position_m.z() > 0.1) continue;
     const Vec2 rel = p.position_m.head<2>() - kCamera.head<2>();

@@ -52,14 +52,7 @@ struct ResolvedContacts {
   int floor_rejected = 0;    // Floor contacts that disagreed with the ceiling (paired or topped).
   int ceiling_unused = 0;    // Ceiling contacts left unused (no height).
   int ceiling_rejected = 0;  // Ceiling contacts that a frame from the same spot saw wall above.
-  // Every floor contact whose column also saw the wall's ceiling edge, with
-  // the ceiling height that column implies (a tilted photo makes them vary
-  // round the room: plan/verdict.h reads the tilt from them).
-  struct CeilingSample {
-    Vec3 floor_m = Vec3::Zero();
-    int frame = -1;
-    double height_m = 0.0;
-  };
+  // Every floor contact whose column also saw the wall's ceiling edge.
   std::vector<CeilingSample> ceiling_samples;
 };
 
