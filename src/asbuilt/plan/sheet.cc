@@ -303,6 +303,33 @@ void AddRoomDimensions(PlanSheet& sheet, const LayoutContext& c) {
   }
 }
 
+// Text for the DXF's model space, which writes ASCII: the few signs our
+// messages use spelled out, any other non-ASCII character as '?'.
+std::string AsciiText(const std::string& utf8) {
+  static const std::pair<const char*, const char*> kSpelled[] = {
+      {"\u00b0", " deg"}, {"\u00b1", "+/-"}, {"\u00b2", "2"}, {"\u2014", "-"}, {"\u2013", "-"}, {"\u2019", "'"}};
+  std::string out;
+  for (std::size_t i = 0; i < utf8.size();) {
+    const unsigned char ch = static_cast<unsigned char>(utf8[i]);
+    if (ch < 0x80) {
+      out += utf8[i++];
+      continue;
+    }
+    bool spelled = false;
+    for (const auto& [sign, text] : kSpelled) {
+      if (utf8.compare(i, std::strlen(sign), sign) == 0) {
+        out += text, i += std::strlen(sign), spelled = true;
+        break;
+      }
+    }
+    if (spelled) continue;
+    out += '?';
+    for (++i; i < utf8.size() && (static_cast<unsigned char>(utf8[i]) & 0xC0) == 0x80; ++i) {
+    }
+  }
+  return out;
+}
+
 // Room name and area at the polygon's centroid. Paper: "ROOM" and the area
 // (± when significant), at the mean of the corners where the centroid falls
 // outside (as in some L shapes) or the polygon has no area. Model: the area
@@ -331,38 +358,10 @@ void AddRoomLabels(PlanSheet& sheet, const LayoutContext& c) {
               SheetText{at + Vec2(0, 0.05 * c.paper), 0, 1.4 * c.text_height_m, 0.5, "ROOM", true, kSheetBlack});
     sheet.Add(SheetLayer::kText, SheetView::kPaper,
               SheetText{at - Vec2(0, 0.22 * c.paper), 0, 1.2 * c.text_height_m, 0.5, area, false, kSheetBlack});
-    std::string ascii = sigma ? fmt::format("{:.2f} +/- {:.2f} m2", room.area_m2, sigma_m2)
-                              : fmt::format("{:.2f} m2", room.area_m2);
+    const std::string ascii = AsciiText(area);
     sheet.Add(SheetLayer::kText, SheetView::kModel,
               SheetText{finite ? centroid : mean, 0, 1.2 * c.text_height_m, 0.5, ascii, false, kSheetBlack});
   }
-}
-
-// Text for the DXF's model space, which writes ASCII: the few signs our
-// messages use spelled out, any other non-ASCII character as '?'.
-std::string AsciiText(const std::string& utf8) {
-  static const std::pair<const char*, const char*> kSpelled[] = {
-      {"\u00b0", " deg"}, {"\u00b1", "+/-"}, {"\u00b2", "2"}, {"\u2014", "-"}, {"\u2013", "-"}, {"\u2019", "'"}};
-  std::string out;
-  for (std::size_t i = 0; i < utf8.size();) {
-    const unsigned char ch = static_cast<unsigned char>(utf8[i]);
-    if (ch < 0x80) {
-      out += utf8[i++];
-      continue;
-    }
-    bool spelled = false;
-    for (const auto& [sign, text] : kSpelled) {
-      if (utf8.compare(i, std::strlen(sign), sign) == 0) {
-        out += text, i += std::strlen(sign), spelled = true;
-        break;
-      }
-    }
-    if (spelled) continue;
-    out += '?';
-    for (++i; i < utf8.size() && (static_cast<unsigned char>(utf8[i]) & 0xC0) == 0x80; ++i) {
-    }
-  }
-  return out;
 }
 
 // Paper: scale bar (four alternating blocks of a round length, 0.5 m at
