@@ -15,8 +15,16 @@ namespace asbuilt::cli {
 namespace {
 
 std::string Describe(const SegmenterInfo& info) {
-  std::string out = info.ToString() + "\n  " + info.config.ToString();
   const nlohmann::json& m = info.metadata;
+  std::string out = info.ToString();
+  if (info.config.arch != "tflite") {
+    out += "\n  " + info.config.ToString();
+  } else if (m.contains("config") && m["config"].contains("graph")) {
+    const nlohmann::json& graph = m["config"]["graph"];
+    out += fmt::format("\n  tflite: {} operators, {} ({})", graph.at("operators").size(),
+                       graph.value("description", std::string("no description")),
+                       m["config"].value("class_map", std::string()));
+  }
   if (m.contains("best_miou") && m["best_miou"].is_number()) {
     out += fmt::format("\n  best validation mIoU {:.4f} (epoch {})", m["best_miou"].get<double>(),
                        m.value("best_epoch", 0));

@@ -28,7 +28,7 @@ int RunTrainCommand(int argc, char** argv) {
   app.add_option("--images", images, "image folder (or a dataset folder when --labels is absent)");
   app.add_option("--labels", labels, "label folder (PNG, same stems as the images)");
   app.add_option("-o,--out", out, "output folder for checkpoints and logs")->required();
-  app.add_option("--arch", o.arch, "architecture: b0, b1, b2, tiny")->capture_default_str();
+  app.add_option("--arch", o.arch, "architecture: b0, b1, b2, tiny, or tflite (fine-tunes the TFLite network given by --init)")->capture_default_str();
   app.add_option("--epochs", o.epochs, "epochs (paper: 50)")->capture_default_str();
   app.add_option("--steps-per-epoch", o.steps_per_epoch, "steps per epoch; 0 = one pass over the data")
       ->capture_default_str();
@@ -55,7 +55,7 @@ int RunTrainCommand(int argc, char** argv) {
   app.add_option("--val-fraction", o.val_fraction, "folders: share held out for validation")->capture_default_str();
   app.add_option("--val-max", o.val_max_images, "validate on at most N images (0 = all)")->capture_default_str();
   app.add_option("--seed", o.seed, "seed for split, order, augmentation, init")->capture_default_str();
-  app.add_option("--init", init, "initial weights (an asbuilt checkpoint; mismatched tensors skipped)");
+  app.add_option("--init", init, "initial weights: an asbuilt checkpoint (mismatched tensors skipped); with --arch tflite a .tflite file or an asbuilt-tflite checkpoint");
   app.add_flag("--no-resume", no_resume, "start afresh even if OUT/last.pt exists");
   app.add_option("--stop-after", o.stop_after_epoch, "end this run after epoch N (schedule still spans --epochs)");
   app.add_option("--threads", o.threads, "LibTorch threads (0 = every core)")->capture_default_str();

@@ -338,3 +338,101 @@ std::vector<float> DequantizedData(const TfliteModel& model, int index) {
 }
 
 }  // namespace asbuilt
+
+namespace asbuilt {
+
+nlohmann::json TfliteGraphToJson(const TfliteModel& model) {
+  nlohmann::json tensors = nlohmann::json::array();
+  for (const TfliteTensor& t : model.tensors) {
+    const bool kept = t.data.size() <= kTfliteSmallConstantBytes;
+    nlohmann::json j = {{"name", t.name}, {"shape", t.shape}, {"type", t.type}};
+    if (t.quantization.scale.size() == 1) {  // Per-channel scales belong to filters only.
+      j["scale"] = t.quantization.scale;
+      j["zero_point"] = t.quantization.zero_point;
+      j["quantized_dimension"] = t.quantization.quantized_dimension;
+    }
+    if (kept && !t.data.empty()) j["data"] = t.data;
+    tensors.push_back(std::move(j));
+  }
+  nlohmann::json operators = nlohmann::json::array();
+  for (const TfliteOperator& op : model.operators) {
+    const TfliteOptions& o = op.options;
+    operators.push_back({{"code", op.builtin_code},
+                         {"inputs", op.inputs},
+                         {"outputs", op.outputs},
+                         {"padding_same", o.padding_same},
+                         {"stride", {o.stride_w, o.stride_h}},
+                         {"dilation", {o.dilation_w, o.dilation_h}},
+                         {"depth_multiplier", o.depth_multiplier},
+                         {"filter", {o.filter_w, o.filter_h}},
+                         {"activation", o.activation},
+                         {"axis", o.axis},
+                         {"num_splits", o.num_splits},
+                         {"align_corners", o.align_corners},
+                         {"half_pixel_centers", o.half_pixel_centers},
+                         {"keep_dims", o.keep_dims}});
+  }
+  return {{"description", model.description},
+          {"tensors", tensors},
+          {"operators", operators},
+          {"inputs", model.inputs},
+          {"outputs", model.outputs}};
+}
+
+TfliteModel TfliteGraphFromJson(const nlohmann::json& graph, const std::string& file) {
+  TfliteModel model;
+  model.file = file;
+  try {
+    model.description = graph.at("description").get<std::string>();
+    for (const nlohmann::json& j : graph.at("tensors")) {
+      TfliteTensor t;
+      t.name = j.at("name").get<std::string>();
+      t.shape = j.at("shape").get<std::vector<int>>();
+      t.type = j.at("type").get<int>();
+      if (j.contains("scale")) {
+        t.quantization.scale = j.at("scale").get<std::vector<float>>();
+        t.quantization.zero_point = j.at("zero_point").get<std::vector<std::int64_t>>();
+        t.quantization.quantized_dimension = j.at("quantized_dimension").get<int>();
+      }
+      if (j.contains("data")) t.data = j.at("data").get<std::vector<std::uint8_t>>();
+      model.tensors.push_back(std::move(t));
+    }
+    const int n = static_cast<int>(model.tensors.size());
+    auto check_indices = [&](const std::vector<int>& indices, const std::string& field) {
+      for (int i : indices) {
+        if (i < -1 || i >= n) throw InputError(file, field, fmt::format("tensor index {} out of range (0..{})", i, n - 1));
+      }
+    };
+    for (const nlohmann::json& j : graph.at("operators")) {
+      TfliteOperator op;
+      TfliteOptions& o = op.options;
+      op.builtin_code = j.at("code").get<int>();
+      op.inputs = j.at("inputs").get<std::vector<int>>();
+      op.outputs = j.at("outputs").get<std::vector<int>>();
+      const std::string field = fmt::format("graph.operators[{}]", model.operators.size());
+      check_indices(op.inputs, field + ".inputs");
+      check_indices(op.outputs, field + ".outputs");
+      o.padding_same = j.at("padding_same").get<bool>();
+      o.stride_w = j.at("stride").at(0).get<int>(), o.stride_h = j.at("stride").at(1).get<int>();
+      o.dilation_w = j.at("dilation").at(0).get<int>(), o.dilation_h = j.at("dilation").at(1).get<int>();
+      o.depth_multiplier = j.at("depth_multiplier").get<int>();
+      o.filter_w = j.at("filter").at(0).get<int>(), o.filter_h = j.at("filter").at(1).get<int>();
+      o.activation = j.at("activation").get<int>();
+      o.axis = j.at("axis").get<int>();
+      o.num_splits = j.at("num_splits").get<int>();
+      o.align_corners = j.at("align_corners").get<bool>();
+      o.half_pixel_centers = j.at("half_pixel_centers").get<bool>();
+      o.keep_dims = j.at("keep_dims").get<bool>();
+      model.operators.push_back(std::move(op));
+    }
+    model.inputs = graph.at("inputs").get<std::vector<int>>();
+    model.outputs = graph.at("outputs").get<std::vector<int>>();
+    check_indices(model.inputs, "graph.inputs");
+    check_indices(model.outputs, "graph.outputs");
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file, "graph", e.what());
+  }
+  return model;
+}
+
+}  // namespace asbuilt

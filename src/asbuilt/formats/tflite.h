@@ -19,6 +19,8 @@
 #include <string_view>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace asbuilt {
 
 // TFLite's TensorType values for the types we read.
@@ -107,6 +109,15 @@ TfliteModel ReadTflite(const std::filesystem::path& path);
 // float32 as they are. Throws InputError for a tensor without data or of a
 // type it does not know.
 std::vector<float> DequantizedData(const TfliteModel& model, int tensor);
+
+// The graph as JSON without its large constants (over 64 bytes: the filters
+// and biases, which a fine-tuned checkpoint holds as trained parameters) and
+// without per-channel quantisation (filters' only); everything else is kept
+// exactly. FromJson throws
+// InputError naming `file` and the field for a graph it cannot read.
+nlohmann::json TfliteGraphToJson(const TfliteModel& model);
+TfliteModel TfliteGraphFromJson(const nlohmann::json& graph, const std::string& file);
+inline constexpr std::size_t kTfliteSmallConstantBytes = 64;
 
 }  // namespace asbuilt
 

@@ -111,5 +111,49 @@ TEST(Tflite, RefusesAFileThatIsMissing) {
   EXPECT_THROW(ReadTflite("/nonexistent/model.tflite"), InputError);
 }
 
+
+TEST(Tflite, GraphJsonKeepsTheTopologyAndLeavesTheFiltersOut) {
+  SKIP_WITHOUT_TEACHERS();
+  const TfliteModel m = ReadTflite(kDeeplab);
+  const nlohmann::json j = TfliteGraphToJson(m);
+  const TfliteModel back = TfliteGraphFromJson(nlohmann::json::parse(j.dump()), "ckpt.pt");
+  ASSERT_EQ(back.operators.size(), m.operators.size());
+  ASSERT_EQ(back.tensors.size(), m.tensors.size());
+  EXPECT_EQ(back.inputs, m.inputs);
+  EXPECT_EQ(back.outputs, m.outputs);
+  for (std::size_t k = 0; k < m.operators.size(); ++k) {
+    EXPECT_EQ(back.operators[k].builtin_code, m.operators[k].builtin_code);
+    EXPECT_EQ(back.operators[k].inputs, m.operators[k].inputs);
+    EXPECT_EQ(back.operators[k].options.stride_h, m.operators[k].options.stride_h);
+    EXPECT_EQ(back.operators[k].options.dilation_w, m.operators[k].options.dilation_w);
+    EXPECT_EQ(back.operators[k].options.align_corners, m.operators[k].options.align_corners);
+  }
+  std::size_t kept_bytes = 0;
+  for (std::size_t t = 0; t < m.tensors.size(); ++t) {
+    EXPECT_EQ(back.tensors[t].shape, m.tensors[t].shape);
+    if (m.tensors[t].data.size() <= kTfliteSmallConstantBytes) EXPECT_EQ(back.tensors[t].data, m.tensors[t].data);
+    kept_bytes += back.tensors[t].data.size();
+  }
+  EXPECT_LT(kept_bytes, 2000u);  // The 2.3 M weights are not in it.
+  const TfliteTensor& filter = back.tensors[back.operators[0].inputs[1]];
+  EXPECT_TRUE(filter.data.empty());
+}
+
+TEST(Tflite, GraphJsonRefusesATensorIndexOutOfRange) {
+  nlohmann::json j = {{"description", ""},
+                      {"tensors", nlohmann::json::array()},
+                      {"operators", nlohmann::json::array({{{"code", 3}, {"inputs", {0, 7}}, {"outputs", {1}}}})},
+                      {"inputs", {0}},
+                      {"outputs", {1}}};
+  try {
+    TfliteGraphFromJson(j, "ckpt.pt");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("ckpt.pt"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("graph.operators[0]"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(TfliteGraphFromJson(nlohmann::json::object(), "ckpt.pt"), InputError);
+}
+
 }  // namespace
 }  // namespace asbuilt

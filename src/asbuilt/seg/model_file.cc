@@ -58,7 +58,7 @@ SegmenterInfo ExportModel(const fs::path& checkpoint, const fs::path& out_safete
   nlohmann::json meta = ReadCheckpointMeta(checkpoint);
   SegmenterInfo info = InfoFromMeta(meta, checkpoint.string());
   Segformer model(info.config);
-  LoadWeights(checkpoint, model, nullptr, /*strict=*/true);
+  LoadWeights(checkpoint, *model, nullptr, /*strict=*/true);
   SafeTensorsFile file;
   for (const auto& p : model->named_parameters()) file.tensors[p.key()] = ToSafeTensor(p.value());
   for (const auto& b : model->named_buffers()) file.tensors[b.key()] = ToSafeTensor(b.value());
@@ -114,7 +114,7 @@ SegmenterInfo ImportModel(const fs::path& in, const fs::path& out_checkpoint) {
   for (const auto& [name, t] : st.tensors) {
     if (!used.count(name)) throw InputError(file, name, "not a tensor of the configured model (wrong config?)");
   }
-  SaveCheckpoint(out_checkpoint, model, nullptr, meta);
+  SaveCheckpoint(out_checkpoint, *model, nullptr, meta);
   return info;
 }
 

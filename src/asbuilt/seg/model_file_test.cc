@@ -37,7 +37,7 @@ torch::Tensor ToTensor(const SafeTensor& t) {
 
 Segformer LoadModel(const fs::path& checkpoint) {
   Segformer model(ConfigFromMeta(ReadCheckpointMeta(checkpoint), checkpoint.string()));
-  LoadWeights(checkpoint, model, nullptr, /*strict=*/true);
+  LoadWeights(checkpoint, *model, nullptr, /*strict=*/true);
   model->eval();
   return model;
 }
@@ -81,7 +81,7 @@ TEST(ModelFile, ExportThenImportRoundTripsEveryTensorAndTheMetadata) {
   Segformer model(config);
   nlohmann::json meta = {{"format", kCheckpointFormat}, {"config", ConfigToJson(config)}, {"scale", {64, 48}},
                          {"crop", {32, 32}},           {"epoch", 4},                    {"note", "kept"}};
-  SaveCheckpoint(dir / "a.pt", model, nullptr, meta);
+  SaveCheckpoint(dir / "a.pt", *model, nullptr, meta);
   SegmenterInfo exported = ExportModel(dir / "a.pt", dir / "a.safetensors");
   EXPECT_EQ(exported.epoch, 4);
   SegmenterInfo imported = ImportModel(dir / "a.safetensors", dir / "b.pt");

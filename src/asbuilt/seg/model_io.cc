@@ -45,15 +45,15 @@ SegformerConfig ConfigFromMeta(const nlohmann::json& meta, const std::string& fi
   }
 }
 
-void SaveCheckpoint(const fs::path& path, Segformer& model, torch::optim::Optimizer* optimizer,
+void SaveCheckpoint(const fs::path& path, torch::nn::Module& model, torch::optim::Optimizer* optimizer,
                     const nlohmann::json& meta) {
   torch::serialize::OutputArchive archive;
   std::string text = meta.dump();
   torch::Tensor bytes = torch::empty({static_cast<int64_t>(text.size())}, torch::kUInt8);
   std::memcpy(bytes.data_ptr(), text.data(), text.size());
   archive.write("asbuilt_meta", bytes);
-  for (const auto& p : model->named_parameters()) archive.write("model/" + p.key(), p.value().detach());
-  for (const auto& b : model->named_buffers()) archive.write("model/" + b.key(), b.value(), /*is_buffer=*/true);
+  for (const auto& p : model.named_parameters()) archive.write("model/" + p.key(), p.value().detach());
+  for (const auto& b : model.named_buffers()) archive.write("model/" + b.key(), b.value(), /*is_buffer=*/true);
   if (optimizer != nullptr) {
     torch::serialize::OutputArchive opt;
     optimizer->save(opt);
@@ -91,14 +91,16 @@ nlohmann::json ReadCheckpointMeta(const fs::path& path) {
   std::string text(static_cast<const char*>(bytes.data_ptr()), static_cast<size_t>(bytes.numel()));
   nlohmann::json meta = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (meta.is_discarded() || !meta.is_object()) throw InputError(path.string(), "asbuilt_meta", "not valid JSON");
-  if (meta.value("format", "") != kCheckpointFormat) {
+  const std::string format = meta.value("format", "nothing");
+  if (format != kCheckpointFormat && format != kTfliteCheckpointFormat) {
     throw InputError(path.string(), "asbuilt_meta.format",
-                     fmt::format("expected \"{}\", got {}", kCheckpointFormat, meta.value("format", "nothing")));
+                     fmt::format("expected \"{}\" or \"{}\", got {}", kCheckpointFormat, kTfliteCheckpointFormat,
+                                 format));
   }
   return meta;
 }
 
-int LoadWeights(const fs::path& path, Segformer& model, torch::optim::Optimizer* optimizer, bool strict,
+int LoadWeights(const fs::path& path, torch::nn::Module& model, torch::optim::Optimizer* optimizer, bool strict,
                 int* skipped) {
   torch::serialize::InputArchive archive = OpenArchive(path);
   torch::NoGradGuard no_grad;
@@ -118,8 +120,8 @@ int LoadWeights(const fs::path& path, Segformer& model, torch::optim::Optimizer*
       ++missing;
     }
   };
-  for (auto& p : model->named_parameters()) load_one(p.key(), p.value());
-  for (auto& b : model->named_buffers()) load_one(b.key(), b.value());
+  for (auto& p : model.named_parameters()) load_one(p.key(), p.value());
+  for (auto& b : model.named_buffers()) load_one(b.key(), b.value());
   if (skipped != nullptr) *skipped = missing;
   if (optimizer != nullptr) {
     torch::serialize::InputArchive opt;

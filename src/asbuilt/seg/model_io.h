@@ -6,7 +6,7 @@
 // A checkpoint is one LibTorch archive (torch::serialize) holding
 //   "asbuilt_meta"   JSON (as uint8 tensor): format, config, scale, crop,
 //                    epoch, step, history, options
-//   "model/<name>"   every parameter and buffer of the Segformer module
+//   "model/<name>"   every parameter and buffer of the network
 //   "optimizer"      AdamW state (training checkpoints only)
 // written through AtomicFile, so a kill never leaves a truncated file.
 
@@ -23,12 +23,16 @@
 
 namespace asbuilt {
 
+// The network a checkpoint holds: a SegFormer, or a TensorFlow Lite graph
+// fine-tuned by asbuilt (its topology in meta "graph", seg/tflite_segmenter.h).
 inline constexpr const char* kCheckpointFormat = "asbuilt-segformer-v1";
+inline constexpr const char* kTfliteCheckpointFormat = "asbuilt-tflite-v1";
 
-void SaveCheckpoint(const std::filesystem::path& path, Segformer& model, torch::optim::Optimizer* optimizer,
+void SaveCheckpoint(const std::filesystem::path& path, torch::nn::Module& model, torch::optim::Optimizer* optimizer,
                     const nlohmann::json& meta);
 
-// Reads the metadata; throws InputError(path) when not a checkpoint.
+// Reads the metadata (either format); throws InputError(path) when not a
+// checkpoint.
 nlohmann::json ReadCheckpointMeta(const std::filesystem::path& path);
 SegformerConfig ConfigFromMeta(const nlohmann::json& meta, const std::string& file);
 nlohmann::json ConfigToJson(const SegformerConfig& config);
@@ -37,7 +41,7 @@ nlohmann::json ConfigToJson(const SegformerConfig& config);
 // model tensor must be present with its shape (InputError otherwise); not
 // strict: tensors with a missing name or another shape are skipped and
 // counted (for --init from another head). Returns tensors loaded.
-int LoadWeights(const std::filesystem::path& path, Segformer& model, torch::optim::Optimizer* optimizer, bool strict,
+int LoadWeights(const std::filesystem::path& path, torch::nn::Module& model, torch::optim::Optimizer* optimizer, bool strict,
                 int* skipped = nullptr);
 
 // BGR 8-bit images of one size → normalised RGB float tensor (B, 3, H, W)

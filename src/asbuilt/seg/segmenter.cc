@@ -139,7 +139,12 @@ class TorchSegmenter : public Segmenter {
 
 SegmenterInfo InfoFromMeta(const nlohmann::json& meta, const std::string& file) {
   SegmenterInfo info;
-  info.config = ConfigFromMeta(meta, file);
+  if (meta.value("format", "") == kTfliteCheckpointFormat) {
+    info.config.arch = "tflite";
+    info.config.num_classes = 4;
+  } else {
+    info.config = ConfigFromMeta(meta, file);
+  }
   try {
     info.scale_width_px = meta.at("scale").at(0).get<int>();
     info.scale_height_px = meta.at("scale").at(1).get<int>();
@@ -174,8 +179,9 @@ std::unique_ptr<Segmenter> LoadSegmenter(const std::filesystem::path& path, cons
   options.Check();
   if (IsTflite(path)) return LoadTfliteSegmenter(path, options);
   SegmenterInfo info = ReadSegmenterInfo(path);
+  if (info.config.arch == "tflite") return LoadTfliteSegmenter(path, options);
   Segformer model(info.config);
-  LoadWeights(path, model, nullptr, /*strict=*/true);
+  LoadWeights(path, *model, nullptr, /*strict=*/true);
   info.parameters = CountParameters(*model);
   return MakeSegmenter(model, info, options);
 }

@@ -22,6 +22,12 @@ std::string SegmenterInfo::ToString() const {
                        metadata.value("file", "?"), parameters / 1e6, metadata.value("source_classes", 0),
                        config.num_classes, scale_width_px, scale_height_px);
   }
+  if (metadata.is_object() && metadata.value("format", "") == "asbuilt-tflite-v1") {
+    return fmt::format("TFLite graph fine-tuned by asbuilt ({:.2f}M params, {} ADE20K classes mapped to {}), trained "
+                       "{} epoch{} at {}x{}",
+                       parameters / 1e6, metadata["config"].value("source_classes", 0), config.num_classes, epoch,
+                       epoch == 1 ? "" : "s", scale_width_px, scale_height_px);
+  }
   return fmt::format("SegFormer {} ({:.2f}M params, {} classes), trained {} epoch{} at {}x{}", config.arch,
                      parameters / 1e6, config.num_classes, epoch, epoch == 1 ? "" : "s", scale_width_px,
                      scale_height_px);

@@ -27,6 +27,15 @@ torch::Tensor Activate(const torch::Tensor& x, int activation) {
   }
 }
 
+// A filter or bias: dequantised from the file, or zeros of its shape when the
+// graph came without its constants (a checkpoint's graph: the values follow
+// as parameters).
+torch::Tensor ConstantOrZeros(const TfliteModel& model, int tensor) {
+  const TfliteTensor& t = model.tensors.at(tensor);
+  if (t.data.empty()) return torch::zeros(std::vector<int64_t>(t.shape.begin(), t.shape.end()));
+  return FromFloats(DequantizedData(model, tensor), t.shape);
+}
+
 // TensorFlow's SAME padding for one axis: (before, after).
 std::pair<int64_t, int64_t> SamePadding(int64_t in, int64_t kernel, int64_t stride, int64_t dilation) {
   const int64_t effective = (kernel - 1) * dilation + 1;
@@ -129,12 +138,12 @@ TfliteNetImpl::TfliteNetImpl(const TfliteModel& model, TfliteNetOptions options)
         if (op.inputs.size() < 2) fail(field, "needs an input and a filter");
         const auto& filter = graph_.tensors[op.inputs[1]];
         if (filter.shape.size() != 4) fail(field, "the filter is not 4-D");
-        torch::Tensor w = FromFloats(DequantizedData(graph_, op.inputs[1]), filter.shape);
+        torch::Tensor w = ConstantOrZeros(graph_, op.inputs[1]);
         // CONV_2D filters are OHWI, DEPTHWISE_CONV_2D filters 1HWO; torch wants OIHW.
         w = op.builtin_code == static_cast<int>(TfliteOp::kConv2d) ? w.permute({0, 3, 1, 2}) : w.permute({3, 0, 1, 2});
         weights_[k] = register_parameter(fmt::format("op{}_weight", k), w.contiguous());
         if (op.inputs.size() > 2 && op.inputs[2] >= 0) {
-          biases_[k] = register_parameter(fmt::format("op{}_bias", k), FromFloats(DequantizedData(graph_, op.inputs[2]), graph_.tensors[op.inputs[2]].shape));
+          biases_[k] = register_parameter(fmt::format("op{}_bias", k), ConstantOrZeros(graph_, op.inputs[2]));
         }
         break;
       }
@@ -153,8 +162,18 @@ TfliteNetImpl::TfliteNetImpl(const TfliteModel& model, TfliteNetOptions options)
   if (parameters().empty()) fail("subgraphs[0].operators", "no convolution: not a segmentation network");
   for (auto& t : graph_.tensors) {
     // Filters and biases now live in the parameters; keep only small constants.
-    if (t.data.size() > 64) t.data.clear(), t.data.shrink_to_fit();
+    if (t.data.size() > kTfliteSmallConstantBytes) t.data.clear(), t.data.shrink_to_fit();
   }
+}
+
+std::vector<torch::Tensor> TfliteNetImpl::head_parameters() const {
+  for (int k = last_op_ - 1; k >= 0; --k) {
+    if (!weights_[k].defined()) continue;
+    std::vector<torch::Tensor> out = {weights_[k]};
+    if (biases_[k].defined()) out.push_back(biases_[k]);
+    return out;
+  }
+  return {};
 }
 
 torch::Tensor TfliteNetImpl::Requantize(const torch::Tensor& x, int tensor) const {

@@ -47,6 +47,11 @@ class TfliteNetImpl : public torch::nn::Module {
   int input_height_px() const { return input_h_; }
   const TfliteNetOptions& options() const { return options_; }
   void set_emulate_uint8(bool on) { options_.emulate_uint8 = on; }
+  // The graph without its filters and biases (they are this module's
+  // parameters): what a checkpoint stores to rebuild the network.
+  const TfliteModel& graph() const { return graph_; }
+  // The filter and bias of the convolution that computes the logits.
+  std::vector<torch::Tensor> head_parameters() const;
 
  private:
   struct Quant {

@@ -15,15 +15,21 @@
 
 #include "asbuilt/seg/tflite_net.h"
 
+#include <cmath>
 #include <filesystem>
+
+#include <unistd.h>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "asbuilt/seg/model_io.h"
 #include "asbuilt/seg/segmenter.h"
 #include "asbuilt/seg/tflite_segmenter.h"
+#include "asbuilt/seg/toy_rooms.h"
+#include "asbuilt/seg/train.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
 
@@ -39,13 +45,6 @@ const fs::path kAdeSamples = fs::path(ASBUILT_SHARED_DATA_DIR) / "ade20k_scenepa
 #define SKIP_WITHOUT_TEACHERS() \
   if (!fs::exists(kDeeplab) || !fs::exists(kMosaic)) GTEST_SKIP() << "shared data not present: " << kTeachers
 
-// (1, 3, H, W) RGB float 0..255 of an 8-bit BGR image.
-torch::Tensor RgbTensor(const cv::Mat& bgr) {
-  cv::Mat rgb;
-  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
-  return torch::from_blob(rgb.data, {1, rgb.rows, rgb.cols, 3}, torch::kUInt8).permute({0, 3, 1, 2}).to(torch::kFloat32);
-}
-
 // The quantised original's arithmetic, full-size logits.
 TfliteNet FaithfulNet(const fs::path& file) {
   TfliteNet net(ReadTflite(file), TfliteNetOptions{.emulate_uint8 = true, .stop_before_final_resize = false});
@@ -58,7 +57,7 @@ cv::Mat Argmax512(TfliteNet& net, const cv::Mat& bgr) {
   torch::NoGradGuard no_grad;
   cv::Mat square;
   cv::resize(bgr, square, {512, 512}, 0, 0, cv::INTER_LINEAR);
-  torch::Tensor pred = net->forward(RgbTensor(square))[0].argmax(0).to(torch::kUInt8).contiguous();
+  torch::Tensor pred = net->forward(RgbTensor({square}))[0].argmax(0).to(torch::kUInt8).contiguous();
   return cv::Mat(512, 512, CV_8U, pred.data_ptr()).clone();
 }
 
@@ -169,6 +168,98 @@ TEST(TfliteSegmenter, RefusesAFileThatIsNotAModel) {
   WriteFileAtomic(bad, "this is not a flatbuffer");
   EXPECT_THROW(LoadSegmenter(bad), InputError);
   fs::remove(bad);
+}
+
+
+TEST(TfliteSegmenter, GroupsSumTheSoftmaxOfTheirMembers) {
+  torch::manual_seed(5);
+  torch::Tensor logits = torch::randn({2, 32, 3, 4});
+  torch::Tensor grouped = torch::exp(GroupedLogProbabilities(logits));
+  ASSERT_EQ(grouped.sizes(), (std::vector<int64_t>{2, 4, 3, 4}));
+  torch::Tensor p = torch::softmax(logits, 1);
+  EXPECT_NEAR(grouped[0][1][2][3].item<double>(), p[0][1][2][3].item<double>(), 1e-5);    // wall: class 1 alone
+  EXPECT_NEAR(grouped[1][2][0][0].item<double>(), p[1][15][0][0].item<double>(), 1e-5);   // door: class 15
+  EXPECT_NEAR(grouped.sum(1).min().item<double>(), 1.0, 1e-5);
+  EXPECT_NEAR(grouped.sum(1).max().item<double>(), 1.0, 1e-5);
+}
+
+// A fine-tuned network is saved without the file it came from: its graph in
+// the metadata, its weights as parameters; reloaded it computes the same.
+TEST(TfliteSegmenter, ACheckpointRebuildsTheNetworkExactly) {
+  SKIP_WITHOUT_TEACHERS();
+  TfliteNet net(ReadTflite(kDeeplab), TfliteNetOptions{});
+  {
+    torch::NoGradGuard no_grad;
+    for (auto& p : net->parameters()) p.add_(0.01);  // Not the file's weights any more.
+  }
+  const fs::path path = fs::temp_directory_path() / fmt::format("asbuilt_tflite_ckpt_{}.pt", ::getpid());
+  nlohmann::json meta = {{"format", kTfliteCheckpointFormat}, {"config", TfliteCheckpointConfig(net)},
+                         {"scale", {320, 240}},                {"crop", {256, 256}},
+                         {"epoch", 1},                         {"parameters", CountParameters(*net)}};
+  SaveCheckpoint(path, *net, nullptr, meta);
+  TfliteNet loaded = LoadTfliteNet(path);
+  torch::NoGradGuard no_grad;
+  torch::Tensor x = torch::rand({1, 3, 96, 128}) * 255;
+  EXPECT_LT((loaded->forward(x) - net->forward(x)).abs().max().item<double>(), 1e-5);
+  // It reads as a segmenter of its own kind.
+  const SegmenterInfo info = ReadSegmenterInfo(path);
+  EXPECT_EQ(info.config.arch, "tflite");
+  EXPECT_EQ(info.scale_width_px, 320);
+  EXPECT_NE(info.ToString().find("fine-tuned"), std::string::npos) << info.ToString();
+  auto seg = LoadSegmenter(path);
+  cv::Mat bgr(48, 64, CV_8UC3, cv::Scalar(200, 180, 160));
+  EXPECT_EQ(seg->Segment(bgr).size(), bgr.size());
+  fs::remove(path);
+}
+
+TEST(TfliteSegmenter, TrainsThroughTheClassGroupsAndResumes) {
+  SKIP_WITHOUT_TEACHERS();
+  const fs::path dir = fs::temp_directory_path() / fmt::format("asbuilt_tflite_train_{}", ::getpid());
+  WriteToyRoomSet(dir / "data", 6, {.width_px = 64, .height_px = 48, .seed = 3});
+  TrainOptions o;
+  o.images_dir = dir / "data";
+  o.out_dir = dir / "run";
+  o.arch = "tflite";
+  o.init = kDeeplab;
+  o.epochs = 2;
+  o.steps_per_epoch = 2;
+  o.batch_size = 2;
+  o.val_fraction = 0.34;
+  o.augment = {.scale_width_px = 64, .scale_height_px = 48, .crop_width_px = 64, .crop_height_px = 48};
+  o.threads = 1;
+  o.stop_after_epoch = 1;
+  TrainSummary first = TrainSegmenter(o);
+  EXPECT_EQ(first.epochs_done, 1);
+  o.stop_after_epoch = 0;
+  TrainSummary second = TrainSegmenter(o);
+  EXPECT_EQ(second.resumed_from_epoch, 1);
+  EXPECT_EQ(second.epochs_done, 2);
+  EXPECT_TRUE(std::isfinite(second.last_loss));
+  EXPECT_EQ(ReadCheckpointMeta(o.out_dir / "best.pt").at("format"), kTfliteCheckpointFormat);
+  EXPECT_EQ(LoadSegmenter(o.out_dir / "best.pt")->info().config.arch, "tflite");
+  // Asking another architecture of the same folder is refused, not overwritten.
+  o.arch = "tiny";
+  EXPECT_THROW(TrainSegmenter(o), InvalidArgument);
+  // A TFLite fine-tune needs the network to start from.
+  o.arch = "tflite";
+  o.init.clear();
+  EXPECT_THROW(o.Check(), InvalidArgument);
+  fs::remove_all(dir);
+}
+
+TEST(TfliteSegmenter, RefusesASegformerCheckpointAsATfliteNetwork) {
+  const fs::path path = fs::temp_directory_path() / fmt::format("asbuilt_not_tflite_{}.pt", ::getpid());
+  SegformerConfig config = SegformerConfigFor("tiny", 4);
+  Segformer model(config);
+  SaveCheckpoint(path, *model, nullptr,
+                 {{"format", kCheckpointFormat}, {"config", ConfigToJson(config)}, {"scale", {64, 48}}, {"crop", {64, 48}}});
+  try {
+    LoadTfliteNet(path);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a TFLite network"), std::string::npos) << e.what();
+  }
+  fs::remove(path);
 }
 
 }  // namespace

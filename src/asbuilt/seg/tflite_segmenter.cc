@@ -9,25 +9,13 @@
 #include "asbuilt/seg/model_io.h"
 #include "asbuilt/seg/seg_data.h"
 #include "asbuilt/seg/segformer.h"
-#include "asbuilt/seg/tflite_net.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
 namespace {
 namespace F = torch::nn::functional;
 
-// BGR 8-bit images of one size → (B, 3, H, W) RGB float 0..255.
-torch::Tensor RgbTensor(const std::vector<cv::Mat>& images) {
-  std::vector<torch::Tensor> batch;
-  for (const cv::Mat& bgr : images) {
-    cv::Mat rgb;
-    cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
-    batch.push_back(torch::from_blob(rgb.data, {rgb.rows, rgb.cols, 3}, torch::kUInt8)
-                        .permute({2, 0, 1})
-                        .to(torch::kFloat32));
-  }
-  return torch::stack(batch);
-}
+constexpr const char* kClassMap = "ADE20K-Top31: 1 wall, 15 door, 9 windowpane; the rest background";
 
 class TfliteSegmenter : public Segmenter {
  public:
@@ -39,10 +27,6 @@ class TfliteSegmenter : public Segmenter {
       options_.scale_width_px = info_.scale_width_px;
       options_.scale_height_px = info_.scale_height_px;
     }
-    // Channel groups: which of the file's classes sum into each asbuilt class.
-    std::vector<float> groups(static_cast<size_t>(4 * net_->num_classes()), 0.f);
-    for (int c = 0; c < net_->num_classes(); ++c) groups[4 * c + AsbuiltClassOfAde32(c)] = 1.f;
-    groups_ = torch::from_blob(groups.data(), {net_->num_classes(), 4}, torch::kFloat32).clone();
   }
 
   cv::Mat Segment(const cv::Mat& bgr) override { return SegmentBatch({bgr}).at(0); }
@@ -69,17 +53,18 @@ class TfliteSegmenter : public Segmenter {
     CheckArgument(bgr.type() == CV_8UC3, "Segmenter: images must be 8-bit BGR (CV_8UC3)");
     UseAllCores();
     torch::NoGradGuard no_grad;
+    const bool was_training = net_->is_training();
     net_->eval();
     cv::Size scaled = FitSize(bgr.size(), options_.scale_width_px, options_.scale_height_px);
     cv::Mat resized;
     cv::resize(bgr, resized, scaled, 0, 0, cv::INTER_LINEAR);
     torch::Tensor logits = Tiled(RgbTensor({resized}));
+    net_->train(was_training);
     logits = F::interpolate(logits, F::InterpolateFuncOptions()
                                         .size(std::vector<int64_t>{bgr.rows, bgr.cols})
                                         .mode(torch::kBilinear)
                                         .align_corners(false));
-    torch::Tensor p = torch::softmax(logits[0], 0);  // (C, H, W)
-    return torch::einsum("chw,cg->ghw", {p, groups_});
+    return torch::exp(GroupedLogProbabilities(logits))[0];
   }
 
   // The network's logits for (1, 3, H, W), upsampled to H × W. These networks
@@ -116,10 +101,10 @@ class TfliteSegmenter : public Segmenter {
   TfliteNet net_;
   SegmenterInfo info_;
   SegmentOptions options_;
-  torch::Tensor groups_;  // (C, 4) 0/1.
 };
 
-SegmenterInfo InfoOf(const TfliteModel& model, const TfliteNet& net, const std::filesystem::path& path) {
+// The info of a .tflite file read as it is (its declared input size).
+SegmenterInfo InfoOfFile(const TfliteModel& model, const TfliteNet& net, const std::filesystem::path& path) {
   SegmenterInfo info;
   info.config.arch = "tflite";
   info.config.num_classes = 4;
@@ -132,9 +117,11 @@ SegmenterInfo InfoOf(const TfliteModel& model, const TfliteNet& net, const std::
                    {"file", path.filename().string()},
                    {"description", model.description},
                    {"source_classes", net->num_classes()},
-                   {"class_map", "ADE20K-Top31: 1 wall, 15 door, 9 windowpane; the rest background"}};
+                   {"class_map", kClassMap}};
   return info;
 }
+
+bool IsTfliteFile(const std::filesystem::path& path) { return path.extension() == ".tflite"; }
 
 }  // namespace
 
@@ -147,18 +134,74 @@ int AsbuiltClassOfAde32(int ade_class) {
   }
 }
 
+torch::Tensor RgbTensor(const std::vector<cv::Mat>& images) {
+  std::vector<torch::Tensor> batch;
+  for (const cv::Mat& bgr : images) {
+    CheckArgument(bgr.type() == CV_8UC3, "RgbTensor: images must be 8-bit BGR (CV_8UC3)");
+    cv::Mat rgb;
+    cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+    batch.push_back(torch::from_blob(rgb.data, {rgb.rows, rgb.cols, 3}, torch::kUInt8)
+                        .permute({2, 0, 1})
+                        .to(torch::kFloat32));
+  }
+  return torch::stack(batch);
+}
+
+torch::Tensor GroupedLogProbabilities(const torch::Tensor& logits) {
+  const torch::Tensor log_p = torch::log_softmax(logits, 1);
+  std::vector<std::vector<int64_t>> members(4);
+  for (int c = 0; c < logits.size(1); ++c) members[AsbuiltClassOfAde32(c)].push_back(c);
+  std::vector<torch::Tensor> groups;
+  for (auto& m : members) {
+    torch::Tensor index = torch::from_blob(m.data(), {static_cast<int64_t>(m.size())}, torch::kInt64).clone();
+    groups.push_back(torch::logsumexp(log_p.index_select(1, index), 1, /*keepdim=*/true));
+  }
+  return torch::cat(groups, 1);
+}
+
+TfliteNet LoadTfliteNet(const std::filesystem::path& path) {
+  if (IsTfliteFile(path)) return TfliteNet(ReadTflite(path), TfliteNetOptions{});
+  const nlohmann::json meta = ReadCheckpointMeta(path);
+  if (meta.value("format", "") != kTfliteCheckpointFormat) {
+    throw InputError(path.string(), "asbuilt_meta.format",
+                     fmt::format("a {} checkpoint, not a TFLite network fine-tuned by asbuilt", meta.value("format", "")));
+  }
+  if (!meta.contains("config") || !meta["config"].contains("graph")) {
+    throw InputError(path.string(), "asbuilt_meta.config.graph", "missing: the network's graph");
+  }
+  TfliteNet net(TfliteGraphFromJson(meta["config"]["graph"], path.string()), TfliteNetOptions{});
+  LoadWeights(path, *net, nullptr, /*strict=*/true);
+  return net;
+}
+
+std::unique_ptr<Segmenter> MakeTfliteSegmenter(TfliteNet net, SegmenterInfo info, const SegmentOptions& options) {
+  return std::make_unique<TfliteSegmenter>(std::move(net), std::move(info), options);
+}
+
 std::unique_ptr<Segmenter> LoadTfliteSegmenter(const std::filesystem::path& path, const SegmentOptions& options) {
   options.Check();
-  TfliteModel model = ReadTflite(path);
-  TfliteNet net(model, TfliteNetOptions{});
-  SegmenterInfo info = InfoOf(model, net, path);
-  return std::make_unique<TfliteSegmenter>(net, std::move(info), options);
+  if (IsTfliteFile(path)) {
+    TfliteModel model = ReadTflite(path);
+    TfliteNet net(model, TfliteNetOptions{});
+    SegmenterInfo info = InfoOfFile(model, net, path);
+    return MakeTfliteSegmenter(net, std::move(info), options);
+  }
+  SegmenterInfo info = ReadSegmenterInfo(path);
+  return MakeTfliteSegmenter(LoadTfliteNet(path), std::move(info), options);
 }
 
 SegmenterInfo ReadTfliteSegmenterInfo(const std::filesystem::path& path) {
   TfliteModel model = ReadTflite(path);
   TfliteNet net(model, TfliteNetOptions{});
-  return InfoOf(model, net, path);
+  return InfoOfFile(model, net, path);
+}
+
+nlohmann::json TfliteCheckpointConfig(const TfliteNet& net) {
+  return {{"arch", "tflite"},
+          {"num_classes", 4},
+          {"source_classes", net->num_classes()},
+          {"class_map", kClassMap},
+          {"graph", TfliteGraphToJson(net->graph())}};
 }
 
 }  // namespace asbuilt

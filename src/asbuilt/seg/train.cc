@@ -13,6 +13,7 @@
 
 #include "asbuilt/seg/metrics.h"
 #include "asbuilt/seg/model_io.h"
+#include "asbuilt/seg/tflite_segmenter.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
 
@@ -149,17 +150,96 @@ TrainBatch ReadTrainBatch(const TrainOptions& options, const std::vector<SegSamp
   return batch;
 }
 
+// The network being trained: a SegFormer, or a TFLite graph whose 32 classes
+// are trained through their sums onto asbuilt's four.
+class TrainNet {
+ public:
+  virtual ~TrainNet() = default;
+  virtual torch::nn::Module& module() = 0;
+  // Trained at lr · head_lr_mult; the rest at lr.
+  virtual std::vector<torch::Tensor> HeadParameters() = 0;
+  // (B, 4, h, w) scores at the label size whose cross entropy is the loss.
+  virtual torch::Tensor Scores(const std::vector<cv::Mat>& images, int64_t h, int64_t w) = 0;
+  virtual const char* format() const = 0;
+  virtual nlohmann::json Config() const = 0;
+  virtual std::unique_ptr<Segmenter> Validator(const SegmenterInfo& info) = 0;
+};
+
+torch::Tensor Upsampled(const torch::Tensor& logits, int64_t h, int64_t w) {
+  return F::interpolate(logits, F::InterpolateFuncOptions()
+                                    .size(std::vector<int64_t>{h, w})
+                                    .mode(torch::kBilinear)
+                                    .align_corners(false));
+}
+
+class SegformerTrainNet : public TrainNet {
+ public:
+  explicit SegformerTrainNet(const TrainOptions& options) : config_(SegformerConfigFor(options.arch, options.num_classes)) {
+    config_.drop_path_rate = options.drop_path_rate;
+    model_ = Segformer(config_);
+  }
+  torch::nn::Module& module() override { return *model_; }
+  std::vector<torch::Tensor> HeadParameters() override { return model_->decoder->parameters(); }
+  torch::Tensor Scores(const std::vector<cv::Mat>& images, int64_t h, int64_t w) override {
+    return Upsampled(model_->forward(ImagesToTensor(images)), h, w);
+  }
+  const char* format() const override { return kCheckpointFormat; }
+  nlohmann::json Config() const override { return ConfigToJson(config_); }
+  std::unique_ptr<Segmenter> Validator(const SegmenterInfo& info) override {
+    SegmenterInfo i = info;
+    i.config = config_;
+    return MakeSegmenter(model_, i, {});
+  }
+
+ private:
+  SegformerConfig config_;
+  Segformer model_{nullptr};
+};
+
+class TfliteTrainNet : public TrainNet {
+ public:
+  explicit TfliteTrainNet(const TrainOptions& options) : net_(LoadTfliteNet(options.init)) {}
+  torch::nn::Module& module() override { return *net_; }
+  std::vector<torch::Tensor> HeadParameters() override { return net_->head_parameters(); }
+  torch::Tensor Scores(const std::vector<cv::Mat>& images, int64_t h, int64_t w) override {
+    return GroupedLogProbabilities(Upsampled(net_->forward(RgbTensor(images)), h, w));
+  }
+  const char* format() const override { return kTfliteCheckpointFormat; }
+  nlohmann::json Config() const override { return TfliteCheckpointConfig(net_); }
+  std::unique_ptr<Segmenter> Validator(const SegmenterInfo& info) override {
+    SegmenterInfo i = info;
+    i.config.arch = "tflite";
+    i.config.num_classes = 4;
+    return MakeTfliteSegmenter(net_, i, {});
+  }
+
+ private:
+  TfliteNet net_;
+};
+
+std::unique_ptr<TrainNet> MakeTrainNet(const TrainOptions& options) {
+  if (options.arch == "tflite") return std::make_unique<TfliteTrainNet>(options);
+  return std::make_unique<SegformerTrainNet>(options);
+}
+
+// The parameters of `all` that are not in `head`.
+std::vector<torch::Tensor> Without(const std::vector<torch::Tensor>& all, const std::vector<torch::Tensor>& head) {
+  std::vector<torch::Tensor> out;
+  for (const torch::Tensor& p : all) {
+    const bool in_head = std::any_of(head.begin(), head.end(),
+                                     [&](const torch::Tensor& h) { return h.unsafeGetTensorImpl() == p.unsafeGetTensorImpl(); });
+    if (!in_head) out.push_back(p);
+  }
+  return out;
+}
+
 // One AdamW step on `batch` at the optimizer's current learning rates: cross
-// entropy (label 255 ignored) of the logits upsampled bilinearly to the label
-// size. Returns the batch's loss before the step.
-double OptimizerStep(Segformer& model, torch::optim::AdamW& optimizer, const TrainBatch& batch) {
-  torch::Tensor x = ImagesToTensor(batch.images), y = LabelsToTensor(batch.labels);
-  torch::Tensor logits = model->forward(x);
-  logits = F::interpolate(logits, F::InterpolateFuncOptions()
-                                      .size(std::vector<int64_t>{y.size(1), y.size(2)})
-                                      .mode(torch::kBilinear)
-                                      .align_corners(false));
-  torch::Tensor loss = F::cross_entropy(logits, y, F::CrossEntropyFuncOptions().ignore_index(255));
+// entropy (label 255 ignored) of the scores at the label size. Returns the
+// batch's loss before the step.
+double OptimizerStep(TrainNet& net, torch::optim::AdamW& optimizer, const TrainBatch& batch) {
+  torch::Tensor y = LabelsToTensor(batch.labels);
+  torch::Tensor scores = net.Scores(batch.images, y.size(1), y.size(2));
+  torch::Tensor loss = F::cross_entropy(scores, y, F::CrossEntropyFuncOptions().ignore_index(255));
   optimizer.zero_grad();
   loss.backward();
   optimizer.step();
@@ -203,19 +283,18 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
   }
   spdlog::info("train: {} ({} train, {} val pairs)", split.source, split.train.size(), split.val.size());
 
-  SegformerConfig config = SegformerConfigFor(options.arch, options.num_classes);
-  config.drop_path_rate = options.drop_path_rate;
-  Segformer model(config);
-  const std::int64_t n_params = CountParameters(*model);
+  std::unique_ptr<TrainNet> net = MakeTrainNet(options);
+  const std::int64_t n_params = CountParameters(net->module());
 
-  // Decoder parameters may get a larger lr (mmseg: head lr_mult 10).
-  std::vector<torch::Tensor> enc_params = model->encoder->parameters(), dec_params = model->decoder->parameters();
+  // Head parameters may get a larger lr (mmseg SegFormer's decoder: lr_mult 10).
+  std::vector<torch::Tensor> head_params = net->HeadParameters();
+  std::vector<torch::Tensor> body_params = Without(net->module().parameters(), head_params);
   std::vector<torch::optim::OptimizerParamGroup> groups;
-  groups.emplace_back(enc_params, std::make_unique<torch::optim::AdamWOptions>(
-                                      torch::optim::AdamWOptions(options.lr).weight_decay(options.weight_decay)));
-  groups.emplace_back(dec_params, std::make_unique<torch::optim::AdamWOptions>(
-                                      torch::optim::AdamWOptions(options.lr * options.head_lr_mult)
-                                          .weight_decay(options.weight_decay)));
+  groups.emplace_back(body_params, std::make_unique<torch::optim::AdamWOptions>(
+                                       torch::optim::AdamWOptions(options.lr).weight_decay(options.weight_decay)));
+  groups.emplace_back(head_params, std::make_unique<torch::optim::AdamWOptions>(
+                                       torch::optim::AdamWOptions(options.lr * options.head_lr_mult)
+                                           .weight_decay(options.weight_decay)));
   torch::optim::AdamW optimizer(std::move(groups), torch::optim::AdamWOptions(options.lr));
 
   const fs::path out = options.out_dir;
@@ -237,14 +316,15 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
 
   if (options.resume && fs::exists(last_path)) {
     nlohmann::json meta = ReadCheckpointMeta(last_path);
-    SegformerConfig saved = ConfigFromMeta(meta, last_path.string());
-    if (saved.arch != config.arch || saved.num_classes != config.num_classes) {
+    const std::string saved_arch = meta.value("config", nlohmann::json::object()).value("arch", "?");
+    const int saved_classes = meta.value("config", nlohmann::json::object()).value("num_classes", 0);
+    if (saved_arch != options.arch || saved_classes != options.num_classes) {
       throw InvalidArgument(fmt::format("{} holds a {} model with {} classes, but --arch {} with {} classes was "
                                         "asked; use another -o or --no-resume",
-                                        last_path.string(), saved.arch, saved.num_classes, config.arch,
-                                        config.num_classes));
+                                        last_path.string(), saved_arch, saved_classes, options.arch,
+                                        options.num_classes));
     }
-    LoadWeights(last_path, model, &optimizer, /*strict=*/true);
+    LoadWeights(last_path, net->module(), &optimizer, /*strict=*/true);
     start_epoch = meta.value("epoch", 0);
     for (const auto& r : meta.at("history")) summary.history.push_back(RecordFromJson(r));
     if (!summary.history.empty()) wall_offset = summary.history.back().wall_s;
@@ -252,9 +332,9 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
     summary.best_epoch = meta.value("best_epoch", 0);
     summary.resumed_from_epoch = start_epoch;
     spdlog::info("train: resuming {} after epoch {}", last_path.string(), start_epoch);
-  } else if (!options.init.empty()) {
+  } else if (!options.init.empty() && options.arch != "tflite") {  // A TFLite net is built from its init.
     int skipped = 0;
-    int loaded = LoadWeights(options.init, model, nullptr, /*strict=*/false, &skipped);
+    int loaded = LoadWeights(options.init, net->module(), nullptr, /*strict=*/false, &skipped);
     if (loaded == 0) throw InputError(options.init.string(), "", "no tensor matches the model (wrong architecture?)");
     spdlog::info("train: initialised {} tensors from {} ({} skipped)", loaded, options.init.string(), skipped);
   }
@@ -266,7 +346,8 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
   const std::int64_t total_steps = static_cast<std::int64_t>(steps_per_epoch) * options.epochs;
 
   nlohmann::json resolved = options.ToJson();
-  resolved["config"] = ConfigToJson(config);
+  resolved["config"] = net->Config();
+  if (resolved["config"].contains("graph")) resolved["config"].erase("graph");  // In the checkpoints.
   resolved["parameters"] = n_params;
   resolved["data"] = {{"source", split.source},
                       {"train_pairs", split.train.size()},
@@ -276,8 +357,8 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
 
   auto make_meta = [&](int epoch) {
     nlohmann::json meta;
-    meta["format"] = kCheckpointFormat;
-    meta["config"] = ConfigToJson(config);
+    meta["format"] = net->format();
+    meta["config"] = net->Config();
     meta["scale"] = {options.augment.scale_width_px, options.augment.scale_height_px};
     meta["crop"] = {options.augment.crop_width_px, options.augment.crop_height_px};
     meta["label_resize"] = "nearest_exact";  // SegmenterInfo::label_offset_px.
@@ -295,20 +376,19 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
   };
 
   SegmenterInfo info;
-  info.config = config;
   info.scale_width_px = options.augment.scale_width_px;
   info.scale_height_px = options.augment.scale_height_px;
   info.crop_width_px = options.augment.crop_width_px;
   info.crop_height_px = options.augment.crop_height_px;
   info.parameters = n_params;
-  auto validator = MakeSegmenter(model, info, {});
+  auto validator = net->Validator(info);
 
   std::vector<size_t> perm;
   std::int64_t perm_pass = -1;
   const int last_epoch =
       options.stop_after_epoch > 0 ? std::min(options.epochs, options.stop_after_epoch) : options.epochs;
   for (int epoch = start_epoch + 1; epoch <= last_epoch; ++epoch) {
-    model->train();
+    net->module().train();
     double loss_sum = 0;
     int loss_count = 0;
     double lr = 0;
@@ -323,7 +403,7 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
       lr = LearningRate(options, step, total_steps);
       optimizer.param_groups()[0].options().set_lr(lr);
       optimizer.param_groups()[1].options().set_lr(lr * options.head_lr_mult);
-      const double l = OptimizerStep(model, optimizer, batch);
+      const double l = OptimizerStep(*net, optimizer, batch);
       if (!std::isfinite(l)) {
         throw Error(fmt::format("training diverged at epoch {} step {} (loss {}); lower --lr", epoch, s, l));
       }
@@ -353,8 +433,8 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
     // fails on its first batch (a corrupt image) leaves no file behind.
     if (epoch == start_epoch + 1) WriteFileAtomic(out / "options.json", resolved.dump(2) + "\n");
     // Checkpoints: best first, then last (the resume point) — both atomic.
-    if (best || split.val.empty()) SaveCheckpoint(best_path, model, nullptr, make_meta(epoch));
-    SaveCheckpoint(last_path, model, &optimizer, make_meta(epoch));
+    if (best || split.val.empty()) SaveCheckpoint(best_path, net->module(), nullptr, make_meta(epoch));
+    SaveCheckpoint(last_path, net->module(), &optimizer, make_meta(epoch));
     WriteLogs(out, summary.history);
     spdlog::info("epoch {}: loss {:.4f}, val mIoU {:.4f}, lr {:.2e}", epoch, rec.train_loss, rec.val_miou, lr);
   }

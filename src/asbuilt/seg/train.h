@@ -34,7 +34,10 @@ struct TrainOptions {
   double val_fraction = 0.1;  // Folders only: share held out for validation.
   std::filesystem::path out_dir;  // Required.
 
-  std::string arch = "b0";  // b0, b1, b2 (published) or tiny (b0, decoder 128).
+  std::string arch = "b0";  // b0, b1, b2 (published), tiny (b0, decoder 128), or
+                            // tflite: the TFLite graph of `init` (a .tflite file
+                            // or an asbuilt-tflite checkpoint), fine-tuned
+                            // through asbuilt's class groups (tflite_segmenter.h).
   int num_classes = 4;
   int epochs = 50;            // Paper: 50.
   int steps_per_epoch = 0;    // 0 = ceil(train pairs / batch); else a fixed count.

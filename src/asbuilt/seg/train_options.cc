@@ -22,7 +22,14 @@ void TrainOptions::Check() const {
   CheckArgument(!manifest.empty() || !images_dir.empty(),
                 "TrainOptions: give a manifest (--manifest) or an image folder (--images [--labels])");
   CheckArgument(manifest.empty() || images_dir.empty(), "TrainOptions: give --manifest or --images, not both");
-  SegformerConfigFor(arch, num_classes);  // Throws for an unknown arch.
+  if (arch == "tflite") {
+    CheckArgument(!init.empty(), "TrainOptions.arch = tflite fine-tunes a TFLite graph: give it with --init "
+                                 "(a .tflite file or an asbuilt-tflite checkpoint)");
+    CheckArgument(num_classes == 4, fmt::format("TrainOptions.num_classes = {}: a TFLite graph is trained on "
+                                                "asbuilt's 4 classes", num_classes));
+  } else {
+    SegformerConfigFor(arch, num_classes);  // Throws for an unknown arch.
+  }
   CheckArgument(epochs > 0, fmt::format("TrainOptions.epochs = {}, must be > 0", epochs));
   CheckArgument(steps_per_epoch >= 0, fmt::format("TrainOptions.steps_per_epoch = {}, must be >= 0", steps_per_epoch));
   CheckArgument(batch_size > 0, fmt::format("TrainOptions.batch_size = {}, must be > 0", batch_size));
