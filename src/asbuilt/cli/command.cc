@@ -48,6 +48,8 @@ std::span<const Command> Commands() {
       {"segment", "label images with a trained segmenter → label PNGs (+ colour overlays)", &RunSegmentCommand},
       {"experiment", "segmentation experiments: real/synthetic ratios (the paper's table + plot), toy rooms",
        &RunExperimentCommand},
+      {"learn", "learn from corrections: reviewed surveys + renders → fine-tuned model, kept only if better on held-out rooms",
+       &RunLearnCommand},
       {"model", "segmenter model files: info, export to / import from PyTorch (safetensors)", &RunModelCommand},
       {"pano", "equirectangular panoramas → turn-in-place perspective views (+ ZInD layout labels, truth plan)",
        &RunPanoCommand},

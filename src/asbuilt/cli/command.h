@@ -77,6 +77,7 @@ int RunTrainCommand(int argc, char** argv);
 int RunSegmentCommand(int argc, char** argv);
 int RunModelCommand(int argc, char** argv);
 int RunExperimentCommand(int argc, char** argv);
+int RunLearnCommand(int argc, char** argv);
 int RunCalibrateCommand(int argc, char** argv);
 int RunRectifyCommand(int argc, char** argv);
 int RunDisparityCommand(int argc, char** argv);

@@ -237,6 +237,26 @@ MixSummary BuildMix(const MixOptions& options, const MixSources& sources, const 
   return summary;
 }
 
+namespace {
+
+fs::path Normal(const fs::path& dir) {
+  fs::path p = dir.lexically_normal();
+  return p.filename().empty() ? p.parent_path() : p;
+}
+
+bool IsReviewTrainingFolder(const fs::path& dir) {
+  const fs::path p = Normal(dir);
+  return p.filename() == "training" && p.parent_path().filename() == "review";
+}
+
+// A folder's name; a review's training folder (OUT/review/training) is named by its survey OUT.
+std::string RoomNameOfFolder(const fs::path& dir) {
+  const fs::path p = Normal(dir);
+  return IsReviewTrainingFolder(p) ? p.parent_path().parent_path().filename().string() : p.filename().string();
+}
+
+}  // namespace
+
 MixSummary MixDataset(const MixOptions& options, const std::vector<fs::path>& real_dirs, const fs::path& synthetic_dir,
                       const fs::path& real_test_dir, const fs::path& manifest_path, const ProgressCallback& progress) {
   options.Check();
@@ -250,10 +270,11 @@ MixSummary MixDataset(const MixOptions& options, const std::vector<fs::path>& re
   };
   for (const fs::path& dir : real_dirs) {
     std::vector<ImagePair> pairs = list(dir, "real");
-    if (real_dirs.size() > 1) {  // Each folder its own name, so each stays its own room.
-      const std::string prefix = fs::path(dir).lexically_normal().filename().string();
-      const std::string own = prefix.empty() ? fs::path(dir).lexically_normal().parent_path().filename().string() : prefix;
-      for (ImagePair& p : pairs) p.name = own + "/" + p.name;
+    // Each folder its own name, so each stays its own room; a review's views
+    // are always one room, named by its survey.
+    const std::string room = RoomNameOfFolder(dir);
+    if (real_dirs.size() > 1 || IsReviewTrainingFolder(dir)) {
+      for (ImagePair& p : pairs) p.name = room + "/" + p.name;
     }
     sources.real.insert(sources.real.end(), pairs.begin(), pairs.end());
   }

@@ -163,6 +163,24 @@ TEST_F(MixTest, OneReviewedRoomCannotBeItsOwnTest) {
   EXPECT_FALSE(fs::exists(dir_ / "out/one.json"));
 }
 
+TEST_F(MixTest, ReviewTrainingFoldersAreNamedByTheirSurveys) {
+  // Given as OUT/review/training rather than OUT, each is still its own room.
+  std::vector<fs::path> folders;
+  for (const char* room : {"kitchen", "hall"}) {
+    folders.push_back(dir_ / "direct" / room / "review" / "training");
+    MakeDataset(folders.back(), 6, 3);
+  }
+  const MixSummary s = MixDataset({.config = "R100", .test_fraction = 0.4, .checksums = false}, folders, {}, {},
+                                  dir_ / "out/direct.json");
+  ASSERT_EQ(s.manifest.test.size(), 6u);  // One whole room.
+  const std::string room = s.manifest.test[0].image.find("/kitchen/") != std::string::npos ? "/kitchen/" : "/hall/";
+  for (const ManifestEntry& e : s.manifest.test) EXPECT_NE(e.image.find(room), std::string::npos) << e.image;
+  // One such folder alone is one room: nothing left to test on.
+  EXPECT_THROW(MixDataset({.config = "R100", .checksums = false}, std::vector<fs::path>{folders[0]}, {}, {},
+                          dir_ / "out/direct1.json"),
+               Error);
+}
+
 TEST_F(MixTest, DefaultTotalIsTheLargestMixTheSourcesAllow) {
   // 108 real after the hold-out, 400 synthetic.
   MixSummary r100 = Mix({.config = "R100", .checksums = false});

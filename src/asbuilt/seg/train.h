@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "asbuilt/seg/seg_data.h"
+#include "asbuilt/seg/segmenter.h"
 #include "asbuilt/util/progress.h"
 
 namespace asbuilt {
@@ -87,6 +88,14 @@ struct TrainSummary {
   std::vector<EpochRecord> history;
   std::string BriefReport() const;
 };
+
+// The options that continue training the model `info` describes (read from
+// `model`, a checkpoint of either kind or a .tflite file) on new data, as
+// `asbuilt train --finetune` and `asbuilt learn` do: its architecture, its
+// training scale and crop and the same augmentation, a lower rate and a short
+// schedule (8 epochs of 50 steps, batch 8; docs/seg.md "Fine-tuning"). The
+// caller sets the data and the output folder.
+TrainOptions FinetuneOptions(const std::filesystem::path& model, const SegmenterInfo& info);
 
 // Trains (or resumes) and writes OUT_DIR as described above. Throws
 // InvalidArgument for bad options, InputError for bad data (naming the file).
