@@ -26,7 +26,7 @@ int RunLearnCommand(int argc, char** argv) {
   AddCommonFlags(app);
   LearnOptions o;
   std::vector<std::string> reviews;
-  std::string model = "default", synthetic, out;
+  std::string model = "default", synthetic, out, hold_out;
   app.add_option("reviews", reviews,
                  "corrected surveys: survey folders whose review was saved, or folders holding them")
       ->required();
@@ -36,6 +36,7 @@ int RunLearnCommand(int argc, char** argv) {
   app.add_option("--synthetic", synthetic, "renders to mix in (a folder made by `asbuilt dataset synth`)");
   app.add_option("--config", o.config, "the mix: RS5050, RS8020, … (needs --synthetic) or R100")->capture_default_str();
   app.add_option("--test-fraction", o.test_fraction, "share of the rooms held out to judge on")->capture_default_str();
+  app.add_option("--hold-out", hold_out, "judge on this review instead (leave-one-room-out: name each room in turn)");
   app.add_option("--epochs", o.epochs, "fine-tuning epochs (0 = the fine-tuning default, 8)")->capture_default_str();
   app.add_option("--steps-per-epoch", o.steps_per_epoch, "steps per epoch (0 = the default, 50)")->capture_default_str();
   app.add_option("--seed", o.seed, "which rooms are held out; training order")->capture_default_str();
@@ -45,6 +46,7 @@ int RunLearnCommand(int argc, char** argv) {
   o.reviews.assign(reviews.begin(), reviews.end());
   o.model = ModelPathFor(model);
   o.synthetic_dir = synthetic;
+  o.hold_out = hold_out;
   o.out_dir = out;
   ProgressPrinter printer;
   LearnSummary summary = LearnFromReviews(o, printer.Callback());

@@ -115,6 +115,12 @@ LearnSummary LearnFromReviews(const LearnOptions& options, const ProgressCallbac
   const auto start = std::chrono::steady_clock::now();
   LearnSummary summary;
   summary.examples = FindReviewExamples(options.reviews);
+  fs::path held_out;
+  if (!options.hold_out.empty()) {
+    held_out = FindReviewExamples({options.hold_out}).at(0);
+    std::erase_if(summary.examples, [&](const fs::path& e) { return fs::equivalent(e, held_out); });
+    if (summary.examples.empty()) throw InputError(options.hold_out.string(), "", "is the only review given: none left to learn from");
+  }
   // Read the model first: a file that is not a model fails before any work.
   TrainOptions train = FinetuneOptions(options.model, ReadSegmenterInfo(options.model));
   fs::create_directories(options.out_dir);
@@ -122,7 +128,7 @@ LearnSummary LearnFromReviews(const LearnOptions& options, const ProgressCallbac
   // 1. The mix, split by room.
   const fs::path manifest = options.out_dir / "mix.json";
   MixOptions mix{.config = options.config, .test_fraction = options.test_fraction, .seed = options.seed};
-  MixSummary mixed = MixDataset(mix, summary.examples, options.synthetic_dir, "", manifest, progress);
+  MixSummary mixed = MixDataset(mix, summary.examples, options.synthetic_dir, held_out, manifest, progress);
   spdlog::info("learn: {}", mixed.BriefReport());
   const SegDataSplit split = SplitFromManifest(manifest);
   summary.train_pairs = static_cast<std::int64_t>(split.train.size());
@@ -153,6 +159,7 @@ LearnSummary LearnFromReviews(const LearnOptions& options, const ProgressCallbac
 
   nlohmann::json report = {{"model", options.model.string()},
                            {"examples", nlohmann::json::array()},
+                           {"hold_out", held_out.string()},
                            {"mix", mixed.BriefReport()},
                            {"train_pairs", summary.train_pairs},
                            {"val_pairs", summary.val_pairs},

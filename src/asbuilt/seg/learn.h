@@ -36,6 +36,9 @@ struct LearnOptions {
   std::filesystem::path synthetic_dir;  // Renders to mix in (dataset synth); empty: real rooms only (R100).
   std::string config = "RS5050";        // The mix (dataset/mix.h); R100 without renders.
   double test_fraction = 0.25;          // Share of the real rooms held out to judge on.
+  // A review (as in `reviews`) to judge on instead, kept out of training even
+  // when `reviews` lists it: leave-one-room-out runs name each room in turn.
+  std::filesystem::path hold_out;
   std::uint64_t seed = 1;               // Which rooms are held out; the training order.
   std::filesystem::path out_dir;        // Required.
   int epochs = 0;                       // 0: FinetuneOptions' schedule.

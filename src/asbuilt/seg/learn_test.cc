@@ -98,6 +98,28 @@ TEST(LearnFromReviews, FineTunesJudgesOnHeldOutRoomsAndKeepsOnlyABetterModel) {
   EXPECT_NE(report.find("mIoU"), std::string::npos);
 }
 
+TEST(LearnFromReviews, LeavesTheNamedRoomOut) {
+  const LearnFixture& f = Fixture();
+  LearnOptions o;
+  o.reviews = {f.surveys};
+  o.hold_out = f.surveys / "room2";
+  o.model = f.model;
+  o.config = "R100";
+  o.out_dir = f.dir / "loo";
+  o.epochs = 1;
+  o.steps_per_epoch = 1;
+  o.threads = 1;
+  const LearnSummary s = LearnFromReviews(o);
+  EXPECT_EQ(s.examples.size(), 3u);
+  EXPECT_EQ(s.test_pairs, 6);
+  EXPECT_EQ(s.train_pairs + s.val_pairs, 18);
+  const nlohmann::json mix = nlohmann::json::parse(ReadFile(o.out_dir / "mix.json"));
+  for (const auto& e : mix.at("test")) EXPECT_NE(e.at("image").get<std::string>().find("room2"), std::string::npos);
+  for (const char* list : {"train", "val"}) {
+    for (const auto& e : mix.at(list)) EXPECT_EQ(e.at("image").get<std::string>().find("room2"), std::string::npos);
+  }
+}
+
 TEST(LearnFromReviews, RefusesBadInputWithOneMessage) {
   const LearnFixture& f = Fixture();
   LearnOptions o;
