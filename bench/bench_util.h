@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -56,6 +57,12 @@ inline int EnvPositiveInt(const char* name, int fallback) {
 inline std::string ResultsPath(int argc, char** argv, const std::string& name) {
   if (argc > 1) return argv[1];
   return std::string(ASBUILT_SOURCE_DIR) + "/bench/results/" + name + ".md";
+}
+
+// The 1-minute load average (NaN when the system does not say).
+inline double LoadAverage1() {
+  double load[1] = {0};
+  return ::getloadavg(load, 1) == 1 ? load[0] : NAN;
 }
 
 // Today's date, YYYY-MM-DD (local time), for "measured on" lines.

@@ -19,6 +19,7 @@
 #   STEPS    fine-tuning steps, batch 8, 256x256 crops [300]
 #   SYNTH    rendered views [600]
 #   THREADS  LibTorch threads [0 = all cores]
+#   DATA_ONLY=1  stop after making the data (real views and labels, renders, mix)
 #
 # Time on 2 cores (2026-12-06): renders 2.6 min, real views and teacher labels
 # ≈ 3 min, 300 steps ≈ 20 min.
@@ -78,6 +79,8 @@ done
     --size 320x240
 "$ASBUILT" dataset mix --real "$WORK/real" --synthetic "$WORK/synth" --config RS5050 --test-fraction 0.05 \
   --seed 43 -o "$WORK/mix.json"
+
+[ "${DATA_ONLY:-0}" = 1 ] && exit 0  # scripts/finetune-teacher.sh reuses the data above.
 
 # 4. Fine-tune the shipped B0 (resumes after its last finished epoch).
 "$ASBUILT" train --manifest "$WORK/mix.json" -o "$WORK/b0" --arch b0 --init "$HERE/models/segformer_b0_asbuilt.pt" \

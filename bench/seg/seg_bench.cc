@@ -35,6 +35,7 @@
 
 namespace {
 namespace F = torch::nn::functional;
+using asbuilt::bench::LoadAverage1;
 using asbuilt::bench::Median;
 
 long MinorFaults() {
@@ -51,13 +52,6 @@ double Seconds(const std::function<void()>& fn, long* faults) {
   double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   *faults += MinorFaults() - f0;
   return s;
-}
-
-double LoadAverage1() {
-  std::ifstream in("/proc/loadavg");
-  double l = 0;
-  in >> l;
-  return l;
 }
 
 // segformer_bench.py in serve mode, spoken to over two pipes.

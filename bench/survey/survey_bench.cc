@@ -46,11 +46,6 @@ double CpuSeconds() {
   return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec + 1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
-double LoadAverage() {
-  double load[1] = {0};
-  return ::getloadavg(load, 1) == 1 ? load[0] : NAN;
-}
-
 // The demo's classroom, 12 turn-in-place views, 640×480, 4 spp.
 fs::path RenderOnce(const fs::path& dir, double& render_seconds) {
   const fs::path capture = dir / "capture.json";
@@ -140,7 +135,7 @@ int main(int argc, char** argv) {
   const int model_repeats = EnvPositiveInt("ASBUILT_BENCH_MODEL_REPEATS", 1);
   const fs::path dir = fs::path(ASBUILT_BINARY_DIR) / "bench" / "survey_capture";
   const fs::path out = fs::temp_directory_path() / fmt::format("asbuilt_bench_survey_{}", ::getpid());
-  const double load_start = LoadAverage();
+  const double load_start = asbuilt::bench::LoadAverage1();
 
   double render_seconds = -1;
   const fs::path capture = RenderOnce(dir, render_seconds);
@@ -198,7 +193,7 @@ int main(int argc, char** argv) {
       "(plan.json/svg/dxf/pdf/png, points, report.html). {} hardware threads, OpenCV {} threads, load average "
       "{:.1f} at start and {:.1f} at the end (other jobs share the machine: the same-run ratios are the "
       "figures to compare). Target (issue 9): ≤ 15 s on 2 cores with the shipped model.\n\n",
-      kDemoSentence, repeats, model_repeats, std::thread::hardware_concurrency(), cv::getNumThreads(), load_start, LoadAverage());
+      kDemoSentence, repeats, model_repeats, std::thread::hardware_concurrency(), cv::getNumThreads(), load_start, asbuilt::bench::LoadAverage1());
   md += "| stage |";
   for (const Mode& m : modes) md += " " + m.name + " |";
   md += "\n|---|";

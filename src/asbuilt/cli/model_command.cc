@@ -36,7 +36,7 @@ std::string Describe(const SegmenterInfo& info) {
 }  // namespace
 
 int RunModelCommand(int argc, char** argv) {
-  CLI::App app("Segmenter model files: inspect, and move weights to and from PyTorch (safetensors).",
+  CLI::App app("Segmenter model files: inspect, move weights to and from PyTorch (safetensors), average.",
                "asbuilt model");
   AddCommonFlags(app);
   app.require_subcommand(1);
@@ -63,6 +63,18 @@ int RunModelCommand(int argc, char** argv) {
   import_cmd->add_option("weights", import_in, "input .safetensors")->required();
   import_cmd->add_option("-o,--out", import_out, "output checkpoint (.pt)")->required();
 
+  CLI::App* average_cmd = app.add_subcommand(
+      "average",
+      "the weighted mean of checkpoints of one network, weight by weight (a model soup: fine-tunes of one\n"
+      "model along different data or schedules)");
+  std::vector<std::string> average_in;
+  std::vector<double> average_weights;
+  std::string average_out;
+  average_cmd->add_option("models", average_in, "two or more checkpoints of one network")->required();
+  average_cmd->add_option("--weights", average_weights, "one per checkpoint, summing to 1 (default: equal)")
+      ->delimiter(',');
+  average_cmd->add_option("-o,--out", average_out, "output checkpoint (.pt)")->required();
+
   Parse(app, argc, argv);
 
   if (info_cmd->parsed()) {
@@ -71,6 +83,10 @@ int RunModelCommand(int argc, char** argv) {
   } else if (export_cmd->parsed()) {
     SegmenterInfo info = ExportModel(export_in, export_out);
     fmt::print("{}\nwrote {}\n", Describe(info), export_out);
+  } else if (average_cmd->parsed()) {
+    const std::vector<std::filesystem::path> models(average_in.begin(), average_in.end());
+    SegmenterInfo info = AverageModels(models, average_weights, average_out);
+    fmt::print("{}\nwrote {}\n", Describe(info), average_out);
   } else if (import_cmd->parsed()) {
     SegmenterInfo info = ImportModel(import_in, import_out);
     fmt::print("{}\nwrote {}\n", Describe(info), import_out);

@@ -1,5 +1,6 @@
 #include "asbuilt/seg/model_file.h"
 
+#include <cmath>
 #include <cstring>
 #include <set>
 #include <string>
@@ -8,6 +9,7 @@
 
 #include "asbuilt/formats/safetensors.h"
 #include "asbuilt/seg/model_io.h"
+#include "asbuilt/seg/tflite_segmenter.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
@@ -116,6 +118,72 @@ SegmenterInfo ImportModel(const fs::path& in, const fs::path& out_checkpoint) {
   }
   SaveCheckpoint(out_checkpoint, *model, nullptr, meta);
   return info;
+}
+
+namespace {
+
+// The network a checkpoint holds, weights loaded.
+std::shared_ptr<torch::nn::Module> LoadNetwork(const fs::path& path, const nlohmann::json& meta) {
+  if (meta.value("format", "") == kTfliteCheckpointFormat) return LoadTfliteNet(path).ptr();
+  Segformer model(ConfigFromMeta(meta, path.string()));
+  LoadWeights(path, *model, nullptr, /*strict=*/true);
+  return model.ptr();
+}
+
+}  // namespace
+
+SegmenterInfo AverageModels(const std::vector<fs::path>& checkpoints, const std::vector<double>& weights_in,
+                            const fs::path& out_checkpoint) {
+  CheckArgument(checkpoints.size() >= 2, "AverageModels: give two or more checkpoints");
+  std::vector<double> weights = weights_in;
+  if (weights.empty()) weights.assign(checkpoints.size(), 1.0 / static_cast<double>(checkpoints.size()));
+  CheckArgument(weights.size() == checkpoints.size(), "AverageModels: one weight per checkpoint");
+  double total = 0;
+  for (double w : weights) {
+    CheckArgument(w >= 0, fmt::format("AverageModels: weight {} is negative", w));
+    total += w;
+  }
+  CheckArgument(std::abs(total - 1.0) < 1e-6, fmt::format("AverageModels: the weights sum to {}, not 1", total));
+
+  nlohmann::json meta = ReadCheckpointMeta(checkpoints[0]);
+  std::shared_ptr<torch::nn::Module> mean = LoadNetwork(checkpoints[0], meta);
+  torch::NoGradGuard no_grad;
+  auto floating = [](const torch::Tensor& t) { return t.is_floating_point(); };
+  for (auto& p : mean->named_parameters()) p.value().mul_(weights[0]);
+  for (auto& b : mean->named_buffers()) {
+    if (floating(b.value())) b.value().mul_(weights[0]);
+  }
+  for (std::size_t i = 1; i < checkpoints.size(); ++i) {
+    const nlohmann::json other = ReadCheckpointMeta(checkpoints[i]);
+    const nlohmann::json config = meta["config"], other_config = other["config"];
+    if (other.value("format", "") != meta.value("format", "") ||
+        config.value("arch", "") != other_config.value("arch", "") ||
+        config.value("num_classes", 0) != other_config.value("num_classes", 0)) {
+      throw InputError(checkpoints[i].string(), "asbuilt_meta.config",
+                       fmt::format("holds another network than {} ({} {} against {} {})", checkpoints[0].string(),
+                                   other.value("format", ""), other_config.value("arch", ""), meta.value("format", ""),
+                                   config.value("arch", "")));
+    }
+    // Strict loading into the first's network checks every tensor's name and shape.
+    std::shared_ptr<torch::nn::Module> next = LoadNetwork(checkpoints[0], meta);
+    LoadWeights(checkpoints[i], *next, nullptr, /*strict=*/true);
+    auto add = [&](auto&& into, auto&& from) {
+      for (auto& t : into) {
+        if (floating(t.value())) t.value().add_(from[t.key()], weights[i]);
+      }
+    };
+    add(mean->named_parameters(), next->named_parameters());
+    add(mean->named_buffers(), next->named_buffers());
+  }
+  meta.erase("history");
+  meta.erase("best_miou");
+  meta.erase("best_epoch");
+  meta["averaged_from"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < checkpoints.size(); ++i) {
+    meta["averaged_from"].push_back({{"checkpoint", checkpoints[i].filename().string()}, {"weight", weights[i]}});
+  }
+  SaveCheckpoint(out_checkpoint, *mean, nullptr, meta);
+  return ReadSegmenterInfo(out_checkpoint);
 }
 
 }  // namespace asbuilt

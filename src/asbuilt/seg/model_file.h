@@ -1,7 +1,7 @@
 #ifndef ASBUILT_SEG_MODEL_FILE_H_
 #define ASBUILT_SEG_MODEL_FILE_H_
 
-// Moving SegFormer weights between asbuilt checkpoints and safetensors
+// Model files: moving SegFormer weights between asbuilt checkpoints and safetensors
 // files, so PyTorch users can train, inspect or fine-tune asbuilt's model in
 // Python (tools/pytorch/asbuilt_segformer.py is the same network with the
 // same tensor names) and bring the result back. Does not include LibTorch.
@@ -15,6 +15,7 @@
 // (format, config, scale, crop, history…) — see seg/model_io.h.
 
 #include <filesystem>
+#include <vector>
 
 #include "asbuilt/seg/segmenter.h"
 
@@ -31,6 +32,15 @@ SegmenterInfo ExportModel(const std::filesystem::path& checkpoint, const std::fi
 // and a valid config and scale. Throws InputError naming the file and the
 // tensor or metadata field.
 SegmenterInfo ImportModel(const std::filesystem::path& safetensors, const std::filesystem::path& out_checkpoint);
+
+// Writes the weighted mean of checkpoints of one network (a "model soup":
+// fine-tunes of one model along different data or schedules, averaged weight
+// by weight), atomically, with the first one's metadata and the list it was
+// averaged from (its validation history no longer applies and is dropped).
+// `weights` (one per checkpoint, summing to 1; empty: equal) say how much
+// each counts. Throws InputError naming a checkpoint of another network.
+SegmenterInfo AverageModels(const std::vector<std::filesystem::path>& checkpoints, const std::vector<double>& weights,
+                            const std::filesystem::path& out_checkpoint);
 
 }  // namespace asbuilt
 

@@ -129,5 +129,38 @@ TEST(ModelFile, ImportRejectsFilesThatDoNotFitNamingTheTensor) {
   EXPECT_FALSE(fs::exists(dir / "x.pt")) << "no checkpoint is written for a rejected file";
 }
 
+
+TEST(ModelFile, AverageIsTheWeightedMeanOfEveryTensor) {
+  fs::path dir = TempDir("average");
+  SegformerConfig config = SegformerConfigFor("tiny");
+  config.embed_dims = {8, 16, 24, 32};
+  config.num_heads = {1, 2, 2, 4};
+  config.decoder_dim = 16;
+  nlohmann::json meta = {{"format", kCheckpointFormat}, {"config", ConfigToJson(config)}, {"scale", {64, 48}},
+                         {"crop", {32, 32}},           {"epoch", 4},                    {"best_miou", 0.5}};
+  torch::manual_seed(1);
+  Segformer a(config), b(config);
+  SaveCheckpoint(dir / "a.pt", *a, nullptr, meta);
+  SaveCheckpoint(dir / "b.pt", *b, nullptr, meta);
+  SegmenterInfo info = AverageModels({dir / "a.pt", dir / "b.pt"}, {0.25, 0.75}, dir / "mean.pt");
+  EXPECT_FALSE(info.metadata.contains("best_miou"));  // Measured on another network.
+  EXPECT_EQ(info.metadata.at("averaged_from").size(), 2u);
+  Segformer mean = LoadModel(dir / "mean.pt");
+  auto pa = a->named_parameters(), pb = b->named_parameters();
+  for (const auto& p : mean->named_parameters()) {
+    EXPECT_TRUE(torch::allclose(p.value(), 0.25 * pa[p.key()] + 0.75 * pb[p.key()], 1e-5, 1e-6)) << p.key();
+  }
+  // Another network, or weights that are not a mean, are refused.
+  SegformerConfig other = config;
+  other.decoder_dim = 32;
+  Segformer c(other);
+  nlohmann::json other_meta = meta;
+  other_meta["config"] = ConfigToJson(other);
+  SaveCheckpoint(dir / "c.pt", *c, nullptr, other_meta);
+  EXPECT_THROW(AverageModels({dir / "a.pt", dir / "c.pt"}, {}, dir / "bad.pt"), InputError);
+  EXPECT_THROW(AverageModels({dir / "a.pt", dir / "b.pt"}, {0.5, 0.6}, dir / "bad.pt"), InvalidArgument);
+  EXPECT_FALSE(fs::exists(dir / "bad.pt"));
+}
+
 }  // namespace
 }  // namespace asbuilt

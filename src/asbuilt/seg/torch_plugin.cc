@@ -98,4 +98,9 @@ SegmenterInfo ImportModel(const fs::path& safetensors, const fs::path& out_check
   return Plugin().import_model(safetensors, out_checkpoint);
 }
 
+SegmenterInfo AverageModels(const std::vector<fs::path>& checkpoints, const std::vector<double>& weights,
+                            const fs::path& out_checkpoint) {
+  return Plugin().average_models(checkpoints, weights, out_checkpoint);
+}
+
 }  // namespace asbuilt

@@ -8,7 +8,7 @@
 // segmenter, train) is built as the module libasbuilt_torch.so, and the
 // host's seg library implements the public entry points (LoadSegmenter,
 // ReadSegmenterInfo, SegmenterAvailable, TrainSegmenter, ExportModel,
-// ImportModel) by loading it with dlopen on first use and calling through
+// ImportModel, AverageModels) by loading it with dlopen on first use and calling through
 // this table. Callers keep using segmenter.h, train.h and model_file.h.
 //
 // Where the host looks, first hit wins:
@@ -32,7 +32,7 @@
 namespace asbuilt {
 
 // Bump when the table or any type passed through it changes layout.
-inline constexpr std::uint32_t kTorchPluginAbi = 1;
+inline constexpr std::uint32_t kTorchPluginAbi = 2;
 
 struct TorchPluginApi {
   std::uint32_t abi = kTorchPluginAbi;
@@ -42,6 +42,7 @@ struct TorchPluginApi {
   decltype(&TrainSegmenter) train_segmenter = nullptr;
   decltype(&ExportModel) export_model = nullptr;
   decltype(&ImportModel) import_model = nullptr;
+  decltype(&AverageModels) average_models = nullptr;
 };
 
 }  // namespace asbuilt

@@ -9,6 +9,7 @@ extern "C" __attribute__((visibility("default"))) const asbuilt::TorchPluginApi*
       .train_segmenter = &asbuilt::TrainSegmenter,
       .export_model = &asbuilt::ExportModel,
       .import_model = &asbuilt::ImportModel,
+      .average_models = &asbuilt::AverageModels,
   };
   return &api;
 }
