@@ -161,6 +161,12 @@ int main(int argc, char** argv) {
   const fs::path teacher =
       fs::path(ASBUILT_SHARED_DATA_DIR) / "ade20k-teachers" / "deeplabv3_mnv2_ade20k32_uint8.tflite";
   const bool with_teacher = with_model && fs::exists(teacher);
+  // Every other shipped model, by name (issue 43).
+  std::vector<const ShippedModel*> others;
+  for (const ShippedModel& m : kShippedModels) {
+    const fs::path path = ModelPathFor(m.name);
+    if (with_model && fs::exists(path) && !fs::equivalent(path, DefaultModelPath())) others.push_back(&m);
+  }
   const fs::path out = fs::path(ASBUILT_BINARY_DIR) / "bench" / "pano_survey";
   const ZindTour tour = ReadZindTour(tour_dir);
   std::vector<const ZindPanorama*> panos = tour.BenchmarkPanoramas();
@@ -178,6 +184,8 @@ int main(int argc, char** argv) {
   const bool have_load = ::getloadavg(load, 1) == 1;
   const auto start = std::chrono::steady_clock::now();
   std::vector<RoomRun> by_labels, by_model, by_layout, by_teacher;
+  std::vector<std::vector<RoomRun>> by_other(others.size());
+  std::vector<double> other_seconds(others.size(), 0.0);
   double model_seconds = 0, layout_seconds = 0, teacher_seconds = 0;
   for (const ZindPanorama* pano : panos) {
     const std::string name = pano->complete_room_id + "_" + pano->partial_room_id + "_" + pano->pano_id;
@@ -225,6 +233,13 @@ int main(int argc, char** argv) {
       by_layout.push_back(run("survey_layout", with_layout));
       layout_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     }
+    for (std::size_t k = 0; k < others.size(); ++k) {
+      SurveyOptions with_other = base;
+      with_other.model_path = ModelPathFor(others[k]->name);
+      const auto t3 = std::chrono::steady_clock::now();
+      by_other[k].push_back(run(std::string("survey_") + others[k]->name, with_other));
+      other_seconds[k] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t3).count();
+    }
     if (with_teacher) {
       SurveyOptions with_ade = base;
       with_ade.model_path = teacher;
@@ -236,7 +251,11 @@ int main(int argc, char** argv) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   Pooled labels_pooled, model_pooled, layout_pooled, teacher_pooled;
+  std::vector<Pooled> other_pooled(others.size());
   for (const RoomRun& r : by_teacher) teacher_pooled.Add(r);
+  for (std::size_t k = 0; k < others.size(); ++k) {
+    for (const RoomRun& r : by_other[k]) other_pooled[k].Add(r);
+  }
   for (const RoomRun& r : by_labels) labels_pooled.Add(r);
   for (const RoomRun& r : by_model) model_pooled.Add(r);
   for (const RoomRun& r : by_layout) layout_pooled.Add(r);
@@ -279,6 +298,10 @@ int main(int argc, char** argv) {
           "Off by default (SurveyOptions::pano_layout): it finds walls the segmenter's edges lose, but open doors, "
           "cabinets and faint white-on-white ceiling edges mislead it as well, and these 13 rooms are a test set, "
           "not a set to tune on.\n\n";
+  }
+  for (std::size_t k = 0; k < others.size(); ++k) {
+    md += fmt::format("### With the shipped model `--model {}`\n\n{}.\n\n", others[k]->name, others[k]->what);
+    md += ModelRunSection(by_other[k], other_pooled[k], other_seconds[k]);
   }
   if (with_teacher) {
     md += "### With the ADE20K-trained DeepLabV3-MobileNetV2, zero-shot (`--model …/deeplabv3_mnv2_ade20k32_uint8.tflite`)\n\n";

@@ -51,7 +51,7 @@ int RunEvalCommand(int argc, char** argv) {
   std::string seg_model, seg_manifest, seg_images, seg_labels, seg_json, seg_md, seg_split = "test";
   EvaluateOptions seg_options;
   SegmentOptions seg_segment;
-  seg_cmd->add_option("--model", seg_model, "a checkpoint, a .tflite file, or a shipped model's name (default, renders)")->required();
+  seg_cmd->add_option("--model", seg_model, "a checkpoint, a .tflite file, or a shipped model's name (default, renders, real)")->required();
   seg_cmd->add_option("--manifest", seg_manifest, "dataset manifest (see --split)");
   seg_cmd->add_option("--split", seg_split, "manifest list to score: test, val or train")->capture_default_str();
   seg_cmd->add_option("--images", seg_images, "image folder (or a dataset folder without --labels)");
@@ -74,7 +74,7 @@ int RunEvalCommand(int argc, char** argv) {
   ZindEvalOptions zind_options;
   SegmentOptions zind_segment;
   bool zind_no_sheets = false;
-  zind_cmd->add_option("--model", zind_model, "a checkpoint, a .tflite file, or a shipped model's name (default, renders)")->required();
+  zind_cmd->add_option("--model", zind_model, "a checkpoint, a .tflite file, or a shipped model's name (default, renders, real)")->required();
   zind_cmd->add_option("--zind", zind_tour, "ZInD tour folder (with zind_data.json and panos/)")->required();
   zind_cmd->add_option("-o,--out", zind_out, "output folder (never commit it: derived from ZInD)")->capture_default_str();
   AddTurnInPlaceFlags(*zind_cmd, &zind_options.turn, &zind_size);

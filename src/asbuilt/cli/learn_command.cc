@@ -34,11 +34,13 @@ int RunLearnCommand(int argc, char** argv) {
   app.add_option("--model", model, "the model to improve: \"default\", a shipped model's name, or a checkpoint")
       ->capture_default_str();
   app.add_option("--synthetic", synthetic, "renders to mix in (a folder made by `asbuilt dataset synth`)");
-  app.add_option("--config", o.config, "the mix: RS5050, RS8020, … (needs --synthetic) or R100")->capture_default_str();
+  app.add_option("--config", o.config, "the mix: RS5050, RS8020, … (needs --synthetic) or R100")
+      ->capture_default_str();
   app.add_option("--test-fraction", o.test_fraction, "share of the rooms held out to judge on")->capture_default_str();
   app.add_option("--hold-out", hold_out, "judge on this review instead (leave-one-room-out: name each room in turn)");
   app.add_option("--epochs", o.epochs, "fine-tuning epochs (0 = the fine-tuning default, 8)")->capture_default_str();
-  app.add_option("--steps-per-epoch", o.steps_per_epoch, "steps per epoch (0 = the default, 50)")->capture_default_str();
+  app.add_option("--steps-per-epoch", o.steps_per_epoch, "steps per epoch (0 = the default, 50)")
+      ->capture_default_str();
   app.add_option("--seed", o.seed, "which rooms are held out; training order")->capture_default_str();
   app.add_option("--threads", o.threads, "LibTorch threads (0 = every core)")->capture_default_str();
   Parse(app, argc, argv);

@@ -49,7 +49,7 @@ int RunSegmentCommand(int argc, char** argv) {
   bool overlay = false;
   SegmentOptions o;
   std::string scale;
-  app.add_option("--model", model, "a checkpoint, a .tflite file, or a shipped model's name (default, renders)")->required();
+  app.add_option("--model", model, "a checkpoint, a .tflite file, or a shipped model's name (default, renders, real)")->required();
   app.add_option("images", inputs, "image files or folders")->required();
   app.add_option("-o,--out", out, "output folder")->required();
   app.add_flag("--overlay", overlay, "also write colour overlays");

@@ -54,7 +54,7 @@ int RunSurveyCommand(int argc, char** argv) {
   bool no_report = false;
   app.add_option("capture", capture, "capture.json")->required();
   app.add_option("-o,--out", out_dir, "output folder")->required();
-  app.add_option("--model", model, "segmentation model: a shipped model's name (default, renders), a checkpoint or a .tflite file");
+  app.add_option("--model", model, "segmentation model: a shipped model's name (default, renders, real), a checkpoint or a .tflite file");
   std::string seg_scale = "auto";
   app.add_option("--seg-scale", seg_scale,
                  "scale the segmenter sees: auto (the images' own size, up to twice the model's training "

@@ -30,7 +30,8 @@ int RunTrainCommand(int argc, char** argv) {
   app.add_option("--images", images, "image folder (or a dataset folder when --labels is absent)");
   app.add_option("--labels", labels, "label folder (PNG, same stems as the images)");
   app.add_option("-o,--out", out, "output folder for checkpoints and logs")->required();
-  app.add_option("--arch", o.arch, "architecture: b0, b1, b2, tiny, or tflite (fine-tunes the TFLite network given by --init)")->capture_default_str();
+  app.add_option("--arch", o.arch, "architecture: b0, b1, b2, tiny, or tflite (fine-tunes the TFLite network of --init)")
+      ->capture_default_str();
   app.add_option("--epochs", o.epochs, "epochs (paper: 50)")->capture_default_str();
   app.add_option("--steps-per-epoch", o.steps_per_epoch, "steps per epoch; 0 = one pass over the data")
       ->capture_default_str();
@@ -57,7 +58,9 @@ int RunTrainCommand(int argc, char** argv) {
   app.add_option("--val-fraction", o.val_fraction, "folders: share held out for validation")->capture_default_str();
   app.add_option("--val-max", o.val_max_images, "validate on at most N images (0 = all)")->capture_default_str();
   app.add_option("--seed", o.seed, "seed for split, order, augmentation, init")->capture_default_str();
-  app.add_option("--init", init, "initial weights: an asbuilt checkpoint (mismatched tensors skipped); with --arch tflite a .tflite file or an asbuilt-tflite checkpoint");
+  app.add_option("--init", init,
+                 "initial weights: an asbuilt checkpoint (mismatched tensors skipped); with --arch tflite a .tflite "
+                 "file or an asbuilt-tflite checkpoint");
   app.add_option("--finetune", finetune,
                  "continue from MODEL (a shipped model's name, \"default\", or a checkpoint): its architecture, "
                  "scale and crop, lr 3e-5 (TFLite: 1e-4, head x10), 8 epochs of 50 steps, batch 8; flags given "
@@ -84,8 +87,14 @@ int RunTrainCommand(int argc, char** argv) {
     unless_given("--lr", o.lr, f.lr);
     unless_given("--head-lr-mult", o.head_lr_mult, f.head_lr_mult);
     unless_given("--warmup", o.warmup_steps, f.warmup_steps);
-    if (scale.empty()) o.augment.scale_width_px = f.augment.scale_width_px, o.augment.scale_height_px = f.augment.scale_height_px;
-    if (crop.empty()) o.augment.crop_width_px = f.augment.crop_width_px, o.augment.crop_height_px = f.augment.crop_height_px;
+    if (scale.empty()) {
+      o.augment.scale_width_px = f.augment.scale_width_px;
+      o.augment.scale_height_px = f.augment.scale_height_px;
+    }
+    if (crop.empty()) {
+      o.augment.crop_width_px = f.augment.crop_width_px;
+      o.augment.crop_height_px = f.augment.crop_height_px;
+    }
   }
   o.manifest = manifest;
   o.images_dir = images;

@@ -400,7 +400,9 @@ TfliteModel TfliteGraphFromJson(const nlohmann::json& graph, const std::string& 
     const int n = static_cast<int>(model.tensors.size());
     auto check_indices = [&](const std::vector<int>& indices, const std::string& field) {
       for (int i : indices) {
-        if (i < -1 || i >= n) throw InputError(file, field, fmt::format("tensor index {} out of range (0..{})", i, n - 1));
+        if (i < -1 || i >= n) {
+          throw InputError(file, field, fmt::format("tensor index {} out of range (0..{})", i, n - 1));
+        }
       }
     };
     for (const nlohmann::json& j : graph.at("operators")) {

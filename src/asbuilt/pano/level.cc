@@ -131,7 +131,7 @@ UpFit FitUp(const std::vector<Segment>& segments, const std::vector<int>& index,
     } else {
       std::vector<double> abs_z(z.size());
       for (std::size_t k = 0; k < z.size(); ++k) abs_z[k] = std::abs(z[k]);
-      fit.scale = std::max(1.4826 * Median(abs_z), 1e-9);
+      fit.scale = std::max(1.4826 * UpperMedian(abs_z), 1e-9);
     }
     Mat3 m = Mat3::Zero();
     for (std::size_t k = 0; k < index.size(); ++k) {
@@ -212,7 +212,7 @@ FrameFit FitFrame(const std::vector<Segment>& segments, const std::vector<int>& 
     } else {
       std::vector<double> abs_z(z.size());
       for (std::size_t k = 0; k < z.size(); ++k) abs_z[k] = std::abs(z[k].first);
-      fit.scale = std::max(1.4826 * Median(abs_z), 1e-9);
+      fit.scale = std::max(1.4826 * UpperMedian(abs_z), 1e-9);
     }
     Mat3 normal_matrix = Mat3::Zero();
     Vec3 rhs = Vec3::Zero();

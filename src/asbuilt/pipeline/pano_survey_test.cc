@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <algorithm>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -203,6 +204,11 @@ TEST(RunSurvey, PanoramaSegmentedThroughTurnedViewsRecoversThePaintedRoom) {
       << r.summary.labels_source;
   ASSERT_TRUE(r.summary.room_overlap) << r.summary.BriefReport();
   EXPECT_GT(r.summary.room_overlap->Iou(), 0.8) << r.summary.BriefReport();
+  // Surveyed with the renders-only model, a panorama says which model reads real photos.
+  const bool renders = IsRendersOnlyModel(DefaultModelPath());
+  const bool noted = std::any_of(r.summary.notes.begin(), r.summary.notes.end(),
+                                 [](const std::string& n) { return n.find("--model real") != std::string::npos; });
+  EXPECT_EQ(noted, renders);
 }
 
 TEST(RunSurvey, ATiltedPanoramaIsLevelledAndSurveyedAsWellAsALevelOne) {

@@ -158,6 +158,11 @@ fs::path DefaultModelPath() {
   return ShippedFile(kShippedModels[0].file);
 }
 
+bool IsRendersOnlyModel(const fs::path& model) {
+  std::error_code ec;
+  return fs::equivalent(model, ModelPathFor("renders"), ec);
+}
+
 fs::path ModelPathFor(const std::string& name_or_path) {
   if (name_or_path.empty() || name_or_path == "default") return DefaultModelPath();
   for (const ShippedModel& m : kShippedModels) {
@@ -343,9 +348,14 @@ void LabelSourceStage(Survey& s) {
                                    : cv::Size(s.capture.camera.width, s.capture.camera.height);
     std::optional<PinholeCamera> wide;
     if (s.views && options.segment_wide_views) wide = s.views->camera;
-    s.labels = std::make_unique<SegmenterLabels>(
-        options.model_path.empty() ? DefaultModelPath() : options.model_path, options.segment_scale_px, image, wide);
+    const fs::path model = options.model_path.empty() ? DefaultModelPath() : options.model_path;
+    s.labels = std::make_unique<SegmenterLabels>(model, options.segment_scale_px, image, wide);
     s.times.Add("load model", Since(t));
+    if (s.views && IsRendersOnlyModel(model)) {
+      s.summary().notes.push_back(
+          "the segmentation model has seen rendered rooms only; for a photo of a real room `--model real` reads it "
+          "far better (models/MODEL_CARD.md)");
+    }
     if (s.views && options.pano_layout) {
       auto layout = std::make_unique<PanoLayoutLabels>(std::move(s.labels), s.equirect, s.pano_views,
                                                        s.views->images, s.capture.panorama->position_m.z(),

@@ -164,6 +164,9 @@ struct ShippedModel {
 };
 inline constexpr ShippedModel kShippedModels[] = {
     {"renders", "segformer_b0_asbuilt.pt", "SegFormer-B0 trained on asbuilt's renders only"},
+    {"real", "deeplabv3_mnv2_asbuilt_real.pt",
+     "DeepLabV3-MobileNetV2 from MLCommons' ADE20K weights, fine-tuned by asbuilt on renders and CC0 photos of "
+     "real rooms: for photos of real rooms (models/MODEL_CARD.md)"},
 };
 
 // The default segmentation model: $ASBUILT_MODEL if set, else the first of
@@ -174,6 +177,10 @@ std::filesystem::path DefaultModelPath();
 // `--model`'s argument: "default" (or empty), a shipped model's name
 // ("renders", …), or a path (a checkpoint or a .tflite file) as given.
 std::filesystem::path ModelPathFor(const std::string& name_or_path);
+
+// Whether `model` is the shipped renders-only model (the survey then notes,
+// for a panorama, that `--model real` reads real photos better).
+bool IsRendersOnlyModel(const std::filesystem::path& model);
 
 }  // namespace asbuilt
 

@@ -41,8 +41,8 @@ void LearnOptions::Check() const {
   CheckArgument(!out_dir.empty(), "LearnOptions.out_dir is empty: give -o");
   const auto mix = MixConfig::Parse(config);
   CheckArgument(mix.has_value(), fmt::format("LearnOptions.config = '{}': not R100 or RSxxyy (xx + yy = 100)", config));
-  CheckArgument(mix->real_percent > 0, fmt::format("LearnOptions.config = {}: learning from corrections needs real rooms "
-                                                   "in the mix", config));
+  CheckArgument(mix->real_percent > 0,
+                fmt::format("LearnOptions.config = {}: learning from corrections needs real rooms in the mix", config));
   CheckArgument(mix->synthetic_percent == 0 || !synthetic_dir.empty(),
                 fmt::format("LearnOptions.config = {} mixes in renders: give them with --synthetic DIR (made by "
                             "`asbuilt dataset synth`), or use --config R100",
@@ -56,7 +56,9 @@ void LearnOptions::Check() const {
 std::vector<fs::path> FindReviewExamples(const std::vector<fs::path>& paths) {
   std::vector<fs::path> out;
   for (const fs::path& p : paths) {
-    if (!fs::is_directory(p)) throw InputError(p.string(), "", "not found (give a survey folder whose review was saved)");
+    if (!fs::is_directory(p)) {
+      throw InputError(p.string(), "", "not found (give a survey folder whose review was saved)");
+    }
     if (IsExample(p)) {
       out.push_back(p);
       continue;
@@ -73,7 +75,8 @@ std::vector<fs::path> FindReviewExamples(const std::vector<fs::path>& paths) {
     }
     if (fs::exists(p / "summary.json")) {
       throw InputError(p.string(), "review/corrections.json",
-                       fmt::format("no saved review: correct the survey with `asbuilt review {}` and save", p.string()));
+                       fmt::format("no saved review: correct the survey with `asbuilt review {}` and save",
+                                   p.string()));
     }
     // A folder of surveys.
     std::vector<fs::path> found;
@@ -91,14 +94,16 @@ std::vector<fs::path> FindReviewExamples(const std::vector<fs::path>& paths) {
 }
 
 std::string LearnSummary::ToMarkdown() const {
-  std::string s = fmt::format("Held-out rooms: {} views; trained on {} + {} (val) pairs from {} corrected rooms and renders.\n\n",
-                              test_pairs, train_pairs, val_pairs, examples.size());
+  std::string s = fmt::format(
+      "Held-out rooms: {} views; trained on {} + {} (val) pairs from {} corrected rooms and renders.\n\n", test_pairs,
+      train_pairs, val_pairs, examples.size());
   s += "| class | IoU before | IoU after | change |\n|---|---|---|---|\n";
   for (std::size_t c = 0; c < before.classes.size() && c < after.classes.size(); ++c) {
     s += fmt::format("| {} | {} | {} | {} |\n", before.classes[c].name, Fmt(before.classes[c].iou),
                      Fmt(after.classes[c].iou), Change(before.classes[c].iou, after.classes[c].iou));
   }
-  s += fmt::format("| **mIoU** | {} | {} | {} |\n\n", Fmt(before.miou), Fmt(after.miou), Change(before.miou, after.miou));
+  s += fmt::format("| **mIoU** | {} | {} | {} |\n\n", Fmt(before.miou), Fmt(after.miou),
+                   Change(before.miou, after.miou));
   s += improved ? "The new model is better on the held-out rooms: written to model.pt.\n"
                 : "The new model is not better on the held-out rooms: no model.pt written; keep the old one.\n";
   return s;
@@ -119,7 +124,9 @@ LearnSummary LearnFromReviews(const LearnOptions& options, const ProgressCallbac
   if (!options.hold_out.empty()) {
     held_out = FindReviewExamples({options.hold_out}).at(0);
     std::erase_if(summary.examples, [&](const fs::path& e) { return fs::equivalent(e, held_out); });
-    if (summary.examples.empty()) throw InputError(options.hold_out.string(), "", "is the only review given: none left to learn from");
+    if (summary.examples.empty()) {
+      throw InputError(options.hold_out.string(), "", "is the only review given: none left to learn from");
+    }
   }
   // Read the model first: a file that is not a model fails before any work.
   TrainOptions train = FinetuneOptions(options.model, ReadSegmenterInfo(options.model));

@@ -164,7 +164,8 @@ TfliteNet LoadTfliteNet(const std::filesystem::path& path) {
   const nlohmann::json meta = ReadCheckpointMeta(path);
   if (meta.value("format", "") != kTfliteCheckpointFormat) {
     throw InputError(path.string(), "asbuilt_meta.format",
-                     fmt::format("a {} checkpoint, not a TFLite network fine-tuned by asbuilt", meta.value("format", "")));
+                     fmt::format("a {} checkpoint, not a TFLite network fine-tuned by asbuilt",
+                                 meta.value("format", "")));
   }
   if (!meta.contains("config") || !meta["config"].contains("graph")) {
     throw InputError(path.string(), "asbuilt_meta.config.graph", "missing: the network's graph");

@@ -174,7 +174,8 @@ torch::Tensor Upsampled(const torch::Tensor& logits, int64_t h, int64_t w) {
 
 class SegformerTrainNet : public TrainNet {
  public:
-  explicit SegformerTrainNet(const TrainOptions& options) : config_(SegformerConfigFor(options.arch, options.num_classes)) {
+  explicit SegformerTrainNet(const TrainOptions& options)
+      : config_(SegformerConfigFor(options.arch, options.num_classes)) {
     config_.drop_path_rate = options.drop_path_rate;
     model_ = Segformer(config_);
   }

@@ -173,7 +173,7 @@ CalibrationSummary CalibrateStereo(const std::vector<std::filesystem::path>& lef
     }
     if (round == 1) break;
     // Reject outlying views and calibrate again.
-    const double limit = std::max(options.max_view_error_px, options.view_error_factor * Median(errors));
+    const double limit = std::max(options.max_view_error_px, options.view_error_factor * UpperMedian(errors));
     std::vector<std::vector<cv::Point2f>> keep1, keep2;
     std::vector<int> keep_of;
     for (std::size_t i = 0; i < errors.size(); ++i) {

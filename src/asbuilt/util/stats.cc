@@ -13,4 +13,11 @@ double Median(std::vector<double> values) {
   return 0.5 * (*mid + *std::max_element(values.begin(), mid));
 }
 
+double UpperMedian(std::vector<double> values) {
+  if (values.empty()) return NAN;
+  const auto mid = values.begin() + values.size() / 2;
+  std::nth_element(values.begin(), mid, values.end());
+  return *mid;
+}
+
 }  // namespace asbuilt

@@ -14,5 +14,11 @@ TEST(Median, OddEvenAndNone) {
   EXPECT_TRUE(std::isnan(Median({})));
 }
 
+TEST(UpperMedian, TheUpperOfTheTwoMiddleValues) {
+  EXPECT_EQ(UpperMedian({3, 1, 2}), 2);
+  EXPECT_EQ(UpperMedian({4, 1, 3, 2}), 3);
+  EXPECT_TRUE(std::isnan(UpperMedian({})));
+}
+
 }  // namespace
 }  // namespace asbuilt
