@@ -46,6 +46,20 @@ const LearnFixture& Fixture() {
   return f;
 }
 
+// A learn run on the fixture's rooms, R100, a few steps on one thread.
+LearnOptions QuickOptions(const std::string& out, int epochs, int steps_per_epoch) {
+  const LearnFixture& f = Fixture();
+  LearnOptions o;
+  o.reviews = {f.surveys};
+  o.model = f.model;
+  o.config = "R100";
+  o.out_dir = f.dir / out;
+  o.epochs = epochs;
+  o.steps_per_epoch = steps_per_epoch;
+  o.threads = 1;
+  return o;
+}
+
 std::string ErrorOf(const std::function<void()>& f) {
   try {
     f();
@@ -75,15 +89,7 @@ TEST(FindReviewExamples, SaysWhatToRunForASurveyWithoutASavedReview) {
 }
 
 TEST(LearnFromReviews, FineTunesJudgesOnHeldOutRoomsAndKeepsOnlyABetterModel) {
-  const LearnFixture& f = Fixture();
-  LearnOptions o;
-  o.reviews = {f.surveys};
-  o.model = f.model;
-  o.config = "R100";
-  o.out_dir = f.dir / "run";
-  o.epochs = 2;
-  o.steps_per_epoch = 3;
-  o.threads = 1;
+  const LearnOptions o = QuickOptions("run", 2, 3);
   const LearnSummary s = LearnFromReviews(o);
   EXPECT_EQ(s.examples.size(), 4u);
   EXPECT_EQ(s.test_pairs, 6);  // One whole room of four (25 %), never single views.
@@ -99,16 +105,8 @@ TEST(LearnFromReviews, FineTunesJudgesOnHeldOutRoomsAndKeepsOnlyABetterModel) {
 }
 
 TEST(LearnFromReviews, LeavesTheNamedRoomOut) {
-  const LearnFixture& f = Fixture();
-  LearnOptions o;
-  o.reviews = {f.surveys};
-  o.hold_out = f.surveys / "room2";
-  o.model = f.model;
-  o.config = "R100";
-  o.out_dir = f.dir / "loo";
-  o.epochs = 1;
-  o.steps_per_epoch = 1;
-  o.threads = 1;
+  LearnOptions o = QuickOptions("loo", 1, 1);
+  o.hold_out = Fixture().surveys / "room2";
   const LearnSummary s = LearnFromReviews(o);
   EXPECT_EQ(s.examples.size(), 3u);
   EXPECT_EQ(s.test_pairs, 6);

@@ -71,12 +71,18 @@ TEST(ModelFile, PythonTwinAndCppGiveTheSameLogits) {
   EXPECT_GT(expected.abs().max().item<double>(), 0.1) << "fixture logits should not be trivial";
 }
 
-TEST(ModelFile, ExportThenImportRoundTripsEveryTensorAndTheMetadata) {
-  fs::path dir = TempDir("roundtrip");
+// A SegFormer small enough to save and load in milliseconds.
+SegformerConfig SmallConfig() {
   SegformerConfig config = SegformerConfigFor("tiny");
   config.embed_dims = {8, 16, 24, 32};
   config.num_heads = {1, 2, 2, 4};
   config.decoder_dim = 16;
+  return config;
+}
+
+TEST(ModelFile, ExportThenImportRoundTripsEveryTensorAndTheMetadata) {
+  fs::path dir = TempDir("roundtrip");
+  SegformerConfig config = SmallConfig();
   config.arch = "small-test";
   Segformer model(config);
   nlohmann::json meta = {{"format", kCheckpointFormat}, {"config", ConfigToJson(config)}, {"scale", {64, 48}},
@@ -132,10 +138,7 @@ TEST(ModelFile, ImportRejectsFilesThatDoNotFitNamingTheTensor) {
 
 TEST(ModelFile, AverageIsTheWeightedMeanOfEveryTensor) {
   fs::path dir = TempDir("average");
-  SegformerConfig config = SegformerConfigFor("tiny");
-  config.embed_dims = {8, 16, 24, 32};
-  config.num_heads = {1, 2, 2, 4};
-  config.decoder_dim = 16;
+  SegformerConfig config = SmallConfig();
   nlohmann::json meta = {{"format", kCheckpointFormat}, {"config", ConfigToJson(config)}, {"scale", {64, 48}},
                          {"crop", {32, 32}},           {"epoch", 4},                    {"best_miou", 0.5}};
   torch::manual_seed(1);
