@@ -162,12 +162,8 @@ SegmenterInfo InfoFromMeta(const nlohmann::json& meta, const std::string& file) 
   return info;
 }
 
-namespace {
-bool IsTflite(const std::filesystem::path& path) { return path.extension() == ".tflite"; }
-}  // namespace
-
 SegmenterInfo ReadSegmenterInfo(const std::filesystem::path& path) {
-  if (IsTflite(path)) return ReadTfliteSegmenterInfo(path);
+  if (IsTfliteFile(path)) return ReadTfliteSegmenterInfo(path);
   return InfoFromMeta(ReadCheckpointMeta(path), path.string());
 }
 
@@ -177,9 +173,10 @@ std::unique_ptr<Segmenter> MakeSegmenter(Segformer model, SegmenterInfo info, co
 
 std::unique_ptr<Segmenter> LoadSegmenter(const std::filesystem::path& path, const SegmentOptions& options) {
   options.Check();
-  if (IsTflite(path)) return LoadTfliteSegmenter(path, options);
+  if (IsTfliteFile(path)) return LoadTfliteSegmenter(path, options);
   SegmenterInfo info = ReadSegmenterInfo(path);
-  if (info.config.arch == "tflite") return LoadTfliteSegmenter(path, options);
+  // A fine-tuned TFLite graph's checkpoint.
+  if (info.config.arch == "tflite") return MakeTfliteSegmenter(LoadTfliteNet(path), std::move(info), options);
   Segformer model(info.config);
   LoadWeights(path, *model, nullptr, /*strict=*/true);
   info.parameters = CountParameters(*model);

@@ -121,9 +121,9 @@ SegmenterInfo InfoOfFile(const TfliteModel& model, const TfliteNet& net, const s
   return info;
 }
 
-bool IsTfliteFile(const std::filesystem::path& path) { return path.extension() == ".tflite"; }
-
 }  // namespace
+
+bool IsTfliteFile(const std::filesystem::path& path) { return path.extension() == ".tflite"; }
 
 int AsbuiltClassOfAde32(int ade_class) {
   switch (ade_class) {
@@ -181,14 +181,10 @@ std::unique_ptr<Segmenter> MakeTfliteSegmenter(TfliteNet net, SegmenterInfo info
 
 std::unique_ptr<Segmenter> LoadTfliteSegmenter(const std::filesystem::path& path, const SegmentOptions& options) {
   options.Check();
-  if (IsTfliteFile(path)) {
-    TfliteModel model = ReadTflite(path);
-    TfliteNet net(model, TfliteNetOptions{});
-    SegmenterInfo info = InfoOfFile(model, net, path);
-    return MakeTfliteSegmenter(net, std::move(info), options);
-  }
-  SegmenterInfo info = ReadSegmenterInfo(path);
-  return MakeTfliteSegmenter(LoadTfliteNet(path), std::move(info), options);
+  TfliteModel model = ReadTflite(path);
+  TfliteNet net(model, TfliteNetOptions{});
+  SegmenterInfo info = InfoOfFile(model, net, path);
+  return MakeTfliteSegmenter(net, std::move(info), options);
 }
 
 SegmenterInfo ReadTfliteSegmenterInfo(const std::filesystem::path& path) {

@@ -25,10 +25,15 @@
 
 namespace asbuilt {
 
+// Whether `path` names a TensorFlow Lite file (by its extension).
+bool IsTfliteFile(const std::filesystem::path& path);
+
 // The network of a .tflite file or of an asbuilt-tflite-v1 checkpoint
 // (weights loaded). Throws InputError naming the file.
 TfliteNet LoadTfliteNet(const std::filesystem::path& path);
 
+// A .tflite file read as it is (its declared input size, the zero-shot
+// class groups); a fine-tuned checkpoint is LoadTfliteNet + MakeTfliteSegmenter.
 std::unique_ptr<Segmenter> LoadTfliteSegmenter(const std::filesystem::path& path, const SegmentOptions& options);
 SegmenterInfo ReadTfliteSegmenterInfo(const std::filesystem::path& path);
 
