@@ -87,7 +87,7 @@ Plan ParsePlan(const nlohmann::json& root, JsonDiagnostics& diag) {
     JsonField o = openings.At(i);
     PlanOpening op;
     if (!o.Object({"kind", "wall", "start", "end", "width", "height", "sill",
-                   "width_sigma_m", "height_sigma_m", "sill_sigma_m"})) {
+                   "width_sigma_m", "height_sigma_m", "sill_sigma_m", "rooms"})) {
       continue;
     }
     if (auto k = o.Required("kind").String()) {
@@ -116,6 +116,17 @@ Plan ParsePlan(const nlohmann::json& root, JsonDiagnostics& diag) {
     ReadOptionalNonNegative(o, "width_sigma_m", op.width_sigma_m);
     ReadOptionalNonNegative(o, "height_sigma_m", op.height_sigma_m);
     ReadOptionalNonNegative(o, "sill_sigma_m", op.sill_sigma_m);
+    if (JsonField joined = o.Optional("rooms"); joined.present()) {
+      if (auto v = joined.NumberArray(2)) {
+        const double a = (*v)[0], b = (*v)[1];
+        const double n_rooms = static_cast<double>(doc.Optional("rooms").ArraySize().value_or(0));
+        if (a != std::floor(a) || b != std::floor(b) || a < 0 || b < 0 || a >= n_rooms || b >= n_rooms || a == b) {
+          joined.AddError(fmt::format("expected two different room indices below {}, got [{}, {}]", n_rooms, a, b));
+        } else {
+          op.rooms = std::pair{static_cast<int>(a), static_cast<int>(b)};
+        }
+      }
+    }
     if (op.width > 0 && std::abs((op.end - op.start).norm() - op.width) > 0.01) {
       o.AddWarning(fmt::format("width {:.3f} differs from |end − start| = {:.3f}", op.width,
                                (op.end - op.start).norm()));
@@ -128,7 +139,7 @@ Plan ParsePlan(const nlohmann::json& root, JsonDiagnostics& diag) {
   for (std::size_t i = 0; n_rooms && i < *n_rooms; ++i) {
     JsonField r = rooms.At(i);
     PlanRoom room;
-    if (!r.Object({"polygon", "area_m2", "area_sigma_m2"})) continue;
+    if (!r.Object({"polygon", "area_m2", "area_sigma_m2", "name", "pose", "placed_by"})) continue;
     JsonField poly = r.Required("polygon");
     if (auto n = poly.ArraySize(3)) {
       for (std::size_t k = 0; k < *n; ++k) {
@@ -137,6 +148,14 @@ Plan ParsePlan(const nlohmann::json& root, JsonDiagnostics& diag) {
     }
     if (auto a = r.Required("area_m2").NonNegative()) room.area_m2 = *a;
     ReadOptionalNonNegative(r, "area_sigma_m2", room.area_sigma_m2);
+    if (auto name = r.Optional("name").String()) room.name = *name;
+    if (JsonField pose = r.Optional("pose"); pose.present() && pose.Object({"position_m", "yaw_deg"})) {
+      PlanPose p;
+      if (auto at = pose.Required("position_m").NumberArray(2)) p.position_m = Vec2((*at)[0], (*at)[1]);
+      if (auto yaw = pose.Required("yaw_deg").Number()) p.yaw_deg = *yaw;
+      room.pose = p;
+    }
+    if (auto by = r.Optional("placed_by").String()) room.placed_by = *by;
     plan.rooms.push_back(std::move(room));
   }
   return plan;
@@ -223,6 +242,7 @@ nlohmann::json PlanToJson(const Plan& plan) {
     if (o.width_sigma_m) jo["width_sigma_m"] = *o.width_sigma_m;
     if (o.height_sigma_m) jo["height_sigma_m"] = *o.height_sigma_m;
     if (o.sill_sigma_m) jo["sill_sigma_m"] = *o.sill_sigma_m;
+    if (o.rooms) jo["rooms"] = {o.rooms->first, o.rooms->second};
     openings.push_back(std::move(jo));
   }
   j["openings"] = std::move(openings);
@@ -232,6 +252,9 @@ nlohmann::json PlanToJson(const Plan& plan) {
     for (const Vec2& p : r.polygon) poly.push_back(PointJson(p));
     nlohmann::json jr = {{"polygon", std::move(poly)}, {"area_m2", r.area_m2}};
     if (r.area_sigma_m2) jr["area_sigma_m2"] = *r.area_sigma_m2;
+    if (r.name) jr["name"] = *r.name;
+    if (r.pose) jr["pose"] = {{"position_m", PointJson(r.pose->position_m)}, {"yaw_deg", r.pose->yaw_deg}};
+    if (r.placed_by) jr["placed_by"] = *r.placed_by;
     rooms.push_back(std::move(jr));
   }
   j["rooms"] = std::move(rooms);

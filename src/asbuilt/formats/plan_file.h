@@ -46,14 +46,29 @@ struct PlanOpening {
   std::optional<double> width_sigma_m;
   std::optional<double> height_sigma_m;
   std::optional<double> sill_sigma_m;
+  // A home's plan (home/): the two rooms (indices into Plan::rooms) a door
+  // between them joins; each such door is written once.
+  std::optional<std::pair<int, int>> rooms;
 
   Vec2 Centre() const { return 0.5 * (start + end); }
+};
+
+// Where a room's capture frame lies in a home's frame (home/): its origin,
+// and how far its axes are turned, counter-clockwise.
+struct PlanPose {
+  Vec2 position_m = Vec2::Zero();
+  double yaw_deg = 0.0;
 };
 
 struct PlanRoom {
   std::vector<Vec2> polygon;
   double area_m2 = 0.0;
   std::optional<double> area_sigma_m2;
+  // A home's plan (home/): the room's name, its pose and what placed it
+  // ("door kitchen#1 = hall#3", "first room", "not placed: drawn beside").
+  std::optional<std::string> name;
+  std::optional<PlanPose> pose;
+  std::optional<std::string> placed_by;
 };
 
 // asbuilt's verdict on a measured plan (plan/verdict.h): whether it can be

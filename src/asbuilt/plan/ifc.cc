@@ -484,7 +484,7 @@ class IfcModel {
       const int profile = out_.Add("IFCARBITRARYCLOSEDPROFILEDEF", fmt::format(".AREA.,$,{}", Ref(Polyline(polygon, true))));
       shape = Ref(Shape({BodyRep(Extrusion(profile, height_m))}));
     }
-    const std::string name = fmt::format("Room {}", index + 1);
+    const std::string name = room.name ? *room.name : fmt::format("Room {}", index + 1);
     const int space = out_.Add("IFCSPACE", fmt::format("{},$,{},{},$,.ELEMENT.,.SPACE.,$",
                                                        Root(name, fmt::format("plan.json rooms[{}]", index)),
                                                        Ref(placement), shape));

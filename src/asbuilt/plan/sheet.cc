@@ -1,6 +1,7 @@
 #include "asbuilt/plan/sheet.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 
@@ -330,6 +331,14 @@ std::string AsciiText(const std::string& utf8) {
   return out;
 }
 
+// "ROOM", or a home's room name in capitals.
+std::string RoomTitle(const PlanRoom& room) {
+  if (!room.name || room.name->empty()) return "ROOM";
+  std::string title = *room.name;
+  for (char& ch : title) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  return title;
+}
+
 // Room name and area at the polygon's centroid. Paper: "ROOM" and the area
 // (± when significant), at the mean of the corners where the centroid falls
 // outside (as in some L shapes) or the polygon has no area. Model: the area
@@ -355,10 +364,10 @@ void AddRoomLabels(PlanSheet& sheet, const LayoutContext& c) {
     std::string area = sigma ? fmt::format("{:.2f} ± {:.2f} m²", room.area_m2, sigma_m2)
                              : fmt::format("{:.2f} m²", room.area_m2);
     sheet.Add(SheetLayer::kText, SheetView::kPaper,
-              SheetText{at + Vec2(0, 0.05 * c.paper), 0, 1.4 * c.text_height_m, 0.5, "ROOM", true, kSheetBlack});
+              SheetText{at + Vec2(0, 0.05 * c.paper), 0, 1.4 * c.text_height_m, 0.5, RoomTitle(room), true, kSheetBlack});
     sheet.Add(SheetLayer::kText, SheetView::kPaper,
               SheetText{at - Vec2(0, 0.22 * c.paper), 0, 1.2 * c.text_height_m, 0.5, area, false, kSheetBlack});
-    const std::string ascii = AsciiText(area);
+    const std::string ascii = AsciiText(room.name ? *room.name + " " + area : area);
     sheet.Add(SheetLayer::kText, SheetView::kModel,
               SheetText{finite ? centroid : mean, 0, 1.2 * c.text_height_m, 0.5, ascii, false, kSheetBlack});
   }

@@ -1,0 +1,632 @@
+#include "asbuilt/home/placement.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <unordered_map>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "asbuilt/geometry/polygon.h"
+#include "asbuilt/plan/room_iou.h"
+#include "asbuilt/util/error.h"
+
+namespace asbuilt {
+namespace {
+
+using Pose = Eigen::Isometry2d;
+
+// Score weights, in metres of shared partition.
+constexpr double kPlacedRoom = 5.0;      // Each room placed.
+constexpr double kContactPerM = 1.0;     // Partition faces shared, per metre.
+constexpr double kDoorsMeet = 3.0;       // A door lands on a door of a placed room.
+constexpr double kDoorIntoWall = 3.0;    // A door lands on a placed room's plain wall.
+constexpr double kWindowIntoWall = 2.0;  // A window looks into a placed room.
+constexpr double kWidthPerM = 10.0;      // Linked doors' width difference.
+constexpr double kOverlapPerM2 = 2.0;    // Floor shared with a placed room.
+constexpr double kUserLink = 1000.0;     // A link the person asked for comes first.
+const double kAntiParallel = std::cos(10.0 * std::numbers::pi / 180.0);
+const double kFacesAntiParallel = std::cos(3.0 * std::numbers::pi / 180.0);
+
+struct Face {
+  Vec2 a, b, n;  // Inner face from a to b; n: unit normal out of the room.
+  Vec2 Dir() const { return (b - a).normalized(); }
+  double Length() const { return (b - a).norm(); }
+};
+
+struct Hole {
+  int opening = -1, wall = -1;
+  Vec2 c, n;  // Centre on the face, the face's outward normal.
+  double width = 0.0;
+};
+
+// A room's outline, faces and openings, in some frame.
+struct RoomGeom {
+  Plan outline;  // One room, for overlap areas; no room when the survey closed none.
+  double area = 0.0;
+  std::vector<Face> walls;
+  std::vector<Hole> doors, windows;
+  Vec2 lo = Vec2::Constant(1e300), hi = Vec2::Constant(-1e300);  // Bounding box of walls and outline.
+};
+
+Vec2 Perp(const Vec2& d) { return Vec2(-d.y(), d.x()); }
+
+RoomGeom GeomOf(const Plan& plan) {
+  RoomGeom g;
+  const std::vector<Vec2>* polygon = nullptr;
+  for (const PlanRoom& r : plan.rooms) {
+    if (r.polygon.size() >= 3) {
+      polygon = &r.polygon;
+      g.outline.rooms.push_back(PlanRoom{.polygon = r.polygon, .area_m2 = std::abs(PolygonArea(r.polygon))});
+      g.area = g.outline.rooms.back().area_m2;
+      break;
+    }
+  }
+  Vec2 mean = Vec2::Zero();
+  for (const PlanWall& w : plan.walls) mean += 0.5 * (w.start + w.end);
+  if (!plan.walls.empty()) mean /= static_cast<double>(plan.walls.size());
+  for (const PlanWall& w : plan.walls) {
+    Face f{w.start, w.end, Vec2::Zero()};
+    const Vec2 d = w.end - w.start;
+    Vec2 n = d.norm() > 1e-9 ? Perp(d.normalized()) : Vec2(1, 0);
+    const Vec2 mid = 0.5 * (w.start + w.end);
+    const bool inward = polygon ? PointInPolygon(*polygon, mid + 0.05 * n) : n.dot(mean - mid) > 0;
+    f.n = inward ? -n : n;
+    g.walls.push_back(f);
+    for (const Vec2& p : {w.start, w.end}) {
+      g.lo = g.lo.cwiseMin(p);
+      g.hi = g.hi.cwiseMax(p);
+    }
+  }
+  if (polygon) {
+    for (const Vec2& p : *polygon) {
+      g.lo = g.lo.cwiseMin(p);
+      g.hi = g.hi.cwiseMax(p);
+    }
+  }
+  for (std::size_t i = 0; i < plan.openings.size(); ++i) {
+    const PlanOpening& o = plan.openings[i];
+    if (o.wall < 0 || o.wall >= static_cast<int>(g.walls.size())) continue;
+    Hole h{static_cast<int>(i), o.wall, o.Centre(), g.walls[o.wall].n, o.width};
+    (o.kind == OpeningKind::kDoor ? g.doors : g.windows).push_back(h);
+  }
+  return g;
+}
+
+RoomGeom Transformed(const RoomGeom& g, const Pose& t) {
+  RoomGeom out;
+  out.area = g.area;
+  const Eigen::Matrix2d r = t.linear();
+  for (const PlanRoom& room : g.outline.rooms) {
+    PlanRoom moved = room;
+    for (Vec2& p : moved.polygon) p = t * p;
+    out.outline.rooms.push_back(std::move(moved));
+  }
+  for (const Face& f : g.walls) {
+    out.walls.push_back({t * f.a, t * f.b, r * f.n});
+    for (const Vec2& p : {out.walls.back().a, out.walls.back().b}) {
+      out.lo = out.lo.cwiseMin(p);
+      out.hi = out.hi.cwiseMax(p);
+    }
+  }
+  for (const PlanRoom& room : out.outline.rooms) {
+    for (const Vec2& p : room.polygon) {
+      out.lo = out.lo.cwiseMin(p);
+      out.hi = out.hi.cwiseMax(p);
+    }
+  }
+  auto move = [&](const std::vector<Hole>& in, std::vector<Hole>& to) {
+    for (Hole h : in) {
+      h.c = t * h.c;
+      h.n = r * h.n;
+      to.push_back(h);
+    }
+  };
+  move(g.doors, out.doors);
+  move(g.windows, out.windows);
+  return out;
+}
+
+bool WidthsMatch(double a, double b, const PlacementOptions& o) {
+  return std::abs(a - b) <= std::max(o.max_width_difference_m, o.width_tolerance * std::max(a, b));
+}
+
+// Where `f`'s line lies along `n` from `p`, and whether `p` projects onto the
+// face at least `inset` from its ends.
+struct FaceHit {
+  double along = 0.0;  // Position on the face from f.a.
+  bool within = false;
+};
+FaceHit ProjectOnFace(const Face& f, const Vec2& p, double inset) {
+  const double s = (p - f.a).dot(f.Dir());
+  return {s, s >= inset && s <= f.Length() - inset};
+}
+
+// What the openings of `x` make of the walls of `y` (both placed): a door
+// that meets a door of y's on the same partition closes a loop; a door or
+// window that opens onto y's plain wall cannot be.
+double OpeningsAgainstWalls(const RoomGeom& x, const RoomGeom& y, const PlacementOptions& o) {
+  double score = 0.0;
+  auto face_in_front = [&](const Hole& h) -> const Face* {
+    for (const Face& f : y.walls) {
+      if (h.n.dot(f.n) > -kAntiParallel) continue;
+      const double dist = (f.a - h.c).dot(h.n);
+      if (dist < -0.05 || dist > o.max_wall_thickness_m) continue;
+      if (ProjectOnFace(f, h.c, 0.1).within) return &f;
+    }
+    return nullptr;
+  };
+  for (const Hole& d : x.doors) {
+    const Face* f = face_in_front(d);
+    if (f == nullptr) continue;
+    const int wall = static_cast<int>(f - y.walls.data());
+    const double s = ProjectOnFace(*f, d.c, 0).along;
+    bool meets = false;
+    for (const Hole& e : y.doors) {
+      meets |= e.wall == wall && std::abs(ProjectOnFace(*f, e.c, 0).along - s) < 0.35 && WidthsMatch(d.width, e.width, o);
+    }
+    score += meets ? kDoorsMeet : -kDoorIntoWall;
+  }
+  for (const Hole& w : x.windows) {
+    if (face_in_front(w) != nullptr) score -= kWindowIntoWall;
+  }
+  return score;
+}
+
+// Metres of partition the two rooms' walls share: anti-parallel faces, each
+// outside the other room, at most max_wall_thickness_m apart.
+double SharedFaces(const RoomGeom& x, const RoomGeom& y, const PlacementOptions& o) {
+  double metres = 0.0;
+  for (const Face& f : x.walls) {
+    for (const Face& g : y.walls) {
+      if (f.n.dot(g.n) > -kFacesAntiParallel) continue;
+      const double da = (g.a - f.a).dot(f.n), db = (g.b - f.a).dot(f.n);
+      if (std::min(da, db) < -0.03 || std::max(da, db) > o.max_wall_thickness_m) continue;
+      const double s0 = ProjectOnFace(f, g.a, 0).along, s1 = ProjectOnFace(f, g.b, 0).along;
+      const double lo = std::max(0.0, std::min(s0, s1)), hi = std::min(f.Length(), std::max(s0, s1));
+      if (hi - lo > 0.1) metres += hi - lo;
+    }
+  }
+  return metres;
+}
+
+bool BoxesNear(const RoomGeom& x, const RoomGeom& y, double margin) {
+  return x.lo.x() <= y.hi.x() + margin && y.lo.x() <= x.hi.x() + margin && x.lo.y() <= y.hi.y() + margin &&
+         y.lo.y() <= x.hi.y() + margin;
+}
+
+// The terms of room x placed beside placed room y; nullopt: refused (they
+// share too much floor).
+std::optional<double> PairScore(const RoomGeom& x, const RoomGeom& y, const PlacementOptions& o) {
+  if (!BoxesNear(x, y, o.max_wall_thickness_m + 0.05)) return 0.0;
+  double score = 0.0;
+  if (!x.outline.rooms.empty() && !y.outline.rooms.empty()) {
+    const auto overlap = RoomPolygonOverlap(x.outline, y.outline, RoomIouOptions{.row_step_m = 0.02});
+    if (overlap) {
+      const double shared = overlap->intersection_m2;
+      if (shared > o.max_overlap * std::min(x.area, y.area)) return std::nullopt;
+      score -= kOverlapPerM2 * shared;
+    }
+  }
+  score += kContactPerM * SharedFaces(x, y, o);
+  score += OpeningsAgainstWalls(x, y, o) + OpeningsAgainstWalls(y, x, o);
+  return score;
+}
+
+// B's pose relative to A's when A's door i and B's door j are one door, the
+// faces `thickness` apart: B's door turned to face A's, centre on centre.
+Pose LinkTransform(const Hole& a, const Hole& b, double thickness) {
+  const double yaw = std::atan2(-a.n.y(), -a.n.x()) - std::atan2(b.n.y(), b.n.x());
+  Pose t = Pose::Identity();
+  t.linear() = Eigen::Rotation2Dd(yaw).toRotationMatrix();
+  t.translation() = a.c + thickness * a.n - t.linear() * b.c;
+  return t;
+}
+
+struct State {
+  std::vector<char> placed;
+  std::vector<Pose> pose;
+  std::vector<int> link_of;            // Per room: index into links, -1.
+  std::vector<std::vector<char>> used;  // Per room, per door (index into RoomGeom::doors).
+  std::vector<RoomLink> links;
+  double score = 0.0;
+  int count = 0;
+
+  // Which rooms are where, to tell placements apart (centimetres, degrees).
+  std::string Signature() const {
+    std::string s;
+    for (std::size_t i = 0; i < placed.size(); ++i) {
+      if (!placed[i]) continue;
+      s += fmt::format("{}:{:.0f},{:.0f},{:.0f};", i, 100 * pose[i].translation().x(), 100 * pose[i].translation().y(),
+                       std::remainder(YawOf(pose[i]) * 180 / std::numbers::pi, 360.0));
+    }
+    return s;
+  }
+};
+
+struct Candidate {
+  int from_state = 0;
+  int a_room = 0, a_door = 0, b_room = 0, b_door = 0;
+  Pose pose;
+  double score = 0.0;
+  bool by_user = false;
+};
+
+class Placer {
+ public:
+  Placer(const std::vector<HomeRoomInput>& rooms, const PlacementOptions& options,
+         const PlacementConstraints& constraints)
+      : rooms_(rooms), o_(options), c_(constraints) {
+    for (const HomeRoomInput& r : rooms) geoms_.push_back(GeomOf(r.plan));
+  }
+
+  // Beam search from `seed`; every complete or stuck placement, best first.
+  std::vector<State> Search(int seed, const Pose& seed_pose) {
+    State start;
+    const std::size_t n = rooms_.size();
+    start.placed.assign(n, 0);
+    start.pose.assign(n, Pose::Identity());
+    start.link_of.assign(n, -1);
+    for (const RoomGeom& g : geoms_) start.used.emplace_back(g.doors.size(), 0);
+    start.placed[seed] = 1;
+    start.pose[seed] = seed_pose;
+    start.count = 1;
+    placed_cache_.clear();
+    std::vector<State> beam = {start}, done;
+    while (!beam.empty()) {
+      std::vector<Candidate> all;
+      for (std::size_t s = 0; s < beam.size(); ++s) {
+        std::vector<Candidate> mine = Expand(beam[s], static_cast<int>(s));
+        if (mine.empty()) done.push_back(beam[s]);
+        std::sort(mine.begin(), mine.end(), [](const Candidate& x, const Candidate& y) { return x.score > y.score; });
+        if (static_cast<int>(mine.size()) > o_.beam_width) mine.resize(o_.beam_width);
+        all.insert(all.end(), mine.begin(), mine.end());
+      }
+      std::sort(all.begin(), all.end(), [&](const Candidate& x, const Candidate& y) {
+        return beam[x.from_state].score + x.score > beam[y.from_state].score + y.score;
+      });
+      std::vector<State> next;
+      std::vector<std::string> seen;
+      for (const Candidate& cand : all) {
+        if (static_cast<int>(next.size()) >= o_.beam_width) break;
+        State s = Apply(beam[cand.from_state], cand);
+        std::string sig = s.Signature();
+        if (std::find(seen.begin(), seen.end(), sig) != seen.end()) continue;
+        seen.push_back(std::move(sig));
+        next.push_back(std::move(s));
+      }
+      beam = std::move(next);
+    }
+    std::stable_sort(done.begin(), done.end(), [](const State& x, const State& y) { return x.score > y.score; });
+    return done;
+  }
+
+  const std::vector<RoomGeom>& geoms() const { return geoms_; }
+
+ private:
+  bool Forbidden(const OpeningRef& x, const OpeningRef& y) const {
+    for (const auto& [p, q] : c_.different) {
+      if ((p == x && q == y) || (p == y && q == x)) return true;
+    }
+    return false;
+  }
+  bool AskedFor(const OpeningRef& x, const OpeningRef& y) const {
+    for (const auto& [p, q] : c_.same) {
+      if ((p == x && q == y) || (p == y && q == x)) return true;
+    }
+    return false;
+  }
+
+  const RoomGeom& PlacedGeom(int room, const Pose& pose) {
+    const std::string key = fmt::format("{}:{:.4f},{:.4f},{:.5f}", room, pose.translation().x(),
+                                        pose.translation().y(), YawOf(pose));
+    auto it = placed_cache_.find(key);
+    if (it == placed_cache_.end()) it = placed_cache_.emplace(key, Transformed(geoms_[room], pose)).first;
+    return it->second;
+  }
+
+  std::vector<Candidate> Expand(const State& s, int index) {
+    std::vector<Candidate> out;
+    const int n = static_cast<int>(rooms_.size());
+    for (int a = 0; a < n; ++a) {
+      if (!s.placed[a]) continue;
+      const RoomGeom& ga = geoms_[a];
+      for (int i = 0; i < static_cast<int>(ga.doors.size()); ++i) {
+        if (s.used[a][i]) continue;
+        for (int b = 0; b < n; ++b) {
+          if (s.placed[b]) continue;
+          const RoomGeom& gb = geoms_[b];
+          for (int j = 0; j < static_cast<int>(gb.doors.size()); ++j) {
+            const Hole &da = ga.doors[i], &db = gb.doors[j];
+            const OpeningRef ra{a, da.opening}, rb{b, db.opening};
+            if (s.used[b][j] || Forbidden(ra, rb)) continue;
+            const bool asked = AskedFor(ra, rb);
+            if (!asked && !WidthsMatch(da.width, db.width, o_)) continue;
+            const Pose pose = s.pose[a] * LinkTransform(da, db, o_.wall_thickness_m);
+            std::optional<double> score = Score(s, b, pose);
+            if (!score) continue;
+            *score += kPlacedRoom - kWidthPerM * std::abs(da.width - db.width) + (asked ? kUserLink : 0.0);
+            out.push_back({index, a, i, b, j, pose, *score, asked});
+          }
+        }
+      }
+    }
+    return out;
+  }
+
+  std::optional<double> Score(const State& s, int room, const Pose& pose) {
+    const RoomGeom& g = PlacedGeom(room, pose);
+    double score = 0.0;
+    for (std::size_t c = 0; c < rooms_.size(); ++c) {
+      if (!s.placed[c]) continue;
+      const std::optional<double> term = PairScore(g, PlacedGeom(static_cast<int>(c), s.pose[c]), o_);
+      if (!term) return std::nullopt;
+      score += *term;
+    }
+    return score;
+  }
+
+  State Apply(const State& from, const Candidate& c) const {
+    State s = from;
+    s.placed[c.b_room] = 1;
+    s.pose[c.b_room] = c.pose;
+    s.used[c.a_room][c.a_door] = 1;
+    s.used[c.b_room][c.b_door] = 1;
+    s.link_of[c.b_room] = static_cast<int>(s.links.size());
+    s.links.push_back({.a = {c.a_room, geoms_[c.a_room].doors[c.a_door].opening},
+                       .b = {c.b_room, geoms_[c.b_room].doors[c.b_door].opening},
+                       .score = c.score,
+                       .by_user = c.by_user});
+    s.score += c.score;
+    ++s.count;
+    return s;
+  }
+
+  const std::vector<HomeRoomInput>& rooms_;
+  const PlacementOptions& o_;
+  const PlacementConstraints& c_;
+  std::vector<RoomGeom> geoms_;
+  std::unordered_map<std::string, RoomGeom> placed_cache_;
+};
+
+const Hole* DoorOf(const RoomGeom& g, int opening) {
+  for (const Hole& h : g.doors) {
+    if (h.opening == opening) return &h;
+  }
+  return nullptr;
+}
+
+// Doors of two placed rooms that meet across a partition but placed nothing:
+// the loops of the home.
+void FindLoops(const std::vector<RoomGeom>& geoms, const State& s, const PlacementOptions& o,
+               std::vector<RoomLink>& links) {
+  const int n = static_cast<int>(geoms.size());
+  auto linked = [&](const OpeningRef& r) {
+    for (const RoomLink& l : links) {
+      if (l.a == r || l.b == r) return true;
+    }
+    return false;
+  };
+  for (int a = 0; a < n; ++a) {
+    for (int b = a + 1; b < n; ++b) {
+      if (!s.placed[a] || !s.placed[b]) continue;
+      const RoomGeom ga = Transformed(geoms[a], s.pose[a]), gb = Transformed(geoms[b], s.pose[b]);
+      for (const Hole& da : ga.doors) {
+        for (const Hole& db : gb.doors) {
+          if (linked({a, da.opening}) || linked({b, db.opening})) continue;
+          if (da.n.dot(db.n) > -kAntiParallel || !WidthsMatch(da.width, db.width, o)) continue;
+          const double across = (db.c - da.c).dot(da.n);
+          const double along = std::abs((db.c - da.c).dot(Perp(da.n)));
+          if (across < -0.05 || across > o.max_wall_thickness_m || along > 0.35) continue;
+          links.push_back({.a = {a, da.opening}, .b = {b, db.opening}, .loop = true});
+        }
+      }
+    }
+  }
+}
+
+// Least squares over every link: each room's pose (the seed's fixed) and one
+// partition thickness for the home, held near the option's value by a weak
+// prior so a home without loops keeps it.
+void Refine(const std::vector<RoomGeom>& geoms, int seed, const PlacementOptions& o, State& s, double& thickness) {
+  std::vector<int> var(s.placed.size(), -1);
+  int n_var = 0;
+  for (std::size_t r = 0; r < s.placed.size(); ++r) {
+    if (s.placed[r] && static_cast<int>(r) != seed) var[r] = n_var++;
+  }
+  const int n_params = 3 * n_var + 1;
+  Eigen::VectorXd x(n_params);
+  for (std::size_t r = 0; r < s.placed.size(); ++r) {
+    if (var[r] < 0) continue;
+    x.segment<3>(3 * var[r]) << s.pose[r].translation(), YawOf(s.pose[r]);
+  }
+  x(n_params - 1) = o.wall_thickness_m;
+  auto pose_of = [&](const Eigen::VectorXd& p, int room) {
+    if (var[room] < 0) return s.pose[room];
+    Pose t = Pose::Identity();
+    t.linear() = Eigen::Rotation2Dd(p(3 * var[room] + 2)).toRotationMatrix();
+    t.translation() = p.segment<2>(3 * var[room]);
+    return t;
+  };
+  auto residuals = [&](const Eigen::VectorXd& p) {
+    Eigen::VectorXd r(3 * s.links.size() + 1);
+    for (std::size_t k = 0; k < s.links.size(); ++k) {
+      const RoomLink& l = s.links[k];
+      const Hole* ha = DoorOf(geoms[l.a.room], l.a.opening);
+      const Hole* hb = DoorOf(geoms[l.b.room], l.b.opening);
+      const Pose ta = pose_of(p, l.a.room), tb = pose_of(p, l.b.room);
+      const Vec2 na = ta.linear() * ha->n, nb = tb.linear() * hb->n;
+      const Vec2 d = tb * hb->c - (ta * ha->c + p(n_params - 1) * na);
+      r.segment<2>(3 * k) = d;
+      r(3 * k + 2) = std::remainder(std::atan2(nb.y(), nb.x()) - std::atan2(-na.y(), -na.x()), 2 * std::numbers::pi);
+    }
+    r(r.size() - 1) = 0.2 * (p(n_params - 1) - o.wall_thickness_m);
+    return r;
+  };
+  for (int iter = 0; iter < 10; ++iter) {
+    const Eigen::VectorXd r0 = residuals(x);
+    Eigen::MatrixXd j(r0.size(), n_params);
+    for (int k = 0; k < n_params; ++k) {
+      Eigen::VectorXd xp = x;
+      xp(k) += 1e-6;
+      j.col(k) = (residuals(xp) - r0) / 1e-6;
+    }
+    Eigen::MatrixXd h = j.transpose() * j;
+    h.diagonal().array() += 1e-9;
+    const Eigen::VectorXd step = h.ldlt().solve(-j.transpose() * r0);
+    x += step;
+    if (step.norm() < 1e-9) break;
+  }
+  x(n_params - 1) = std::clamp(x(n_params - 1), 0.0, o.max_wall_thickness_m);
+  for (std::size_t r = 0; r < s.placed.size(); ++r) {
+    if (var[r] >= 0) s.pose[r] = pose_of(x, static_cast<int>(r));
+  }
+  thickness = x(n_params - 1);
+}
+
+std::string OpeningName(const std::vector<HomeRoomInput>& rooms, const OpeningRef& r) {
+  return fmt::format("{}#{}", rooms[r.room].name, r.opening);
+}
+
+HomePlacement Finish(const std::vector<HomeRoomInput>& rooms, const std::vector<RoomGeom>& geoms, int seed,
+                     const PlacementOptions& o, State s) {
+  HomePlacement h;
+  h.score = s.score;
+  h.links = s.links;
+  FindLoops(geoms, s, o, h.links);
+  for (const RoomLink& l : h.links) h.loops += l.loop;
+  s.links = h.links;
+  Refine(geoms, seed, o, s, h.wall_thickness_m);
+  h.rooms.resize(rooms.size());
+  for (std::size_t r = 0; r < rooms.size(); ++r) {
+    RoomPlacement& p = h.rooms[r];
+    p.placed = s.placed[r];
+    p.floor_from_room = s.pose[r];
+    p.link = s.link_of[r];
+    if (static_cast<int>(r) == seed) {
+      p.placed_by = "first room";
+    } else if (p.link >= 0) {
+      const RoomLink& l = h.links[p.link];
+      p.placed_by = fmt::format("door {} = {}{}", OpeningName(rooms, l.a), OpeningName(rooms, l.b),
+                                l.by_user ? " (by hand)" : "");
+    }
+  }
+  // Rooms no link reaches: by their hint, in the frame the placed rooms'
+  // hints agree on (the first placed room with a hint says where it is).
+  std::optional<Pose> home_from_hints;
+  for (std::size_t r = 0; r < rooms.size() && !home_from_hints; ++r) {
+    if (h.rooms[r].placed && rooms[r].hint) {
+      home_from_hints = h.rooms[r].floor_from_room * PoseTransform(*rooms[r].hint).inverse();
+    }
+  }
+  for (std::size_t r = 0; r < rooms.size(); ++r) {
+    RoomPlacement& p = h.rooms[r];
+    if (p.placed) continue;
+    if (rooms[r].hint && home_from_hints) {
+      p.placed = true;
+      p.floor_from_room = *home_from_hints * PoseTransform(*rooms[r].hint);
+      p.placed_by = "hint";
+    } else {
+      p.placed_by = geoms[r].doors.empty() ? "not placed: no door seen"
+                                           : "not placed: none of its doors fits a door of the placed rooms";
+    }
+  }
+  return h;
+}
+
+}  // namespace
+
+void PlacementOptions::Check() const {
+  auto fail = [](const std::string& what) { throw InvalidArgument("PlacementOptions: " + what); };
+  if (!(max_wall_thickness_m > 0 && max_wall_thickness_m <= 1.0)) fail("max_wall_thickness_m must be in (0, 1]");
+  if (!(wall_thickness_m >= 0 && wall_thickness_m <= max_wall_thickness_m)) {
+    fail("wall_thickness_m must be in [0, max_wall_thickness_m]");
+  }
+  if (!(max_width_difference_m >= 0 && max_width_difference_m <= 1)) fail("max_width_difference_m must be in [0, 1]");
+  if (!(width_tolerance >= 0 && width_tolerance <= 1)) fail("width_tolerance must be in [0, 1]");
+  if (!(max_overlap >= 0 && max_overlap <= 1)) fail("max_overlap must be in [0, 1]");
+  if (beam_width < 1 || beam_width > 1000) fail("beam_width must be in [1, 1000]");
+  if (alternatives < 0 || alternatives > 100) fail("alternatives must be in [0, 100]");
+}
+
+int HomePlacement::Placed() const {
+  return static_cast<int>(std::count_if(rooms.begin(), rooms.end(), [](const RoomPlacement& r) { return r.placed; }));
+}
+
+std::string HomePlacement::ToString(const std::vector<HomeRoomInput>& inputs) const {
+  std::string s = fmt::format("{} of {} rooms placed, {} loops, partition {:.3f} m, score {:.1f}", Placed(),
+                              rooms.size(), loops, wall_thickness_m, score);
+  for (std::size_t r = 0; r < rooms.size() && r < inputs.size(); ++r) {
+    const Pose& t = rooms[r].floor_from_room;
+    s += fmt::format("\n  {}: ({:.3f}, {:.3f}) m, {:.1f}°, {}", inputs[r].name, t.translation().x(),
+                     t.translation().y(), YawOf(t) * 180 / std::numbers::pi, rooms[r].placed_by);
+  }
+  return s;
+}
+
+double YawOf(const Eigen::Isometry2d& t) { return std::atan2(t.linear()(1, 0), t.linear()(0, 0)); }
+
+Eigen::Isometry2d PoseTransform(const PlanPose& pose) {
+  Eigen::Isometry2d t = Eigen::Isometry2d::Identity();
+  t.linear() = Eigen::Rotation2Dd(pose.yaw_deg * std::numbers::pi / 180).toRotationMatrix();
+  t.translation() = pose.position_m;
+  return t;
+}
+
+PlanPose TransformPose(const Eigen::Isometry2d& t) {
+  return {t.translation(), YawOf(t) * 180 / std::numbers::pi};
+}
+
+PlacementResult PlaceRooms(const std::vector<HomeRoomInput>& rooms, const PlacementOptions& options,
+                           const PlacementConstraints& constraints) {
+  options.Check();
+  if (rooms.empty()) throw InvalidArgument("PlaceRooms: a home needs at least one room");
+  const auto start = std::chrono::steady_clock::now();
+  auto check_ref = [&](const OpeningRef& r) {
+    if (r.room < 0 || r.room >= static_cast<int>(rooms.size()) || r.opening < 0 ||
+        r.opening >= static_cast<int>(rooms[r.room].plan.openings.size())) {
+      throw InvalidArgument(fmt::format("PlaceRooms: no opening {} in room {}", r.opening, r.room));
+    }
+  };
+  for (const auto* list : {&constraints.same, &constraints.different}) {
+    for (const auto& [p, q] : *list) {
+      check_ref(p);
+      check_ref(q);
+      if (p.room == q.room) throw InvalidArgument("PlaceRooms: two openings of one room cannot be one door");
+    }
+  }
+  Placer placer(rooms, options, constraints);
+  // The home frame is the first room's (or its hint's) that a door could
+  // join to another room.
+  int seed = 0;
+  for (std::size_t r = 0; r < rooms.size(); ++r) {
+    if (!placer.geoms()[r].doors.empty()) {
+      seed = static_cast<int>(r);
+      break;
+    }
+  }
+  const Pose seed_pose = rooms[seed].hint ? PoseTransform(*rooms[seed].hint) : Pose::Identity();
+  std::vector<State> done = placer.Search(seed, seed_pose);
+  PlacementResult result;
+  std::sort(done.begin(), done.end(), [](const State& x, const State& y) { return x.score > y.score; });
+  std::vector<std::string> seen;
+  for (const State& s : done) {
+    std::string sig = s.Signature();
+    if (std::find(seen.begin(), seen.end(), sig) != seen.end()) continue;
+    seen.push_back(std::move(sig));
+    HomePlacement h = Finish(rooms, placer.geoms(), seed, options, s);
+    if (seen.size() == 1) {
+      result.best = std::move(h);
+    } else {
+      result.alternatives.push_back(std::move(h));
+      if (static_cast<int>(result.alternatives.size()) >= options.alternatives) break;
+    }
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace asbuilt
