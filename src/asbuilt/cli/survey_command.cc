@@ -9,6 +9,8 @@
 
 #include "asbuilt/cli/command.h"
 #include "asbuilt/cli/field_flags.h"
+#include "asbuilt/formats/home_file.h"
+#include "asbuilt/pipeline/home_survey.h"
 #include "asbuilt/pipeline/survey.h"
 #include "asbuilt/util/progress.h"
 
@@ -34,6 +36,24 @@ const FieldList<SurveyOptions>& SurveyLayoutFields() {
   return kList;
 }
 
+// A home.json: every room surveyed with `options`, placed, one plan.
+int RunHomeSurveyCommand(const std::string& home_json, const std::string& out_dir, const SurveyOptions& options,
+                         int jobs) {
+  HomeSurveyOptions home;
+  home.survey = options;
+  home.jobs = jobs;
+  fmt::print(stderr, "surveying the rooms of {}\n", home_json);
+  const HomeSurveyResult result =
+      RunHomeSurvey(home_json, out_dir, home, [](const std::string& line) { fmt::print(stderr, "  {}\n", line); });
+  fmt::print("{}\n", result.placement.best.ToString(result.inputs));
+  fmt::print("{} → {}/report.html\n", result.BriefReport(), out_dir);
+  if (result.plan.verdict) {
+    fmt::print("verdict: {}\n", result.plan.verdict->verdict);
+    for (const std::string& why : result.plan.verdict->reasons) fmt::print("  {}\n", why);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int RunSurveyCommand(int argc, char** argv) {
@@ -46,13 +66,18 @@ int RunSurveyCommand(int argc, char** argv) {
       "A mono capture (level views of one camera) or a panorama capture (one 2:1 equirectangular\n"
       "photo, resampled into --pano-views level views) places the walls from their floor and\n"
       "ceiling edges and the camera height in position_m (docs/survey.md).\n"
+      "A home.json (kind \"home\": one capture per room) surveys every room into OUT/rooms/NAME/, places\n"
+      "the rooms from the doors they share and writes one plan of the home (docs/home.md).\n"
       "Every PlanOptions field is a flag --plan.NAME, every FramePointsOptions field --points.NAME.",
       "asbuilt survey");
   AddCommonFlags(app);
   std::string capture, out_dir, model, labels_dir, truth;
   SurveyOptions options;
   bool no_report = false;
-  app.add_option("capture", capture, "capture.json")->required();
+  app.add_option("capture", capture, "capture.json, or home.json for a whole home")->required();
+  int jobs = 0;
+  app.add_option("--jobs", jobs, "home.json: rooms surveyed at once (0: one per two hardware threads)")
+      ->capture_default_str();
   app.add_option("-o,--out", out_dir, "output folder")->required();
   app.add_option("--model", model, "segmentation model: a shipped model's name (default, renders, real), a checkpoint or a .tflite file");
   std::string seg_scale = "auto";
@@ -113,6 +138,8 @@ int RunSurveyCommand(int argc, char** argv) {
   if (!truth.empty()) options.truth_path = truth;
   options.write_report = !no_report;
   options.Check();
+
+  if (IsHomeFile(capture)) return RunHomeSurveyCommand(capture, out_dir, options, jobs);
 
   ProgressPrinter printer;
   SurveyResult result = RunSurvey(capture, out_dir, options, printer.Callback());

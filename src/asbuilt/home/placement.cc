@@ -20,14 +20,16 @@ namespace {
 using Pose = Eigen::Isometry2d;
 
 // Score weights, in metres of shared partition.
-constexpr double kPlacedRoom = 5.0;      // Each room placed.
+constexpr double kPlacedRoom = 2.0;      // Each room placed.
 constexpr double kContactPerM = 1.0;     // Partition faces shared, per metre.
 constexpr double kDoorsMeet = 3.0;       // A door lands on a door of a placed room.
-constexpr double kDoorIntoWall = 3.0;    // A door lands on a placed room's plain wall.
+constexpr double kDoorIntoWall = 2.0;    // A door lands on a placed room's plain wall.
 constexpr double kWindowIntoWall = 2.0;  // A window looks into a placed room.
 constexpr double kWidthPerM = 10.0;      // Linked doors' width difference.
 constexpr double kOverlapPerM2 = 2.0;    // Floor shared with a placed room.
 constexpr double kUserLink = 1000.0;     // A link the person asked for comes first.
+constexpr double kEmptyPerM2 = 0.3;      // Floor of the home's bounding box no room covers.
+constexpr double kContinues = 1.0;       // A wall continues another room's across a partition.
 const double kAntiParallel = std::cos(10.0 * std::numbers::pi / 180.0);
 const double kFacesAntiParallel = std::cos(3.0 * std::numbers::pi / 180.0);
 
@@ -193,6 +195,22 @@ double SharedFaces(const RoomGeom& x, const RoomGeom& y, const PlacementOptions&
   return metres;
 }
 
+// Walls of the two rooms that lie on one line, facing the same way, their
+// ends a partition apart: one wall of the home running past a partition.
+int ContinuingWalls(const RoomGeom& x, const RoomGeom& y, const PlacementOptions& o) {
+  int count = 0;
+  for (const Face& f : x.walls) {
+    for (const Face& g : y.walls) {
+      if (f.n.dot(g.n) < kFacesAntiParallel) continue;
+      if (std::abs((g.a - f.a).dot(f.n)) > 0.05 || std::abs((g.b - f.a).dot(f.n)) > 0.05) continue;
+      const double s0 = ProjectOnFace(f, g.a, 0).along, s1 = ProjectOnFace(f, g.b, 0).along;
+      const double gap = std::max(std::min(s0, s1) - f.Length(), -std::max(s0, s1));
+      if (gap >= -0.05 && gap <= o.max_wall_thickness_m) ++count;
+    }
+  }
+  return count;
+}
+
 bool BoxesNear(const RoomGeom& x, const RoomGeom& y, double margin) {
   return x.lo.x() <= y.hi.x() + margin && y.lo.x() <= x.hi.x() + margin && x.lo.y() <= y.hi.y() + margin &&
          y.lo.y() <= x.hi.y() + margin;
@@ -211,7 +229,7 @@ std::optional<double> PairScore(const RoomGeom& x, const RoomGeom& y, const Plac
       score -= kOverlapPerM2 * shared;
     }
   }
-  score += kContactPerM * SharedFaces(x, y, o);
+  score += kContactPerM * SharedFaces(x, y, o) + kContinues * ContinuingWalls(x, y, o);
   score += OpeningsAgainstWalls(x, y, o) + OpeningsAgainstWalls(y, x, o);
   return score;
 }
@@ -234,6 +252,8 @@ struct State {
   std::vector<RoomLink> links;
   double score = 0.0;
   int count = 0;
+  Vec2 lo = Vec2::Constant(1e300), hi = Vec2::Constant(-1e300);  // Bounding box in the home's axes.
+  double covered_m2 = 0.0;  // Floor of the rooms placed.
 
   // Which rooms are where, to tell placements apart (centimetres, degrees).
   std::string Signature() const {
@@ -253,7 +273,21 @@ struct Candidate {
   Pose pose;
   double score = 0.0;
   bool by_user = false;
+  Vec2 lo, hi;  // The home's box with the room.
 };
+
+// The box of a placed room's walls in the home's axes (the first room's frame
+// turned by `axes`).
+void GrowBox(const RoomGeom& g, const Eigen::Matrix2d& axes, Vec2& lo, Vec2& hi) {
+  for (const Face& f : g.walls) {
+    for (const Vec2& p : {f.a, f.b}) {
+      const Vec2 q = axes.transpose() * p;
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+  }
+}
+double BoxArea(const Vec2& lo, const Vec2& hi) { return lo.x() > hi.x() ? 0.0 : (hi - lo).prod(); }
 
 class Placer {
  public:
@@ -274,6 +308,12 @@ class Placer {
     start.placed[seed] = 1;
     start.pose[seed] = seed_pose;
     start.count = 1;
+    const RoomGeom& first = geoms_[seed];
+    const Vec2 d = first.walls.empty() ? Vec2(1, 0) : (seed_pose.linear() * first.walls.front().Dir()).eval();
+    axes_.col(0) = d;
+    axes_.col(1) = Perp(d);
+    GrowBox(PlacedGeom(seed, seed_pose), axes_, start.lo, start.hi);
+    start.covered_m2 = first.area;
     placed_cache_.clear();
     std::vector<State> beam = {start}, done;
     while (!beam.empty()) {
@@ -348,8 +388,13 @@ class Placer {
             const Pose pose = s.pose[a] * LinkTransform(da, db, o_.wall_thickness_m);
             std::optional<double> score = Score(s, b, pose);
             if (!score) continue;
-            *score += kPlacedRoom - kWidthPerM * std::abs(da.width - db.width) + (asked ? kUserLink : 0.0);
-            out.push_back({index, a, i, b, j, pose, *score, asked});
+            Vec2 lo = s.lo, hi = s.hi;
+            GrowBox(PlacedGeom(b, pose), axes_, lo, hi);
+            const double empty_before = BoxArea(s.lo, s.hi) - s.covered_m2;
+            const double empty_after = BoxArea(lo, hi) - s.covered_m2 - gb.area;
+            *score += kPlacedRoom - kWidthPerM * std::abs(da.width - db.width) + (asked ? kUserLink : 0.0) -
+                      kEmptyPerM2 * std::max(0.0, empty_after - empty_before);
+            out.push_back({index, a, i, b, j, pose, *score, asked, lo, hi});
           }
         }
       }
@@ -381,6 +426,9 @@ class Placer {
                        .score = c.score,
                        .by_user = c.by_user});
     s.score += c.score;
+    s.lo = c.lo;
+    s.hi = c.hi;
+    s.covered_m2 += geoms_[c.b_room].area;
     ++s.count;
     return s;
   }
@@ -390,6 +438,7 @@ class Placer {
   const PlacementConstraints& c_;
   std::vector<RoomGeom> geoms_;
   std::unordered_map<std::string, RoomGeom> placed_cache_;
+  Eigen::Matrix2d axes_ = Eigen::Matrix2d::Identity();
 };
 
 const Hole* DoorOf(const RoomGeom& g, int opening) {
@@ -578,6 +627,28 @@ Eigen::Isometry2d PoseTransform(const PlanPose& pose) {
 
 PlanPose TransformPose(const Eigen::Isometry2d& t) {
   return {t.translation(), YawOf(t) * 180 / std::numbers::pi};
+}
+
+double FitScore(const std::vector<HomeRoomInput>& rooms, const std::vector<Eigen::Isometry2d>& poses,
+                const std::vector<char>& placed, const PlacementOptions& options, std::vector<std::string>* detail) {
+  std::vector<RoomGeom> g;
+  for (std::size_t r = 0; r < rooms.size(); ++r) g.push_back(Transformed(GeomOf(rooms[r].plan), poses[r]));
+  double total = 0.0;
+  for (std::size_t a = 0; a < rooms.size(); ++a) {
+    for (std::size_t b = a + 1; b < rooms.size(); ++b) {
+      if (!placed[a] || !placed[b]) continue;
+      const std::optional<double> s = PairScore(g[a], g[b], options);
+      const double v = s.value_or(-1000.0);
+      total += v;
+      if (detail && v != 0.0) {
+        detail->push_back(fmt::format("{} / {}: {} (faces {:.2f} m, openings {:.1f} + {:.1f})", rooms[a].name,
+                                      rooms[b].name, s ? fmt::format("{:.2f}", v) : std::string("overlap"),
+                                      SharedFaces(g[a], g[b], options), OpeningsAgainstWalls(g[a], g[b], options),
+                                      OpeningsAgainstWalls(g[b], g[a], options)));
+      }
+    }
+  }
+  return total;
 }
 
 PlacementResult PlaceRooms(const std::vector<HomeRoomInput>& rooms, const PlacementOptions& options,

@@ -74,7 +74,7 @@ struct PlacementOptions {
   // A room may share at most this fraction of the smaller floor with a room
   // already placed (surveyed outlines wander a little).
   double max_overlap = 0.15;
-  int beam_width = 12;
+  int beam_width = 32;
   int alternatives = 3;  // Further complete placements kept beside the best.
   void Check() const;
 };
@@ -106,6 +106,13 @@ struct PlacementResult {
 // range, an opening linked to itself).
 PlacementResult PlaceRooms(const std::vector<HomeRoomInput>& rooms, const PlacementOptions& options = {},
                            const PlacementConstraints& constraints = {});
+
+// How well rooms fit at the given poses (floor_from_room per room; rooms
+// not in `placed` are left out): the sum over pairs of the terms the beam
+// search scores a room by, with per-pair detail in `detail` when asked.
+double FitScore(const std::vector<HomeRoomInput>& rooms, const std::vector<Eigen::Isometry2d>& poses,
+                const std::vector<char>& placed, const PlacementOptions& options = {},
+                std::vector<std::string>* detail = nullptr);
 
 // Yaw of a 2D rigid transform, radians counter-clockwise.
 double YawOf(const Eigen::Isometry2d& t);

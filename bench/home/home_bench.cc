@@ -1,0 +1,209 @@
+// bench_home: a whole home from its panoramas (issue 40). The 13 primary
+// panoramas of the ZInD sample tour (../shared/data/zind_sample_tour, read
+// at run time: ZInD is for academic use only, a test set, never training
+// data, and nothing derived from it is committed) as one home.json, each
+// room's capture as in bench_pano_survey, surveyed by `asbuilt survey
+// home.json` (pipeline/home_survey.h) twice:
+//   - with each room's layout labels (the placement's own upper bound), and
+//   - with the shipped segmenter (and `--model real`).
+// Scored against ZInD's floor_plan_transformation per panorama (the truth
+// pose) and its raw layouts (the truth floor), after the one rigid transform
+// that best aligns the whole home (home/home_plan.h ScoreHome): a room is
+// placed when its centroid is within 10 cm and its yaw within 1°; floor IoU
+// of the union of the placed rooms against the union of the true ones.
+// Also the placement alone, timed (the rooms surveyed once, placed again).
+// Writes bench/results/home.md; captures and outputs go under the build
+// folder (bench/home/), never into the repository.
+//
+//   bench_home [RESULTS.md]
+//   env ASBUILT_BENCH_HOME_MODEL   0: skip the segmenter runs
+
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <numbers>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "asbuilt/formats/zind.h"
+#include "asbuilt/imageio/image_io.h"
+#include "asbuilt/pano/layout_labels.h"
+#include "asbuilt/pipeline/home_survey.h"
+#include "asbuilt/seg/segmenter.h"
+#include "asbuilt/util/file.h"
+#include "bench/bench_util.h"
+
+namespace {
+
+using namespace asbuilt;
+namespace fs = std::filesystem;
+
+struct Run {
+  std::string name;
+  HomeSurveyResult result;
+  HomeScore score;
+  std::vector<double> placement_seconds;
+};
+
+// The truth per surveyed room, in the order of result.inputs.
+HomeScore Score(const HomeSurveyResult& r, const std::vector<const ZindPanorama*>& panos) {
+  std::vector<Eigen::Isometry2d> truth;
+  std::vector<std::vector<Vec2>> outline;
+  for (int i : r.surveyed) {
+    const ZindPanorama& p = *panos[static_cast<std::size_t>(i)];
+    truth.push_back(p.floor_from_pano);
+    std::vector<Vec2> o;
+    for (const Vec2& v : p.layout_raw.vertices_m) o.push_back(p.floor_from_pano * v);
+    outline.push_back(std::move(o));
+  }
+  return ScoreHome(r.inputs, r.placement.best, truth, outline);
+}
+
+std::string RoomTable(const Run& run) {
+  std::string md = "| room | survey | placed by | centroid error | yaw error |\n|---|---|---|---|---|\n";
+  for (std::size_t k = 0; k < run.result.surveyed.size(); ++k) {
+    const HomeRoomSurvey& room = run.result.rooms[static_cast<std::size_t>(run.result.surveyed[k])];
+    const double dp = run.score.centroid_error_m[k], dy = run.score.yaw_error_deg[k];
+    md += fmt::format("| {} | {} walls, {} openings | {} | {} | {} |\n", room.name, room.summary.plan.walls,
+                      room.summary.plan.openings, run.result.placement.best.rooms[k].placed_by,
+                      std::isfinite(dp) ? fmt::format("{:.3f} m", dp) : "–",
+                      std::isfinite(dy) ? fmt::format("{:.2f}°", dy) : "–");
+  }
+  for (const HomeRoomSurvey& room : run.result.rooms) {
+    if (!room.ok) md += fmt::format("| {} | not surveyed: {} | | | |\n", room.name, room.error);
+  }
+  return md;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace asbuilt::bench;
+  const std::string results = ResultsPath(argc, argv, "home");
+  const fs::path tour_dir = fs::path(ASBUILT_SHARED_DATA_DIR) / "zind_sample_tour";
+  if (!fs::exists(tour_dir / "zind_data.json")) {
+    std::fprintf(stderr, "bench_home: %s not present; %s left as it was\n", tour_dir.c_str(), results.c_str());
+    return 0;
+  }
+  const char* model_env = std::getenv("ASBUILT_BENCH_HOME_MODEL");
+  const bool with_model = !(model_env != nullptr && std::string(model_env) == "0") && SegmenterAvailable() &&
+                          fs::exists(DefaultModelPath());
+  const fs::path out = fs::path(ASBUILT_BINARY_DIR) / "bench" / "home";
+  const ZindTour tour = ReadZindTour(tour_dir);
+  const std::vector<const ZindPanorama*> panos = tour.BenchmarkPanoramas();
+  std::fprintf(stderr, "bench_home: %s\n", kZindNotice);
+
+  HomeSurveyOptions base;
+  base.survey.report_frames = 4;
+  const std::vector<PanoView> views = TurnInPlaceViews(base.survey.panorama_views);
+  nlohmann::json with_labels = {{"version", 1}, {"kind", "home"}, {"rooms", nlohmann::json::array()}};
+  nlohmann::json without = with_labels;
+  for (const ZindPanorama* pano : panos) {
+    const std::string name = pano->label + " " + pano->pano_id;
+    const fs::path dir = out / "captures" / pano->pano_id;
+    fs::create_directories(dir);
+    // Each room in a frame of its own: the pano frame, as a user's capture would be.
+    const nlohmann::json capture = {{"version", 1},
+                                    {"kind", "panorama"},
+                                    {"panorama", fs::absolute(pano->image).lexically_normal().string()},
+                                    {"position_m", {0.0, 0.0, pano->camera_height_m}},
+                                    {"yaw_deg", 0.0}};
+    WriteFileAtomic(dir / "capture.json", capture.dump(2) + "\n");
+    // ZInD's passages between the parts of one open space are the openings
+    // the rooms share there: drawn as door labels here (a doorway without a
+    // leaf), where bench_pano_survey ignores them.
+    ZindPanorama with_passages = *pano;
+    for (ZindOpening& o : with_passages.layout_raw.openings) {
+      if (o.kind == ZindOpeningKind::kOpening) o.kind = ZindOpeningKind::kDoor;
+    }
+    for (std::size_t i = 0; i < views.size(); ++i) {
+      WriteImageAtomic(dir / "labels" / fmt::format("{:03d}.png", i), LayoutLabels(with_passages, views[i]));
+    }
+    with_labels["rooms"].push_back({{"name", name}, {"capture", dir / "capture.json"}, {"labels", dir / "labels"}});
+    without["rooms"].push_back({{"name", name}, {"capture", dir / "capture.json"}});
+  }
+  WriteFileAtomic(out / "home_labels.json", with_labels.dump(2) + "\n");
+  WriteFileAtomic(out / "home_model.json", without.dump(2) + "\n");
+
+  double load[1] = {0};
+  const bool have_load = ::getloadavg(load, 1) == 1;
+  std::vector<Run> runs;
+  auto run = [&](const std::string& what, const fs::path& home, HomeSurveyOptions options) {
+    Run r{.name = what};
+    const auto t0 = std::chrono::steady_clock::now();
+    r.result = RunHomeSurvey(home, out / fs::path(home).stem(), options, [&](const std::string& line) {
+      std::fprintf(stderr, "bench_home: %s: %s\n", what.c_str(), line.c_str());
+    });
+    std::fprintf(stderr, "bench_home: %s: %.0f s\n", what.c_str(),
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    r.score = Score(r.result, panos);
+    if (std::getenv("ASBUILT_BENCH_HOME_DEBUG") != nullptr) {
+      std::vector<Eigen::Isometry2d> truth, found;
+      std::vector<char> all(r.result.inputs.size(), 1), placed;
+      for (std::size_t k = 0; k < r.result.surveyed.size(); ++k) {
+        truth.push_back(panos[static_cast<std::size_t>(r.result.surveyed[k])]->floor_from_pano);
+        found.push_back(r.result.placement.best.rooms[k].floor_from_room);
+        placed.push_back(r.result.placement.best.rooms[k].placed);
+      }
+      std::vector<std::string> dt, df;
+      const double st = FitScore(r.result.inputs, truth, all, options.placement, &dt);
+      const double sf = FitScore(r.result.inputs, found, placed, options.placement, &df);
+      std::fprintf(stderr, "fit of the truth %.2f:\n", st);
+      for (const std::string& l : dt) std::fprintf(stderr, "  %s\n", l.c_str());
+      std::fprintf(stderr, "fit of the placement %.2f:\n", sf);
+      for (const std::string& l : df) std::fprintf(stderr, "  %s\n", l.c_str());
+    }
+    for (int k = 0; k < 5; ++k) r.placement_seconds.push_back(PlaceRooms(r.result.inputs, options.placement).seconds);
+    std::fprintf(stderr, "bench_home: %s: %s\n%s\n", what.c_str(), r.score.ToString().c_str(),
+                 r.result.placement.best.ToString(r.result.inputs).c_str());
+    runs.push_back(std::move(r));
+  };
+  HomeSurveyOptions labels = base;
+  // Layout labels mark the clear opening and the wall's face (bench_pano_survey).
+  labels.survey.plan.door_casing_m = labels.survey.plan.window_casing_m = 0.0;
+  labels.survey.points.contact_snap_px = 0;
+  labels.survey.points.skirting_depth_m = 0.0;
+  run("layout labels", out / "home_labels.json", labels);
+  if (with_model) {
+    run("shipped model", out / "home_model.json", base);
+    HomeSurveyOptions real = base;
+    real.survey.model_path = ModelPathFor("real");
+    if (fs::exists(real.survey.model_path)) run("`--model real`", out / "home_model.json", real);
+  }
+
+  std::string md = "## a whole home from its panoramas: ZInD sample tour (bench_home)\n\n";
+  md += fmt::format("**{}.** ", kZindNotice);
+  md += fmt::format(
+      "Issue 40. The {} primary panoramas of `../shared/data/zind_sample_tour` as one home.json, each room's capture "
+      "in its own frame (`asbuilt survey home.json`, docs/home.md): every room surveyed, then placed from the doors "
+      "the rooms share. A room is placed when, after the one rigid transform that best aligns the whole home, its "
+      "centroid is within 10 cm and its yaw within 1° of ZInD's pose; floor IoU is the union of the placed rooms' "
+      "outlines against the union of the true ones. ZInD's passages between parts of one open space are drawn as "
+      "door labels in the layout-label run. Measured {} on {} hardware threads{}.\n\n",
+      panos.size(), Today(), std::thread::hardware_concurrency(),
+      have_load ? fmt::format(", load average {:.1f} at start", load[0]) : std::string());
+  md += "| labels from | rooms placed (10 cm, 1°) | floor IoU | links (loops) | partition | placement time, median of 5 | "
+        "targets |\n|---|---|---|---|---|---|---|\n";
+  for (const Run& r : runs) {
+    const bool exact = r.name == "layout labels";
+    const int need = exact ? 12 : 9;
+    const double iou = exact ? 0.93 : 0.80;
+    const double t = Median(r.placement_seconds);
+    md += fmt::format("| {} | {}/{} | {:.3f} | {} ({}) | {:.3f} m | {:.3f} s | ≥ {} rooms {}, IoU ≥ {:.2f} {}, ≤ 2 s {} |\n",
+                      r.name, r.score.within, r.score.rooms, r.score.floor_iou, r.result.placement.best.links.size(),
+                      r.result.placement.best.loops, r.result.placement.best.wall_thickness_m, t, need,
+                      r.score.within >= need ? "✓" : "✗", iou, r.score.floor_iou >= iou ? "✓" : "✗",
+                      t <= 2.0 ? "✓" : "✗");
+  }
+  md += "\n";
+  for (const Run& r : runs) md += fmt::format("### {}\n\n{}\n", r.name, RoomTable(r));
+  if (!with_model) md += "The segmenter runs were skipped (no LibTorch, no model, or ASBUILT_BENCH_HOME_MODEL=0).\n\n";
+  WriteSection(results, md);
+  return 0;
+}
