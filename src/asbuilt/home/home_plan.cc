@@ -210,10 +210,12 @@ Plan HomePlan(const std::vector<HomeRoomInput>& rooms, const HomePlacement& plac
     home.rooms.push_back(std::move(room));
   }
   for (const RoomLink& l : placement.links) {
-    const int a = first_opening[l.a.room] + l.a.opening, b = first_opening[l.b.room] + l.b.opening;
-    dropped[b] = 1;
+    // The door kept: a's, or the only side that saw it.
+    const OpeningRef& kept_side = l.a.opening >= 0 ? l.a : l.b;
+    const int kept_index = first_opening[kept_side.room] + kept_side.opening;
+    if (l.a.opening >= 0 && l.b.opening >= 0) dropped[first_opening[l.b.room] + l.b.opening] = 1;
     if (room_entry[l.a.room] >= 0 && room_entry[l.b.room] >= 0) {
-      home.openings[a].rooms = std::pair{room_entry[l.a.room], room_entry[l.b.room]};
+      home.openings[kept_index].rooms = std::pair{room_entry[l.a.room], room_entry[l.b.room]};
     }
   }
   std::vector<PlanOpening> kept;

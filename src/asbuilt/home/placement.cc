@@ -28,8 +28,9 @@ constexpr double kWindowIntoWall = 2.0;  // A window looks into a placed room.
 constexpr double kWidthPerM = 10.0;      // Linked doors' width difference.
 constexpr double kOverlapPerM2 = 2.0;    // Floor shared with a placed room.
 constexpr double kUserLink = 1000.0;     // A link the person asked for comes first.
-constexpr double kEmptyPerM2 = 0.3;      // Floor of the home's bounding box no room covers.
+constexpr double kEmptyPerM2 = 0.05;     // Floor of the home's bounding box no room covers.
 constexpr double kContinues = 1.0;       // A wall continues another room's across a partition.
+constexpr double kOneSided = 4.0;        // A door seen from one side only.
 const double kAntiParallel = std::cos(10.0 * std::numbers::pi / 180.0);
 const double kFacesAntiParallel = std::cos(3.0 * std::numbers::pi / 180.0);
 
@@ -51,6 +52,7 @@ struct RoomGeom {
   double area = 0.0;
   std::vector<Face> walls;
   std::vector<Hole> doors, windows;
+  std::vector<char> wall_has_opening;  // Per wall: a door or window was found on it.
   Vec2 lo = Vec2::Constant(1e300), hi = Vec2::Constant(-1e300);  // Bounding box of walls and outline.
 };
 
@@ -95,6 +97,10 @@ RoomGeom GeomOf(const Plan& plan) {
     Hole h{static_cast<int>(i), o.wall, o.Centre(), g.walls[o.wall].n, o.width};
     (o.kind == OpeningKind::kDoor ? g.doors : g.windows).push_back(h);
   }
+  g.wall_has_opening.assign(g.walls.size(), 0);
+  for (const auto* holes : {&g.doors, &g.windows}) {
+    for (const Hole& h : *holes) g.wall_has_opening[h.wall] = 1;
+  }
   return g;
 }
 
@@ -120,6 +126,7 @@ RoomGeom Transformed(const RoomGeom& g, const Pose& t) {
       out.hi = out.hi.cwiseMax(p);
     }
   }
+  out.wall_has_opening = g.wall_has_opening;
   auto move = [&](const std::vector<Hole>& in, std::vector<Hole>& to) {
     for (Hole h : in) {
       h.c = t * h.c;
@@ -269,12 +276,35 @@ struct State {
 
 struct Candidate {
   int from_state = 0;
-  int a_room = 0, a_door = 0, b_room = 0, b_door = 0;
-  Pose pose;
+  int a_room = 0, a_door = -1, b_room = 0, b_door = -1;  // Indices into RoomGeom::doors; −1: one-sided.
+  int a_wall = -1, b_wall = -1;  // A one-sided link's plain wall.
+  Pose pose = Pose::Identity();
   double score = 0.0;
   bool by_user = false;
-  Vec2 lo, hi;  // The home's box with the room.
+  Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();  // The home's box with the room.
 };
+
+// B's pose when the point `s` along B's face g (its own frame) lies across
+// the partition from the point `u` along the placed face f: g turned to face f.
+Pose FaceTransform(const Face& f, double u, const Face& g, double s, double thickness) {
+  const double yaw = std::atan2(-f.n.y(), -f.n.x()) - std::atan2(g.n.y(), g.n.x());
+  Pose t = Pose::Identity();
+  t.linear() = Eigen::Rotation2Dd(yaw).toRotationMatrix();
+  t.translation() = f.a + u * f.Dir() + thickness * f.n - t.linear() * (g.a + s * g.Dir());
+  return t;
+}
+
+// Where along a plain face of length `lg` a door seen at `u` along a face of
+// length `lf` (turned to face it) can open: the faces' ends lined up either
+// way, or centred on the door.
+std::vector<double> Slides(double u, double lf, double lg, double width) {
+  std::vector<double> out;
+  for (double s : {0.5 * lg, lf - u, lg - u}) {
+    if (s < 0.5 * width + 0.05 || s > lg - 0.5 * width - 0.05) continue;
+    if (std::none_of(out.begin(), out.end(), [&](double t) { return std::abs(t - s) < 0.02; })) out.push_back(s);
+  }
+  return out;
+}
 
 // The box of a placed room's walls in the home's axes (the first room's frame
 // turned by `axes`).
@@ -298,7 +328,20 @@ class Placer {
   }
 
   // Beam search from `seed`; every complete or stuck placement, best first.
+  // Door-to-door links first; then, from the best of those placements, the
+  // rooms left over by one-sided links too (a door one survey missed). A
+  // room one-sided links could place wrongly never displaces a door link.
   std::vector<State> Search(int seed, const Pose& seed_pose) {
+    one_sided_ = false;
+    std::vector<State> doors = Beam({Start(seed, seed_pose)});
+    if (!o_.one_sided_links) return doors;
+    one_sided_ = true;
+    std::sort(doors.begin(), doors.end(), [](const State& x, const State& y) { return x.score > y.score; });
+    if (static_cast<int>(doors.size()) > o_.beam_width) doors.resize(o_.beam_width);
+    return Beam(doors);
+  }
+
+  State Start(int seed, const Pose& seed_pose) {
     State start;
     const std::size_t n = rooms_.size();
     start.placed.assign(n, 0);
@@ -312,10 +355,24 @@ class Placer {
     const Vec2 d = first.walls.empty() ? Vec2(1, 0) : (seed_pose.linear() * first.walls.front().Dir()).eval();
     axes_.col(0) = d;
     axes_.col(1) = Perp(d);
+    placed_cache_.clear();
     GrowBox(PlacedGeom(seed, seed_pose), axes_, start.lo, start.hi);
     start.covered_m2 = first.area;
-    placed_cache_.clear();
-    std::vector<State> beam = {start}, done;
+    for (const auto& [room, pose] : c_.fixed) {
+      if (room == seed) continue;
+      start.placed[room] = 1;
+      start.pose[room] = PoseTransform(pose);
+      ++start.count;
+      GrowBox(PlacedGeom(room, start.pose[room]), axes_, start.lo, start.hi);
+      start.covered_m2 += geoms_[room].area;
+    }
+    return start;
+  }
+
+  // Grows every state one room at a time, keeping the best beam_width;
+  // every state that cannot grow, best first.
+  std::vector<State> Beam(std::vector<State> beam) {
+    std::vector<State> done;
     while (!beam.empty()) {
       std::vector<Candidate> all;
       for (std::size_t s = 0; s < beam.size(); ++s) {
@@ -371,30 +428,69 @@ class Placer {
   std::vector<Candidate> Expand(const State& s, int index) {
     std::vector<Candidate> out;
     const int n = static_cast<int>(rooms_.size());
+    // A candidate's score: its terms against the placed rooms, the room, the
+    // home's box; nullopt when refused.
+    auto add = [&](Candidate c, double link_terms) {
+      std::optional<double> score = Score(s, c.b_room, c.pose);
+      if (!score) return;
+      c.lo = s.lo;
+      c.hi = s.hi;
+      GrowBox(PlacedGeom(c.b_room, c.pose), axes_, c.lo, c.hi);
+      const double empty_before = BoxArea(s.lo, s.hi) - s.covered_m2;
+      const double empty_after = BoxArea(c.lo, c.hi) - s.covered_m2 - geoms_[c.b_room].area;
+      c.score = *score + kPlacedRoom + link_terms - kEmptyPerM2 * std::max(0.0, empty_after - empty_before);
+      out.push_back(c);
+    };
     for (int a = 0; a < n; ++a) {
       if (!s.placed[a]) continue;
       const RoomGeom& ga = geoms_[a];
-      for (int i = 0; i < static_cast<int>(ga.doors.size()); ++i) {
-        if (s.used[a][i]) continue;
-        for (int b = 0; b < n; ++b) {
-          if (s.placed[b]) continue;
-          const RoomGeom& gb = geoms_[b];
+      const RoomGeom& pa = PlacedGeom(a, s.pose[a]);
+      for (int b = 0; b < n; ++b) {
+        if (s.placed[b]) continue;
+        const RoomGeom& gb = geoms_[b];
+        for (int i = 0; i < static_cast<int>(ga.doors.size()); ++i) {
+          if (s.used[a][i]) continue;
+          const Hole& da = ga.doors[i];
           for (int j = 0; j < static_cast<int>(gb.doors.size()); ++j) {
-            const Hole &da = ga.doors[i], &db = gb.doors[j];
+            const Hole& db = gb.doors[j];
             const OpeningRef ra{a, da.opening}, rb{b, db.opening};
             if (s.used[b][j] || Forbidden(ra, rb)) continue;
             const bool asked = AskedFor(ra, rb);
             if (!asked && !WidthsMatch(da.width, db.width, o_)) continue;
-            const Pose pose = s.pose[a] * LinkTransform(da, db, o_.wall_thickness_m);
-            std::optional<double> score = Score(s, b, pose);
-            if (!score) continue;
-            Vec2 lo = s.lo, hi = s.hi;
-            GrowBox(PlacedGeom(b, pose), axes_, lo, hi);
-            const double empty_before = BoxArea(s.lo, s.hi) - s.covered_m2;
-            const double empty_after = BoxArea(lo, hi) - s.covered_m2 - gb.area;
-            *score += kPlacedRoom - kWidthPerM * std::abs(da.width - db.width) + (asked ? kUserLink : 0.0) -
-                      kEmptyPerM2 * std::max(0.0, empty_after - empty_before);
-            out.push_back({index, a, i, b, j, pose, *score, asked, lo, hi});
+            add({.from_state = index, .a_room = a, .a_door = i, .b_room = b, .b_door = j,
+                 .pose = s.pose[a] * LinkTransform(da, db, o_.wall_thickness_m), .by_user = asked},
+                -kWidthPerM * std::abs(da.width - db.width) + (asked ? kUserLink : 0.0));
+          }
+          if (!one_sided_) continue;
+          // A's door onto a plain wall of B (B's survey missed the door).
+          const Hole& placed_door = pa.doors[i];
+          const Face& f = pa.walls[placed_door.wall];
+          const double u = ProjectOnFace(f, placed_door.c, 0).along;
+          for (int k = 0; k < static_cast<int>(gb.walls.size()); ++k) {
+            const Face& g = gb.walls[k];
+            if (gb.wall_has_opening[k] || g.Length() < da.width + 0.1) continue;
+            for (double sl : Slides(u, f.Length(), g.Length(), da.width)) {
+              add({.from_state = index, .a_room = a, .a_door = i, .b_room = b, .b_door = -1, .b_wall = k,
+                   .pose = FaceTransform(f, u, g, sl, o_.wall_thickness_m)},
+                  kDoorIntoWall - kOneSided);
+            }
+          }
+        }
+        if (!one_sided_) continue;
+        // B's door onto a plain wall of A (A's survey missed the door).
+        for (int j = 0; j < static_cast<int>(gb.doors.size()); ++j) {
+          if (s.used[b][j]) continue;
+          const Hole& db = gb.doors[j];
+          const Face& g = gb.walls[db.wall];
+          const double sc = ProjectOnFace(g, db.c, 0).along;
+          for (int k = 0; k < static_cast<int>(pa.walls.size()); ++k) {
+            const Face& f = pa.walls[k];
+            if (ga.wall_has_opening[k] || f.Length() < db.width + 0.1) continue;
+            for (double uu : Slides(sc, g.Length(), f.Length(), db.width)) {
+              add({.from_state = index, .a_room = a, .a_door = -1, .b_room = b, .b_door = j, .a_wall = k,
+                   .pose = FaceTransform(f, uu, g, sc, o_.wall_thickness_m)},
+                  kDoorIntoWall - kOneSided);
+            }
           }
         }
       }
@@ -418,11 +514,14 @@ class Placer {
     State s = from;
     s.placed[c.b_room] = 1;
     s.pose[c.b_room] = c.pose;
-    s.used[c.a_room][c.a_door] = 1;
-    s.used[c.b_room][c.b_door] = 1;
+    if (c.a_door >= 0) s.used[c.a_room][c.a_door] = 1;
+    if (c.b_door >= 0) s.used[c.b_room][c.b_door] = 1;
     s.link_of[c.b_room] = static_cast<int>(s.links.size());
-    s.links.push_back({.a = {c.a_room, geoms_[c.a_room].doors[c.a_door].opening},
-                       .b = {c.b_room, geoms_[c.b_room].doors[c.b_door].opening},
+    auto opening = [&](int room, int door) { return door >= 0 ? geoms_[room].doors[door].opening : -1; };
+    s.links.push_back({.a = {c.a_room, opening(c.a_room, c.a_door)},
+                       .b = {c.b_room, opening(c.b_room, c.b_door)},
+                       .wall_a = c.a_wall,
+                       .wall_b = c.b_wall,
                        .score = c.score,
                        .by_user = c.by_user});
     s.score += c.score;
@@ -439,6 +538,7 @@ class Placer {
   std::vector<RoomGeom> geoms_;
   std::unordered_map<std::string, RoomGeom> placed_cache_;
   Eigen::Matrix2d axes_ = Eigen::Matrix2d::Identity();
+  bool one_sided_ = false;
 };
 
 const Hole* DoorOf(const RoomGeom& g, int opening) {
@@ -480,11 +580,12 @@ void FindLoops(const std::vector<RoomGeom>& geoms, const State& s, const Placeme
 // Least squares over every link: each room's pose (the seed's fixed) and one
 // partition thickness for the home, held near the option's value by a weak
 // prior so a home without loops keeps it.
-void Refine(const std::vector<RoomGeom>& geoms, int seed, const PlacementOptions& o, State& s, double& thickness) {
+void Refine(const std::vector<RoomGeom>& geoms, const std::vector<char>& held, const PlacementOptions& o, State& s,
+            double& thickness) {
   std::vector<int> var(s.placed.size(), -1);
   int n_var = 0;
   for (std::size_t r = 0; r < s.placed.size(); ++r) {
-    if (s.placed[r] && static_cast<int>(r) != seed) var[r] = n_var++;
+    if (s.placed[r] && !held[r]) var[r] = n_var++;
   }
   const int n_params = 3 * n_var + 1;
   Eigen::VectorXd x(n_params);
@@ -507,10 +608,24 @@ void Refine(const std::vector<RoomGeom>& geoms, int seed, const PlacementOptions
       const Hole* ha = DoorOf(geoms[l.a.room], l.a.opening);
       const Hole* hb = DoorOf(geoms[l.b.room], l.b.opening);
       const Pose ta = pose_of(p, l.a.room), tb = pose_of(p, l.b.room);
-      const Vec2 na = ta.linear() * ha->n, nb = tb.linear() * hb->n;
-      const Vec2 d = tb * hb->c - (ta * ha->c + p(n_params - 1) * na);
-      r.segment<2>(3 * k) = d;
-      r(3 * k + 2) = std::remainder(std::atan2(nb.y(), nb.x()) - std::atan2(-na.y(), -na.x()), 2 * std::numbers::pi);
+      const double thickness = p(n_params - 1);
+      if (ha != nullptr && hb != nullptr) {
+        const Vec2 na = ta.linear() * ha->n, nb = tb.linear() * hb->n;
+        r.segment<2>(3 * k) = tb * hb->c - (ta * ha->c + thickness * na);
+        r(3 * k + 2) = std::remainder(std::atan2(nb.y(), nb.x()) - std::atan2(-na.y(), -na.x()), 2 * std::numbers::pi);
+        continue;
+      }
+      // One-sided: the door's point across the partition on the other
+      // room's face line, the faces anti-parallel; free along the wall.
+      const bool door_in_a = ha != nullptr;
+      const Hole& door = door_in_a ? *ha : *hb;
+      const Pose& td = door_in_a ? ta : tb;
+      const Pose& tw = door_in_a ? tb : ta;
+      const Face& face = geoms[door_in_a ? l.b.room : l.a.room].walls[door_in_a ? l.wall_b : l.wall_a];
+      const Vec2 nd = td.linear() * door.n, nf = tw.linear() * face.n;
+      r(3 * k) = (td * door.c + thickness * nd - tw * face.a).dot(nf);
+      r(3 * k + 1) = 0.0;
+      r(3 * k + 2) = std::remainder(std::atan2(nf.y(), nf.x()) - std::atan2(-nd.y(), -nd.x()), 2 * std::numbers::pi);
     }
     r(r.size() - 1) = 0.2 * (p(n_params - 1) - o.wall_thickness_m);
     return r;
@@ -541,26 +656,41 @@ std::string OpeningName(const std::vector<HomeRoomInput>& rooms, const OpeningRe
 }
 
 HomePlacement Finish(const std::vector<HomeRoomInput>& rooms, const std::vector<RoomGeom>& geoms, int seed,
-                     const PlacementOptions& o, State s) {
+                     const PlacementOptions& o, const PlacementConstraints& c, State s) {
+  std::vector<char> held(rooms.size(), 0);
+  held[seed] = 1;
+  for (const auto& f : c.fixed) held[f.first] = 1;
   HomePlacement h;
   h.score = s.score;
   h.links = s.links;
   FindLoops(geoms, s, o, h.links);
   for (const RoomLink& l : h.links) h.loops += l.loop;
   s.links = h.links;
-  Refine(geoms, seed, o, s, h.wall_thickness_m);
+  Refine(geoms, held, o, s, h.wall_thickness_m);
   h.rooms.resize(rooms.size());
   for (std::size_t r = 0; r < rooms.size(); ++r) {
     RoomPlacement& p = h.rooms[r];
     p.placed = s.placed[r];
     p.floor_from_room = s.pose[r];
     p.link = s.link_of[r];
-    if (static_cast<int>(r) == seed) {
-      p.placed_by = "first room";
+    if (held[r] && static_cast<int>(r) != seed) {
+      p.placed_by = "moved by hand";
+    } else if (static_cast<int>(r) == seed) {
+      p.placed_by = held[r] && std::any_of(c.fixed.begin(), c.fixed.end(), [&](const auto& f) { return f.first == seed; })
+                        ? "moved by hand"
+                        : "first room";
     } else if (p.link >= 0) {
       const RoomLink& l = h.links[p.link];
-      p.placed_by = fmt::format("door {} = {}{}", OpeningName(rooms, l.a), OpeningName(rooms, l.b),
-                                l.by_user ? " (by hand)" : "");
+      if (l.a.opening >= 0 && l.b.opening >= 0) {
+        p.placed_by = fmt::format("door {} = {}{}", OpeningName(rooms, l.a), OpeningName(rooms, l.b),
+                                  l.by_user ? " (by hand)" : "");
+      } else {
+        const bool door_in_a = l.a.opening >= 0;
+        const OpeningRef& door = door_in_a ? l.a : l.b;
+        const int room = door_in_a ? l.b.room : l.a.room, wall = door_in_a ? l.wall_b : l.wall_a;
+        p.placed_by = fmt::format("door {} onto {}'s wall {} (no door found there)", OpeningName(rooms, door),
+                                  rooms[room].name, wall);
+      }
     }
   }
   // Rooms no link reaches: by their hint, in the frame the placed rooms'
@@ -669,6 +799,13 @@ PlacementResult PlaceRooms(const std::vector<HomeRoomInput>& rooms, const Placem
       if (p.room == q.room) throw InvalidArgument("PlaceRooms: two openings of one room cannot be one door");
     }
   }
+  std::vector<char> fixed(rooms.size(), 0);
+  for (const auto& [room, pose] : constraints.fixed) {
+    if (room < 0 || room >= static_cast<int>(rooms.size())) {
+      throw InvalidArgument(fmt::format("PlaceRooms: no room {} to hold", room));
+    }
+    if (fixed[room]++) throw InvalidArgument(fmt::format("PlaceRooms: room {} held twice", room));
+  }
   Placer placer(rooms, options, constraints);
   // The home frame is the first room's (or its hint's) that a door could
   // join to another room.
@@ -679,7 +816,10 @@ PlacementResult PlaceRooms(const std::vector<HomeRoomInput>& rooms, const Placem
       break;
     }
   }
-  const Pose seed_pose = rooms[seed].hint ? PoseTransform(*rooms[seed].hint) : Pose::Identity();
+  Pose seed_pose = rooms[seed].hint ? PoseTransform(*rooms[seed].hint) : Pose::Identity();
+  for (const auto& [room, pose] : constraints.fixed) {
+    if (room == seed) seed_pose = PoseTransform(pose);
+  }
   std::vector<State> done = placer.Search(seed, seed_pose);
   PlacementResult result;
   std::sort(done.begin(), done.end(), [](const State& x, const State& y) { return x.score > y.score; });
@@ -688,7 +828,7 @@ PlacementResult PlaceRooms(const std::vector<HomeRoomInput>& rooms, const Placem
     std::string sig = s.Signature();
     if (std::find(seen.begin(), seen.end(), sig) != seen.end()) continue;
     seen.push_back(std::move(sig));
-    HomePlacement h = Finish(rooms, placer.geoms(), seed, options, s);
+    HomePlacement h = Finish(rooms, placer.geoms(), seed, options, constraints, s);
     if (seen.size() == 1) {
       result.best = std::move(h);
     } else {

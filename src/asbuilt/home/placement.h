@@ -7,8 +7,10 @@
 //
 // A link says door i of room A and door j of room B are one door: B's door
 // then lies on A's, across a partition `wall_thickness_m` thick, its face
-// turned to face A's. Each link fixes B's pose from A's. A beam search
-// grows the home one link at a time from the first room, scoring each room
+// turned to face A's. Each link fixes B's pose from A's. A door one room's
+// survey missed links one-sided, at a cost: the door of the other room onto
+// this room's plain wall, slid to where the walls' ends line up, or centred.
+// A beam search grows the home one link at a time from the first room, scoring each room
 // it adds against every room already placed:
 //   + the partition faces the two rooms share (anti-parallel walls a
 //     plausible thickness apart, metres of overlap),
@@ -49,8 +51,12 @@ struct OpeningRef {
   bool operator==(const OpeningRef& o) const { return room == o.room && opening == o.opening; }
 };
 
+// A door seen from one side only (the other room's survey missed it) links
+// too, at a cost: that side's `opening` is −1 and `wall_a` / `wall_b` names
+// the wall of its room the door opens onto.
 struct RoomLink {
   OpeningRef a, b;  // a's room was placed first.
+  int wall_a = -1, wall_b = -1;
   double score = 0.0;  // What adding b's room by it scored (tree links); 0 for loop links.
   bool loop = false;   // Found consistent after placing, not used to place.
   bool by_user = false;
@@ -60,6 +66,9 @@ struct RoomLink {
 struct PlacementConstraints {
   std::vector<std::pair<OpeningRef, OpeningRef>> same;       // These are one door: used first.
   std::vector<std::pair<OpeningRef, OpeningRef>> different;  // Never linked.
+  // Rooms a person put where they are (home frame): placed there first and
+  // held; the others are placed around them.
+  std::vector<std::pair<int, PlanPose>> fixed;
 };
 
 struct PlacementOptions {
@@ -75,6 +84,8 @@ struct PlacementOptions {
   // already placed (surveyed outlines wander a little).
   double max_overlap = 0.15;
   int beam_width = 32;
+  // Link a door seen from one side only to the other room's plain wall.
+  bool one_sided_links = true;
   int alternatives = 3;  // Further complete placements kept beside the best.
   void Check() const;
 };
@@ -103,7 +114,7 @@ struct PlacementResult {
 };
 
 // Throws InvalidArgument for no rooms or bad constraints (an index out of
-// range, an opening linked to itself).
+// range, an opening linked to itself, a room fixed twice).
 PlacementResult PlaceRooms(const std::vector<HomeRoomInput>& rooms, const PlacementOptions& options = {},
                            const PlacementConstraints& constraints = {});
 

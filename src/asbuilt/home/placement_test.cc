@@ -145,6 +145,15 @@ TEST(PlaceRooms, APersonsLinksWin) {
   const PlacementResult forced = PlaceRooms(s.rooms, {}, yes);
   ASSERT_TRUE(forced.best.rooms[4].placed);
   EXPECT_NE(forced.best.rooms[4].placed_by.find("(by hand)"), std::string::npos);
+  // "The kitchen is here": it stays where it was put, the others around it.
+  const Eigen::Isometry2d kitchen = s.truth[0].inverse() * s.truth[3];
+  PlacementConstraints held;
+  held.fixed.push_back({3, TransformPose(kitchen)});
+  const PlacementResult moved = PlaceRooms(s.rooms, {}, held);
+  EXPECT_TRUE(moved.best.rooms[3].floor_from_room.isApprox(kitchen, 1e-9));
+  EXPECT_EQ(moved.best.rooms[3].placed_by, "moved by hand");
+  EXPECT_EQ(moved.best.Placed(), 5);
+  EXPECT_THROW(PlaceRooms(s.rooms, {}, PlacementConstraints{.fixed = {{3, {}}, {3, {}}}}), InvalidArgument);
   EXPECT_THROW(PlaceRooms(s.rooms, {}, PlacementConstraints{.same = {{{0, 0}, {0, 1}}}}), InvalidArgument);
   EXPECT_THROW(PlaceRooms(s.rooms, {}, PlacementConstraints{.same = {{{0, 9}, {1, 0}}}}), InvalidArgument);
 }
@@ -266,14 +275,15 @@ double ShareWithin(const SyntheticHomeOptions& o, int homes, double* iou_min = n
   return static_cast<double>(within) / rooms;
 }
 
-// Floors under today's figures (0.953 and 0.581 on these 20 homes, docs/home.md),
-// so that a change that places fewer rooms is seen.
+// Floors under today's figures on these 20 homes, the ones the weights were
+// chosen on (0.993 and 0.723; held-out homes: bench_home, docs/home.md), so
+// that a change that places fewer rooms is seen.
 TEST(PlaceRooms, PlacesMostRoomsOfRandomHomes) {
   double worst = 0;
   const double exact = ShareWithin({}, 20, &worst);
-  EXPECT_GE(exact, 0.93);
+  EXPECT_GE(exact, 0.97);
   const double missed = ShareWithin({.missed_door = 0.1}, 20, &worst);
-  EXPECT_GE(missed, 0.55);
+  EXPECT_GE(missed, 0.68);
 }
 
 }  // namespace
