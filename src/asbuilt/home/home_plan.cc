@@ -55,9 +55,10 @@ Box BoxOf(const Plan& plan, const Pose& t) {
   return b;
 }
 
-// Where each room is drawn: its placement, or beside the placed rooms.
-std::vector<Pose> DrawnPoses(const std::vector<HomeRoomInput>& rooms, const HomePlacement& placement,
-                             const HomePlanOptions& o) {
+}  // namespace
+
+std::vector<Pose> DrawnRoomPoses(const std::vector<HomeRoomInput>& rooms, const HomePlacement& placement,
+                                 const HomePlanOptions& o) {
   std::vector<Pose> pose(rooms.size(), Pose::Identity());
   Box placed;
   for (std::size_t r = 0; r < rooms.size(); ++r) {
@@ -80,6 +81,8 @@ std::vector<Pose> DrawnPoses(const std::vector<HomeRoomInput>& rooms, const Home
   }
   return pose;
 }
+
+namespace {
 
 int VerdictRank(const std::string& v) { return v == "unreliable" ? 2 : v == "check" ? 1 : 0; }
 
@@ -168,7 +171,7 @@ void HomePlanOptions::Check() const {
 Plan HomePlan(const std::vector<HomeRoomInput>& rooms, const HomePlacement& placement, const HomePlanOptions& options) {
   options.Check();
   if (placement.rooms.size() != rooms.size()) throw InvalidArgument("HomePlan: one placement per room expected");
-  const std::vector<Pose> pose = DrawnPoses(rooms, placement, options);
+  const std::vector<Pose> pose = DrawnRoomPoses(rooms, placement, options);
   Plan home;
   home.verdict = HomeVerdict(rooms, placement);
   std::vector<int> room_of_wall, room_entry(rooms.size(), -1);

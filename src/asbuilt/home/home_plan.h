@@ -36,6 +36,11 @@ struct HomePlanOptions {
 Plan HomePlan(const std::vector<HomeRoomInput>& rooms, const HomePlacement& placement,
               const HomePlanOptions& options = {});
 
+// Where HomePlan draws each room (floor_from_room): its placement, or beside
+// the placed rooms when it has none.
+std::vector<Eigen::Isometry2d> DrawnRoomPoses(const std::vector<HomeRoomInput>& rooms, const HomePlacement& placement,
+                                              const HomePlanOptions& options = {});
+
 struct HomeScoreOptions {
   double position_tolerance_m = 0.10;
   double yaw_tolerance_deg = 1.0;

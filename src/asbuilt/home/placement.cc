@@ -31,6 +31,7 @@ constexpr double kUserLink = 1000.0;     // A link the person asked for comes fi
 constexpr double kEmptyPerM2 = 0.05;     // Floor of the home's bounding box no room covers.
 constexpr double kContinues = 1.0;       // A wall continues another room's across a partition.
 constexpr double kOneSided = 4.0;        // A door seen from one side only.
+constexpr int kPlainWalls = 6;           // Plain walls per room a one-sided link may open onto.
 const double kAntiParallel = std::cos(10.0 * std::numbers::pi / 180.0);
 const double kFacesAntiParallel = std::cos(3.0 * std::numbers::pi / 180.0);
 
@@ -53,6 +54,7 @@ struct RoomGeom {
   std::vector<Face> walls;
   std::vector<Hole> doors, windows;
   std::vector<char> wall_has_opening;  // Per wall: a door or window was found on it.
+  std::vector<int> plain_walls;        // Walls with no opening found, longest first, at most kPlainWalls.
   Vec2 lo = Vec2::Constant(1e300), hi = Vec2::Constant(-1e300);  // Bounding box of walls and outline.
 };
 
@@ -101,6 +103,12 @@ RoomGeom GeomOf(const Plan& plan) {
   for (const auto* holes : {&g.doors, &g.windows}) {
     for (const Hole& h : *holes) g.wall_has_opening[h.wall] = 1;
   }
+  for (int k = 0; k < static_cast<int>(g.walls.size()); ++k) {
+    if (!g.wall_has_opening[k]) g.plain_walls.push_back(k);
+  }
+  std::stable_sort(g.plain_walls.begin(), g.plain_walls.end(),
+                   [&](int x, int y) { return g.walls[x].Length() > g.walls[y].Length(); });
+  if (static_cast<int>(g.plain_walls.size()) > kPlainWalls) g.plain_walls.resize(kPlainWalls);
   return g;
 }
 
@@ -127,6 +135,7 @@ RoomGeom Transformed(const RoomGeom& g, const Pose& t) {
     }
   }
   out.wall_has_opening = g.wall_has_opening;
+  out.plain_walls = g.plain_walls;
   auto move = [&](const std::vector<Hole>& in, std::vector<Hole>& to) {
     for (Hole h : in) {
       h.c = t * h.c;
@@ -333,12 +342,18 @@ class Placer {
   // room one-sided links could place wrongly never displaces a door link.
   std::vector<State> Search(int seed, const Pose& seed_pose) {
     one_sided_ = false;
+    width_ = o_.beam_width;
     std::vector<State> doors = Beam({Start(seed, seed_pose)});
     if (!o_.one_sided_links) return doors;
     one_sided_ = true;
     std::sort(doors.begin(), doors.end(), [](const State& x, const State& y) { return x.score > y.score; });
-    if (static_cast<int>(doors.size()) > o_.beam_width) doors.resize(o_.beam_width);
-    return Beam(doors);
+    // The door links decided the home; one-sided links fill it in from its
+    // best few placements, with a narrower beam (they are many more).
+    width_ = std::max(1, o_.beam_width / 4);
+    if (static_cast<int>(doors.size()) > width_) doors.resize(width_);
+    std::vector<State> filled = Beam(doors);
+    width_ = o_.beam_width;
+    return filled;
   }
 
   State Start(int seed, const Pose& seed_pose) {
@@ -379,7 +394,7 @@ class Placer {
         std::vector<Candidate> mine = Expand(beam[s], static_cast<int>(s));
         if (mine.empty()) done.push_back(beam[s]);
         std::sort(mine.begin(), mine.end(), [](const Candidate& x, const Candidate& y) { return x.score > y.score; });
-        if (static_cast<int>(mine.size()) > o_.beam_width) mine.resize(o_.beam_width);
+        if (static_cast<int>(mine.size()) > width_) mine.resize(width_);
         all.insert(all.end(), mine.begin(), mine.end());
       }
       std::sort(all.begin(), all.end(), [&](const Candidate& x, const Candidate& y) {
@@ -388,7 +403,7 @@ class Placer {
       std::vector<State> next;
       std::vector<std::string> seen;
       for (const Candidate& cand : all) {
-        if (static_cast<int>(next.size()) >= o_.beam_width) break;
+        if (static_cast<int>(next.size()) >= width_) break;
         State s = Apply(beam[cand.from_state], cand);
         std::string sig = s.Signature();
         if (std::find(seen.begin(), seen.end(), sig) != seen.end()) continue;
@@ -466,9 +481,9 @@ class Placer {
           const Hole& placed_door = pa.doors[i];
           const Face& f = pa.walls[placed_door.wall];
           const double u = ProjectOnFace(f, placed_door.c, 0).along;
-          for (int k = 0; k < static_cast<int>(gb.walls.size()); ++k) {
+          for (int k : gb.plain_walls) {
             const Face& g = gb.walls[k];
-            if (gb.wall_has_opening[k] || g.Length() < da.width + 0.1) continue;
+            if (g.Length() < da.width + 0.1) continue;
             for (double sl : Slides(u, f.Length(), g.Length(), da.width)) {
               add({.from_state = index, .a_room = a, .a_door = i, .b_room = b, .b_door = -1, .b_wall = k,
                    .pose = FaceTransform(f, u, g, sl, o_.wall_thickness_m)},
@@ -483,9 +498,9 @@ class Placer {
           const Hole& db = gb.doors[j];
           const Face& g = gb.walls[db.wall];
           const double sc = ProjectOnFace(g, db.c, 0).along;
-          for (int k = 0; k < static_cast<int>(pa.walls.size()); ++k) {
+          for (int k : ga.plain_walls) {
             const Face& f = pa.walls[k];
-            if (ga.wall_has_opening[k] || f.Length() < db.width + 0.1) continue;
+            if (f.Length() < db.width + 0.1) continue;
             for (double uu : Slides(sc, g.Length(), f.Length(), db.width)) {
               add({.from_state = index, .a_room = a, .a_door = -1, .b_room = b, .b_door = j, .a_wall = k,
                    .pose = FaceTransform(f, uu, g, sc, o_.wall_thickness_m)},
@@ -539,6 +554,7 @@ class Placer {
   std::unordered_map<std::string, RoomGeom> placed_cache_;
   Eigen::Matrix2d axes_ = Eigen::Matrix2d::Identity();
   bool one_sided_ = false;
+  int width_ = 0;  // The beam's width now.
 };
 
 const Hole* DoorOf(const RoomGeom& g, int opening) {

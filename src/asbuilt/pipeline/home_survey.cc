@@ -15,6 +15,7 @@
 #include "asbuilt/plan/drawing.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
+#include "asbuilt/util/json_reader.h"
 
 namespace asbuilt {
 namespace fs = std::filesystem;
@@ -198,10 +199,59 @@ HomeSurveyResult RunHomeSurvey(const fs::path& home_json, const fs::path& out_di
   r.placement = PlaceRooms(r.inputs, options.placement);
   r.plan = HomePlan(r.inputs, r.placement.best, options.plan);
   WritePlanFiles(r.plan, out_dir);
+  WriteHomeReviewInput(out_dir, r.inputs);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   WriteFileAtomic(out_dir / "summary.json", HomeSummaryJson(r).dump(2) + "\n");
   if (options.survey.write_report) WriteFileAtomic(out_dir / "report.html", HomeReportHtml(r));
   return r;
+}
+
+fs::path HomeReviewInputPath(const fs::path& out_dir) { return out_dir / "review" / "home.json"; }
+
+void WriteHomeReviewInput(const fs::path& out_dir, const std::vector<HomeRoomInput>& rooms) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const HomeRoomInput& r : rooms) {
+    nlohmann::json j = {{"name", r.name}, {"plan", PlanToJson(r.plan)}};
+    if (r.hint) j["hint"] = {{"position_m", {r.hint->position_m.x(), r.hint->position_m.y()}}, {"yaw_deg", r.hint->yaw_deg}};
+    list.push_back(std::move(j));
+  }
+  fs::create_directories(out_dir / "review");
+  WriteFileAtomic(HomeReviewInputPath(out_dir),
+                  nlohmann::json{{"version", 1}, {"kind", "home"}, {"rooms", std::move(list)}}.dump(1) + "\n");
+}
+
+std::vector<HomeRoomInput> ReadHomeReviewInput(const fs::path& out_dir) {
+  const fs::path path = HomeReviewInputPath(out_dir);
+  JsonDiagnostics diag(path.string());
+  const nlohmann::json root = ParseJsonFile(path, diag);
+  std::vector<HomeRoomInput> rooms;
+  JsonField doc(root, diag);
+  if (diag.ok() && doc.Object({"version", "kind", "rooms"})) {
+    if (auto k = doc.Required("kind").String(); k && *k != "home") doc.Required("kind").AddError("expected \"home\"");
+    JsonField list = doc.Required("rooms");
+    for (std::size_t i = 0, n = list.ArraySize(1).value_or(0); i < n; ++i) {
+      JsonField r = list.At(i);
+      if (!r.Object({"name", "plan", "hint"})) continue;
+      HomeRoomInput room;
+      room.name = r.Required("name").String().value_or("");
+      if (const nlohmann::json* plan = r.Required("plan").raw()) {
+        try {
+          room.plan = PlanFromJson(*plan, fmt::format("{} rooms[{}].plan", path.string(), i));
+        } catch (const InputError& e) {
+          r.Required("plan").AddError(e.what());
+        }
+      }
+      if (JsonField h = r.Optional("hint"); h.present() && h.Object({"position_m", "yaw_deg"})) {
+        PlanPose hint;
+        if (auto p = h.Required("position_m").NumberArray(2)) hint.position_m = Vec2((*p)[0], (*p)[1]);
+        hint.yaw_deg = h.Required("yaw_deg").Number().value_or(0.0);
+        room.hint = hint;
+      }
+      rooms.push_back(std::move(room));
+    }
+  }
+  diag.ThrowIfErrors();
+  return rooms;
 }
 
 }  // namespace asbuilt

@@ -56,6 +56,13 @@ HomeSurveyResult RunHomeSurvey(const std::filesystem::path& home_json, const std
                                const HomeSurveyOptions& options = {},
                                const std::function<void(const std::string&)>& on_room = {});
 
+// What `asbuilt review OUT/` re-places a home from: OUT/review/home.json,
+// each surveyed room's name, plan (its own frame) and hint. Read throws
+// InputError naming the file when OUT holds no home survey.
+void WriteHomeReviewInput(const std::filesystem::path& out_dir, const std::vector<HomeRoomInput>& rooms);
+std::vector<HomeRoomInput> ReadHomeReviewInput(const std::filesystem::path& out_dir);
+std::filesystem::path HomeReviewInputPath(const std::filesystem::path& out_dir);  // OUT/review/home.json
+
 }  // namespace asbuilt
 
 #endif  // ASBUILT_PIPELINE_HOME_SURVEY_H_

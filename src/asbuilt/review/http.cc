@@ -16,8 +16,6 @@
 
 namespace asbuilt {
 
-// The page (review/page.html), compiled in by CMake (review/embed_page.cmake).
-extern const char kReviewPageHtml[];
 
 namespace {
 
@@ -60,7 +58,7 @@ std::string NewReviewToken() {
   return token;
 }
 
-HttpResponse HandleReviewRequest(ReviewSession& session, const std::string& token, int port, const HttpRequest& request,
+HttpResponse HandleReviewRequest(ReviewBackend& session, const std::string& token, int port, const HttpRequest& request,
                                  std::size_t max_body_bytes) {
   try {
     // Host: only this server's own names (DNS rebinding).
@@ -96,7 +94,7 @@ HttpResponse HandleReviewRequest(ReviewSession& session, const std::string& toke
     }
     const std::string& path = request.path;
     if (request.method == "GET" && (path == "/" || path == "/index.html")) {
-      return {.content_type = "text/html; charset=utf-8", .body = kReviewPageHtml};
+      return {.content_type = "text/html; charset=utf-8", .body = session.PageHtml()};
     }
     if (request.method == "GET" && path == "/api/state") return {.body = session.State().dump()};
     if (request.method == "GET" && path.rfind("/api/image/", 0) == 0) {
@@ -112,7 +110,7 @@ HttpResponse HandleReviewRequest(ReviewSession& session, const std::string& toke
     if (path == "/api/edit" || path == "/api/save") {
       if (request.method != "POST") return JsonError(405, fmt::format("{} takes POST", path));
       if (path == "/api/save") {
-        return {.body = nlohmann::json({{"files", session.Save()}}).dump()};
+        return {.body = nlohmann::json({{"files", session.SaveAll()}}).dump()};
       }
       nlohmann::json edit = nlohmann::json::parse(request.body, nullptr, /*allow_exceptions=*/false);
       if (edit.is_discarded()) return JsonError(400, "the body is not JSON");
@@ -137,7 +135,7 @@ std::atomic<bool> g_stop{false};
 void OnSignal(int) { g_stop = true; }
 }  // namespace
 
-void RunReviewServer(ReviewSession& session, const ReviewServerOptions& options,
+void RunReviewServer(ReviewBackend& session, const ReviewServerOptions& options,
                      const std::function<void(const std::string& url)>& on_listening,
                      const std::function<bool()>& stop) {
   options.Check();

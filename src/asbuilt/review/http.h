@@ -2,7 +2,7 @@
 #define ASBUILT_REVIEW_HTTP_H_
 
 // The review's HTTP layer (docs/review.md): HandleReviewRequest maps one
-// request onto a ReviewSession with every check of the issue — the token
+// request onto a ReviewBackend (one room or a home) with every check of the issue — the token
 // (`Authorization: Bearer TOKEN` or `?token=TOKEN`), the Host header
 // (127.0.0.1:PORT or localhost:PORT), for POST a same-origin Origin (when
 // sent) and a JSON content type, a 1 MiB body cap — and never throws; it is
@@ -20,7 +20,7 @@
 #include <map>
 #include <string>
 
-#include "asbuilt/review/review_session.h"
+#include "asbuilt/review/review_backend.h"
 
 namespace asbuilt {
 
@@ -50,14 +50,14 @@ std::string NewReviewToken();
 
 // Answers one request; `port` is the one the server listens on (for the
 // Host and Origin checks). Never throws.
-HttpResponse HandleReviewRequest(ReviewSession& session, const std::string& token, int port, const HttpRequest& request,
+HttpResponse HandleReviewRequest(ReviewBackend& session, const std::string& token, int port, const HttpRequest& request,
                                  std::size_t max_body_bytes = 1u << 20);
 
 // Serves the session on 127.0.0.1 until SIGINT/SIGTERM (or `stop` returns
 // true, polled every 100 ms). `on_listening(url)` is called once the port is
 // bound, with "http://127.0.0.1:PORT/?token=TOKEN". Throws Error when the
 // port cannot be bound.
-void RunReviewServer(ReviewSession& session, const ReviewServerOptions& options,
+void RunReviewServer(ReviewBackend& session, const ReviewServerOptions& options,
                      const std::function<void(const std::string& url)>& on_listening,
                      const std::function<bool()>& stop = {});
 

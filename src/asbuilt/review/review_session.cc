@@ -652,6 +652,10 @@ ReviewSession& ReviewSession::operator=(ReviewSession&&) noexcept = default;
 
 const fs::path& ReviewSession::out_dir() const { return impl_->out_dir; }
 double ReviewSession::last_fit_seconds() const { return impl_->fit_seconds; }
+// The page (review/page.html), compiled in by CMake (review/embed_page.cmake).
+extern const char kReviewPageHtml[];
+const char* ReviewSession::PageHtml() const { return kReviewPageHtml; }
+
 std::vector<fs::path> ReviewSession::ImagePaths() const {
   std::vector<fs::path> out;
   for (const ReviewImage& im : impl_->input.images) out.push_back(im.image);

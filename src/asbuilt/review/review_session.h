@@ -21,17 +21,11 @@
 #include <string>
 #include <vector>
 
+#include "asbuilt/review/review_backend.h"
 #include "asbuilt/review/training_example.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
-
-// A bad edit (unknown op or id, missing or non-finite number, a point
-// outside the image, a room that would cross itself): HTTP 400.
-class EditError : public InvalidArgument {
- public:
-  using InvalidArgument::InvalidArgument;
-};
 
 struct ReviewSaveOptions {
   // Test hook: stop (throw Error) after this many output files have been
@@ -42,23 +36,23 @@ struct ReviewSaveOptions {
   bool stop_before_commit = false;
 };
 
-class ReviewSession {
+class ReviewSession : public ReviewBackend {
  public:
   // Reads OUT (ReadReviewInput: throws InputError when OUT is not a survey
   // output), finishes an interrupted save, fits the plan, and starts from
   // OUT/review/state.json when a review was saved there.
   static ReviewSession Open(const std::filesystem::path& out_dir);
-  ~ReviewSession();
+  ~ReviewSession() override;
   ReviewSession(ReviewSession&&) noexcept;
   ReviewSession& operator=(ReviewSession&&) noexcept;
 
   // {"plan", "corners", "openings", "ceiling_height_m", "edits", "kind",
   // "images", "walls", "notes", "refit_ms"} (docs/review.md).
-  nlohmann::json State() const;
+  nlohmann::json State() const override;
 
   // Applies one edit ({"op": …}) and re-fits; returns State(). Throws
   // EditError (state unchanged).
-  nlohmann::json Edit(const nlohmann::json& edit);
+  nlohmann::json Edit(const nlohmann::json& edit) override;
 
   // Writes OUT's plan outputs from the current plan, report.html,
   // OUT/review/corrections.json and OUT/review/state.json — as one
@@ -66,6 +60,7 @@ class ReviewSession {
   // file, then moved into place; an interrupted move is finished by the next
   // Open). Returns the files written, relative to OUT.
   std::vector<std::string> Save(const ReviewSaveOptions& options = {});
+  std::vector<std::string> SaveAll() override { return Save(); }
   // Writes the saved review as a labelled real example into
   // OUT/review/training/ (review/training_example.h; Save writes it too).
   // Throws InputError when OUT holds no saved review.
@@ -73,7 +68,8 @@ class ReviewSession {
 
   const std::filesystem::path& out_dir() const;
   // The image files the page shows, in State()'s "images" order.
-  std::vector<std::filesystem::path> ImagePaths() const;
+  std::vector<std::filesystem::path> ImagePaths() const override;
+  const char* PageHtml() const override;
   // Seconds the last fit took.
   double last_fit_seconds() const;
 
