@@ -432,9 +432,11 @@ class Placer {
     return false;
   }
 
+  // A room's geometry at a pose, computed once per room and pose (to 0.1 mm
+  // and 1e-6 rad).
   const RoomGeom& PlacedGeom(int room, const Pose& pose) {
-    const std::string key = fmt::format("{}:{:.4f},{:.4f},{:.5f}", room, pose.translation().x(),
-                                        pose.translation().y(), YawOf(pose));
+    const PoseKey key{room, std::llround(pose.translation().x() * 1e4), std::llround(pose.translation().y() * 1e4),
+                      std::llround(YawOf(pose) * 1e6)};
     auto it = placed_cache_.find(key);
     if (it == placed_cache_.end()) it = placed_cache_.emplace(key, Transformed(geoms_[room], pose)).first;
     return it->second;
@@ -443,6 +445,10 @@ class Placer {
   std::vector<Candidate> Expand(const State& s, int index) {
     std::vector<Candidate> out;
     const int n = static_cast<int>(rooms_.size());
+    placed_now_.assign(n, nullptr);
+    for (int r = 0; r < n; ++r) {
+      if (s.placed[r]) placed_now_[r] = &PlacedGeom(r, s.pose[r]);
+    }
     // A candidate's score: its terms against the placed rooms, the room, the
     // home's box; nullopt when refused.
     auto add = [&](Candidate c, double link_terms) {
@@ -459,7 +465,7 @@ class Placer {
     for (int a = 0; a < n; ++a) {
       if (!s.placed[a]) continue;
       const RoomGeom& ga = geoms_[a];
-      const RoomGeom& pa = PlacedGeom(a, s.pose[a]);
+      const RoomGeom& pa = *placed_now_[a];
       for (int b = 0; b < n; ++b) {
         if (s.placed[b]) continue;
         const RoomGeom& gb = geoms_[b];
@@ -518,7 +524,7 @@ class Placer {
     double score = 0.0;
     for (std::size_t c = 0; c < rooms_.size(); ++c) {
       if (!s.placed[c]) continue;
-      const std::optional<double> term = PairScore(g, PlacedGeom(static_cast<int>(c), s.pose[c]), o_);
+      const std::optional<double> term = PairScore(g, *placed_now_[c], o_);
       if (!term) return std::nullopt;
       score += *term;
     }
@@ -551,7 +557,20 @@ class Placer {
   const PlacementOptions& o_;
   const PlacementConstraints& c_;
   std::vector<RoomGeom> geoms_;
-  std::unordered_map<std::string, RoomGeom> placed_cache_;
+  struct PoseKey {
+    int room;
+    long long x, y, yaw;
+    bool operator==(const PoseKey&) const = default;
+  };
+  struct PoseKeyHash {
+    std::size_t operator()(const PoseKey& k) const {
+      std::size_t h = std::hash<long long>()(k.x);
+      for (long long v : {k.y, k.yaw, static_cast<long long>(k.room)}) h = h * 1000003u ^ std::hash<long long>()(v);
+      return h;
+    }
+  };
+  std::unordered_map<PoseKey, RoomGeom, PoseKeyHash> placed_cache_;
+  std::vector<const RoomGeom*> placed_now_;  // The expanded state's placed rooms (nullptr: not placed).
   Eigen::Matrix2d axes_ = Eigen::Matrix2d::Identity();
   bool one_sided_ = false;
   int width_ = 0;  // The beam's width now.
@@ -596,8 +615,9 @@ void FindLoops(const std::vector<RoomGeom>& geoms, const State& s, const Placeme
 // Least squares over every link: each room's pose (the seed's fixed) and one
 // partition thickness for the home, held near the option's value by a weak
 // prior so a home without loops keeps it.
-void Refine(const std::vector<RoomGeom>& geoms, const std::vector<char>& held, const PlacementOptions& o, State& s,
-            double& thickness) {
+// Returns each link's distance left (metres).
+std::vector<double> Refine(const std::vector<RoomGeom>& geoms, const std::vector<char>& held,
+                           const PlacementOptions& o, State& s, double& thickness) {
   std::vector<int> var(s.placed.size(), -1);
   int n_var = 0;
   for (std::size_t r = 0; r < s.placed.size(); ++r) {
@@ -661,10 +681,14 @@ void Refine(const std::vector<RoomGeom>& geoms, const std::vector<char>& held, c
     if (step.norm() < 1e-9) break;
   }
   x(n_params - 1) = std::clamp(x(n_params - 1), 0.0, o.max_wall_thickness_m);
+  const Eigen::VectorXd left = residuals(x);
+  std::vector<double> per_link;
+  for (std::size_t k = 0; k < s.links.size(); ++k) per_link.push_back(left.segment<2>(3 * k).norm());
   for (std::size_t r = 0; r < s.placed.size(); ++r) {
     if (var[r] >= 0) s.pose[r] = pose_of(x, static_cast<int>(r));
   }
   thickness = x(n_params - 1);
+  return per_link;
 }
 
 std::string OpeningName(const std::vector<HomeRoomInput>& rooms, const OpeningRef& r) {
@@ -680,9 +704,23 @@ HomePlacement Finish(const std::vector<HomeRoomInput>& rooms, const std::vector<
   h.score = s.score;
   h.links = s.links;
   FindLoops(geoms, s, o, h.links);
+  // Refined over every link; a loop that cannot close within 5 cm was two
+  // doors that only looked like one: dropped, worst first, and refined again.
+  for (;;) {
+    State trial = s;
+    trial.links = h.links;
+    const std::vector<double> left = Refine(geoms, held, o, trial, h.wall_thickness_m);
+    int worst = -1;
+    for (std::size_t k = 0; k < left.size(); ++k) {
+      if (h.links[k].loop && left[k] > 0.05 && (worst < 0 || left[k] > left[worst])) worst = static_cast<int>(k);
+    }
+    if (worst < 0) {
+      s = std::move(trial);
+      break;
+    }
+    h.links.erase(h.links.begin() + worst);
+  }
   for (const RoomLink& l : h.links) h.loops += l.loop;
-  s.links = h.links;
-  Refine(geoms, held, o, s, h.wall_thickness_m);
   h.rooms.resize(rooms.size());
   for (std::size_t r = 0; r < rooms.size(); ++r) {
     RoomPlacement& p = h.rooms[r];
@@ -837,6 +875,28 @@ PlacementResult PlaceRooms(const std::vector<HomeRoomInput>& rooms, const Placem
     if (room == seed) seed_pose = PoseTransform(pose);
   }
   std::vector<State> done = placer.Search(seed, seed_pose);
+  // The home grown from other rooms too (the two with the most doors): an
+  // early wrong link from one side is often plain from another. Their
+  // placements are put in the first room's frame and compete by score.
+  if (constraints.fixed.empty()) {
+    std::vector<int> order;
+    for (int r = 0; r < static_cast<int>(rooms.size()); ++r) {
+      if (r != seed && placer.geoms()[r].doors.size() >= 2) order.push_back(r);
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return placer.geoms()[a].doors.size() > placer.geoms()[b].doors.size(); });
+    if (order.size() > 2) order.resize(2);
+    for (int other : order) {
+      for (State s : placer.Search(other, Pose::Identity())) {
+        if (!s.placed[seed]) continue;
+        const Pose to_home = seed_pose * s.pose[seed].inverse();
+        for (std::size_t r = 0; r < s.pose.size(); ++r) {
+          if (s.placed[r]) s.pose[r] = to_home * s.pose[r];
+        }
+        done.push_back(std::move(s));
+      }
+    }
+  }
   PlacementResult result;
   std::sort(done.begin(), done.end(), [](const State& x, const State& y) { return x.score > y.score; });
   std::vector<std::string> seen;

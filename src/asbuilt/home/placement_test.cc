@@ -276,14 +276,14 @@ double ShareWithin(const SyntheticHomeOptions& o, int homes, double* iou_min = n
 }
 
 // Floors under today's figures on these 20 homes, the ones the weights were
-// chosen on (0.993 and 0.723; held-out homes: bench_home, docs/home.md), so
+// chosen on (1.000 and 0.795; held-out homes: bench_home, docs/home.md), so
 // that a change that places fewer rooms is seen.
 TEST(PlaceRooms, PlacesMostRoomsOfRandomHomes) {
   double worst = 0;
   const double exact = ShareWithin({}, 20, &worst);
   EXPECT_GE(exact, 0.97);
   const double missed = ShareWithin({.missed_door = 0.1}, 20, &worst);
-  EXPECT_GE(missed, 0.68);
+  EXPECT_GE(missed, 0.75);
 }
 
 }  // namespace
