@@ -10,6 +10,7 @@
 #include "asbuilt/cli/command.h"
 #include "asbuilt/cli/field_flags.h"
 #include "asbuilt/render/capture_render.h"
+#include "asbuilt/render/home_render.h"
 #include "asbuilt/scene/scene_json.h"
 #include "asbuilt/util/progress.h"
 
@@ -19,7 +20,10 @@ int RunRenderCommand(int argc, char** argv) {
   CLI::App app(
       "Render a scene's stereo views into a capture: left/ right/ labels/ idmap/ depth/ (NNN.png),\n"
       "capture.json and truth.json. Views come from the scene (viewpoints, turn) unless --views or\n"
-      "--step-deg asks for a turn-in-place. Finished views are skipped when re-run.",
+      "--step-deg asks for a turn-in-place. Finished views are skipped when re-run.\n"
+      "--home: a scene of several rooms (asbuilt scene home) as a surveyor captures a home: a turn in\n"
+      "place in each room (--views, default 12), each room's capture in a frame of its own, and\n"
+      "OUT/home.json for `asbuilt survey` (docs/home.md).",
       "asbuilt render");
   AddCommonFlags(app);
   std::string scene_path, out_dir, size;
@@ -28,6 +32,8 @@ int RunRenderCommand(int argc, char** argv) {
   app.add_option("-o,--out", out_dir, "output folder")->required();
   app.add_option("--size", size, "image size WxH, short for --width-px W --height-px H");
   app.add_flag("--no-resume", no_resume, "re-render views that already exist");
+  bool home = false;
+  app.add_flag("--home", home, "one capture per room, each in its own frame, and OUT/home.json");
   CaptureRenderOptions options;
   FieldFlags flags(app, CaptureRenderOptionFields().Fields(options),  // = MCP render_capture.
                    {{"samples_per_pixel", "--spp"}, {"camera_effects", "--effects"},
@@ -46,6 +52,15 @@ int RunRenderCommand(int argc, char** argv) {
 
   Scene scene = ReadScene(scene_path);
   ProgressPrinter printer;
+  if (home) {
+    HomeRenderOptions home_options;
+    home_options.capture = options;
+    if (home_options.capture.views == 0) home_options.capture.views = 12;
+    const HomeRenderSummary summary = RenderHome(scene, out_dir, home_options, printer.Callback());
+    printer.Finish();
+    fmt::print("{} rooms rendered in {:.0f} s → {}\n", summary.rooms.size(), summary.seconds, summary.home_json.string());
+    return 0;
+  }
   CaptureRenderSummary summary = RenderCapture(scene, out_dir, options, printer.Callback());
   printer.Finish();
   fmt::print("{}\n", summary.BriefReport());

@@ -14,6 +14,7 @@
 #include "asbuilt/scene/blender_export.h"
 #include "asbuilt/scene/llm.h"
 #include "asbuilt/scene/procedural.h"
+#include "asbuilt/scene/procedural_home.h"
 #include "asbuilt/scene/scene_json.h"
 #include "asbuilt/scene/scene_text.h"
 #include "asbuilt/util/file.h"
@@ -66,6 +67,15 @@ int RunSceneCommand(int argc, char** argv) {
   FieldFlags random_flags(*random_cmd, std::move(random_fields),
                           {{"min_side_m", "--min-side"}, {"max_side_m", "--max-side"}, {"turn_step_deg", "--step"}});
 
+  // home
+  CLI::App* home_cmd = app.add_subcommand("home", "a procedural home of several rooms joined by doors → scene.json");
+  std::uint64_t home_seed = 1;
+  int home_rooms = 0;
+  std::string home_out;
+  home_cmd->add_option("-o,--output", home_out, "scene file to write")->required();
+  home_cmd->add_option("--seed", home_seed, "random seed")->capture_default_str();
+  home_cmd->add_option("--rooms", home_rooms, "number of rooms (0: 5 to 10)")->check(CLI::Range(0, 100));
+
   // truth / describe / export-blender / schema
   CLI::App* truth_cmd = app.add_subcommand("truth", "scene.json → truth.json (exact floor plan)");
   std::string scene_path, truth_out;
@@ -113,6 +123,16 @@ int RunSceneCommand(int argc, char** argv) {
                           StderrIsTerminal() ? printer.Callback() : ProgressCallback{});
     printer.Finish();
     fmt::print("{}\n", summary.BriefReport());
+    return 0;
+  }
+  if (home_cmd->parsed()) {
+    HomeLayoutOptions layout;
+    if (home_rooms > 0) layout.min_rooms = layout.max_rooms = home_rooms;
+    SceneRng rng(home_seed);
+    const Scene scene = HomeScene(MakeHomeLayout(rng, layout), home_seed);
+    WriteScene(scene, home_out);
+    fmt::print("{} rooms → {} (render it with `asbuilt render {} -o DIR --home`)\n", scene.rooms.size(), home_out,
+               home_out);
     return 0;
   }
   if (truth_cmd->parsed()) {

@@ -32,6 +32,8 @@ constexpr double kEmptyPerM2 = 0.05;     // Floor of the home's bounding box no 
 constexpr double kContinues = 1.0;       // A wall continues another room's across a partition.
 constexpr double kOneSided = 4.0;        // A door seen from one side only.
 constexpr int kPlainWalls = 6;           // Plain walls per room a one-sided link may open onto.
+constexpr double kThicknessPrior = 0.5;  // Weight of the partition's prior against one link's metre.
+constexpr double kThinnestWall = 0.05;   // A partition thinner is none.
 const double kAntiParallel = std::cos(10.0 * std::numbers::pi / 180.0);
 const double kFacesAntiParallel = std::cos(3.0 * std::numbers::pi / 180.0);
 
@@ -615,9 +617,47 @@ void FindLoops(const std::vector<RoomGeom>& geoms, const State& s, const Placeme
 // Least squares over every link: each room's pose (the seed's fixed) and one
 // partition thickness for the home, held near the option's value by a weak
 // prior so a home without loops keeps it.
-// Returns each link's distance left (metres).
+// Two walls of two placed rooms the refinement keeps together: the two
+// faces of one partition (`facing`: `thickness` apart) or one wall of the
+// home running past a partition (on one line). They measure the partition
+// where the doors alone cannot (a home without loops).
+struct FaceTie {
+  int a, wall_a, b, wall_b;
+  bool facing;
+};
+
+std::vector<FaceTie> FindFaceTies(const std::vector<RoomGeom>& geoms, const State& s, const PlacementOptions& o) {
+  std::vector<FaceTie> ties;
+  const int n = static_cast<int>(geoms.size());
+  for (int a = 0; a < n; ++a) {
+    for (int b = a + 1; b < n; ++b) {
+      if (!s.placed[a] || !s.placed[b]) continue;
+      const RoomGeom ga = Transformed(geoms[a], s.pose[a]), gb = Transformed(geoms[b], s.pose[b]);
+      if (!BoxesNear(ga, gb, o.max_wall_thickness_m + 0.05)) continue;
+      for (int i = 0; i < static_cast<int>(ga.walls.size()); ++i) {
+        for (int j = 0; j < static_cast<int>(gb.walls.size()); ++j) {
+          const Face &f = ga.walls[i], &g = gb.walls[j];
+          const double da = (g.a - f.a).dot(f.n), db = (g.b - f.a).dot(f.n);
+          const double s0 = ProjectOnFace(f, g.a, 0).along, s1 = ProjectOnFace(f, g.b, 0).along;
+          if (f.n.dot(g.n) < -kFacesAntiParallel) {
+            const double overlap = std::min(f.Length(), std::max(s0, s1)) - std::max(0.0, std::min(s0, s1));
+            if (std::min(da, db) >= -0.03 && std::max(da, db) <= o.max_wall_thickness_m && overlap > 0.3) {
+              ties.push_back({a, i, b, j, true});
+            }
+          } else if (f.n.dot(g.n) > kFacesAntiParallel && std::abs(da) < 0.05 && std::abs(db) < 0.05) {
+            const double gap = std::max(std::min(s0, s1) - f.Length(), -std::max(s0, s1));
+            if (gap >= -0.05 && gap <= o.max_wall_thickness_m) ties.push_back({a, i, b, j, false});
+          }
+        }
+      }
+    }
+  }
+  return ties;
+}
+
+// Returns each link's and then each tie's distance left (metres).
 std::vector<double> Refine(const std::vector<RoomGeom>& geoms, const std::vector<char>& held,
-                           const PlacementOptions& o, State& s, double& thickness) {
+                           const PlacementOptions& o, const std::vector<FaceTie>& ties, State& s, double& thickness) {
   std::vector<int> var(s.placed.size(), -1);
   int n_var = 0;
   for (std::size_t r = 0; r < s.placed.size(); ++r) {
@@ -638,7 +678,14 @@ std::vector<double> Refine(const std::vector<RoomGeom>& geoms, const std::vector
     return t;
   };
   auto residuals = [&](const Eigen::VectorXd& p) {
-    Eigen::VectorXd r(3 * s.links.size() + 1);
+    Eigen::VectorXd r(3 * s.links.size() + ties.size() + 1);
+    for (std::size_t k = 0; k < ties.size(); ++k) {
+      const FaceTie& tie = ties[k];
+      const Pose ta = pose_of(p, tie.a), tb = pose_of(p, tie.b);
+      const Face &f = geoms[tie.a].walls[tie.wall_a], &g = geoms[tie.b].walls[tie.wall_b];
+      const Vec2 n = ta.linear() * f.n, mid = tb * (0.5 * (g.a + g.b));
+      r(3 * s.links.size() + k) = (mid - ta * f.a).dot(n) - (tie.facing ? p(n_params - 1) : 0.0);
+    }
     for (std::size_t k = 0; k < s.links.size(); ++k) {
       const RoomLink& l = s.links[k];
       const Hole* ha = DoorOf(geoms[l.a.room], l.a.opening);
@@ -663,7 +710,7 @@ std::vector<double> Refine(const std::vector<RoomGeom>& geoms, const std::vector
       r(3 * k + 1) = 0.0;
       r(3 * k + 2) = std::remainder(std::atan2(nf.y(), nf.x()) - std::atan2(-nd.y(), -nd.x()), 2 * std::numbers::pi);
     }
-    r(r.size() - 1) = 0.2 * (p(n_params - 1) - o.wall_thickness_m);
+    r(r.size() - 1) = kThicknessPrior * (p(n_params - 1) - o.wall_thickness_m);
     return r;
   };
   for (int iter = 0; iter < 10; ++iter) {
@@ -680,10 +727,11 @@ std::vector<double> Refine(const std::vector<RoomGeom>& geoms, const std::vector
     x += step;
     if (step.norm() < 1e-9) break;
   }
-  x(n_params - 1) = std::clamp(x(n_params - 1), 0.0, o.max_wall_thickness_m);
+  x(n_params - 1) = std::clamp(x(n_params - 1), kThinnestWall, o.max_wall_thickness_m);
   const Eigen::VectorXd left = residuals(x);
   std::vector<double> per_link;
   for (std::size_t k = 0; k < s.links.size(); ++k) per_link.push_back(left.segment<2>(3 * k).norm());
+  for (std::size_t k = 0; k < ties.size(); ++k) per_link.push_back(std::abs(left(3 * s.links.size() + k)));
   for (std::size_t r = 0; r < s.placed.size(); ++r) {
     if (var[r] >= 0) s.pose[r] = pose_of(x, static_cast<int>(r));
   }
@@ -706,19 +754,27 @@ HomePlacement Finish(const std::vector<HomeRoomInput>& rooms, const std::vector<
   FindLoops(geoms, s, o, h.links);
   // Refined over every link; a loop that cannot close within 5 cm was two
   // doors that only looked like one: dropped, worst first, and refined again.
+  // Partition faces and continuing walls too; any of these that cannot close
+  // likewise.
+  std::vector<FaceTie> ties = FindFaceTies(geoms, s, o);
   for (;;) {
     State trial = s;
     trial.links = h.links;
-    const std::vector<double> left = Refine(geoms, held, o, trial, h.wall_thickness_m);
+    const std::vector<double> left = Refine(geoms, held, o, ties, trial, h.wall_thickness_m);
     int worst = -1;
     for (std::size_t k = 0; k < left.size(); ++k) {
-      if (h.links[k].loop && left[k] > 0.05 && (worst < 0 || left[k] > left[worst])) worst = static_cast<int>(k);
+      const bool droppable = k >= h.links.size() || h.links[k].loop;
+      if (droppable && left[k] > 0.05 && (worst < 0 || left[k] > left[worst])) worst = static_cast<int>(k);
     }
     if (worst < 0) {
       s = std::move(trial);
       break;
     }
-    h.links.erase(h.links.begin() + worst);
+    if (worst < static_cast<int>(h.links.size())) {
+      h.links.erase(h.links.begin() + worst);
+    } else {
+      ties.erase(ties.begin() + (worst - static_cast<int>(h.links.size())));
+    }
   }
   for (const RoomLink& l : h.links) h.loops += l.loop;
   h.rooms.resize(rooms.size());
@@ -733,7 +789,15 @@ HomePlacement Finish(const std::vector<HomeRoomInput>& rooms, const std::vector<
       p.placed_by = held[r] && std::any_of(c.fixed.begin(), c.fixed.end(), [&](const auto& f) { return f.first == seed; })
                         ? "moved by hand"
                         : "first room";
-    } else if (p.link >= 0) {
+    } else if (p.link >= 0 || (p.placed && std::any_of(h.links.begin(), h.links.end(), [&](const RoomLink& l) {
+                                  return l.a.room == static_cast<int>(r) || l.b.room == static_cast<int>(r);
+                                }))) {
+      // Its own link, or (the root of a search grown from it) its first link.
+      if (p.link < 0) {
+        for (std::size_t k = 0; k < h.links.size() && p.link < 0; ++k) {
+          if (h.links[k].a.room == static_cast<int>(r) || h.links[k].b.room == static_cast<int>(r)) p.link = static_cast<int>(k);
+        }
+      }
       const RoomLink& l = h.links[p.link];
       if (l.a.opening >= 0 && l.b.opening >= 0) {
         p.placed_by = fmt::format("door {} = {}{}", OpeningName(rooms, l.a), OpeningName(rooms, l.b),

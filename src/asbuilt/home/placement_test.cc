@@ -275,15 +275,15 @@ double ShareWithin(const SyntheticHomeOptions& o, int homes, double* iou_min = n
   return static_cast<double>(within) / rooms;
 }
 
-// Floors under today's figures on these 20 homes, the ones the weights were
-// chosen on (1.000 and 0.795; held-out homes: bench_home, docs/home.md), so
-// that a change that places fewer rooms is seen.
+// Floors under today's figures on these 10 homes, among those the weights
+// were chosen on (1.000 and 0.847; held-out homes: bench_home, docs/home.md),
+// so that a change that places fewer rooms is seen.
 TEST(PlaceRooms, PlacesMostRoomsOfRandomHomes) {
   double worst = 0;
-  const double exact = ShareWithin({}, 20, &worst);
+  const double exact = ShareWithin({}, 10, &worst);
   EXPECT_GE(exact, 0.97);
-  const double missed = ShareWithin({.missed_door = 0.1}, 20, &worst);
-  EXPECT_GE(missed, 0.75);
+  const double missed = ShareWithin({.missed_door = 0.1}, 10, &worst);
+  EXPECT_GE(missed, 0.80);
 }
 
 }  // namespace

@@ -10,6 +10,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "asbuilt/pano/perspective.h"
+#include "asbuilt/render/home_render.h"
+#include "asbuilt/scene/procedural_home.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
 
@@ -171,6 +173,54 @@ TEST(RunHomeSurvey, ABadHomeFileIsRefusedBeforeAnythingIsWritten) {
   WriteFileAtomic(dir / "empty.json", R"({"version": 1, "kind": "home", "rooms": []})");
   EXPECT_THROW(RunHomeSurvey(dir / "empty.json", dir / "out"), InputError);
   EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+// A home rendered by our renderer (scene/procedural_home.h,
+// render/home_render.h): three or four rooms with a door in every partition,
+// each a stereo capture turning in place in a frame of its own, surveyed
+// with their exact labels; every room placed within 10 cm and 1°.
+TEST(RunHomeSurvey, ARenderedHomeIsPlacedWithItsPartitionsMeasured) {
+  const fs::path dir = std::filesystem::temp_directory_path() / "asbuilt_home_survey_rendered";
+  std::filesystem::remove_all(dir);
+  SceneRng rng(3);
+  const HomeLayout layout = MakeHomeLayout(rng, {.min_rooms = 3, .max_rooms = 4, .min_width_m = 6.5, .max_width_m = 7.5,
+                                                 .min_depth_m = 5.0, .max_depth_m = 6.0, .min_room_m = 2.5, .extra_door = 1.0});
+  const Scene scene = HomeScene(layout, 3);
+  HomeRenderOptions render;
+  render.capture.views = 8;
+  render.capture.width_px = 320;
+  render.capture.height_px = 240;
+  render.capture.render.samples_per_pixel = 1;
+  render.capture.render.indirect_light = false;
+  render.capture.render.camera_effects = 0;
+  const HomeRenderSummary rendered = RenderHome(scene, dir / "home", render);
+  ASSERT_EQ(rendered.rooms.size(), layout.rooms.size());
+
+  HomeSurveyOptions options;
+  options.survey.use_capture_labels = true;
+  options.survey.write_report = false;
+  const HomeSurveyResult r = RunHomeSurvey(rendered.home_json, dir / "out", options);
+  ASSERT_EQ(r.placement.best.Placed(), static_cast<int>(layout.rooms.size())) << r.placement.best.ToString(r.inputs);
+  std::vector<std::vector<Vec2>> outlines = layout.rooms;
+  const HomeScore score =
+      ScoreHome(r.inputs, r.placement.best, rendered.floor_from_room, outlines);
+  std::string errors;
+  for (std::size_t k = 0; k < score.centroid_error_m.size(); ++k) {
+    errors += fmt::format(" {:.3f} m {:.2f}°", score.centroid_error_m[k], score.yaw_error_deg[k]);
+  }
+  EXPECT_EQ(score.within, score.rooms) << r.placement.best.ToString(r.inputs) << "\n" << errors;
+  EXPECT_GT(score.floor_iou, 0.95);
+  // Each partition's thickness as the two rooms' surveys put its faces:
+  // 0.12–0.14 m for 0.10 m on seeds 1–7, because each survey places a face
+  // about a centimetre inside the room (the bias of issue 37), not because
+  // of the placement (0.10 ± 0.02 m from exact plans: home/placement_test).
+  int partitions = 0;
+  for (const PlanWall& w : r.plan.walls) {
+    if (!w.thickness) continue;
+    ++partitions;
+    EXPECT_NEAR(*w.thickness, layout.wall_thickness_m, 0.05);
+  }
+  EXPECT_GE(partitions, static_cast<int>(layout.rooms.size()) - 1);
 }
 
 }  // namespace
