@@ -39,6 +39,7 @@
 #include "asbuilt/seg/segmenter.h"
 #include "asbuilt/util/file.h"
 #include "bench/bench_util.h"
+#include "bench/zind_capture.h"
 
 namespace {
 
@@ -168,14 +169,8 @@ int main(int argc, char** argv) {
   for (const ZindPanorama* pano : panos) {
     const std::string name = pano->label + " " + pano->pano_id;
     const fs::path dir = out / "captures" / pano->pano_id;
-    fs::create_directories(dir);
     // Each room in a frame of its own: the pano frame, as a user's capture would be.
-    const nlohmann::json capture = {{"version", 1},
-                                    {"kind", "panorama"},
-                                    {"panorama", fs::absolute(pano->image).lexically_normal().string()},
-                                    {"position_m", {0.0, 0.0, pano->camera_height_m}},
-                                    {"yaw_deg", 0.0}};
-    WriteFileAtomic(dir / "capture.json", capture.dump(2) + "\n");
+    WriteZindCapture(*pano, dir);
     // ZInD's passages between the parts of one open space are the openings
     // the rooms share there: drawn as door labels here (a doorway without a
     // leaf), where bench_pano_survey ignores them.

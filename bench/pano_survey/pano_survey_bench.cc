@@ -38,6 +38,7 @@
 #include "asbuilt/seg/segmenter.h"
 #include "asbuilt/util/file.h"
 #include "bench/bench_util.h"
+#include "bench/zind_capture.h"
 #include "bench/verdict_stats.h"
 
 namespace {
@@ -190,13 +191,7 @@ int main(int argc, char** argv) {
   for (const ZindPanorama* pano : panos) {
     const std::string name = pano->complete_room_id + "_" + pano->partial_room_id + "_" + pano->pano_id;
     const fs::path dir = out / name;
-    fs::create_directories(dir);
-    const nlohmann::json capture = {{"version", 1},
-                                    {"kind", "panorama"},
-                                    {"panorama", fs::absolute(pano->image).lexically_normal().string()},
-                                    {"position_m", {0.0, 0.0, pano->camera_height_m}},
-                                    {"yaw_deg", 0.0}};
-    WriteFileAtomic(dir / "capture.json", capture.dump(2) + "\n");
+    WriteZindCapture(*pano, dir);
     WritePlan(ZindTruthPlan(*pano), dir / "truth.json");
     for (std::size_t i = 0; i < views.size(); ++i) {
       WriteImageAtomic(dir / "labels" / fmt::format("{:03d}.png", i), LayoutLabels(*pano, views[i]));

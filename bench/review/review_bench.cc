@@ -38,6 +38,7 @@
 #include "asbuilt/seg/segmenter.h"
 #include "asbuilt/util/file.h"
 #include "bench/bench_util.h"
+#include "bench/zind_capture.h"
 
 namespace {
 
@@ -188,13 +189,7 @@ int main(int argc, char** argv) {
   for (const ZindPanorama* pano : panos) {
     const std::string name = pano->complete_room_id + "_" + pano->partial_room_id + "_" + pano->pano_id;
     const fs::path dir = out / name;
-    fs::create_directories(dir);
-    const nlohmann::json capture = {{"version", 1},
-                                    {"kind", "panorama"},
-                                    {"panorama", fs::absolute(pano->image).lexically_normal().string()},
-                                    {"position_m", {0.0, 0.0, pano->camera_height_m}},
-                                    {"yaw_deg", 0.0}};
-    WriteFileAtomic(dir / "capture.json", capture.dump(2) + "\n");
+    WriteZindCapture(*pano, dir);
     RoomResult r{.pano = pano->pano_id, .label = pano->label};
     try {
       if (!reuse || !fs::exists(dir / "survey" / "review" / "input.json")) {

@@ -7,25 +7,14 @@
 // Ctrl+S writes the home's plan.json. Exit 77 (skip) without chromium.
 //
 //   node home_browser_test.mjs ASBUILT [SCREENSHOT.png]
-import {spawn} from "node:child_process";
 import fs from "node:fs";
-import os from "node:os";
 import path from "node:path";
 
-let chromium;
-try {
-  ({chromium} = await import("playwright-core"));
-} catch {
-  console.log("playwright-core not installed (make deps runs tests/review_browser/install.sh)");
-  process.exit(77);
-}
+import {fail, setUp, startReview} from "./browser_setup.mjs";
+
+const {chromium, browserPath, work} = await setUp("home-browser");
 const asbuilt = process.argv[2];
 const screenshot = process.argv[3];
-const browserPath = ["/usr/bin/chromium", "/usr/bin/chromium-browser"].find(p => fs.existsSync(p));
-if (!browserPath) { console.log("chromium not installed"); process.exit(77); }
-const work = fs.mkdtempSync(path.join(os.tmpdir(), "asbuilt-home-browser-"));
-process.on("exit", () => fs.rmSync(work, {recursive: true, force: true}));
-function fail(message) { console.error("FAIL: " + message); process.exit(1); }
 
 // A rectangular room's plan, counter-clockwise, with a 0.8 m door on wall
 // `doorWall` at `offset` m from its start; in the room's own frame.
@@ -48,24 +37,7 @@ fs.writeFileSync(path.join(out, "review", "home.json"), JSON.stringify({
   version: 1, kind: "home",
   rooms: [{name: "living", plan: roomPlan(4, 3, 1, 1.0)}, {name: "study", plan: roomPlan(3, 3, 3, 1.2)}]}));
 
-function startReview(dir) {
-  const child = spawn(asbuilt, ["review", dir, "--no-open", "-q"], {stdio: ["ignore", "pipe", "inherit"]});
-  return new Promise((resolve, reject) => {
-    let text = "";
-    const timer = setTimeout(() => reject(new Error("no address within 60 s")), 60000);
-    child.stdout.on("data", d => {
-      text += d;
-      if (!text.includes("\n")) return;
-      const line = text.split("\n")[0];
-      const m = line.match(/^asbuilt review: (http:\/\/127\.0\.0\.1:\d+\/\?token=[0-9a-f]{32})$/);
-      clearTimeout(timer);
-      if (!m) reject(new Error("first stdout line: " + line)); else resolve({child, url: m[1]});
-    });
-    child.on("exit", code => { clearTimeout(timer); reject(new Error("asbuilt review exited " + code)); });
-  });
-}
-
-const {child, url} = await startReview(out);
+const {child, url} = await startReview(asbuilt, out);
 const browser = await chromium.launch({executablePath: browserPath, args: ["--no-sandbox"]});
 try {
   const page = await browser.newPage({viewport: {width: 1400, height: 800}});

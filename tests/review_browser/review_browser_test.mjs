@@ -8,27 +8,17 @@
 // It also draws a window (w, drag a box) and checks plan.json has it.
 //
 //   node review_browser_test.mjs ASBUILT [SCREENSHOT.png]
-import {spawn, spawnSync} from "node:child_process";
+import {spawnSync} from "node:child_process";
 import fs from "node:fs";
-import os from "node:os";
 import path from "node:path";
 import zlib from "node:zlib";
 
-let chromium;
-try {
-  ({chromium} = await import("playwright-core"));
-} catch {
-  console.log("playwright-core not installed (make deps runs tests/review_browser/install.sh)");
-  process.exit(77);
-}
+import {fail, setUp, startReview as start} from "./browser_setup.mjs";
+
+const {chromium, browserPath, work} = await setUp("review-browser");
 const asbuilt = process.argv[2];
 const screenshot = process.argv[3];
-const browserPath = ["/usr/bin/chromium", "/usr/bin/chromium-browser"].find(p => fs.existsSync(p));
-if (!browserPath) { console.log("chromium not installed"); process.exit(77); }
-const work = fs.mkdtempSync(path.join(os.tmpdir(), "asbuilt-review-browser-"));
-process.on("exit", () => fs.rmSync(work, {recursive: true, force: true}));
 
-function fail(message) { console.error("FAIL: " + message); process.exit(1); }
 function run(args) {
   const r = spawnSync(asbuilt, args, {encoding: "utf8"});
   if (r.status !== 0) fail(`asbuilt ${args.join(" ")} exited ${r.status}: ${r.stderr}`);
@@ -107,24 +97,7 @@ function classroomSurvey() {
   return path.join(work, "demo", "survey");
 }
 
-// Starts `asbuilt review OUT --no-open`; resolves with its URL (the first stdout line).
-function startReview(out) {
-  const child = spawn(asbuilt, ["review", out, "--no-open", "-q"], {stdio: ["ignore", "pipe", "inherit"]});
-  return new Promise((resolve, reject) => {
-    let text = "";
-    const timer = setTimeout(() => reject(new Error("no address within 60 s")), 60000);
-    child.stdout.on("data", d => {
-      text += d;
-      const line = text.split("\n")[0];
-      if (text.includes("\n")) {
-        const m = line.match(/^asbuilt review: (http:\/\/127\.0\.0\.1:\d+\/\?token=[0-9a-f]{32})$/);
-        clearTimeout(timer);
-        if (!m) reject(new Error("first stdout line: " + line)); else resolve({child, url: m[1]});
-      }
-    });
-    child.on("exit", code => { clearTimeout(timer); reject(new Error("asbuilt review exited " + code)); });
-  });
-}
+const startReview = out => start(asbuilt, out);
 
 async function dragCorner(page, dx, dy) {
   const viewer = await page.locator("#rv-photo").boundingBox();
