@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build test demo bench fuzz asan clean
+.PHONY: all deps build test demo bench fuzz asan clean format lint
 
 all: build
 
@@ -24,6 +24,15 @@ build: deps $(BUILD)/build.ninja
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 	JOBS=$(JOBS) FUZZ_SECONDS=$(or $(FUZZ_SECONDS),10) bash scripts/sanitize.sh
+
+# Formats every C++ file by .clang-format (ctest style/clang_format checks it).
+format:
+	find src bench fuzz -name '*.cc' -o -name '*.h' | xargs clang-format -i
+
+# The linter (.clang-tidy) over the library's sources, with the build's
+# compile commands; for developers (slow: minutes per module on 2 cores).
+lint: build
+	find src -name '*.cc' ! -name '*_test.cc' | xargs -P $(JOBS) -n 4 clang-tidy -p $(BUILD) --quiet
 
 demo: build
 	$(BUILD)/asbuilt demo

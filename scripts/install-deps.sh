@@ -21,7 +21,7 @@ packages=(
   libembree-dev libtbb-dev
   libcairo2-dev libcpp-httplib-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev clang-format clang-tidy
   python3 python3-ezdxf librsvg2-bin
   libifcplusplus-dev libboost-dev
   blender
