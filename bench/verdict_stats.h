@@ -63,7 +63,8 @@ inline double SpearmanRho(const std::vector<double>& a, const std::vector<double
   const double n = static_cast<double>(a.size()), mean = 0.5 * (n - 1);
   double cov = 0, va = 0, vb = 0;
   for (std::size_t i = 0; i < ra.size(); ++i) {
-    cov += (ra[i] - mean) * (rb[i] - mean), va += (ra[i] - mean) * (ra[i] - mean), vb += (rb[i] - mean) * (rb[i] - mean);
+    cov += (ra[i] - mean) * (rb[i] - mean), va += (ra[i] - mean) * (ra[i] - mean),
+        vb += (rb[i] - mean) * (rb[i] - mean);
   }
   return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : NAN;
 }

@@ -17,7 +17,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     asbuilt::mcp::McpServerOptions options;
     options.workspace = ws;
     auto* s = new asbuilt::mcp::McpServer(options);
-    s->HandleText(R"({"jsonrpc":"2.0","id":0,"method":"initialize","params":{"protocolVersion":"2025-06-18","capabilities":{},"clientInfo":{"name":"fuzz","version":"1"}}})");
+    s->HandleText(
+        R"({"jsonrpc":"2.0","id":0,"method":"initialize","params":{"protocolVersion":"2025-06-18","capabilities":{},"clientInfo":{"name":"fuzz","version":"1"}}})");
     return s;
   }();
   std::string_view text(reinterpret_cast<const char*>(data), size);

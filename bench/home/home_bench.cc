@@ -150,7 +150,8 @@ int main(int argc, char** argv) {
   const fs::path tour_dir = fs::path(ASBUILT_SHARED_DATA_DIR) / "zind_sample_tour";
   if (!fs::exists(tour_dir / "zind_data.json")) {
     std::fprintf(stderr, "bench_home: %s not present; only the random homes measured\n", tour_dir.c_str());
-    WriteSection(results, "## a whole home (bench_home)\n\nThe ZInD sample tour was not present.\n\n" + SyntheticSection());
+    WriteSection(results,
+                 "## a whole home (bench_home)\n\nThe ZInD sample tour was not present.\n\n" + SyntheticSection());
     return 0;
   }
   const char* model_env = std::getenv("ASBUILT_BENCH_HOME_MODEL");
@@ -256,8 +257,10 @@ int main(int argc, char** argv) {
       "door labels in the layout-label run. Measured {} on {} hardware threads{}.\n\n",
       panos.size(), Today(), std::thread::hardware_concurrency(),
       have_load ? fmt::format(", load average {:.1f} at start", load[0]) : std::string());
-  md += "| labels from | rooms placed (10 cm, 1°) | floor IoU | links (loops) | partition | placement time, median of 5 | "
-        "scripted surveyor: edits / misplaced rooms | targets |\n|---|---|---|---|---|---|---|---|\n";
+  md +=
+      "| labels from | rooms placed (10 cm, 1°) | floor IoU | links (loops) | partition | placement time, median of 5 "
+      "| "
+      "scripted surveyor: edits / misplaced rooms | targets |\n|---|---|---|---|---|---|---|---|\n";
   for (const Run& r : runs) {
     const bool exact = r.name == "layout labels";
     const int need = exact ? 12 : 9;

@@ -38,7 +38,8 @@ struct Set {
 
 LabelAgreement Measure(const Set& s, const Palette& p, double threshold) {
   LabelAgreement a;
-  for (std::size_t i = 0; i < s.idmaps.size(); ++i) a.Add(CompareLabels(ConvertIdMap(s.idmaps[i], p, threshold), s.labels[i]));
+  for (std::size_t i = 0; i < s.idmaps.size(); ++i)
+    a.Add(CompareLabels(ConvertIdMap(s.idmaps[i], p, threshold), s.labels[i]));
   return a;
 }
 
@@ -82,8 +83,13 @@ int main(int argc, char** argv) {
   };
   const Drift drifts[] = {
       {"moderate (defaults)", {}},
-      {"strong", {.brightness_min = 0.45, .brightness_max = 1.05, .saturation_min = 0.6, .hue_shift_deg = 10,
-                  .class_reflectance = 0.12, .noise_sigma = 4}},
+      {"strong",
+       {.brightness_min = 0.45,
+        .brightness_max = 1.05,
+        .saturation_min = 0.6,
+        .hue_shift_deg = 10,
+        .class_reflectance = 0.12,
+        .noise_sigma = 4}},
   };
 
   std::vector<Set> sets;
@@ -135,7 +141,8 @@ int main(int argc, char** argv) {
   md += fmt::format(
       "Pixel agreement with the exact labels (ignore pixels excluded) on drifted ID maps: even frames calibrate, odd "
       "frames are measured. Band = pixels within 1 px of a label change. Threshold {} (RGB distance) unless swept. "
-      "Target ≥ 99.5 % overall with calibration.\n\n", kThreshold);
+      "Target ≥ 99.5 % overall with calibration.\n\n",
+      kThreshold);
   md += "| ID maps | palette | overall | band (1 px) | interior | band share |\n|---|---|---|---|---|---|\n";
   std::string sweep = "\nThreshold sweep (overall agreement / band):\n\n| ID maps | palette |";
   const double thresholds[] = {20, 40, 60, 80, 100, 140, 200, 442};
@@ -183,7 +190,8 @@ int main(int argc, char** argv) {
   for (int id = 0; id < 4; ++id) {
     for (int c = 0; c < 3; ++c) same = same && Palette::Nominal().colours[id].rgb[c] == kIdMapColors[id][c];
   }
-  md += fmt::format("\nNominal palette equals the renderer's kIdMapColors: {}.\n", same ? "yes" : "NO — fix labels/palette.cc");
+  md += fmt::format("\nNominal palette equals the renderer's kIdMapColors: {}.\n",
+                    same ? "yes" : "NO — fix labels/palette.cc");
 
   // Throughput: batch conversion of 640x480 PNG files (decode + convert +
   // encode + atomic write), and the in-memory conversion alone.

@@ -104,8 +104,8 @@ int Wait(pid_t pid, double* cpu_s = nullptr) {
   rusage usage{};
   ::wait4(pid, &status, 0, &usage);
   if (cpu_s) {
-    *cpu_s = usage.ru_utime.tv_sec + usage.ru_utime.tv_usec * 1e-6 + usage.ru_stime.tv_sec +
-             usage.ru_stime.tv_usec * 1e-6;
+    *cpu_s =
+        usage.ru_utime.tv_sec + usage.ru_utime.tv_usec * 1e-6 + usage.ru_stime.tv_sec + usage.ru_stime.tv_usec * 1e-6;
   }
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
@@ -131,16 +131,16 @@ std::set<std::string> MappedLibraries(const std::string& pid, const std::string&
   return out;
 }
 
-const std::string kInit =
-    R"({"jsonrpc":"2.0","id":1,"method":"initialize","params":{"protocolVersion":"2025-06-18",)"
-    R"("capabilities":{},"clientInfo":{"name":"bench","version":"1"}}})" "\n";
-const std::string kList =
-    R"({"jsonrpc":"2.0","method":"notifications/initialized"})" "\n"
-    R"({"jsonrpc":"2.0","id":2,"method":"tools/list"})" "\n";
+const std::string kInit = R"({"jsonrpc":"2.0","id":1,"method":"initialize","params":{"protocolVersion":"2025-06-18",)"
+                          R"("capabilities":{},"clientInfo":{"name":"bench","version":"1"}}})"
+                          "\n";
+const std::string kList = R"({"jsonrpc":"2.0","method":"notifications/initialized"})"
+                          "\n"
+                          R"({"jsonrpc":"2.0","id":2,"method":"tools/list"})"
+                          "\n";
 
 // One MCP session: spawn, initialize, tools/list, close stdin, wait.
-void RunSession(const std::vector<std::string>& args, Session& s,
-                const std::vector<std::string>& extra_env = {}) {
+void RunSession(const std::vector<std::string>& args, Session& s, const std::vector<std::string>& extra_env = {}) {
   auto start = Clock::now();
   Child c = Spawn(args, extra_env);
   std::string buffer;
@@ -155,8 +155,7 @@ void RunSession(const std::vector<std::string>& args, Session& s,
   auto t_list = Clock::now();
   s.list_bytes = tools.size();
   s.tool_count = 0;
-  for (auto p = tools.find("\"inputSchema\""); p != std::string::npos;
-       p = tools.find("\"inputSchema\"", p + 1)) {
+  for (auto p = tools.find("\"inputSchema\""); p != std::string::npos; p = tools.find("\"inputSchema\"", p + 1)) {
     ++s.tool_count;
   }
   if (!MappedLibraries(std::to_string(c.pid), "libtorch").empty()) ++s.torch_mapped;
@@ -229,9 +228,9 @@ int main(int argc, char** argv) try {
   auto ms = [](const std::vector<double>& v) { return Median(v) * 1e3; };
   const double version_ms = ms(version_s);
   auto row = [&](std::string_view what, const Session& s) {
-    return fmt::format("| {} | {:.0f} ms | {:.0f} ms | {:.0f} ms | {:.0f} ms | {:.2f}× | {} of {} |\n",
-                       what, ms(s.init_s), ms(s.list_s), ms(s.exit_s), ms(s.cpu_s),
-                       ms(s.init_s) / version_ms, s.torch_mapped, s.init_s.size());
+    return fmt::format("| {} | {:.0f} ms | {:.0f} ms | {:.0f} ms | {:.0f} ms | {:.2f}× | {} of {} |\n", what,
+                       ms(s.init_s), ms(s.list_s), ms(s.exit_s), ms(s.cpu_s), ms(s.init_s) / version_ms, s.torch_mapped,
+                       s.init_s.size());
   };
   const double init_ms = ms(full.init_s), before_ms = ms(before.init_s);
   std::string md = fmt::format(
@@ -253,14 +252,13 @@ int main(int argc, char** argv) try {
       "Verdict: {}\n",
       full.tool_count, full.list_bytes, torch_libs.size(), runs, load_before, load_after,
       std::thread::hardware_concurrency(), row("`asbuilt mcp`", full),
-      row("`asbuilt mcp` before (LibTorch loaded at start)", before),
-      row("lean server", lean_session), version_ms, ms(version_cpu_s),
+      row("`asbuilt mcp` before (LibTorch loaded at start)", before), row("lean server", lean_session), version_ms,
+      ms(version_cpu_s),
       fmt::format("`asbuilt mcp` answers `initialize` in {:.0f} ms ({}), {:.1f}× faster than "
                   "with LibTorch loaded at start-up ({:.0f} ms, CPU {:.0f} → {:.0f} ms); "
                   "libtorch was mapped in {} of {} sessions.",
                   init_ms, init_ms < 1000 ? "under a second" : "NOT under a second on this loaded machine",
-                  before_ms / init_ms, before_ms, ms(before.cpu_s), ms(full.cpu_s),
-                  full.torch_mapped, runs));
+                  before_ms / init_ms, before_ms, ms(before.cpu_s), ms(full.cpu_s), full.torch_mapped, runs));
   asbuilt::bench::WriteSection(asbuilt::bench::ResultsPath(argc, argv, "mcp"), md);
   return 0;
 } catch (const std::exception& e) {

@@ -116,15 +116,20 @@ std::string PooledTable(const Pooled& p, double iou_target, double recall_target
   std::string md = "| figure | value | target |\n|---|---|---|\n";
   md += fmt::format("| room 2D IoU, median over {} rooms | {:.3f} | ≥ {:.2f} {} |\n", p.rooms, Median(p.iou),
                     iou_target, check(Median(p.iou) >= iou_target));
-  md += fmt::format("| wall recall (pooled) | {}/{} = {} | {} |\n", p.walls_matched, p.walls_truth, Pct(recall),
-                    recall_target > 0 ? fmt::format("≥ {:.0f} % {}", 100 * recall_target, check(recall >= recall_target))
-                                      : std::string("–"));
-  md += fmt::format("| wall length error, median over {} matched walls | {} | {} |\n", p.wall_err.size(),
-                    p.wall_err.empty() ? "–" : Pct(Median(p.wall_err)), extra.empty() ? "–" : "≤ 2 % " + std::string(check(!p.wall_err.empty() && Median(p.wall_err) <= 0.02)));
+  md +=
+      fmt::format("| wall recall (pooled) | {}/{} = {} | {} |\n", p.walls_matched, p.walls_truth, Pct(recall),
+                  recall_target > 0 ? fmt::format("≥ {:.0f} % {}", 100 * recall_target, check(recall >= recall_target))
+                                    : std::string("–"));
+  md += fmt::format(
+      "| wall length error, median over {} matched walls | {} | {} |\n", p.wall_err.size(),
+      p.wall_err.empty() ? "–" : Pct(Median(p.wall_err)),
+      extra.empty() ? "–" : "≤ 2 % " + std::string(check(!p.wall_err.empty() && Median(p.wall_err) <= 0.02)));
   md += fmt::format("| opening recall (doors + windows, pooled) | {}/{} = {} | – |\n", p.openings_matched,
                     p.openings_truth, p.openings_truth ? Pct(double(p.openings_matched) / p.openings_truth) : "–");
-  md += fmt::format("| opening width error, median over {} matched | {} | {} |\n", p.width_err.size(),
-                    p.width_err.empty() ? "–" : Pct(Median(p.width_err)), extra.empty() ? "–" : "≤ 5 % " + std::string(check(!p.width_err.empty() && Median(p.width_err) <= 0.05)));
+  md += fmt::format(
+      "| opening width error, median over {} matched | {} | {} |\n", p.width_err.size(),
+      p.width_err.empty() ? "–" : Pct(Median(p.width_err)),
+      extra.empty() ? "–" : "≤ 5 % " + std::string(check(!p.width_err.empty() && Median(p.width_err) <= 0.05)));
   md += fmt::format("| room area error, median over {} rooms with a room | {} | – |\n", p.area_err.size(),
                     p.area_err.empty() ? "–" : Pct(Median(p.area_err)));
   md += fmt::format("| ceiling height error, median | {} | – |\n",
@@ -137,9 +142,9 @@ std::string PooledTable(const Pooled& p, double iou_target, double recall_target
 // A shipped-model run: its time, label source, pooled figures against the
 // model targets, and its per-room table.
 std::string ModelRunSection(const std::vector<RoomRun>& runs, const Pooled& pooled, double seconds) {
-  std::string md = fmt::format("{:.1f} s a panorama on average. Labels from: {}.\n\n",
-                               runs.empty() ? 0.0 : seconds / runs.size(),
-                               runs.empty() ? "" : runs.front().summary.labels_source);
+  std::string md =
+      fmt::format("{:.1f} s a panorama on average. Labels from: {}.\n\n", runs.empty() ? 0.0 : seconds / runs.size(),
+                  runs.empty() ? "" : runs.front().summary.labels_source);
   md += PooledTable(pooled, 0.85, 0.90, "") + "\n";
   md += RunTable(runs) + "\n";
   return md;
@@ -264,9 +269,9 @@ int main(int argc, char** argv) {
       "against the room's truth plan from its raw layout (`ZindTruthPlan`; ZInD passages are not openings). "
       "Measured {} on {} hardware threads{}; {:.0f} s in all. Captures, labels, plans and reports: "
       "`{}/` (build folder, never committed).\n\n",
-      panos.size(), views.size(), base.panorama_views.width_px, base.panorama_views.height_px,
-      base.panorama_views.fx, base.panorama_views.yaw_step_deg, panos.empty() ? 0.0 : panos.front()->camera_height_m,
-      Today(), std::thread::hardware_concurrency(),
+      panos.size(), views.size(), base.panorama_views.width_px, base.panorama_views.height_px, base.panorama_views.fx,
+      base.panorama_views.yaw_step_deg, panos.empty() ? 0.0 : panos.front()->camera_height_m, Today(),
+      std::thread::hardware_concurrency(),
       have_load ? fmt::format(", load average {:.1f} at start", load[0]) : std::string(), seconds,
       fs::relative(out, ASBUILT_SOURCE_DIR).string());
   md += "### With the layout's own labels (geometric upper bound)\n\n";
@@ -275,36 +280,41 @@ int main(int argc, char** argv) {
   if (with_model) {
     md += fmt::format("### With the shipped model (`{}`)\n\n", DefaultModelPath().filename().string());
     md += ModelRunSection(by_model, model_pooled, model_seconds);
-    md += "Where it stands: the geometry is not the limit (the layout-label run above); the segmenter is. "
-          "It was trained on rendered rooms only and scores mIoU 0.23 on these photos (bench/results/zind.md): "
-          "its wall/floor and wall/ceiling edges wander, and furniture and open doors break the wall bases. "
-          "Spurious lines no longer cut the room polygon: a capture from one spot chooses one wall per bearing "
-          "around the camera (PlanOptions::one_viewpoint, docs/survey.md \"Survey from a 360° photo\"; room IoU "
-          "median 0.416 before it, 2026-12-03). What is left is in the points: rooms whose wall bases are hidden "
-          "(kitchen counters, the garage) or seen from a doorway (the closets) get walls placed where the "
-          "segmenter's edges put them. Segmenting the 512x1024 views at their full size instead of 240x480 did "
-          "not help (measured 2026-12-03 before one_viewpoint, with ASBUILT_BENCH_PANO_SEG=512x1024: IoU median "
-          "0.575, wall recall 36/68, 27 s a panorama).\n\n";
+    md +=
+        "Where it stands: the geometry is not the limit (the layout-label run above); the segmenter is. "
+        "It was trained on rendered rooms only and scores mIoU 0.23 on these photos (bench/results/zind.md): "
+        "its wall/floor and wall/ceiling edges wander, and furniture and open doors break the wall bases. "
+        "Spurious lines no longer cut the room polygon: a capture from one spot chooses one wall per bearing "
+        "around the camera (PlanOptions::one_viewpoint, docs/survey.md \"Survey from a 360° photo\"; room IoU "
+        "median 0.416 before it, 2026-12-03). What is left is in the points: rooms whose wall bases are hidden "
+        "(kitchen counters, the garage) or seen from a doorway (the closets) get walls placed where the "
+        "segmenter's edges put them. Segmenting the 512x1024 views at their full size instead of 240x480 did "
+        "not help (measured 2026-12-03 before one_viewpoint, with ASBUILT_BENCH_PANO_SEG=512x1024: IoU median "
+        "0.575, wall recall 36/68, 27 s a panorama).\n\n";
     md += "### With the shipped model, redrawn on the panorama's layout (`--pano-layout`)\n\n";
     md += ModelRunSection(by_layout, layout_pooled, layout_seconds);
-    md += "The room's layout found from the panorama's own edges (pano/pano_layout.h, docs/survey.md \"The layout "
-          "of a panorama\"): per column one wall distance, tying the floor edge and the ceiling edge together at "
-          "the camera height, the walls at right angles, the segmenter's labels voting below the horizon only. "
-          "Off by default (SurveyOptions::pano_layout): it finds walls the segmenter's edges lose, but open doors, "
-          "cabinets and faint white-on-white ceiling edges mislead it as well, and these 13 rooms are a test set, "
-          "not a set to tune on.\n\n";
+    md +=
+        "The room's layout found from the panorama's own edges (pano/pano_layout.h, docs/survey.md \"The layout "
+        "of a panorama\"): per column one wall distance, tying the floor edge and the ceiling edge together at "
+        "the camera height, the walls at right angles, the segmenter's labels voting below the horizon only. "
+        "Off by default (SurveyOptions::pano_layout): it finds walls the segmenter's edges lose, but open doors, "
+        "cabinets and faint white-on-white ceiling edges mislead it as well, and these 13 rooms are a test set, "
+        "not a set to tune on.\n\n";
   }
   for (std::size_t k = 0; k < others.size(); ++k) {
     md += fmt::format("### With the shipped model `--model {}`\n\n{}.\n\n", others[k]->name, others[k]->what);
     md += ModelRunSection(by_other[k], other_pooled[k], other_seconds[k]);
   }
   if (with_teacher) {
-    md += "### With the ADE20K-trained DeepLabV3-MobileNetV2, zero-shot (`--model …/deeplabv3_mnv2_ade20k32_uint8.tflite`)\n\n";
+    md +=
+        "### With the ADE20K-trained DeepLabV3-MobileNetV2, zero-shot (`--model "
+        "…/deeplabv3_mnv2_ade20k32_uint8.tflite`)\n\n";
     md += ModelRunSection(by_teacher, teacher_pooled, teacher_seconds);
-    md += "Issue 43's baseline (a): MLCommons' ADE20K-trained network, read from `../shared/data/ade20k-teachers` "
-          "at run time (seg/tflite_net.h), its 32 classes mapped onto ours (wall, door, windowpane; the rest "
-          "background), nothing trained by us. Not shippable as it is (the teacher's weights stay outside the "
-          "repository); the starting point of the model that will be.\n\n";
+    md +=
+        "Issue 43's baseline (a): MLCommons' ADE20K-trained network, read from `../shared/data/ade20k-teachers` "
+        "at run time (seg/tflite_net.h), its 32 classes mapped onto ours (wall, door, windowpane; the rest "
+        "background), nothing trained by us. Not shippable as it is (the teacher's weights stay outside the "
+        "repository); the starting point of the model that will be.\n\n";
   }
   // The verdict (issue 42): does it tell these plans apart without the truth?
   {
@@ -321,10 +331,11 @@ int main(int argc, char** argv) {
     all.insert(all.end(), model.begin(), model.end());
     all.insert(all.end(), teacher.begin(), teacher.end());
     md += "### The verdict on these plans (issue 42)\n\n";
-    md += "Each plan's verdict (plan/verdict.h, docs/verdict.md), from evidence that needs no truth, against its "
-          "room IoU. Research measurement, and not a blind one: the verdict was written on rendered rooms and the CC0 "
-          "photos (bench_verdict), then three of its rules were eased after its first run on these rooms (a floor "
-          "edge hidden by furniture, a neighbour's doubt, the share of a wall seen: docs/verdict.md).\n\n";
+    md +=
+        "Each plan's verdict (plan/verdict.h, docs/verdict.md), from evidence that needs no truth, against its "
+        "room IoU. Research measurement, and not a blind one: the verdict was written on rendered rooms and the CC0 "
+        "photos (bench_verdict), then three of its rules were eased after its first run on these rooms (a floor "
+        "edge hidden by furniture, a neighbour's doubt, the share of a wall seen: docs/verdict.md).\n\n";
     md += VerdictTableHeader();
     md += VerdictRow("layout labels", labels);
     if (!model.empty()) md += VerdictRow("shipped model", model);

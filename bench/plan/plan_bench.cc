@@ -24,7 +24,8 @@ namespace fs = std::filesystem;
 Plan PolygonPlan(const std::vector<Vec2>& c) {
   Plan plan;
   int n = static_cast<int>(c.size());
-  for (int i = 0; i < n; ++i) plan.walls.push_back({.start = c[i], .end = c[(i + 1) % n], .thickness = 0.2, .height = 2.7});
+  for (int i = 0; i < n; ++i)
+    plan.walls.push_back({.start = c[i], .end = c[(i + 1) % n], .thickness = 0.2, .height = 2.7});
   plan.rooms.push_back({.polygon = c, .area_m2 = PolygonArea(c)});
   return plan;
 }
@@ -32,16 +33,28 @@ Plan PolygonPlan(const std::vector<Vec2>& c) {
 void AddOpening(Plan& plan, OpeningKind kind, int wall, double offset, double width, double height, double sill) {
   const PlanWall& w = plan.walls[wall];
   Vec2 d = (w.end - w.start).normalized();
-  plan.openings.push_back({.kind = kind, .wall = wall, .start = w.start + offset * d,
-                           .end = w.start + (offset + width) * d, .width = width, .height = height, .sill = sill});
+  plan.openings.push_back({.kind = kind,
+                           .wall = wall,
+                           .start = w.start + offset * d,
+                           .end = w.start + (offset + width) * d,
+                           .width = width,
+                           .height = height,
+                           .sill = sill});
 }
 
 Plan Rotated(Plan plan, double deg, Vec2 shift) {
   Eigen::Rotation2Dd r(DegToRad(deg));
   auto f = [&](const Vec2& p) -> Vec2 { return r * p + shift; };
-  for (PlanWall& w : plan.walls) { w.start = f(w.start); w.end = f(w.end); }
-  for (PlanOpening& o : plan.openings) { o.start = f(o.start); o.end = f(o.end); }
-  for (PlanRoom& room : plan.rooms) for (Vec2& p : room.polygon) p = f(p);
+  for (PlanWall& w : plan.walls) {
+    w.start = f(w.start);
+    w.end = f(w.end);
+  }
+  for (PlanOpening& o : plan.openings) {
+    o.start = f(o.start);
+    o.end = f(o.end);
+  }
+  for (PlanRoom& room : plan.rooms)
+    for (Vec2& p : room.polygon) p = f(p);
   return plan;
 }
 
@@ -140,8 +153,8 @@ int main(int argc, char** argv) {
       "Target: plan from 100k points < 1 s — **{}** ({:.3f} s). Peak RSS {:.0f} MiB. "
       "Result: {}.\n\n",
       points.size(), std::thread::hardware_concurrency(), result.summary.walls, result.summary.openings, t_plan,
-      t_plan / t_ref, fs::file_size(tmp) / 1e6, t_read, t_read / t_ref, t_ref, t_plan < 1.0 ? "met" : "NOT met",
-      t_plan, bench::PeakRssMiB(), speed_score.ToString());
+      t_plan / t_ref, fs::file_size(tmp) / 1e6, t_read, t_read / t_ref, t_ref, t_plan < 1.0 ? "met" : "NOT met", t_plan,
+      bench::PeakRssMiB(), speed_score.ToString());
   fs::remove(tmp);
   (void)sink;
 
@@ -177,10 +190,11 @@ int main(int argc, char** argv) {
   // ---- Blender rooms from exact labels ----
   fs::path data = fs::path(ASBUILT_SHARED_DATA_DIR) / "blender-rooms-public";
   if (fs::exists(data)) {
-    md += "Blender rooms (`shared/data/blender-rooms-public`), class points back-projected from the exact label "
-          "and depth maps of all 12 frames (every 2nd pixel): the upper bound of the stereo survey.\n\n"
-          "| room | points | time | walls | length median | length max | openings | width median | width max | "
-          "area |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    md +=
+        "Blender rooms (`shared/data/blender-rooms-public`), class points back-projected from the exact label "
+        "and depth maps of all 12 frames (every 2nd pixel): the upper bound of the stereo survey.\n\n"
+        "| room | points | time | walls | length median | length max | openings | width median | width max | "
+        "area |\n|---|---|---|---|---|---|---|---|---|---|\n";
     Pool blender;
     for (const char* name : {"p01_rect_1door_2win", "p02_L_shape"}) {
       Capture capture = ReadCapture(data / name / "capture.json");
@@ -201,9 +215,10 @@ int main(int argc, char** argv) {
       }
     }
     md += Row("**both rooms** (pooled; columns as in the sampled table)", blender);
-    md += "\nOpening widths depend on how much of the casing is seen: p02's door stands open and its leaf "
-          "hides part of the casing, and one of its windows is partly hidden by furniture. With every 3rd pixel "
-          "(the unit test) those two deviate by up to 3.5 %; walls stay within a few millimetres.\n";
+    md +=
+        "\nOpening widths depend on how much of the casing is seen: p02's door stands open and its leaf "
+        "hides part of the casing, and one of its windows is partly hidden by furniture. With every 3rd pixel "
+        "(the unit test) those two deviate by up to 3.5 %; walls stay within a few millimetres.\n";
   }
   bench::WriteSection(bench::ResultsPath(argc, argv, "plan"), md);
   return 0;

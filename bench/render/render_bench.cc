@@ -89,7 +89,11 @@ int main(int argc, char** argv) {
   const PinholeCamera camera = scene.rig.Camera();
 
   // 1. asbuilt: stereo pairs with RGB + ID + labels + depth.
-  struct Run { int spp; double seconds_per_pair; double mrays; };
+  struct Run {
+    int spp;
+    double seconds_per_pair;
+    double mrays;
+  };
   std::vector<Run> runs;
   const int kViews = 4;
   for (int spp : {2, 4}) {
@@ -123,12 +127,14 @@ int main(int argc, char** argv) {
     // Startup + scene build alone (no frame), then one stereo frame; the
     // difference is the render time of one stereo pair.
     auto s0 = std::chrono::steady_clock::now();
-    int rc0 = std::system(fmt::format("blender -b -t 2 -P {} >{} 2>&1", (dir / "build.py").string(),
-                                      (dir / "setup.log").string()).c_str());
+    int rc0 = std::system(
+        fmt::format("blender -b -t 2 -P {} >{} 2>&1", (dir / "build.py").string(), (dir / "setup.log").string())
+            .c_str());
     double setup = Seconds(s0);
     auto s1 = std::chrono::steady_clock::now();
     int rc1 = std::system(fmt::format("blender -b -t 2 -P {} -o {}/ -f 1 >{} 2>&1", (dir / "build.py").string(),
-                                      (dir / "out").string(), (dir / "render.log").string()).c_str());
+                                      (dir / "out").string(), (dir / "render.log").string())
+                              .c_str());
     blender_total = Seconds(s1);
     if (rc0 == 0 && rc1 == 0) {
       blender_seconds = blender_total - setup;
@@ -189,7 +195,8 @@ int main(int argc, char** argv) {
     md += "Blender: not measured" + blender_note + ".\n\n";
   }
   md += "| rays | Mrays/s |\n|---|---|\n";
-  for (const Run& r : runs) md += fmt::format("| asbuilt, all rays (primary, shadow, bounce), spp {} | {:.2f} |\n", r.spp, r.mrays);
+  for (const Run& r : runs)
+    md += fmt::format("| asbuilt, all rays (primary, shadow, bounce), spp {} | {:.2f} |\n", r.spp, r.mrays);
   md += fmt::format("| bare Embree primary-ray loop (ceiling) | {:.2f} |\n\n", bare);
   md += fmt::format(
       "Memory over {} views (`dataset synth`, 160×120, 1 spp, a new room every 8 views, {:.1f} s): peak RSS "
@@ -202,8 +209,9 @@ int main(int argc, char** argv) {
   loadavg >> load1;
   rusage usage{};
   ::getrusage(RUSAGE_SELF, &usage);
-  md += fmt::format("\nLoad average at the end: {:.1f} on {} hardware threads; this process's own CPU time: {:.0f} s.\n",
-                    load1, std::thread::hardware_concurrency(), static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec));
+  md += fmt::format(
+      "\nLoad average at the end: {:.1f} on {} hardware threads; this process's own CPU time: {:.0f} s.\n", load1,
+      std::thread::hardware_concurrency(), static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec));
   bench::WriteSection(out_path, md);
   return 0;
 }

@@ -80,7 +80,8 @@ std::string CalibrationTable(const std::vector<Mode>& modes) {
     const std::pair<const char*, const UncertaintyCalibration*> kinds[] = {
         {"wall lengths", m.walls}, {"opening widths", m.widths}, {"room areas", m.areas}};
     for (const auto& [name, c] : kinds) {
-      md += fmt::format("| {} | {} | {} | {} | {} |\n", m.name, name, cells(c[0]), cells(c[1]), cells(both(c[0], c[1])));
+      md +=
+          fmt::format("| {} | {} | {} | {} | {} |\n", m.name, name, cells(c[0]), cells(c[1]), cells(both(c[0], c[1])));
     }
   }
   return md + "\n";
@@ -140,7 +141,7 @@ Seen SeenFromRig(const fs::path& capture_json, const Plan& truth) {
             const Vec2 ray = p - c;
             const double den = e.normal.dot(ray);
             if (std::abs(den) < 1e-9) continue;
-            const double s = e.normal.dot(e.start - c) / den;  // Ray parameter where it crosses the wall.
+            const double s = e.normal.dot(e.start - c) / den;       // Ray parameter where it crosses the wall.
             if (s <= 0 || (1.0 - s) * ray.norm() < -1.0) continue;  // Behind the rig, or over 1 m in front.
             q = c + s * ray;
           }
@@ -201,8 +202,9 @@ std::string Pct(std::optional<double> v) { return v ? fmt::format("{:.1f} %", 10
 std::string Shape(const Scene& scene) {
   const Room& room = scene.rooms.at(0);
   const std::size_t n = room.polygon.size();
-  std::string shape = fmt::format("{}", n == 4 ? std::string_view("rectangle") : n == 6 ? std::string_view("L")
-                                                                                          : std::string_view("other"));
+  std::string shape = fmt::format("{}", n == 4   ? std::string_view("rectangle")
+                                        : n == 6 ? std::string_view("L")
+                                                 : std::string_view("other"));
   const Vec2 d = room.polygon[1] - room.polygon[0];
   double deg = std::fmod(std::abs(std::atan2(d.y(), d.x()) * 180.0 / std::numbers::pi), 90.0);
   deg = std::min(deg, 90.0 - deg);
@@ -274,8 +276,8 @@ int main(int argc, char** argv) {
         modes[m].Calibrate(s, 0);
         const bool contacts = r.summary.wall_cue.find("contacts") != std::string::npos &&
                               r.summary.wall_cue.find("by stereo") == std::string::npos;
-        cell = fmt::format("{}walls {}/{}, {} / {}; openings {}/{}, {}", contacts ? "(contacts) " : "",
-                           s.walls.matched, s.walls.truth, Pct(s.wall_length.Median()), Pct(s.wall_length.Max()),
+        cell = fmt::format("{}walls {}/{}, {} / {}; openings {}/{}, {}", contacts ? "(contacts) " : "", s.walls.matched,
+                           s.walls.truth, Pct(s.wall_length.Median()), Pct(s.wall_length.Max()),
                            s.doors.matched + s.windows.matched, s.doors.truth + s.windows.truth,
                            Pct(s.opening_width.Median()));
       } catch (const std::exception& e) {
@@ -292,7 +294,8 @@ int main(int argc, char** argv) {
   for (const char* room : {"p01_rect_1door_2win", "p02_L_shape"}) {
     if (!fs::exists(blender / room / "capture.json")) continue;
     for (std::size_t m = 0; m < modes.size(); ++m) {
-      const SurveyResult r = RunSurvey(blender / room / "capture.json", out / fmt::format("{}_{}", room, m), modes[m].options);
+      const SurveyResult r =
+          RunSurvey(blender / room / "capture.json", out / fmt::format("{}_{}", room, m), modes[m].options);
       if (r.summary.score) modes[m].Calibrate(*r.summary.score, 1);
       fmt::print(stderr, "bench_rooms: {} {}: {}\n", room, modes[m].name,
                  r.summary.score ? r.summary.score->ToString() : std::string("no score"));
@@ -314,7 +317,8 @@ int main(int argc, char** argv) {
       "wings meet). Each rendered by asbuilt as a 12-view 640×480 "
       "turn-in-place capture (4 spp) and surveyed; scored against the scene's truth. Cells: walls matched/truth, "
       "length error median / max; openings matched/truth, width error median; \"(contacts)\" where survey "
-      "placed the walls by their floor/ceiling edges because their stereo failed its check. \"Walls seen\": truth walls "
+      "placed the walls by their floor/ceiling edges because their stereo failed its check. \"Walls seen\": truth "
+      "walls "
       "of which the capture's wall pixels (exact depth) cover at least half the length; the rest cannot be measured "
       "from the rig's one spot (walls behind furniture). \"Openings seen\": the same for doors and windows, "
       "by where their pixels' viewing rays cross the wall (a door behind a wardrobe is not seen). Targets (issue 9): "
@@ -327,8 +331,9 @@ int main(int argc, char** argv) {
   for (std::size_t m = 0; m < modes.size(); ++m) md += "---|";
   md += fmt::format("\n{}\n", rows);
   md += "Pooled over the rooms (every matched wall and opening counts once):\n\n";
-  md += "| | wall recall | wall length err median | max | walls seen: recall | median | max | opening recall | "
-        "openings seen: recall | opening width err median | no plan |\n";
+  md +=
+      "| | wall recall | wall length err median | max | walls seen: recall | median | max | opening recall | "
+      "openings seen: recall | opening width err median | no plan |\n";
   md += "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t m = 0; m < modes.size(); ++m) {
     const Pooled& p = pooled[m];
@@ -346,7 +351,8 @@ int main(int argc, char** argv) {
   }
   md += "\n" + CalibrationTable(modes);
   if (modes.front().model == false) md += "No shipped-model column: this build has no LibTorch or no models/ file.\n\n";
-  if (render_seconds > 0) md += fmt::format("Rendering the captures that were not cached took {:.0f} s.\n\n", render_seconds);
+  if (render_seconds > 0)
+    md += fmt::format("Rendering the captures that were not cached took {:.0f} s.\n\n", render_seconds);
   WriteSection(results, md);
   return 0;
 }

@@ -146,10 +146,9 @@ int main(int argc, char** argv) {
   auto infer = [&] {
     model->eval();
     torch::NoGradGuard no_grad;
-    F::interpolate(model->forward(x), F::InterpolateFuncOptions()
-                                          .size(std::vector<int64_t>{480, 640})
-                                          .mode(torch::kBilinear)
-                                          .align_corners(false))
+    F::interpolate(
+        model->forward(x),
+        F::InterpolateFuncOptions().size(std::vector<int64_t>{480, 640}).mode(torch::kBilinear).align_corners(false))
         .argmax(1);
   };
   torch::optim::AdamW opt(model->parameters(), torch::optim::AdamWOptions(1e-4).weight_decay(1e-3));
@@ -158,10 +157,9 @@ int main(int argc, char** argv) {
     if (!batches.count(side)) batches[side] = {torch::randn({2, 3, side, side}), torch::randint(0, 4, {2, side, side})};
     auto& [xb, yb] = batches[side];
     model->train();
-    torch::Tensor logits = F::interpolate(model->forward(xb), F::InterpolateFuncOptions()
-                                                                  .size(std::vector<int64_t>{side, side})
-                                                                  .mode(torch::kBilinear)
-                                                                  .align_corners(false));
+    torch::Tensor logits = F::interpolate(
+        model->forward(xb),
+        F::InterpolateFuncOptions().size(std::vector<int64_t>{side, side}).mode(torch::kBilinear).align_corners(false));
     torch::Tensor loss = F::cross_entropy(logits, yb, F::CrossEntropyFuncOptions().ignore_index(255));
     opt.zero_grad();
     loss.backward();
@@ -206,7 +204,8 @@ int main(int argc, char** argv) {
 
   std::string md = fmt::format(
       "## seg — SegFormer-{} speed, C++ LibTorch vs Python PyTorch\n\n"
-      "{} threads (both), OMP_WAIT_POLICY={}, {} repetitions per measure ({} for inference), interleaved in one run: the Python\n"
+      "{} threads (both), OMP_WAIT_POLICY={}, {} repetitions per measure ({} for inference), interleaved in one run: "
+      "the Python\n"
       "model lives in a peer process that runs one measurement per request while the C++ process waits, and\n"
       "repetitions alternate C++→Python and Python→C++ (ABBA…), so both sides see the same load. Training:\n"
       "batch 2, forward + cross-entropy + backward + AdamW; inference: one 640×480 image, eval, no_grad,\n"
@@ -234,8 +233,8 @@ int main(int argc, char** argv) {
     const long n = static_cast<long>(m.cpp_s.size());
     md += fmt::format("| {} | {} | {} | **{:.2f}** | {:.2f} | {:.2f}–{:.2f} | {}k / {}k |\n", m.name,
                       fmt_value(Median(m.cpp_s)), fmt_value(Median(m.py_s)), Median(pair_ratio),
-                      Median(m.py_s) / Median(m.cpp_s), pair_ratio.front(), pair_ratio.back(),
-                      m.cpp_faults / 1000 / n, m.py_faults / 1000 / n);
+                      Median(m.py_s) / Median(m.cpp_s), pair_ratio.front(), pair_ratio.back(), m.cpp_faults / 1000 / n,
+                      m.py_faults / 1000 / n);
   }
   md += fmt::format("| peak RSS (whole process) | {:.0f} MiB | {} | | | | |\n", cpp_rss,
                     have_py ? fmt::format("{:.0f} MiB", py_rss) : "n/a");
@@ -246,7 +245,8 @@ int main(int argc, char** argv) {
       std::thread::hardware_concurrency(), load_start, load_end, all_load.front(), all_load.back(), Median(all_load),
       wall_s);
   if (!have_py) {
-    md += "\nPython PyTorch not found at /usr/bin/python3 (Debian `python3-torch`: `scripts/install-deps.sh --bench`).\n";
+    md +=
+        "\nPython PyTorch not found at /usr/bin/python3 (Debian `python3-torch`: `scripts/install-deps.sh --bench`).\n";
   }
   md += fmt::format("\nLibTorch {}.{}.{}{}.\n", TORCH_VERSION_MAJOR, TORCH_VERSION_MINOR, TORCH_VERSION_PATCH,
                     have_py ? ", Python torch " + py.hello().value("torch", std::string("?")) : "");

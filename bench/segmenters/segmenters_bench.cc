@@ -61,8 +61,10 @@ int main(int argc, char** argv) {
   const fs::path teacher =
       fs::path(ASBUILT_SHARED_DATA_DIR) / "ade20k-teachers" / "deeplabv3_mnv2_ade20k32_uint8.tflite";
   if (fs::exists(teacher)) {
-    entries.push_back({"teacher", "MLCommons' DeepLabV3-MobileNetV2, zero-shot (read at run time, not shipped)",
-                       asbuilt::LoadSegmenter(teacher, at_view_size), {}});
+    entries.push_back({"teacher",
+                       "MLCommons' DeepLabV3-MobileNetV2, zero-shot (read at run time, not shipped)",
+                       asbuilt::LoadSegmenter(teacher, at_view_size),
+                       {}});
   }
   std::size_t reference = entries.size();
   for (std::size_t i = 0; i < entries.size(); ++i) {

@@ -185,12 +185,14 @@ int main(int argc, char** argv) {
   std::string md = "## Stereo\n\n";
   double load[3] = {0, 0, 0};
   ::getloadavg(load, 3);
-  md += fmt::format("{} OpenCV threads, load average {:.1f} at start (other jobs inflate the ms columns; "
-                    "each row's methods ran back to back). Disparity on real pairs with ground truth: bad-1 / bad-2 = % of evaluated "
-                    "pixels off by more than 1 / 2 px, pixels without output counted bad; avgerr = mean |error| "
-                    "over pixels with output (px); ms = median of 3 runs per pair. Same run, same machine.\n\n",
-                    cv::getNumThreads(), load[0]);
-  md += "| pair | region | method | bad-1 % | bad-2 % | avgerr px | holes % | ms |\n|---|---|---|---|---|---|---|---|\n";
+  md += fmt::format(
+      "{} OpenCV threads, load average {:.1f} at start (other jobs inflate the ms columns; "
+      "each row's methods ran back to back). Disparity on real pairs with ground truth: bad-1 / bad-2 = % of evaluated "
+      "pixels off by more than 1 / 2 px, pixels without output counted bad; avgerr = mean |error| "
+      "over pixels with output (px); ms = median of 3 runs per pair. Same run, same machine.\n\n",
+      cv::getNumThreads(), load[0]);
+  md +=
+      "| pair | region | method | bad-1 % | bad-2 % | avgerr px | holes % | ms |\n|---|---|---|---|---|---|---|---|\n";
   struct Method {
     std::string name;
     std::function<cv::Mat(const Pair&)> run;
@@ -200,8 +202,11 @@ int main(int argc, char** argv) {
       {"OpenCV SGBM + LR + WLS", SgbmLrWls},
       {"asbuilt (SGBM 3px + LR + background fill + median 5)",
        [](const Pair& p) {
-         DisparityOptions o{.num_disparities_px = p.num_disparities, .block_size_px = 3, .speckle_window_px = 200,
-                            .fill_holes = true, .median_px = 5};
+         DisparityOptions o{.num_disparities_px = p.num_disparities,
+                            .block_size_px = 3,
+                            .speckle_window_px = 200,
+                            .fill_holes = true,
+                            .median_px = 5};
          return ComputeDisparity(p.left, p.right, o).disparity_px;
        }},
   };
@@ -224,8 +229,8 @@ int main(int argc, char** argv) {
     const Capture capture = ReadCapture(room / "capture.json");
     StereoCalibration c;
     c.image_size = cv::Size(capture.camera.width, capture.camera.height);
-    c.K1 = (cv::Mat_<double>(3, 3) << capture.camera.fx, 0, capture.camera.cx, 0, capture.camera.fy,
-            capture.camera.cy, 0, 0, 1);
+    c.K1 = (cv::Mat_<double>(3, 3) << capture.camera.fx, 0, capture.camera.cx, 0, capture.camera.fy, capture.camera.cy,
+            0, 0, 1);
     c.K2 = c.K1.clone();
     c.D1 = cv::Mat::zeros(1, 5, CV_64F);
     c.D2 = c.D1.clone();
@@ -249,8 +254,8 @@ int main(int argc, char** argv) {
         "\nFrame pipeline, 640×480 (blender-rooms-public p01, {} frames): rectify + disparity (SGBM 3-way, LR, 80 px) "
         "+ corners + edges + dense points + triangulation: median **{:.0f} ms** per frame (max {:.0f} ms; target "
         "≤ 1000 ms), ~{} points per frame. Peak RSS {:.0f} MiB.\n",
-        seconds.size(), 1000 * bench::Median(seconds), 1000 * *std::max_element(seconds.begin(), seconds.end()),
-        points, bench::PeakRssMiB());
+        seconds.size(), 1000 * bench::Median(seconds), 1000 * *std::max_element(seconds.begin(), seconds.end()), points,
+        bench::PeakRssMiB());
   }
   bench::WriteSection(out_path, md);
   return 0;

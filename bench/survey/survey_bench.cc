@@ -118,8 +118,8 @@ Runs Time(const Mode& mode, int repeats, const fs::path& out_dir) {
     stages["report (html)"] = std::max(0.0, runs.wall_s.back() - listed);
     runs.stages.push_back(stages);
     runs.brief = r.summary.BriefReport();
-    std::fprintf(stderr, "  %s run %d: %.2f s wall, %.2f s CPU — %s\n", mode.name.c_str(), i + 1,
-                 runs.wall_s.back(), runs.cpu_s.back(), runs.brief.c_str());
+    std::fprintf(stderr, "  %s run %d: %.2f s wall, %.2f s CPU — %s\n", mode.name.c_str(), i + 1, runs.wall_s.back(),
+                 runs.cpu_s.back(), runs.brief.c_str());
   }
   return runs;
 }
@@ -179,9 +179,9 @@ int main(int argc, char** argv) {
   }
 
   // Stages in pipeline order (as RunSurvey lists them), then the rest.
-  std::vector<std::string> order = {"read capture", "load model", "read images", "rectify", "segment", "disparity",
-                                    "corners + points", "report pictures", "plan", "write outputs",
-                                    "report (html)"};
+  std::vector<std::string> order = {"read capture", "load model",    "read images",      "rectify",
+                                    "segment",      "disparity",     "corners + points", "report pictures",
+                                    "plan",         "write outputs", "report (html)"};
   for (const Runs& r : runs)
     for (const auto& [s, _] : r.stages.front())
       if (std::find(order.begin(), order.end(), s) == order.end()) order.insert(order.end() - 1, s);
@@ -193,7 +193,8 @@ int main(int argc, char** argv) {
       "(plan.json/svg/dxf/pdf/png, points, report.html). {} hardware threads, OpenCV {} threads, load average "
       "{:.1f} at start and {:.1f} at the end (other jobs share the machine: the same-run ratios are the "
       "figures to compare). Target (issue 9): ≤ 15 s on 2 cores with the shipped model.\n\n",
-      kDemoSentence, repeats, model_repeats, std::thread::hardware_concurrency(), cv::getNumThreads(), load_start, asbuilt::bench::LoadAverage1());
+      kDemoSentence, repeats, model_repeats, std::thread::hardware_concurrency(), cv::getNumThreads(), load_start,
+      asbuilt::bench::LoadAverage1());
   md += "| stage |";
   for (const Mode& m : modes) md += " " + m.name + " |";
   md += "\n|---|";
@@ -221,7 +222,8 @@ int main(int argc, char** argv) {
   if (!model) md += "The shipped model column is missing: this build has no LibTorch or no models/ file.\n\n";
   for (std::size_t i = 0; i < modes.size(); ++i) md += fmt::format("- {}: {}\n", modes[i].name, runs[i].brief);
   md += seg_line;
-  if (render_seconds >= 0) md += fmt::format("- rendering the capture (once, not timed above): {:.1f} s\n", render_seconds);
+  if (render_seconds >= 0)
+    md += fmt::format("- rendering the capture (once, not timed above): {:.1f} s\n", render_seconds);
   md += "\n";
   // Replace only this program's section of the file.
   constexpr char kBegin[] = "<!-- bench_survey: written by bench/survey, edits are lost -->\n";

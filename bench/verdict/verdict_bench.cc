@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
     const fs::path capture = data / "cc0-panoramas" / "annotated" / room / "capture.json";
     if (!fs::exists(capture)) continue;
     cc0.push_back(survey(capture, fmt::format("cc0_{}_default", room), {}));
-    if (fs::exists(teacher)) cc0.push_back(survey(capture, fmt::format("cc0_{}_teacher", room), {.model_path = teacher}));
+    if (fs::exists(teacher))
+      cc0.push_back(survey(capture, fmt::format("cc0_{}_teacher", room), {.model_path = teacher}));
   }
   for (const char* room : {"p01_rect_1door_2win", "p02_L_shape"}) {
     const fs::path capture = data / "blender-rooms-public" / room / "capture.json";

@@ -26,9 +26,7 @@
 #include "asbuilt/seg/segmenter.h"
 #include "bench/bench_util.h"
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 int main(int argc, char** argv) {
   using namespace asbuilt;

@@ -33,10 +33,10 @@ int RunCalibrateCommand(int argc, char** argv) {
   CalibrateOptions options;
   auto* left_opt = app.add_option("--left", left_args, "left images (files or a quoted glob such as 'L*.jpg')");
   auto* right_opt = app.add_option("--right", right_args, "right images, paired with --left by sorted name");
-  auto* euroc_opt = app.add_option("--from-euroc", euroc,
-                                   "convert EuRoC sensor.yaml files instead: LEFT (cam0) then RIGHT (cam1)")
-                        ->expected(2)
-                        ->check(CLI::ExistingFile);
+  auto* euroc_opt =
+      app.add_option("--from-euroc", euroc, "convert EuRoC sensor.yaml files instead: LEFT (cam0) then RIGHT (cam1)")
+          ->expected(2)
+          ->check(CLI::ExistingFile);
   euroc_opt->excludes(left_opt)->excludes(right_opt);
   app.add_option("--board", board, "inner corners, COLSxROWS")->capture_default_str();
   app.add_option("--square-m", options.square_m, "chessboard square side in metres")->capture_default_str();
@@ -53,9 +53,10 @@ int RunCalibrateCommand(int argc, char** argv) {
     // The rectified camera, so a capture.json can be written without a rectify run.
     const StereoRectifier rectifier = MakeStereoRectifier(calibration, {});
     const PinholeCamera& c = rectifier.camera;
-    fmt::print("{} → {}; rectified camera for capture.json: {{\"width\": {}, \"height\": {}, \"fx\": {:.4f}, "
-               "\"fy\": {:.4f}, \"cx\": {:.4f}, \"cy\": {:.4f}, \"baseline_m\": {:.6f}}}\n",
-               calibration.ToString(), out, c.width_px, c.height_px, c.fx, c.fy, c.cx, c.cy, rectifier.baseline_m);
+    fmt::print(
+        "{} → {}; rectified camera for capture.json: {{\"width\": {}, \"height\": {}, \"fx\": {:.4f}, "
+        "\"fy\": {:.4f}, \"cx\": {:.4f}, \"cy\": {:.4f}, \"baseline_m\": {:.6f}}}\n",
+        calibration.ToString(), out, c.width_px, c.height_px, c.fx, c.fy, c.cx, c.cy, rectifier.baseline_m);
     return 0;
   }
   if (left_args.empty() || right_args.empty()) {

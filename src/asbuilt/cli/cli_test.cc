@@ -74,8 +74,7 @@ TEST(Cli, ValidateAcceptsBlenderRoomsFiles) {
 TEST(Cli, ValidateMissingFileExits1NamingIt) {
   RunResult r = RunAsbuilt("validate /nonexistent/plan.json");
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.out.find("/nonexistent/plan.json: cannot read: No such file or directory"),
-            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("/nonexistent/plan.json: cannot read: No such file or directory"), std::string::npos) << r.out;
 }
 
 }  // namespace

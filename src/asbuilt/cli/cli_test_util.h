@@ -41,9 +41,8 @@ inline const std::filesystem::path kData = ASBUILT_SHARED_DATA_DIR;
 
 // An empty folder for the running test: <tmp>/<prefix><test name>.
 inline std::filesystem::path FreshTestDir(const std::string& prefix) {
-  std::filesystem::path dir =
-      std::filesystem::temp_directory_path() /
-      (prefix + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                              (prefix + ::testing::UnitTest::GetInstance()->current_test_info()->name());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

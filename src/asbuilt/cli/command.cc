@@ -22,13 +22,15 @@ std::span<const Command> Commands() {
        &RunValidateCommand},
       {"plan", "floor plan from labelled points: walls, openings, dimensions → JSON, SVG, DXF, PDF, PNG",
        &RunPlanCommand},
-      {"eval", "score results against the truth (eval plan: a floor plan vs truth.json; eval seg: a segmenter; "
-               "eval zind: a segmenter on real photos)", &RunEvalCommand},
-      {"scene", "scenes from words or at random: text (built-in parser or --llm URL), random, truth, describe, "
-                "export-blender, schema",
+      {"eval",
+       "score results against the truth (eval plan: a floor plan vs truth.json; eval seg: a segmenter; "
+       "eval zind: a segmenter on real photos)",
+       &RunEvalCommand},
+      {"scene",
+       "scenes from words or at random: text (built-in parser or --llm URL), random, truth, describe, "
+       "export-blender, schema",
        &RunSceneCommand},
-      {"render", "render a scene's stereo views into a capture (RGB, labels, ID map, depth, truth)",
-       &RunRenderCommand},
+      {"render", "render a scene's stereo views into a capture (RGB, labels, ID map, depth, truth)", &RunRenderCommand},
       {"calibrate", "stereo calibration from chessboard pairs → OpenCV YAML (K1 D1 K2 D2 R T, rms)",
        &RunCalibrateCommand},
       {"rectify", "rectify stereo pairs with a calibration (maps computed once)", &RunRectifyCommand},
@@ -41,7 +43,8 @@ std::span<const Command> Commands() {
        &RunMcpCommand},
       {"labels", "ID maps → label maps (calibrate, convert), real annotations in (ADE20K, NYUv2, LabelMe), compare",
        &RunLabelsCommand},
-      {"dataset", "training sets: synthetic items (synth), real/synthetic mixes → manifest.json (mix), pair checks (check)",
+      {"dataset",
+       "training sets: synthetic items (synth), real/synthetic mixes → manifest.json (mix), pair checks (check)",
        &RunDatasetCommand},
       {"train", "train the SegFormer segmenter (walls, doors, windows): checkpoints, resume, logs, plot",
        &RunTrainCommand},
@@ -67,20 +70,22 @@ const Command* FindCommand(std::string_view name) {
 }
 
 void AddCommonFlags(CLI::App& app) {
-  app.add_flag_callback("-q,--quiet", [] { ConfigureLogging(Verbosity::kQuiet); },
-                        "only print errors");
-  app.add_flag_callback("-v,--verbose", [] { ConfigureLogging(Verbosity::kVerbose); },
-                        "print debug messages");
+  app.add_flag_callback(
+      "-q,--quiet", [] { ConfigureLogging(Verbosity::kQuiet); }, "only print errors");
+  app.add_flag_callback(
+      "-v,--verbose", [] { ConfigureLogging(Verbosity::kVerbose); }, "print debug messages");
 }
 
 void AddTurnInPlaceFlags(CLI::App& app, TurnInPlaceOptions* turn, std::string* size) {
-  app.add_option("--size", *size, "view size WIDTHxHEIGHT")->default_str(fmt::format("{}x{}", turn->width_px, turn->height_px));
+  app.add_option("--size", *size, "view size WIDTHxHEIGHT")
+      ->default_str(fmt::format("{}x{}", turn->width_px, turn->height_px));
   app.add_option("--fx", turn->fx, "focal length, pixels")->capture_default_str();
   app.add_option("--fy", turn->fy, "vertical focal length, pixels (0 = fx)")->capture_default_str();
   app.add_option("--views", turn->views, "views per panorama")->capture_default_str();
   app.add_option("--yaw-step", turn->yaw_step_deg, "degrees between views, counter-clockwise seen from above")
       ->capture_default_str();
-  app.add_option("--first-yaw", turn->first_yaw_deg, "yaw of the first view, degrees (0 looks along the pano frame's +Y)")
+  app.add_option("--first-yaw", turn->first_yaw_deg,
+                 "yaw of the first view, degrees (0 looks along the pano frame's +Y)")
       ->capture_default_str();
   app.add_option("--pitch", turn->pitch_deg, "tilt of every view, degrees, up positive")->capture_default_str();
 }
@@ -100,8 +105,7 @@ void ParseSizeFlag(const std::string& text, const std::string& flag, int& w, int
   h = b;
 }
 
-std::vector<std::filesystem::path> ExpandFileArgs(const std::vector<std::string>& args,
-                                                  const std::string& flag) {
+std::vector<std::filesystem::path> ExpandFileArgs(const std::vector<std::string>& args, const std::string& flag) {
   std::vector<std::filesystem::path> out;
   for (const std::string& a : args) {
     if (a.find_first_of("*?[") == std::string::npos) {

@@ -59,8 +59,7 @@ void Parse(CLI::App& app, int argc, char** argv);
 // Expands file arguments: each is a path or a glob pattern (quoted so the
 // shell leaves it). Sorted by name, so left/right lists pair up by position.
 // Throws CLI::ValidationError naming `flag` when a pattern matches nothing.
-std::vector<std::filesystem::path> ExpandFileArgs(const std::vector<std::string>& args,
-                                                  const std::string& flag);
+std::vector<std::filesystem::path> ExpandFileArgs(const std::vector<std::string>& args, const std::string& flag);
 
 // One declaration per command.
 int RunHelpCommand(int argc, char** argv);

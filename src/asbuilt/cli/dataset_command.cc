@@ -36,7 +36,8 @@ int RunDatasetCommand(int argc, char** argv) {
   mix->add_option("--real", mix_real,
                   "real dataset folder (images/ + labels/, at any depth); repeat it for several, e.g. survey "
                   "folders whose reviews were saved (OUT/review/training/). Test rooms are held out whole");
-  mix->add_option("--synthetic", mix_synth, "synthetic dataset folder (left/ + labels/ captures, or images/ + labels/)");
+  mix->add_option("--synthetic", mix_synth,
+                  "synthetic dataset folder (left/ + labels/ captures, or images/ + labels/)");
   mix->add_option("--test", mix_test, "explicit real test folder (default: hold out --test-fraction of --real)");
   mix->add_option("--config", mix_options.config, "R100, S100, RS5050, RS8020, RS2080 or any RSxxyy")
       ->capture_default_str();

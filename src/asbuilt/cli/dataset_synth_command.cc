@@ -33,20 +33,18 @@ CLI::App* AddDatasetSynthSubcommand(CLI::App& dataset_app) {
   synth->add_option("--seed", flags->options.seed, "scenes, views and rendering seed")->capture_default_str();
   synth->add_option("--shard", flags->shard, "render only shard i of N (i/N, 0-based)");
   synth->add_option("--size", flags->size, "image size WxH")->default_str("320x240");
-  synth->add_option("--spp", flags->options.render.samples_per_pixel, "RGB samples per pixel")
-      ->capture_default_str();
+  synth->add_option("--spp", flags->options.render.samples_per_pixel, "RGB samples per pixel")->capture_default_str();
   synth->add_option("--effects", flags->options.render.camera_effects, "camera effects strength [0, 1]")
       ->capture_default_str();
-  synth->add_option("--id-drift", flags->options.render.id_drift, "ID-map colour drift [0, 1]")
-      ->capture_default_str();
-  synth->add_option("--rig-share", flags->options.rig_view_share, "share of level rig views")
-      ->capture_default_str();
+  synth->add_option("--id-drift", flags->options.render.id_drift, "ID-map colour drift [0, 1]")->capture_default_str();
+  synth->add_option("--rig-share", flags->options.rig_view_share, "share of level rig views")->capture_default_str();
   synth->add_option("--items-per-scene", flags->options.items_per_scene, "consecutive items per room")
       ->capture_default_str();
-  synth->add_option("--levers", flags->levers,
-                    fmt::format("realism levers: all, none or a comma list of {}\n(\"all,-sunlight\" turns "
-                                "one off); docs/render.md \"Realism levers\"",
-                                fmt::join(SynthLeverNames(), ", ")))
+  synth
+      ->add_option("--levers", flags->levers,
+                   fmt::format("realism levers: all, none or a comma list of {}\n(\"all,-sunlight\" turns "
+                               "one off); docs/render.md \"Realism levers\"",
+                               fmt::join(SynthLeverNames(), ", ")))
       ->default_str("none");
   synth->add_option("--photo-dir", flags->photo_dirs,
                     "folder of photos for photo_textures/outside_photos (repeatable; replaces the Debian\n"
@@ -55,8 +53,7 @@ CLI::App* AddDatasetSynthSubcommand(CLI::App& dataset_app) {
   synth->add_flag("--no-resume", flags->no_resume, "re-render items that already exist");
   synth->callback([synth, flags] {
     DatasetSynthOptions& o = flags->options;
-    if (!flags->shard.empty() &&
-        std::sscanf(flags->shard.c_str(), "%d/%d", &o.shard_index, &o.shard_count) != 2) {
+    if (!flags->shard.empty() && std::sscanf(flags->shard.c_str(), "%d/%d", &o.shard_index, &o.shard_count) != 2) {
       throw CLI::ValidationError("--shard", fmt::format("'{}' is not i/N (e.g. 0/4)", flags->shard));
     }
     if (!flags->size.empty() && (std::sscanf(flags->size.c_str(), "%dx%d", &o.width_px, &o.height_px) != 2 ||

@@ -23,7 +23,8 @@ int RunDemoCommand(int argc, char** argv) {
   app.add_option("--text", options.sentence, "the room description")->capture_default_str();
   app.add_option("--views", options.views, "turn-in-place views")->capture_default_str();
   app.add_option("--spp", options.samples_per_pixel, "renderer samples per pixel")->capture_default_str();
-  app.add_option("--model", model, "segmentation model: a shipped model's name (default, renders, real), a checkpoint or a .tflite file");
+  app.add_option("--model", model,
+                 "segmentation model: a shipped model's name (default, renders, real), a checkpoint or a .tflite file");
   app.add_flag("--capture-labels", options.survey.use_capture_labels,
                "survey with the rendered exact labels instead of the segmenter (upper bound)");
   Parse(app, argc, argv);

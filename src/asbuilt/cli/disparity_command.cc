@@ -30,8 +30,7 @@ int RunDisparityCommand(int argc, char** argv) {
   app.add_option("--color", color, "colour picture (default: OUT with .png)");
   app.add_option("--matcher", matcher, "sgbm or bm")->capture_default_str();
   app.add_option("--min-disparity", options.min_disparity_px, "smallest disparity (px)")->capture_default_str();
-  app.add_option("--num-disparities", options.num_disparities_px, "range width, multiple of 16")
-      ->capture_default_str();
+  app.add_option("--num-disparities", options.num_disparities_px, "range width, multiple of 16")->capture_default_str();
   app.add_option("--block", options.block_size_px, "matching window side (odd)")->capture_default_str();
   app.add_flag("--full-dp", options.full_dp, "SGBM with eight paths (slower)");
   app.add_flag("--wls", options.wls_filter, "edge-aware WLS filtering (fills holes)");

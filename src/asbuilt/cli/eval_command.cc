@@ -27,21 +27,25 @@ int RunEvalCommand(int argc, char** argv) {
   app.require_subcommand(1);
 
   // eval plan
-  CLI::App* plan_cmd = app.add_subcommand(
-      "plan",
-      "score a floor plan against the truth: wall recall/precision and length error, opening\n"
-      "recall/precision per kind and width error, room area error (table on stdout)");
+  CLI::App* plan_cmd =
+      app.add_subcommand("plan",
+                         "score a floor plan against the truth: wall recall/precision and length error, opening\n"
+                         "recall/precision per kind and width error, room area error (table on stdout)");
   std::string plan_path, truth_path, plan_json_out;
   ScoreOptions score_options;
   plan_cmd->add_option("plan", plan_path, "predicted plan.json")->required();
   plan_cmd->add_option("truth", truth_path, "truth.json")->required();
   plan_cmd->add_option("--json", plan_json_out, "also write the scores as JSON to FILE");
-  plan_cmd->add_option("--wall-max-angle-deg", score_options.wall_max_angle_deg,
-                       "max angle between matched walls")->capture_default_str();
-  plan_cmd->add_option("--wall-max-distance-m", score_options.wall_max_distance_m,
-                       "max mean endpoint-to-line distance of matched walls")->capture_default_str();
-  plan_cmd->add_option("--opening-max-centre-distance-m", score_options.opening_max_centre_distance_m,
-                       "max distance between matched opening centres")->capture_default_str();
+  plan_cmd->add_option("--wall-max-angle-deg", score_options.wall_max_angle_deg, "max angle between matched walls")
+      ->capture_default_str();
+  plan_cmd
+      ->add_option("--wall-max-distance-m", score_options.wall_max_distance_m,
+                   "max mean endpoint-to-line distance of matched walls")
+      ->capture_default_str();
+  plan_cmd
+      ->add_option("--opening-max-centre-distance-m", score_options.opening_max_centre_distance_m,
+                   "max distance between matched opening centres")
+      ->capture_default_str();
 
   // eval seg
   CLI::App* seg_cmd = app.add_subcommand(
@@ -51,7 +55,10 @@ int RunEvalCommand(int argc, char** argv) {
   std::string seg_model, seg_manifest, seg_images, seg_labels, seg_json, seg_md, seg_split = "test";
   EvaluateOptions seg_options;
   SegmentOptions seg_segment;
-  seg_cmd->add_option("--model", seg_model, "a checkpoint, a .tflite file, or a shipped model's name (default, renders, real)")->required();
+  seg_cmd
+      ->add_option("--model", seg_model,
+                   "a checkpoint, a .tflite file, or a shipped model's name (default, renders, real)")
+      ->required();
   seg_cmd->add_option("--manifest", seg_manifest, "dataset manifest (see --split)");
   seg_cmd->add_option("--split", seg_split, "manifest list to score: test, val or train")->capture_default_str();
   seg_cmd->add_option("--images", seg_images, "image folder (or a dataset folder without --labels)");
@@ -74,9 +81,13 @@ int RunEvalCommand(int argc, char** argv) {
   ZindEvalOptions zind_options;
   SegmentOptions zind_segment;
   bool zind_no_sheets = false;
-  zind_cmd->add_option("--model", zind_model, "a checkpoint, a .tflite file, or a shipped model's name (default, renders, real)")->required();
+  zind_cmd
+      ->add_option("--model", zind_model,
+                   "a checkpoint, a .tflite file, or a shipped model's name (default, renders, real)")
+      ->required();
   zind_cmd->add_option("--zind", zind_tour, "ZInD tour folder (with zind_data.json and panos/)")->required();
-  zind_cmd->add_option("-o,--out", zind_out, "output folder (never commit it: derived from ZInD)")->capture_default_str();
+  zind_cmd->add_option("-o,--out", zind_out, "output folder (never commit it: derived from ZInD)")
+      ->capture_default_str();
   AddTurnInPlaceFlags(*zind_cmd, &zind_options.turn, &zind_size);
   zind_cmd->add_option("--seg-scale", zind_scale, "scale the segmenter sees, WxH (default: the view size)");
   zind_cmd->add_option("--mode", zind_segment.mode, "whole or slide")->capture_default_str();
@@ -102,10 +113,9 @@ int RunEvalCommand(int argc, char** argv) {
     ParseSizeFlag(zind_scale, "--seg-scale", zind_segment.scale_width_px, zind_segment.scale_height_px);
     const ZindTour tour = ReadZindTour(zind_tour);
     auto segmenter = LoadSegmenter(ModelPathFor(zind_model), zind_segment);
-    zind_options.segmenter_name =
-        fmt::format("{} ({}, {} inference at {}x{})", std::filesystem::path(zind_model).filename().string(),
-                    segmenter->info().ToString(), zind_segment.mode, zind_segment.scale_width_px,
-                    zind_segment.scale_height_px);
+    zind_options.segmenter_name = fmt::format(
+        "{} ({}, {} inference at {}x{})", std::filesystem::path(zind_model).filename().string(),
+        segmenter->info().ToString(), zind_segment.mode, zind_segment.scale_width_px, zind_segment.scale_height_px);
     ProgressPrinter printer;
     ZindEvalSummary s = EvaluateOnZind(*segmenter, tour, zind_out, zind_options, printer.Callback());
     printer.Finish();
@@ -121,10 +131,14 @@ int RunEvalCommand(int argc, char** argv) {
     std::vector<SegSample> samples;
     if (!seg_manifest.empty()) {
       SegDataSplit split = SplitFromManifest(seg_manifest);
-      if (seg_split == "test") samples = split.test;
-      else if (seg_split == "val") samples = split.val;
-      else if (seg_split == "train") samples = split.train;
-      else throw CLI::ValidationError("--split", "must be test, val or train, got '" + seg_split + "'");
+      if (seg_split == "test")
+        samples = split.test;
+      else if (seg_split == "val")
+        samples = split.val;
+      else if (seg_split == "train")
+        samples = split.train;
+      else
+        throw CLI::ValidationError("--split", "must be test, val or train, got '" + seg_split + "'");
     } else {
       samples = SplitFromFolders(seg_images, seg_labels, 0.0).train;
     }

@@ -10,19 +10,28 @@
 namespace asbuilt::cli {
 namespace {
 
-
 std::string TypeName(FieldKind type) {
   switch (type) {
-    case FieldKind::kInteger: return "INT";
-    case FieldKind::kNumber: return "FLOAT";
-    case FieldKind::kString: return "TEXT";
-    case FieldKind::kEnum: return "CHOICE";
-    case FieldKind::kPoint2: return "X,Y";
-    case FieldKind::kPoint3: return "X,Y,Z";
-    case FieldKind::kColor: return "R,G,B";
-    case FieldKind::kNumberList: return "N,...";
-    case FieldKind::kPolygon: return "JSON";
-    case FieldKind::kBool: return "";
+    case FieldKind::kInteger:
+      return "INT";
+    case FieldKind::kNumber:
+      return "FLOAT";
+    case FieldKind::kString:
+      return "TEXT";
+    case FieldKind::kEnum:
+      return "CHOICE";
+    case FieldKind::kPoint2:
+      return "X,Y";
+    case FieldKind::kPoint3:
+      return "X,Y,Z";
+    case FieldKind::kColor:
+      return "R,G,B";
+    case FieldKind::kNumberList:
+      return "N,...";
+    case FieldKind::kPolygon:
+      return "JSON";
+    case FieldKind::kBool:
+      return "";
   }
   return "";
 }
@@ -49,7 +58,8 @@ nlohmann::json ToJson(const Field& f, const std::string& text) {
   };
   switch (f.kind) {
     case FieldKind::kNumber:
-    case FieldKind::kInteger: return number(text);
+    case FieldKind::kInteger:
+      return number(text);
     case FieldKind::kPoint2:
     case FieldKind::kPoint3:
     case FieldKind::kColor:
@@ -68,7 +78,8 @@ nlohmann::json ToJson(const Field& f, const std::string& text) {
       nlohmann::json v = nlohmann::json::parse(text, nullptr, false);
       return v.is_discarded() ? nlohmann::json(text) : v;
     }
-    default: return text;
+    default:
+      return text;
   }
 }
 
@@ -80,8 +91,7 @@ std::string FieldFlagName(std::string_view field_name) {
   return flag;
 }
 
-FieldFlags::FieldFlags(CLI::App& app, std::vector<Field> fields, std::vector<FlagAlias> aliases,
-                       std::string_view group)
+FieldFlags::FieldFlags(CLI::App& app, std::vector<Field> fields, std::vector<FlagAlias> aliases, std::string_view group)
     : fields_(std::move(fields)) {
   for (const FlagAlias& a : aliases) {
     if (std::none_of(fields_.begin(), fields_.end(), [&](const Field& f) { return f.name == a.field; })) {

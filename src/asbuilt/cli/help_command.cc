@@ -23,8 +23,9 @@ int RunHelpCommand(int argc, char** argv) {
       "and the labelled synthetic data to train its segmenter.\n\n"
       "usage: asbuilt <command> [options]\n\ncommands:\n");
   for (const Command& c : Commands()) fmt::print("  {:<12} {}\n", c.name, c.summary);
-  fmt::print("\nRun `asbuilt <command> --help` for a command's options.\n"
-             "Exit codes: 0 success, 1 bad input or failure, 2 usage error.\n");
+  fmt::print(
+      "\nRun `asbuilt <command> --help` for a command's options.\n"
+      "Exit codes: 0 success, 1 bad input or failure, 2 usage error.\n");
   return 0;
 }
 

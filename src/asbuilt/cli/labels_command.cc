@@ -78,8 +78,9 @@ int Compare(const std::string& predicted_dir, const std::string& exact_dir, cons
     try {
       cv::Mat predicted = ReadLabelImage(p.image), exact = ReadLabelImage(p.label);
       if (predicted.size() != exact.size()) {
-        throw InputError(p.image.string(), "", fmt::format("{}x{} but the exact labels are {}x{}", predicted.cols,
-                                                           predicted.rows, exact.cols, exact.rows));
+        throw InputError(p.image.string(), "",
+                         fmt::format("{}x{} but the exact labels are {}x{}", predicted.cols, predicted.rows, exact.cols,
+                                     exact.rows));
       }
       total.Add(CompareLabels(predicted, exact, options));
     } catch (const InputError& e) {
@@ -190,8 +191,8 @@ int RunLabelsCommand(int argc, char** argv) {
   if (imp->parsed()) {
     std::optional<AnnotationFormat> format = ParseAnnotationFormat(imp_format);
     if (!format) {
-      throw CLI::ValidationError("--format", fmt::format("unknown format '{}'; known: ade20k, nyuv2, labelme, palette",
-                                                         imp_format));
+      throw CLI::ValidationError(
+          "--format", fmt::format("unknown format '{}'; known: ade20k, nyuv2, labelme, palette", imp_format));
     }
     imp_options.format = *format;
     imp_options.unlabeled_to_ignore = imp_unlabeled == "ignore";

@@ -45,9 +45,8 @@ TEST(LabelsCommand, ImportsAde20kAndNyuSamples) {
 TEST(LabelsCommand, BadInputInABatchIsNamedAndTheRestConverted) {
   if (!fs::exists(kData / "nyuv2_sample")) GTEST_SKIP() << "shared data not present";
   fs::path dir = LabelsCommandTestDir();
-  RunResult imp = RunAsbuilt("labels import --format nyuv2 " +
-                             (kData / "nyuv2_sample/semantic40_ids.png").string() + " " + (dir / "missing.png").string() +
-                             " -o " + (dir / "out").string());
+  RunResult imp = RunAsbuilt("labels import --format nyuv2 " + (kData / "nyuv2_sample/semantic40_ids.png").string() +
+                             " " + (dir / "missing.png").string() + " -o " + (dir / "out").string());
   EXPECT_EQ(imp.exit_code, 1) << imp.out;
   EXPECT_NE(imp.out.find((dir / "missing.png").string() + ": cannot read"), std::string::npos) << imp.out;
   EXPECT_TRUE(fs::exists(dir / "out/semantic40_ids.png"));
@@ -76,8 +75,8 @@ TEST(LabelsCommand, CalibrateConvertCompareReachTheTarget) {
   double agreement = 0;
   ASSERT_EQ(std::sscanf(cmp.out.c_str() + cmp.out.find("agreement ") + 10, "%lf", &agreement), 1) << cmp.out;
   EXPECT_GE(agreement, 99.5) << cmp.out;
-  RunResult bad = RunAsbuilt("labels convert --threshold -3 " + (dir / "idmap").string() + " -o " +
-                             (dir / "out2").string());
+  RunResult bad =
+      RunAsbuilt("labels convert --threshold -3 " + (dir / "idmap").string() + " -o " + (dir / "out2").string());
   EXPECT_EQ(bad.exit_code, 2) << bad.out;
   EXPECT_NE(bad.out.find("ConvertOptions.threshold = -3"), std::string::npos) << bad.out;
 }

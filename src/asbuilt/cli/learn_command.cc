@@ -34,8 +34,7 @@ int RunLearnCommand(int argc, char** argv) {
   app.add_option("--model", model, "the model to improve: \"default\", a shipped model's name, or a checkpoint")
       ->capture_default_str();
   app.add_option("--synthetic", synthetic, "renders to mix in (a folder made by `asbuilt dataset synth`)");
-  app.add_option("--config", o.config, "the mix: RS5050, RS8020, … (needs --synthetic) or R100")
-      ->capture_default_str();
+  app.add_option("--config", o.config, "the mix: RS5050, RS8020, … (needs --synthetic) or R100")->capture_default_str();
   app.add_option("--test-fraction", o.test_fraction, "share of the rooms held out to judge on")->capture_default_str();
   app.add_option("--hold-out", hold_out, "judge on this review instead (leave-one-room-out: name each room in turn)");
   app.add_option("--epochs", o.epochs, "fine-tuning epochs (0 = the fine-tuning default, 8)")->capture_default_str();

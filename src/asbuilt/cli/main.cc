@@ -29,8 +29,9 @@ std::string CommandList() {
 int main(int argc, char** argv) {
   asbuilt::ConfigureLogging(asbuilt::Verbosity::kNormal);
   if (argc < 2) {
-    fmt::print(stderr, "usage: asbuilt <command> [options]\n\ncommands:\n{}\n"
-                       "Run `asbuilt <command> --help` for a command's options.\n",
+    fmt::print(stderr,
+               "usage: asbuilt <command> [options]\n\ncommands:\n{}\n"
+               "Run `asbuilt <command> --help` for a command's options.\n",
                CommandList());
     return 2;
   }

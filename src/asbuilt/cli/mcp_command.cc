@@ -22,27 +22,18 @@ int RunMcpCommand(int argc, char** argv) {
   AddCommonFlags(app);
   mcp::McpServerOptions options;
   std::string workspace;
-  app.add_option("-w,--workspace", workspace,
-                 "folder the tools may read and write (created if missing)")
-      ->required();
-  app.add_option("--max-request-bytes", options.max_request_bytes,
-                 "largest message accepted, bytes")
+  app.add_option("-w,--workspace", workspace, "folder the tools may read and write (created if missing)")->required();
+  app.add_option("--max-request-bytes", options.max_request_bytes, "largest message accepted, bytes")
       ->capture_default_str();
-  app.add_option("--max-views", options.limits.max_views, "most views a capture may render")
+  app.add_option("--max-views", options.limits.max_views, "most views a capture may render")->capture_default_str();
+  app.add_option("--max-image-width", options.limits.max_image_width_px, "widest rendered image, px")
       ->capture_default_str();
-  app.add_option("--max-image-width", options.limits.max_image_width_px,
-                 "widest rendered image, px")
+  app.add_option("--max-image-height", options.limits.max_image_height_px, "tallest rendered image, px")
       ->capture_default_str();
-  app.add_option("--max-image-height", options.limits.max_image_height_px,
-                 "tallest rendered image, px")
+  app.add_option("--max-rooms", options.limits.max_rooms, "most rooms in a scene")->capture_default_str();
+  app.add_option("--max-openings", options.limits.max_openings, "most doors + windows in a scene")
       ->capture_default_str();
-  app.add_option("--max-rooms", options.limits.max_rooms, "most rooms in a scene")
-      ->capture_default_str();
-  app.add_option("--max-openings", options.limits.max_openings,
-                 "most doors + windows in a scene")
-      ->capture_default_str();
-  app.add_option("--max-furniture", options.limits.max_furniture,
-                 "most pieces of furniture in a scene")
+  app.add_option("--max-furniture", options.limits.max_furniture, "most pieces of furniture in a scene")
       ->capture_default_str();
   Parse(app, argc, argv);
   options.workspace = workspace;

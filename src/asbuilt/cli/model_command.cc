@@ -47,18 +47,17 @@ int RunModelCommand(int argc, char** argv) {
   info_cmd->add_option("model", info_path, "checkpoint (.pt)")->required();
   info_cmd->add_flag("--json", info_json, "print the whole metadata as JSON");
 
-  CLI::App* export_cmd = app.add_subcommand(
-      "export",
-      "write a checkpoint's weights and metadata as safetensors, for PyTorch\n"
-      "(tools/pytorch/asbuilt_segformer.py loads it into the same network)");
+  CLI::App* export_cmd = app.add_subcommand("export",
+                                            "write a checkpoint's weights and metadata as safetensors, for PyTorch\n"
+                                            "(tools/pytorch/asbuilt_segformer.py loads it into the same network)");
   std::string export_in, export_out;
   export_cmd->add_option("model", export_in, "checkpoint (.pt)")->required();
   export_cmd->add_option("-o,--out", export_out, "output .safetensors")->required();
 
-  CLI::App* import_cmd = app.add_subcommand(
-      "import",
-      "make a checkpoint from safetensors written by `model export` or tools/pytorch/\n"
-      "(every tensor of the configured model, with its shape; metadata key asbuilt_meta)");
+  CLI::App* import_cmd =
+      app.add_subcommand("import",
+                         "make a checkpoint from safetensors written by `model export` or tools/pytorch/\n"
+                         "(every tensor of the configured model, with its shape; metadata key asbuilt_meta)");
   std::string import_in, import_out;
   import_cmd->add_option("weights", import_in, "input .safetensors")->required();
   import_cmd->add_option("-o,--out", import_out, "output checkpoint (.pt)")->required();

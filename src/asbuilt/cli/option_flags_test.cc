@@ -43,8 +43,7 @@ std::vector<std::string> FieldFlagNames(const std::vector<Field>& fields, const 
   return out;
 }
 
-void ExpectEveryFieldHasAFlag(const std::string& command, const std::vector<Field>& fields,
-                              const std::string& prefix) {
+void ExpectEveryFieldHasAFlag(const std::string& command, const std::vector<Field>& fields, const std::string& prefix) {
   const std::set<std::string> help = HelpFlagsOf(command);
   for (const std::string& flag : FieldFlagNames(fields, prefix)) {
     EXPECT_TRUE(help.contains(flag)) << command << " --help lacks " << flag;
@@ -62,9 +61,7 @@ TEST(OptionFlags, SurveyHasAFlagForEveryPlanAndPointsField) {
   EXPECT_GT(PlanOptionFields().size() + FramePointsOptionFields().size(), 100u);
 }
 
-TEST(OptionFlags, PlanHasAFlagForEveryPlanField) {
-  ExpectEveryFieldHasAFlag("plan", PlanOptionFields().Fields(), "");
-}
+TEST(OptionFlags, PlanHasAFlagForEveryPlanField) { ExpectEveryFieldHasAFlag("plan", PlanOptionFields().Fields(), ""); }
 
 TEST(OptionFlags, PointsHasAFlagForEveryPointsField) {
   ExpectEveryFieldHasAFlag("points", FramePointsOptionFields().Fields(), "");
@@ -99,8 +96,7 @@ TEST(OptionFlags, BadNestedValueIsAUsageErrorNamingTheFlag) {
   EXPECT_NE(r.out.find("--plan.epsilon-m: must be > 0, got -1"), std::string::npos) << r.out;
   RunResult c = RunAsbuilt("survey missing.json -o /tmp/x --points.contacts sometimes");
   EXPECT_EQ(c.exit_code, 2) << c.out;
-  EXPECT_NE(c.out.find("--points.contacts: must be one of \"auto\", \"always\", \"off\""), std::string::npos)
-      << c.out;
+  EXPECT_NE(c.out.find("--points.contacts: must be one of \"auto\", \"always\", \"off\""), std::string::npos) << c.out;
   RunResult p = RunAsbuilt("points missing.json --use-capture-labels -o /tmp/x --disparity.block-size-px 0");
   EXPECT_EQ(p.exit_code, 2) << p.out;
   EXPECT_NE(p.out.find("--disparity.block-size-px: must be an integer >= 1 and <= 255, got 0"), std::string::npos)

@@ -33,9 +33,10 @@ fs::path PanoTempDir(const std::string& name) {
 TEST(PanoCommand, WritesViewsLabelsAndTruthOfAZindPanorama) {
   if (!fs::exists(kTour / "zind_data.json")) GTEST_SKIP() << "shared data not present: " << kTour;
   const fs::path d = PanoTempDir("views");
-  auto r = RunAsbuilt(fmt::format("pano views pano_15 --zind {} -o {} --size 160x120 --fx 100 --views 3 --yaw-step 120 "
-                                  "--overlay",
-                                  kTour.string(), d.string()));
+  auto r =
+      RunAsbuilt(fmt::format("pano views pano_15 --zind {} -o {} --size 160x120 --fx 100 --views 3 --yaw-step 120 "
+                             "--overlay",
+                             kTour.string(), d.string()));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find(kNotice), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("3 views + layout labels + truth.json"), std::string::npos) << r.out;
@@ -44,8 +45,8 @@ TEST(PanoCommand, WritesViewsLabelsAndTruthOfAZindPanorama) {
   }
   EXPECT_NE(ReadFile(d / "capture.json").find("\"yaw_deg\": 240.0"), std::string::npos);
   // The plain form: any 2:1 image, by path, without labels.
-  r = RunAsbuilt(fmt::format("pano views {} -o {} --views 1", (kTour / "panos/floor_01_partial_room_01_pano_15.jpg").string(),
-                             (d / "plain").string()));
+  r = RunAsbuilt(fmt::format("pano views {} -o {} --views 1",
+                             (kTour / "panos/floor_01_partial_room_01_pano_15.jpg").string(), (d / "plain").string()));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_TRUE(fs::exists(d / "plain/images/000.png"));
   EXPECT_FALSE(fs::exists(d / "plain/labels"));
@@ -56,9 +57,10 @@ TEST(PanoCommand, EvalZindScoresTheShippedModelAndSaysZindIsForResearchOnly) {
   if (!fs::exists(kTour / "zind_data.json")) GTEST_SKIP() << "shared data not present: " << kTour;
   const fs::path model = fs::path(ASBUILT_SOURCE_DIR) / "models/segformer_b0_asbuilt.pt";
   const fs::path d = PanoTempDir("eval");
-  auto r = RunAsbuilt(fmt::format("eval zind --model {} --zind {} -o {} --max-panoramas 1 --views 2 --size 160x120 "
-                                  "--fx 100 --yaw-step 180",
-                                  model.string(), kTour.string(), d.string()));
+  auto r =
+      RunAsbuilt(fmt::format("eval zind --model {} --zind {} -o {} --max-panoramas 1 --views 2 --size 160x120 "
+                             "--fx 100 --yaw-step 180",
+                             model.string(), kTour.string(), d.string()));
   if (r.out.find("LibTorch") != std::string::npos) GTEST_SKIP() << "this build has no LibTorch";
   ASSERT_EQ(r.exit_code, 0) << r.out;
   ASSERT_NE(r.out.find(kNotice), std::string::npos) << r.out;

@@ -45,9 +45,11 @@ int RunPlanCommand(int argc, char** argv) {
   app.add_option("--png-px-per-m", drawing.png_px_per_m, "PNG resolution")->capture_default_str();
   app.add_option("--wall-thickness-m", drawing.nominal_thickness_m,
                  "thickness of walls whose thickness is unknown, in the drawings and plan.ifc (marked there "
-                 "as a default)")->capture_default_str();
+                 "as a default)")
+      ->capture_default_str();
   app.add_option("--wall-height-m", ifc.default_wall_height_m,
-                 "plan.ifc: height of walls whose height is unknown (marked as a default)")->capture_default_str();
+                 "plan.ifc: height of walls whose height is unknown (marked as a default)")
+      ->capture_default_str();
   bool no_uncertainty = false;
   app.add_flag("--no-uncertainty", no_uncertainty, "do not print ± on the drawings");
   FieldFlags plan_flags(app, PlanOptionFields().Fields(options), {}, "Plan options (PlanOptions, docs/plan.md)");

@@ -72,11 +72,11 @@ TEST(PlanCommand, BuildsThePlanFromExactBlenderLabels) {
   fs::path capture = fs::path(ASBUILT_SOURCE_DIR) / "../shared/data/blender-rooms-public/p01_rect_1door_2win";
   if (!fs::exists(capture / "capture.json")) GTEST_SKIP() << "shared data not present";
   fs::path dir = PlanTempDir("capture");
-  RunResult r = RunAsbuilt(
-      fmt::format("plan {} -o {} --stride-px 6", (capture / "capture.json").string(), dir.string()));
+  RunResult r =
+      RunAsbuilt(fmt::format("plan {} -o {} --stride-px 6", (capture / "capture.json").string(), dir.string()));
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  RunResult e = RunAsbuilt(
-      fmt::format("eval plan {} {}", (dir / "plan.json").string(), (capture / "truth.json").string()));
+  RunResult e =
+      RunAsbuilt(fmt::format("eval plan {} {}", (dir / "plan.json").string(), (capture / "truth.json").string()));
   ASSERT_EQ(e.exit_code, 0) << e.out;
   EXPECT_NE(e.out.find("walls              4      4        4"), std::string::npos) << e.out;
 }

@@ -69,8 +69,9 @@ int RunPointsCommand(int argc, char** argv) {
   for (const FrameCues& f : result.frames) fmt::print(stderr, "  {}\n", f.BriefReport());
   if (!result.wall_cue.empty()) spdlog::info("points: {}", result.wall_cue);
   if (result.points.empty()) {
-    throw InputError(capture_path, "", "no point could be triangulated in any frame (no labelled wall, door or "
-                                       "window with a valid disparity): check the labels and the stereo pair");
+    throw InputError(capture_path, "",
+                     "no point could be triangulated in any frame (no labelled wall, door or "
+                     "window with a valid disparity): check the labels and the stereo pair");
   }
   const std::filesystem::path out(out_dir);
   WritePoints(result.points, out / "points.txt");

@@ -35,8 +35,8 @@ fs::path PointsTempDir(const std::string& name) {
 
 TEST(PointsCommand, WritesPointsAndPlyFromALabelFolder) {
   const fs::path out = PointsTempDir("points");
-  const RunResult r = RunAsbuilt(Join("points", (kRoom / "capture.json").string(), "--labels",
-                                          (kRoom / "labels").string(), "-o", out.string()));
+  const RunResult r = RunAsbuilt(
+      Join("points", (kRoom / "capture.json").string(), "--labels", (kRoom / "labels").string(), "-o", out.string()));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("12 frames (12 with points)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("corner+"), std::string::npos) << r.out;
@@ -48,8 +48,8 @@ TEST(PointsCommand, WritesPointsAndPlyFromALabelFolder) {
 
 TEST(PointsCommand, MissingLabelFileIsAnInputErrorNamingIt) {
   const fs::path out = PointsTempDir("points_missing");
-  const RunResult r = RunAsbuilt(Join("points", (kRoom / "capture.json").string(), "--labels",
-                                          out.string(), "-o", (out / "o").string()));
+  const RunResult r = RunAsbuilt(
+      Join("points", (kRoom / "capture.json").string(), "--labels", out.string(), "-o", (out / "o").string()));
   EXPECT_EQ(r.exit_code, 1) << r.out;
   EXPECT_NE(r.out.find("000.png"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out / "o" / "points.txt"));
@@ -62,15 +62,16 @@ TEST(PointsCommand, NeedsALabelSource) {
 
 TEST(DisparityCommand, WritesPfmAndColourPicture) {
   const fs::path out = PointsTempDir("disparity");
-  const RunResult r = RunAsbuilt(Join("disparity", (kRoom / "left" / "000.png").string(),
-                                          (kRoom / "right" / "000.png").string(), "-o",
-                                          (out / "d.pfm").string(), "--num-disparities", "64"));
+  const RunResult r =
+      RunAsbuilt(Join("disparity", (kRoom / "left" / "000.png").string(), (kRoom / "right" / "000.png").string(), "-o",
+                      (out / "d.pfm").string(), "--num-disparities", "64"));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_EQ(ReadFile(out / "d.pfm").rfind("Pf\n640 480\n", 0), 0u);
   EXPECT_TRUE(fs::exists(out / "d.png"));
   EXPECT_EQ(RunAsbuilt(Join("disparity", "a.png", "b.png", "-o", "d.pfm", "--matcher", "xx")).exit_code, 2);
-  EXPECT_EQ(RunAsbuilt(Join("disparity", "/nonexistent.png", "/nonexistent.png", "-o",
-                                (out / "e.pfm").string())).exit_code, 1);
+  EXPECT_EQ(
+      RunAsbuilt(Join("disparity", "/nonexistent.png", "/nonexistent.png", "-o", (out / "e.pfm").string())).exit_code,
+      1);
 }
 
 TEST(CalibrateCommand, CalibratesRectifiesAndNamesAViewWithoutABoard) {
@@ -83,16 +84,16 @@ TEST(CalibrateCommand, CalibratesRectifiesAndNamesAViewWithoutABoard) {
   }
   left += " " + (kRoom / "left" / "000.png").string();
   right += " " + (kRoom / "right" / "000.png").string();
-  const RunResult r = RunAsbuilt("calibrate --left" + left + " --right" + right +
-                                 " --board 9x6 --square-m 0.025 -o " + (out / "calibration.yml").string());
+  const RunResult r = RunAsbuilt("calibrate --left" + left + " --right" + right + " --board 9x6 --square-m 0.025 -o " +
+                                 (out / "calibration.yml").string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("000.png"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("no 9x6 board"), std::string::npos) << r.out;
   EXPECT_NE(ReadFile(out / "calibration.yml").find("rms:"), std::string::npos);
 
   const RunResult rect = RunAsbuilt("rectify --calibration " + (out / "calibration.yml").string() + " --left " +
-                                    (c / "left01.jpg").string() + " --right " + (c / "right01.jpg").string() +
-                                    " -o " + (out / "rect").string());
+                                    (c / "left01.jpg").string() + " --right " + (c / "right01.jpg").string() + " -o " +
+                                    (out / "rect").string());
   ASSERT_EQ(rect.exit_code, 0) << rect.out;
   EXPECT_TRUE(fs::exists(out / "rect" / "left" / "left01.jpg"));
   EXPECT_TRUE(fs::exists(out / "rect" / "right" / "right01.jpg"));

@@ -54,9 +54,10 @@ int RunRectifyCommand(int argc, char** argv) {
     }
   }
   const PinholeCamera& c = rectifier.camera;
-  fmt::print("{} pairs rectified → {}; camera for capture.json: {{\"width\": {}, \"height\": {}, \"fx\": {:.4f}, "
-             "\"fy\": {:.4f}, \"cx\": {:.4f}, \"cy\": {:.4f}, \"baseline_m\": {:.6f}}}\n",
-             left.size(), out_dir, c.width_px, c.height_px, c.fx, c.fy, c.cx, c.cy, rectifier.baseline_m);
+  fmt::print(
+      "{} pairs rectified → {}; camera for capture.json: {{\"width\": {}, \"height\": {}, \"fx\": {:.4f}, "
+      "\"fy\": {:.4f}, \"cx\": {:.4f}, \"cy\": {:.4f}, \"baseline_m\": {:.6f}}}\n",
+      left.size(), out_dir, c.width_px, c.height_px, c.fx, c.fy, c.cx, c.cy, rectifier.baseline_m);
   return 0;
 }
 

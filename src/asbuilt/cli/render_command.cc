@@ -36,8 +36,10 @@ int RunRenderCommand(int argc, char** argv) {
   app.add_flag("--home", home, "one capture per room, each in its own frame, and OUT/home.json");
   CaptureRenderOptions options;
   FieldFlags flags(app, CaptureRenderOptionFields().Fields(options),  // = MCP render_capture.
-                   {{"samples_per_pixel", "--spp"}, {"camera_effects", "--effects"},
-                    {"indirect_light", "!--no-indirect"}, {"instance_ids", "--instances"}});
+                   {{"samples_per_pixel", "--spp"},
+                    {"camera_effects", "--effects"},
+                    {"indirect_light", "!--no-indirect"},
+                    {"instance_ids", "--instances"}});
   Parse(app, argc, argv);
 
   flags.Read(CaptureRenderOptionFields(), options);
@@ -58,7 +60,8 @@ int RunRenderCommand(int argc, char** argv) {
     if (home_options.capture.views == 0) home_options.capture.views = 12;
     const HomeRenderSummary summary = RenderHome(scene, out_dir, home_options, printer.Callback());
     printer.Finish();
-    fmt::print("{} rooms rendered in {:.0f} s → {}\n", summary.rooms.size(), summary.seconds, summary.home_json.string());
+    fmt::print("{} rooms rendered in {:.0f} s → {}\n", summary.rooms.size(), summary.seconds,
+               summary.home_json.string());
     return 0;
   }
   CaptureRenderSummary summary = RenderCapture(scene, out_dir, options, printer.Callback());

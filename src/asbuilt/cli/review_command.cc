@@ -50,8 +50,9 @@ int RunReviewCommand(int argc, char** argv) {
   // with `asbuilt review OUT/rooms/NAME/`.
   if (HomeReviewSession::IsHomeSurvey(out_dir)) {
     if (export_training) {
-      throw InputError(out_dir, "", "a home survey: export each room's review (asbuilt review OUT/rooms/NAME/ "
-                                    "--export-training)");
+      throw InputError(out_dir, "",
+                       "a home survey: export each room's review (asbuilt review OUT/rooms/NAME/ "
+                       "--export-training)");
     }
     HomeReviewSession home = HomeReviewSession::Open(out_dir);
     serve(home);

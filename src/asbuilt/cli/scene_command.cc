@@ -45,8 +45,10 @@ int RunSceneCommand(int argc, char** argv) {
       ->required();
   text_cmd->add_option("-o,--output", text_out, "scene file to write")->required();
   FieldFlags text_flags(*text_cmd, SceneTextOptionFields().Fields(),  // = MCP scene_from_text.
-                        {{"furnish", "!--no-furniture"}, {"add_door_if_none", "!--no-default-door"},
-                         {"rig_height_m", "--rig-height"}, {"turn_step_deg", "--step"}});
+                        {{"furnish", "!--no-furniture"},
+                         {"add_door_if_none", "!--no-default-door"},
+                         {"rig_height_m", "--rig-height"},
+                         {"turn_step_deg", "--step"}});
   text_cmd->add_option("--llm", llm_url,
                        "OpenAI-compatible base URL (e.g. http://localhost:8080/v1); key from ASBUILT_LLM_API_KEY");
   text_cmd->add_option("--llm-model", llm_options.model, "model name sent to the endpoint")->capture_default_str();
@@ -118,9 +120,8 @@ int RunSceneCommand(int argc, char** argv) {
     FieldArgs args = random_flags.Args();
     ProgressPrinter printer;
     RandomScenesSummary summary =
-        WriteRandomScenes(RandomSceneOptionFields().FromArgs(args),
-                          static_cast<std::uint64_t>(args.Integer("seed")), count, random_out,
-                          StderrIsTerminal() ? printer.Callback() : ProgressCallback{});
+        WriteRandomScenes(RandomSceneOptionFields().FromArgs(args), static_cast<std::uint64_t>(args.Integer("seed")),
+                          count, random_out, StderrIsTerminal() ? printer.Callback() : ProgressCallback{});
     printer.Finish();
     fmt::print("{}\n", summary.BriefReport());
     return 0;

@@ -75,8 +75,8 @@ TEST(SceneCommand, RandomWritesValidScenes) {
   RunResult r = RunAsbuilt("scene random --seed 5 --count 3 -o " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_THAT(r.out, HasSubstr("3 scenes in "));
-  RunResult v = RunAsbuilt("validate " + (dir / "scene_0000.json").string() + " " +
-                           (dir / "scene_0001.json").string() + " " + (dir / "scene_0002.json").string());
+  RunResult v = RunAsbuilt("validate " + (dir / "scene_0000.json").string() + " " + (dir / "scene_0001.json").string() +
+                           " " + (dir / "scene_0002.json").string());
   EXPECT_EQ(v.exit_code, 0) << v.out;
   EXPECT_THAT(v.out, HasSubstr("scene_0002.json: ok (scene)"));
   fs::path again = SceneTempDir("random_again");

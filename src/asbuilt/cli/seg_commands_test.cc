@@ -24,9 +24,11 @@ fs::path SegTempDir(const std::string& name) {
 
 TEST(SegCommands, TrainSegmentAndEvaluateToyRooms) {
   fs::path d = SegTempDir("flow");
-  auto r = RunAsbuilt(fmt::format("experiment toy-rooms -o {} --count 8 --width 64 --height 48 --seed 2", (d / "toy").string()));
+  auto r = RunAsbuilt(
+      fmt::format("experiment toy-rooms -o {} --count 8 --width 64 --height 48 --seed 2", (d / "toy").string()));
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  r = RunAsbuilt(fmt::format("train --images {} -o {} --arch tiny --epochs 2 --steps-per-epoch 3 --scale 64x48 "
+  r =
+      RunAsbuilt(fmt::format("train --images {} -o {} --arch tiny --epochs 2 --steps-per-epoch 3 --scale 64x48 "
                              "--crop 48x48 --threads 1 --lr 1e-3",
                              (d / "toy").string(), (d / "run").string()));
   ASSERT_EQ(r.exit_code, 0) << r.out;
@@ -68,11 +70,12 @@ TEST(SegCommands, ExperimentRatiosWritesTheTableAndPlotForEveryConfig) {
   EXPECT_GT(fs::file_size(d / "out" / "results.md"), 0u);
   EXPECT_GT(fs::file_size(d / "out" / "plot.png"), 0u);
   // A config name that is not a mix is a usage error naming it.
-  r = RunAsbuilt(fmt::format("experiment ratios --real {0}/real --synthetic {0}/synth --configs RS6050 -o {0}/bad",
-                             d.string()));
+  r = RunAsbuilt(
+      fmt::format("experiment ratios --real {0}/real --synthetic {0}/synth --configs RS6050 -o {0}/bad", d.string()));
   EXPECT_EQ(r.exit_code, 2) << r.out;
   EXPECT_NE(r.out.find("RS6050"), std::string::npos) << r.out;
-  r = RunAsbuilt(fmt::format("experiment ratios --real {0}/real --synthetic {0}/synth --scale 64 -o {0}/bad", d.string()));
+  r = RunAsbuilt(
+      fmt::format("experiment ratios --real {0}/real --synthetic {0}/synth --scale 64 -o {0}/bad", d.string()));
   EXPECT_EQ(r.exit_code, 2) << r.out;
   fs::remove_all(d);
 }

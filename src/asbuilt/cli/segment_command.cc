@@ -49,7 +49,8 @@ int RunSegmentCommand(int argc, char** argv) {
   bool overlay = false;
   SegmentOptions o;
   std::string scale;
-  app.add_option("--model", model, "a checkpoint, a .tflite file, or a shipped model's name (default, renders, real)")->required();
+  app.add_option("--model", model, "a checkpoint, a .tflite file, or a shipped model's name (default, renders, real)")
+      ->required();
   app.add_option("images", inputs, "image files or folders")->required();
   app.add_option("-o,--out", out, "output folder")->required();
   app.add_flag("--overlay", overlay, "also write colour overlays");
@@ -92,7 +93,8 @@ int RunSegmentCommand(int argc, char** argv) {
       WritePng(fs::path(out) / (stem + ".png"), labels[k]);
       if (overlay) WritePng(fs::path(out) / (stem + "_overlay.png"), LabelOverlay(batch[k], labels[k]));
     }
-    printer.Update({.stage = "segment", .done = static_cast<std::int64_t>(end),
+    printer.Update({.stage = "segment",
+                    .done = static_cast<std::int64_t>(end),
                     .total = static_cast<std::int64_t>(images.size())});
   }
   printer.Finish();

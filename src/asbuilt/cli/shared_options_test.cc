@@ -95,9 +95,8 @@ TEST(SharedOptions, RenderAndRenderCaptureTakeTheSameFields) {
   EXPECT_EQ(ToolProperties("render_capture"), Union(NamesOf(fields), {"output", "overwrite"}));
   // CLI-only: the output folder, --size WxH (short for --width-px/--height-px), --no-resume; and
   // the older spellings kept as aliases.
-  EXPECT_EQ(HelpFlags("render"), Union(Union(FlagsOf(fields), kCommon),
-                                       {"--out", "--size", "--no-resume", "--spp", "--effects", "--no-indirect",
-                                        "--instances"}));
+  EXPECT_EQ(HelpFlags("render"), Union(Union(FlagsOf(fields), kCommon), {"--out", "--size", "--no-resume", "--spp",
+                                                                         "--effects", "--no-indirect", "--instances"}));
 }
 
 TEST(SharedOptions, SceneTextAndSceneFromTextTakeTheSameFields) {
@@ -113,8 +112,8 @@ TEST(SharedOptions, SceneRandomAndRandomSceneTakeTheSameFields) {
   auto fields = RandomSceneOptionFields().Fields();
   fields.push_back(RandomSceneSeedField());
   EXPECT_EQ(ToolProperties("random_scene"), NamesOf(fields));
-  EXPECT_EQ(HelpFlags("scene random"), Union(Union(FlagsOf(fields), kSubcommand),
-                                             {"--output", "--count", "--min-side", "--max-side", "--step"}));
+  EXPECT_EQ(HelpFlags("scene random"),
+            Union(Union(FlagsOf(fields), kSubcommand), {"--output", "--count", "--min-side", "--max-side", "--step"}));
 }
 
 TEST(SharedOptions, CliChecksBoundsLikeTheTool) {

@@ -79,7 +79,8 @@ int RunSurveyCommand(int argc, char** argv) {
   app.add_option("--jobs", jobs, "home.json: rooms surveyed at once (0: one per two hardware threads)")
       ->capture_default_str();
   app.add_option("-o,--out", out_dir, "output folder")->required();
-  app.add_option("--model", model, "segmentation model: a shipped model's name (default, renders, real), a checkpoint or a .tflite file");
+  app.add_option("--model", model,
+                 "segmentation model: a shipped model's name (default, renders, real), a checkpoint or a .tflite file");
   std::string seg_scale = "auto";
   app.add_option("--seg-scale", seg_scale,
                  "scale the segmenter sees: auto (the images' own size, up to twice the model's training "

@@ -30,7 +30,8 @@ int RunTrainCommand(int argc, char** argv) {
   app.add_option("--images", images, "image folder (or a dataset folder when --labels is absent)");
   app.add_option("--labels", labels, "label folder (PNG, same stems as the images)");
   app.add_option("-o,--out", out, "output folder for checkpoints and logs")->required();
-  app.add_option("--arch", o.arch, "architecture: b0, b1, b2, tiny, or tflite (fine-tunes the TFLite network of --init)")
+  app.add_option("--arch", o.arch,
+                 "architecture: b0, b1, b2, tiny, or tflite (fine-tunes the TFLite network of --init)")
       ->capture_default_str();
   app.add_option("--epochs", o.epochs, "epochs (paper: 50)")->capture_default_str();
   app.add_option("--steps-per-epoch", o.steps_per_epoch, "steps per epoch; 0 = one pass over the data")

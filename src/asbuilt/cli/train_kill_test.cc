@@ -66,16 +66,16 @@ TEST(TrainKill, ResumesAfterSigkillWithoutLosingOrRedoingEpochs) {
     GTEST_SKIP() << "this build has no LibTorch";
   }
   fs::path d = testing_util::FreshTestDir("asbuilt_train_kill_");
-  auto r = RunAsbuilt(fmt::format("experiment toy-rooms -o {} --count 10 --width 48 --height 32 --seed 5",
-                                  (d / "toy").string()));
+  auto r = RunAsbuilt(
+      fmt::format("experiment toy-rooms -o {} --count 10 --width 48 --height 32 --seed 5", (d / "toy").string()));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const int epochs = 8;
   const fs::path run = d / "run";
-  const std::string args =
-      fmt::format("train --images {} -o {} --arch tiny --epochs {} --steps-per-epoch 6 --batch 2 --scale 48x32 "
-                  "--crop 48x32 --lr 2e-3 --val-fraction 0.2 --seed 3 --threads 1 --no-photometric "
-                  "--no-blur-noise -q",
-                  (d / "toy").string(), run.string(), epochs);
+  const std::string args = fmt::format(
+      "train --images {} -o {} --arch tiny --epochs {} --steps-per-epoch 6 --batch 2 --scale 48x32 "
+      "--crop 48x32 --lr 2e-3 --val-fraction 0.2 --seed 3 --threads 1 --no-photometric "
+      "--no-blur-noise -q",
+      (d / "toy").string(), run.string(), epochs);
 
   // Kill twice: once right after the first checkpoint appears, once a little
   // later (possibly while a checkpoint is being written).

@@ -38,8 +38,7 @@ const FileKind kFileKinds[] = {
     {"plan", [](const nlohmann::json& d) { return d.contains("walls"); }, &CheckPlanFile},
     // OpenCV YAML, not JSON: only with --kind calibration.
     {"calibration", [](const nlohmann::json&) { return false; }, &CheckCalibrationFile},
-    {"scene", [](const nlohmann::json& d) { return d.contains("rooms") && !d.contains("walls"); },
-     &CheckSceneFile},
+    {"scene", [](const nlohmann::json& d) { return d.contains("rooms") && !d.contains("walls"); }, &CheckSceneFile},
     {"manifest", [](const nlohmann::json& d) { return d.contains("train") && d.contains("config"); },
      &CheckManifestFile},
     {"palette", [](const nlohmann::json& d) { return d.contains("colours"); }, &CheckPaletteFile},
@@ -103,8 +102,7 @@ int RunValidateCommand(int argc, char** argv) {
       fmt::print("{}: ok ({})\n", file, k->name);
     } else {
       ++invalid;
-      fmt::print("{}: invalid ({} problem{})\n", file, report.errors.size(),
-                 report.errors.size() == 1 ? "" : "s");
+      fmt::print("{}: invalid ({} problem{})\n", file, report.errors.size(), report.errors.size() == 1 ? "" : "s");
     }
   }
   return invalid == 0 ? 0 : 1;

@@ -113,8 +113,10 @@ DatasetCheckSummary CheckDataset(const DatasetCheckOptions& options, const fs::p
   if (fs::is_directory(path, ec)) {
     PairListing l = ListDatasetPairs(path);
     for (const ImagePair& p : l.pairs) jobs.push_back({p.name, p.image, p.label, {"all"}});
-    for (const fs::path& p : l.images_without_label) summary.problems.push_back({p.string(), "", "image without label"});
-    for (const fs::path& p : l.labels_without_image) summary.problems.push_back({p.string(), "", "label without image"});
+    for (const fs::path& p : l.images_without_label)
+      summary.problems.push_back({p.string(), "", "image without label"});
+    for (const fs::path& p : l.labels_without_image)
+      summary.problems.push_back({p.string(), "", "label without image"});
   } else if (fs::is_regular_file(path, ec)) {
     // Checksums are compared by `validate`; here the pairs' contents matter.
     FileReport report;
@@ -126,7 +128,9 @@ DatasetCheckSummary CheckDataset(const DatasetCheckOptions& options, const fs::p
       for (std::size_t i = 0; i < list->size(); ++i) {
         const ManifestEntry& e = (*list)[i];
         if (e.image.empty() || e.label.empty()) continue;  // Already reported.
-        jobs.push_back({fmt::format("{}[{}]", kSplits[s], i), m.Resolve(e.image), m.Resolve(e.label),
+        jobs.push_back({fmt::format("{}[{}]", kSplits[s], i),
+                        m.Resolve(e.image),
+                        m.Resolve(e.label),
                         {"all", kSplits[s], PairSourceName(e.source)}});
       }
       ++s;

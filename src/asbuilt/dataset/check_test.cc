@@ -45,8 +45,8 @@ TEST(CheckDataset, ReportsEachBadPairByNameAndCountsTheGoodOnes) {
   EXPECT_EQ(s.pairs, 6);
   EXPECT_EQ(s.bad_pairs, 4);
   ASSERT_EQ(s.problems.size(), 4u);
-  EXPECT_EQ(s.problems[0].ToString(), (dir / "images/e.png").string() +
-                                          ": pair e: cannot decode image (not a PNG/JPEG/… or corrupt)");
+  EXPECT_EQ(s.problems[0].ToString(),
+            (dir / "images/e.png").string() + ": pair e: cannot decode image (not a PNG/JPEG/… or corrupt)");
   EXPECT_EQ(s.problems[1].ToString(),
             (dir / "labels/c.png").string() + ": pair c: label ids outside {0, 1, 2, 3, 255}: 7 (1 px)");
   EXPECT_EQ(s.problems[2].ToString(),
@@ -80,9 +80,7 @@ TEST(CheckDataset, ChecksAManifestBySplitAndSource) {
   EXPECT_GT(s.histograms.at("synthetic").pixels[2], 0);
 }
 
-TEST(CheckDataset, MissingPathIsAnInputError) {
-  EXPECT_THROW(CheckDataset({}, "/nonexistent/dataset"), InputError);
-}
+TEST(CheckDataset, MissingPathIsAnInputError) { EXPECT_THROW(CheckDataset({}, "/nonexistent/dataset"), InputError); }
 
 }  // namespace
 }  // namespace asbuilt

@@ -15,15 +15,10 @@ namespace {
 
 constexpr const char* kSplitNames[] = {"train", "val", "test"};
 
-std::vector<ManifestEntry>& Split(Manifest& m, int i) {
-  return i == 0 ? m.train : i == 1 ? m.val : m.test;
-}
-const std::vector<ManifestEntry>& Split(const Manifest& m, int i) {
-  return i == 0 ? m.train : i == 1 ? m.val : m.test;
-}
+std::vector<ManifestEntry>& Split(Manifest& m, int i) { return i == 0 ? m.train : i == 1 ? m.val : m.test; }
+const std::vector<ManifestEntry>& Split(const Manifest& m, int i) { return i == 0 ? m.train : i == 1 ? m.val : m.test; }
 
-Manifest ParseManifest(const fs::path& path, const ReadManifestOptions& options,
-                       JsonDiagnostics& diag) {
+Manifest ParseManifest(const fs::path& path, const ReadManifestOptions& options, JsonDiagnostics& diag) {
   Manifest manifest;
   manifest.base_dir = path.parent_path();
   nlohmann::json root = ParseJsonFile(path, diag);
@@ -61,8 +56,7 @@ Manifest ParseManifest(const fs::path& path, const ReadManifestOptions& options,
       JsonField e = list.At(i);
       if (!e.Object({"image", "label", "source", "sha256", "label_sha256"})) continue;
       ManifestEntry entry;
-      auto read_file = [&](const char* key, const char* sha_key, std::string& out,
-                           std::string& sha_out) {
+      auto read_file = [&](const char* key, const char* sha_key, std::string& out, std::string& sha_out) {
         JsonField f = e.Required(key);
         auto v = f.String();
         if (!v) return;
@@ -108,9 +102,9 @@ Manifest ParseManifest(const fs::path& path, const ReadManifestOptions& options,
         auto [it, inserted] = seen.emplace(std::pair{entry.image, entry.label}, where);
         if (!inserted) {
           bool leak = s == 2 && it->second.rfind("test", 0) != 0;
-          e.AddError(leak ? fmt::format("test pair {} is also listed in {} (test must stay held out)",
-                                        entry.image, it->second)
-                          : fmt::format("pair {} is listed twice (also {})", entry.image, it->second));
+          e.AddError(
+              leak ? fmt::format("test pair {} is also listed in {} (test must stay held out)", entry.image, it->second)
+                   : fmt::format("pair {} is listed twice (also {})", entry.image, it->second));
         }
       }
       Split(manifest, s).push_back(std::move(entry));
@@ -121,9 +115,7 @@ Manifest ParseManifest(const fs::path& path, const ReadManifestOptions& options,
 
 }  // namespace
 
-const char* PairSourceName(PairSource source) {
-  return source == PairSource::kReal ? "real" : "synthetic";
-}
+const char* PairSourceName(PairSource source) { return source == PairSource::kReal ? "real" : "synthetic"; }
 
 std::string ManifestEntry::ToString() const {
   return fmt::format("ManifestEntry({}, {}, {})", image, label, PairSourceName(source));
@@ -138,8 +130,8 @@ fs::path Manifest::Resolve(const std::string& relative) const {
 }
 
 std::string Manifest::ToString() const {
-  return fmt::format("Manifest({}, seed {}: {} train, {} val, {} test)", config.empty() ? "?" : config,
-                     seed, train.size(), val.size(), test.size());
+  return fmt::format("Manifest({}, seed {}: {} train, {} val, {} test)", config.empty() ? "?" : config, seed,
+                     train.size(), val.size(), test.size());
 }
 
 Manifest ReadManifest(const fs::path& path, const ReadManifestOptions& options) {

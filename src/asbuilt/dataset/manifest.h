@@ -83,8 +83,7 @@ FileReport CheckManifestFile(const std::filesystem::path& path);
 // Reads what can be read and reports every problem in `report` without
 // throwing (entries with a missing file are kept); for `asbuilt dataset
 // check`, which goes on with the pairs that exist.
-Manifest ReadManifestLenient(const std::filesystem::path& path, const ReadManifestOptions& options,
-                             FileReport& report);
+Manifest ReadManifestLenient(const std::filesystem::path& path, const ReadManifestOptions& options, FileReport& report);
 
 // Writes atomically. `manifest.base_dir` is ignored: paths are written as
 // stored, so they must already be relative to path's folder (and root).
@@ -93,8 +92,7 @@ nlohmann::json ManifestToJson(const Manifest& manifest);
 
 // `path` relative to `base` (generic '/' separators, with "../" when it lies
 // outside), so a tree moved as a whole keeps working. For building entries.
-std::string RelativePathForManifest(const std::filesystem::path& path,
-                                    const std::filesystem::path& base);
+std::string RelativePathForManifest(const std::filesystem::path& path, const std::filesystem::path& base);
 
 }  // namespace asbuilt
 

@@ -37,7 +37,7 @@ void Shuffle(std::vector<T>& v, std::uint64_t seed) {
 }
 
 // Independent streams from one seed.
-constexpr std::uint64_t kTestStream = 0x7465737400000000ULL;   // "test"
+constexpr std::uint64_t kTestStream = 0x7465737400000000ULL;  // "test"
 
 // The room a pair shows: the folder part of its name ("kitchen/review/
 // training/003" → "kitchen/review/training"); a pair named without one is

@@ -66,9 +66,9 @@ struct MixSources {
 
 struct MixSummary {
   Manifest manifest;
-  std::int64_t real_available = 0;       // Real pairs left after the test hold-out.
+  std::int64_t real_available = 0;  // Real pairs left after the test hold-out.
   std::int64_t synthetic_available = 0;
-  std::int64_t real_used = 0;            // In train + val.
+  std::int64_t real_used = 0;  // In train + val.
   std::int64_t synthetic_used = 0;
   double seconds = 0.0;
 

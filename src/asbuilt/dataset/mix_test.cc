@@ -43,7 +43,8 @@ std::set<std::string> Images(const std::vector<ManifestEntry>& list) {
 }
 
 int Count(const std::vector<ManifestEntry>& list, PairSource s) {
-  return static_cast<int>(std::count_if(list.begin(), list.end(), [&](const ManifestEntry& e) { return e.source == s; }));
+  return static_cast<int>(
+      std::count_if(list.begin(), list.end(), [&](const ManifestEntry& e) { return e.source == s; }));
 }
 
 TEST(MixConfig, ParsesNamedAndAnyRsRatio) {
@@ -131,9 +132,9 @@ TEST_F(MixTest, ReviewedRoomsAreHeldOutWholeNeverByView) {
     MakeDataset(rooms.back() / "review" / "training", 12, 3);
   }
   for (int seed = 1; seed <= 5; ++seed) {
-    const MixSummary s = MixDataset({.config = "RS5050", .test_fraction = 0.25, .seed = static_cast<std::uint64_t>(seed),
-                                     .checksums = false},
-                                    rooms, sources_ / "synth", {}, dir_ / "out/rooms.json");
+    const MixSummary s = MixDataset(
+        {.config = "RS5050", .test_fraction = 0.25, .seed = static_cast<std::uint64_t>(seed), .checksums = false},
+        rooms, sources_ / "synth", {}, dir_ / "out/rooms.json");
     auto room_of = [](const ManifestEntry& e) {
       const std::string tail = e.image.substr(e.image.find("surveys/") + 8);
       return tail.substr(0, tail.find('/'));

@@ -40,9 +40,9 @@ std::map<std::string, fs::path> FilesByStem(const fs::path& dir, bool png_only) 
     if (png_only ? Lower(p.extension().string()) != ".png" : !IsImageExtension(p)) continue;
     auto [pos, inserted] = out.emplace(p.stem().string(), p);
     if (!inserted) {
-      throw InputError(p.string(), "",
-                       fmt::format("two files share the stem '{}' (also {})", p.stem().string(),
-                                   pos->second.filename().string()));
+      throw InputError(
+          p.string(), "",
+          fmt::format("two files share the stem '{}' (also {})", p.stem().string(), pos->second.filename().string()));
     }
   }
   return out;
@@ -58,8 +58,7 @@ void Append(PairListing& into, PairListing from, const std::string& prefix) {
 }
 
 // Depth-first over the tree; `prefix` is the path of `dir` below the top.
-void CollectDataset(const fs::path& dir, const std::string& prefix, int depth, PairListing& out,
-                    bool& found) {
+void CollectDataset(const fs::path& dir, const std::string& prefix, int depth, PairListing& out, bool& found) {
   std::error_code ec;
   if (fs::is_directory(dir / "labels", ec)) {
     for (const char* images : {"images", "left"}) {
@@ -85,9 +84,7 @@ void CollectDataset(const fs::path& dir, const std::string& prefix, int depth, P
 
 }  // namespace
 
-std::string ImagePair::ToString() const {
-  return fmt::format("{} ({}, {})", name, image.string(), label.string());
-}
+std::string ImagePair::ToString() const { return fmt::format("{} ({}, {})", name, image.string(), label.string()); }
 
 std::string PairListing::ToString() const {
   auto plural = [](std::size_t n, const char* word, const char* words) {
@@ -123,11 +120,9 @@ PairListing ListDatasetPairs(const fs::path& dir) {
   bool found = false;
   CollectDataset(dir, "", 0, out, found);
   if (!found) {
-    throw InputError(dir.string(), "",
-                     "no dataset here: expected images/ + labels/ or left/ + labels/ (at any depth)");
+    throw InputError(dir.string(), "", "no dataset here: expected images/ + labels/ or left/ + labels/ (at any depth)");
   }
-  std::sort(out.pairs.begin(), out.pairs.end(),
-            [](const ImagePair& a, const ImagePair& b) { return a.name < b.name; });
+  std::sort(out.pairs.begin(), out.pairs.end(), [](const ImagePair& a, const ImagePair& b) { return a.name < b.name; });
   return out;
 }
 

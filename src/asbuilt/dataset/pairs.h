@@ -28,8 +28,7 @@ struct PairListing {
 // file stem (non-recursive; hidden files and AtomicFile temp files skipped).
 // Throws InputError naming the folder if one is not a readable folder, and
 // naming both files if two images share a stem (a.jpg and a.png).
-PairListing ListPairs(const std::filesystem::path& images_dir,
-                      const std::filesystem::path& labels_dir);
+PairListing ListPairs(const std::filesystem::path& images_dir, const std::filesystem::path& labels_dir);
 
 // The pairs of a dataset folder, whatever its layout:
 //   DIR/images + DIR/labels      (real photos, imported annotations)

@@ -20,8 +20,8 @@ fs::path PairsTestDir() {
 
 TEST(ListPairs, MatchesByStemAndReportsOrphans) {
   fs::path dir = PairsTestDir();
-  for (const char* f : {"images/a.jpg", "images/b.PNG", "images/c.jpg", "images/notes.txt",
-                        "labels/a.png", "labels/b.png", "labels/d.png", "labels/.hidden.png"}) {
+  for (const char* f : {"images/a.jpg", "images/b.PNG", "images/c.jpg", "images/notes.txt", "labels/a.png",
+                        "labels/b.png", "labels/d.png", "labels/.hidden.png"}) {
     WriteFileAtomic(dir / f, "x");
   }
   PairListing l = ListPairs(dir / "images", dir / "labels");
@@ -62,9 +62,8 @@ TEST(ListPairs, MissingFolderIsNamed) {
 
 TEST(ListDatasetPairs, FindsNestedCaptureFolders) {
   fs::path dir = PairsTestDir();
-  for (const char* f : {"room1/left/000.png", "room1/labels/000.png", "room1/right/000.png",
-                        "room2/left/000.png", "room2/labels/000.png", "room2/left/001.png",
-                        "room2/labels/001.png"}) {
+  for (const char* f : {"room1/left/000.png", "room1/labels/000.png", "room1/right/000.png", "room2/left/000.png",
+                        "room2/labels/000.png", "room2/left/001.png", "room2/labels/001.png"}) {
     WriteFileAtomic(dir / f, "x");
   }
   PairListing l = ListDatasetPairs(dir);

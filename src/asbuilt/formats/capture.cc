@@ -70,13 +70,12 @@ CaptureKind ParseKind(const std::string& name, bool* ok) {
 // mono and panorama surveys place walls from it.
 void RequireCameraHeight(const JsonField& field, const Vec3& position_m) {
   if (!(position_m.z() > 0)) {
-    field.AddError(fmt::format(
-        "the camera's height above the floor (z) must be > 0, got {}: walls are placed from it", position_m.z()));
+    field.AddError(fmt::format("the camera's height above the floor (z) must be > 0, got {}: walls are placed from it",
+                               position_m.z()));
   }
 }
 
-Capture ParseCaptureJson(const nlohmann::json& root, const fs::path& base_dir,
-                         JsonDiagnostics& diag) {
+Capture ParseCaptureJson(const nlohmann::json& root, const fs::path& base_dir, JsonDiagnostics& diag) {
   Capture capture;
   capture.base_dir = base_dir;
   JsonField doc(root, diag);
@@ -95,10 +94,10 @@ Capture ParseCaptureJson(const nlohmann::json& root, const fs::path& base_dir,
   const bool stereo = capture.kind == CaptureKind::kStereo;
   const bool known = capture.kind == CaptureKind::kPanorama
                          ? doc.Object({"version", "kind", "panorama", "position_m", "yaw_deg"})
-                         : stereo ? doc.Object({"version", "kind", "camera", "rectified", "calibration", "frames"})
-                                  // `asbuilt pano views` says where its views came from.
-                                  : doc.Object({"version", "kind", "camera", "rectified", "calibration", "frames",
-                                                "source", "notice", "truth"});
+                     : stereo ? doc.Object({"version", "kind", "camera", "rectified", "calibration", "frames"})
+                              // `asbuilt pano views` says where its views came from.
+                              : doc.Object({"version", "kind", "camera", "rectified", "calibration", "frames", "source",
+                                            "notice", "truth"});
   if (!known) return capture;
   if (auto v = doc.Required("version").Integer()) {
     if (*v != 1) doc.Required("version").AddError(fmt::format("unsupported version {}, expected 1", *v));
@@ -114,8 +113,7 @@ Capture ParseCaptureJson(const nlohmann::json& root, const fs::path& base_dir,
         image.AddError("empty path");
       } else if (!fs::is_regular_file(resolved, ec)) {
         image.AddError(fmt::format("image not found: {}", resolved.string()));
-      } else if (auto size = ImageSizeFromHeader(resolved);
-                 size && std::abs(size->first - 2 * size->second) > 1) {
+      } else if (auto size = ImageSizeFromHeader(resolved); size && std::abs(size->first - 2 * size->second) > 1) {
         image.AddError(fmt::format("{} is {}x{}: an equirectangular panorama is twice as wide as high",
                                    resolved.string(), size->first, size->second));
       }
@@ -172,8 +170,8 @@ Capture ParseCaptureJson(const nlohmann::json& root, const fs::path& base_dir,
     }
     // The principal point should lie inside the image.
     if (diag.ok() && (capture.camera.cx < -0.5 || capture.camera.cx > capture.camera.width - 0.5)) {
-      cam.Required("cx").AddError(fmt::format("principal point x {} lies outside the image width {}",
-                                              capture.camera.cx, capture.camera.width));
+      cam.Required("cx").AddError(
+          fmt::format("principal point x {} lies outside the image width {}", capture.camera.cx, capture.camera.width));
     }
     if (diag.ok() && (capture.camera.cy < -0.5 || capture.camera.cy > capture.camera.height - 0.5)) {
       cam.Required("cy").AddError(fmt::format("principal point y {} lies outside the image height {}",
@@ -191,8 +189,7 @@ Capture ParseCaptureJson(const nlohmann::json& root, const fs::path& base_dir,
   if (!stereo && !capture.rectified) {
     doc.Optional("rectified").AddError("a mono capture's views must be undistorted pinhole images (rectified: true)");
   } else if (!capture.rectified && !capture.calibration) {
-    doc.Optional("calibration").AddError(
-        "required when rectified is false (an OpenCV YAML from `asbuilt calibrate`)");
+    doc.Optional("calibration").AddError("required when rectified is false (an OpenCV YAML from `asbuilt calibrate`)");
   }
 
   JsonField frames = doc.Required("frames");
@@ -261,8 +258,7 @@ Capture ParseCapture(const fs::path& path, JsonDiagnostics& diag) {
 
 }  // namespace
 
-Capture CaptureFromJson(const nlohmann::json& json, const std::string& name,
-                        const fs::path& base_dir) {
+Capture CaptureFromJson(const nlohmann::json& json, const std::string& name, const fs::path& base_dir) {
   JsonDiagnostics diag(name);
   Capture capture = ParseCaptureJson(json, base_dir, diag);
   diag.ThrowIfErrors();
@@ -290,15 +286,13 @@ fs::path Capture::Resolve(const std::string& relative) const {
 std::string Capture::ToString() const {
   if (kind == CaptureKind::kPanorama && panorama) {
     return fmt::format("Capture(panorama {}, camera at ({:.3f}, {:.3f}, {:.3f}) m, yaw {:.1f}°)", panorama->image,
-                       panorama->position_m.x(), panorama->position_m.y(), panorama->position_m.z(),
-                       panorama->yaw_deg);
+                       panorama->position_m.x(), panorama->position_m.y(), panorama->position_m.z(), panorama->yaw_deg);
   }
   if (kind == CaptureKind::kMono) {
     return fmt::format("Capture(mono, {} frames, {}x{})", frames.size(), camera.width, camera.height);
   }
-  return fmt::format("Capture({} frames, {}x{}, baseline {:.3f} m, {})", frames.size(),
-                     camera.width, camera.height, camera.baseline_m,
-                     rectified ? "rectified" : "unrectified");
+  return fmt::format("Capture({} frames, {}x{}, baseline {:.3f} m, {})", frames.size(), camera.width, camera.height,
+                     camera.baseline_m, rectified ? "rectified" : "unrectified");
 }
 
 Capture ReadCapture(const fs::path& path) {
@@ -328,9 +322,8 @@ nlohmann::json CaptureToJson(const Capture& capture) {
   }
   const bool stereo = capture.kind == CaptureKind::kStereo;
   if (!stereo) j["kind"] = CaptureKindName(capture.kind);
-  j["camera"] = {{"width", capture.camera.width}, {"height", capture.camera.height},
-                 {"fx", capture.camera.fx},       {"fy", capture.camera.fy},
-                 {"cx", capture.camera.cx},       {"cy", capture.camera.cy}};
+  j["camera"] = {{"width", capture.camera.width}, {"height", capture.camera.height}, {"fx", capture.camera.fx},
+                 {"fy", capture.camera.fy},       {"cx", capture.camera.cx},         {"cy", capture.camera.cy}};
   if (stereo) {
     j["camera"]["baseline_m"] = capture.camera.baseline_m;
     j["rectified"] = capture.rectified;

@@ -44,8 +44,8 @@ const char* CaptureKindName(CaptureKind kind);  // "stereo", "mono", "panorama".
 
 struct CaptureFrame {
   int index = 0;
-  std::string left;    // Left image (a mono capture's only `image`), relative to the capture's folder.
-  std::string right;   // Empty in a mono capture.
+  std::string left;                   // Left image (a mono capture's only `image`), relative to the capture's folder.
+  std::string right;                  // Empty in a mono capture.
   std::optional<std::string> labels;  // Synthetic only: left-view label ids.
   std::optional<std::string> depth;   // Synthetic only: left-view uint16 mm.
   double yaw_deg = 0.0;
@@ -67,8 +67,8 @@ struct Capture {
   CaptureKind kind = CaptureKind::kStereo;
   CaptureCamera camera;  // Stereo and mono (mono: baseline_m unused).
   bool rectified = true;
-  std::optional<std::string> calibration;  // OpenCV YAML; needed if !rectified.
-  std::vector<CaptureFrame> frames;       // Stereo and mono; empty for a panorama.
+  std::optional<std::string> calibration;   // OpenCV YAML; needed if !rectified.
+  std::vector<CaptureFrame> frames;         // Stereo and mono; empty for a panorama.
   std::optional<CapturePanorama> panorama;  // Panorama captures only.
 
   // Folder the file was read from (not serialised); relative paths resolve
@@ -90,8 +90,7 @@ Capture ReadCapture(const std::filesystem::path& path);
 
 // Same, from JSON already in memory: `name` stands for the file in messages,
 // image paths resolve against `base_dir`.
-Capture CaptureFromJson(const nlohmann::json& json, const std::string& name,
-                        const std::filesystem::path& base_dir);
+Capture CaptureFromJson(const nlohmann::json& json, const std::string& name, const std::filesystem::path& base_dir);
 
 // Every problem in a capture file (errors and warnings), without throwing.
 struct FileReport {

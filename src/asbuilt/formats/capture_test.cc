@@ -32,10 +32,12 @@ class CaptureFileTest : public ::testing::Test {
   std::string Valid(const std::string& frame0_yaw = "0.0", const std::string& baseline = "0.12") {
     return R"({"version": 1,
       "camera": {"width": 640, "height": 480, "fx": 400.0, "fy": 400.0, "cx": 319.5, "cy": 239.5,
-                 "baseline_m": )" + baseline + R"(},
+                 "baseline_m": )" +
+           baseline + R"(},
       "rectified": true,
       "frames": [{"index": 0, "left": "left/000.png", "right": "right/000.png",
-                  "yaw_deg": )" + frame0_yaw + R"(, "position_m": [0.0, 0.0, 1.5]},
+                  "yaw_deg": )" +
+           frame0_yaw + R"(, "position_m": [0.0, 0.0, 1.5]},
                  {"index": 1, "left": "left/001.png", "right": "right/001.png",
                   "yaw_deg": 30, "position_m": [0.0, 0.0, 1.5]}]})";
   }
@@ -66,16 +68,14 @@ TEST_F(CaptureFileTest, MessageNamesTheFile) {
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              (dir_ / "capture.json").string() +
-                  ": frames[0].yaw_deg: expected a number, got \"abc\"");
+              (dir_ / "capture.json").string() + ": frames[0].yaw_deg: expected a number, got \"abc\"");
   }
 }
 
 TEST_F(CaptureFileTest, RejectsZeroBaseline) {
   auto errors = Errors(Valid("0", "0"));
   ASSERT_EQ(errors.size(), 1u);
-  EXPECT_EQ(errors[0],
-            "camera.baseline_m: baseline is zero: a stereo rig needs two separated cameras");
+  EXPECT_EQ(errors[0], "camera.baseline_m: baseline is zero: a stereo rig needs two separated cameras");
 }
 
 TEST_F(CaptureFileTest, RejectsDuplicateIndicesAndMissingImages) {
@@ -161,7 +161,8 @@ TEST_F(CaptureFileTest, MonoCaptureReadsAndRoundTrips) {
 TEST_F(CaptureFileTest, PanoramaCaptureReadsAndRoundTrips) {
   WriteFileAtomic(dir_ / "pano.png", PngHeader(2048, 1024));
   EXPECT_TRUE(Errors(R"({"version": 1, "kind": "panorama", "panorama": "pano.png",
-                         "position_m": [0, 0, 1.435], "yaw_deg": 10})").empty());
+                         "position_m": [0, 0, 1.435], "yaw_deg": 10})")
+                  .empty());
   Capture c = ReadCapture(dir_ / "capture.json");
   EXPECT_EQ(c.kind, CaptureKind::kPanorama);
   ASSERT_TRUE(c.panorama);
@@ -189,7 +190,8 @@ TEST_F(CaptureFileTest, PanoramaWithoutCameraHeightIsRefused) {
   EXPECT_EQ(missing[0].rfind("position_m: ", 0), 0u) << missing[0];
   auto zero = Errors(R"({"version": 1, "kind": "panorama", "panorama": "pano.png", "position_m": [0, 0, 0]})");
   ASSERT_EQ(zero.size(), 1u);
-  EXPECT_EQ(zero[0], "position_m: the camera's height above the floor (z) must be > 0, got 0: walls are placed from it");
+  EXPECT_EQ(zero[0],
+            "position_m: the camera's height above the floor (z) must be > 0, got 0: walls are placed from it");
 }
 
 TEST_F(CaptureFileTest, MonoFrameWithBadYawOrNoHeightIsRefused) {

@@ -46,7 +46,8 @@ Home ParseHome(const nlohmann::json& root, const fs::path& path, JsonDiagnostics
       if (auto problem = FolderNameProblem(*name)) {
         r.Required("name").AddError(*problem);
       } else if (auto [it, fresh] = first_of_name.emplace(*name, i); !fresh) {
-        r.Required("name").AddError(fmt::format("\"{}\" is also rooms[{}]'s name: names must differ", *name, it->second));
+        r.Required("name").AddError(
+            fmt::format("\"{}\" is also rooms[{}]'s name: names must differ", *name, it->second));
       }
     }
     if (auto capture = r.Required("capture").String()) {

@@ -17,8 +17,7 @@ std::optional<Vec2> ReadPoint(const JsonField& f) {
   return Vec2((*v)[0], (*v)[1]);
 }
 
-void ReadOptionalNonNegative(const JsonField& parent, const char* key,
-                             std::optional<double>& out) {
+void ReadOptionalNonNegative(const JsonField& parent, const char* key, std::optional<double>& out) {
   JsonField f = parent.Optional(key);
   if (f.present()) out = f.NonNegative();
 }
@@ -38,7 +37,8 @@ Plan ParsePlan(const nlohmann::json& root, JsonDiagnostics& diag) {
     PlanVerdictNote note;
     if (auto word = v.Required("verdict").String()) {
       if (!IsVerdictWord(*word)) {
-        v.Required("verdict").AddError(fmt::format("expected \"good\", \"check\" or \"unreliable\", got \"{}\"", *word));
+        v.Required("verdict").AddError(
+            fmt::format("expected \"good\", \"check\" or \"unreliable\", got \"{}\"", *word));
       }
       note.verdict = *word;
     }
@@ -86,8 +86,8 @@ Plan ParsePlan(const nlohmann::json& root, JsonDiagnostics& diag) {
   for (std::size_t i = 0; n_open && i < *n_open; ++i) {
     JsonField o = openings.At(i);
     PlanOpening op;
-    if (!o.Object({"kind", "wall", "start", "end", "width", "height", "sill",
-                   "width_sigma_m", "height_sigma_m", "sill_sigma_m", "rooms"})) {
+    if (!o.Object({"kind", "wall", "start", "end", "width", "height", "sill", "width_sigma_m", "height_sigma_m",
+                   "sill_sigma_m", "rooms"})) {
       continue;
     }
     if (auto k = o.Required("kind").String()) {
@@ -101,8 +101,8 @@ Plan ParsePlan(const nlohmann::json& root, JsonDiagnostics& diag) {
     }
     if (auto w = o.Required("wall").Integer()) {
       if (*w < 0 || (n_walls && static_cast<std::size_t>(*w) >= *n_walls)) {
-        o.Required("wall").AddError(fmt::format(
-            "wall index {} out of range (plan has {} walls)", *w, n_walls.value_or(0)));
+        o.Required("wall").AddError(
+            fmt::format("wall index {} out of range (plan has {} walls)", *w, n_walls.value_or(0)));
       } else {
         op.wall = static_cast<int>(*w);
       }
@@ -128,8 +128,8 @@ Plan ParsePlan(const nlohmann::json& root, JsonDiagnostics& diag) {
       }
     }
     if (op.width > 0 && std::abs((op.end - op.start).norm() - op.width) > 0.01) {
-      o.AddWarning(fmt::format("width {:.3f} differs from |end − start| = {:.3f}", op.width,
-                               (op.end - op.start).norm()));
+      o.AddWarning(
+          fmt::format("width {:.3f} differs from |end − start| = {:.3f}", op.width, (op.end - op.start).norm()));
     }
     plan.openings.push_back(op);
   }
@@ -167,9 +167,7 @@ nlohmann::json PointJson(const Vec2& p) { return nlohmann::json::array({p.x(), p
 
 bool IsVerdictWord(const std::string& word) { return word == "good" || word == "check" || word == "unreliable"; }
 
-const char* OpeningKindName(OpeningKind kind) {
-  return kind == OpeningKind::kDoor ? "door" : "window";
-}
+const char* OpeningKindName(OpeningKind kind) { return kind == OpeningKind::kDoor ? "door" : "window"; }
 
 double PolygonArea(const std::vector<Vec2>& polygon) {
   double twice = 0.0;
@@ -184,8 +182,8 @@ double PolygonArea(const std::vector<Vec2>& polygon) {
 std::string Plan::ToString() const {
   double area = 0.0;
   for (const PlanRoom& r : rooms) area += r.area_m2;
-  return fmt::format("Plan({} walls, {} openings, {} rooms, {:.2f} m²)", walls.size(),
-                     openings.size(), rooms.size(), area);
+  return fmt::format("Plan({} walls, {} openings, {} rooms, {:.2f} m²)", walls.size(), openings.size(), rooms.size(),
+                     area);
 }
 
 Plan PlanFromJson(const nlohmann::json& json, const std::string& name) {
@@ -234,8 +232,10 @@ nlohmann::json PlanToJson(const Plan& plan) {
   j["walls"] = std::move(walls);
   nlohmann::json openings = nlohmann::json::array();
   for (const PlanOpening& o : plan.openings) {
-    nlohmann::json jo = {{"kind", OpeningKindName(o.kind)}, {"wall", o.wall},
-                         {"start", PointJson(o.start)},     {"end", PointJson(o.end)},
+    nlohmann::json jo = {{"kind", OpeningKindName(o.kind)},
+                         {"wall", o.wall},
+                         {"start", PointJson(o.start)},
+                         {"end", PointJson(o.end)},
                          {"width", o.width}};
     if (o.height) jo["height"] = *o.height;
     if (o.sill) jo["sill"] = *o.sill;
@@ -261,8 +261,6 @@ nlohmann::json PlanToJson(const Plan& plan) {
   return j;
 }
 
-void WritePlan(const Plan& plan, const fs::path& path) {
-  WriteFileAtomic(path, PlanToJson(plan).dump(2) + "\n");
-}
+void WritePlan(const Plan& plan, const fs::path& path) { WriteFileAtomic(path, PlanToJson(plan).dump(2) + "\n"); }
 
 }  // namespace asbuilt

@@ -37,7 +37,7 @@ const char* OpeningKindName(OpeningKind kind);  // "door" / "window"
 
 struct PlanOpening {
   OpeningKind kind = OpeningKind::kDoor;
-  int wall = 0;  // Index into Plan::walls.
+  int wall = 0;               // Index into Plan::walls.
   Vec2 start = Vec2::Zero();  // End nearer the wall's start.
   Vec2 end = Vec2::Zero();
   double width = 0.0;

@@ -16,8 +16,14 @@ Plan RectangleWithDoor() {
   for (int i = 0; i < 4; ++i) {
     plan.walls.push_back({.start = corners[i], .end = corners[(i + 1) % 4], .thickness = 0.2, .height = 3.0});
   }
-  plan.openings.push_back({.kind = OpeningKind::kDoor, .wall = 1, .start = {6, 3.5}, .end = {6, 4.5},
-                           .width = 1.0, .height = 2.1, .sill = 0.0, .width_sigma_m = 0.01});
+  plan.openings.push_back({.kind = OpeningKind::kDoor,
+                           .wall = 1,
+                           .start = {6, 3.5},
+                           .end = {6, 4.5},
+                           .width = 1.0,
+                           .height = 2.1,
+                           .sill = 0.0,
+                           .width_sigma_m = 0.01});
   plan.rooms.push_back({.polygon = corners, .area_m2 = 48.0});
   return plan;
 }
@@ -54,8 +60,7 @@ TEST(PlanFile, RejectsBadFieldsWithPaths) {
     EXPECT_EQ(e.problems()[0].ToString(), "truth.json: walls[2].thickness: must be > 0, got -0.2");
     EXPECT_EQ(e.problems()[1].ToString(),
               "truth.json: openings[0].kind: expected \"door\" or \"window\", got \"hatch\"");
-    EXPECT_EQ(e.problems()[2].ToString(),
-              "truth.json: openings[0].wall: wall index 7 out of range (plan has 4 walls)");
+    EXPECT_EQ(e.problems()[2].ToString(), "truth.json: openings[0].wall: wall index 7 out of range (plan has 4 walls)");
   }
 }
 

@@ -13,30 +13,39 @@ namespace fs = std::filesystem;
 
 const char* LabelClassName(LabelClass c) {
   switch (c) {
-    case LabelClass::kBackground: return "background";
-    case LabelClass::kWall: return "wall";
-    case LabelClass::kDoor: return "door";
-    case LabelClass::kWindow: return "window";
+    case LabelClass::kBackground:
+      return "background";
+    case LabelClass::kWall:
+      return "wall";
+    case LabelClass::kDoor:
+      return "door";
+    case LabelClass::kWindow:
+      return "window";
   }
   return "unknown";
 }
 
 const char* PointSourceName(PointSource s) {
   switch (s) {
-    case PointSource::kCorner: return "corner";
-    case PointSource::kDense: return "dense";
-    case PointSource::kEdge: return "edge";
-    case PointSource::kOther: return "other";
-    case PointSource::kBoundary: return "boundary";
-    case PointSource::kContact: return "contact";
-    case PointSource::kVertex: return "vertex";
+    case PointSource::kCorner:
+      return "corner";
+    case PointSource::kDense:
+      return "dense";
+    case PointSource::kEdge:
+      return "edge";
+    case PointSource::kOther:
+      return "other";
+    case PointSource::kBoundary:
+      return "boundary";
+    case PointSource::kContact:
+      return "contact";
+    case PointSource::kVertex:
+      return "vertex";
   }
   return "other";
 }
 
-std::vector<ClassPoint> ReadPoints(const fs::path& path) {
-  return ParsePoints(ReadFile(path), path.string());
-}
+std::vector<ClassPoint> ReadPoints(const fs::path& path) { return ParsePoints(ReadFile(path), path.string()); }
 
 std::vector<ClassPoint> ParsePoints(std::string_view text_view, const std::string& name) {
   std::string text(text_view);
@@ -95,13 +104,20 @@ std::vector<ClassPoint> ParsePoints(std::string_view text_view, const std::strin
     p.sigma_m = v[3];
     if (cols.size() >= 6) {
       const std::string& s = cols[5];
-      if (s == "corner") p.source = PointSource::kCorner;
-      else if (s == "dense") p.source = PointSource::kDense;
-      else if (s == "edge") p.source = PointSource::kEdge;
-      else if (s == "other") p.source = PointSource::kOther;
-      else if (s == "boundary") p.source = PointSource::kBoundary;
-      else if (s == "contact") p.source = PointSource::kContact;
-      else if (s == "vertex") p.source = PointSource::kVertex;
+      if (s == "corner")
+        p.source = PointSource::kCorner;
+      else if (s == "dense")
+        p.source = PointSource::kDense;
+      else if (s == "edge")
+        p.source = PointSource::kEdge;
+      else if (s == "other")
+        p.source = PointSource::kOther;
+      else if (s == "boundary")
+        p.source = PointSource::kBoundary;
+      else if (s == "contact")
+        p.source = PointSource::kContact;
+      else if (s == "vertex")
+        p.source = PointSource::kVertex;
       else {
         fail(fmt::format("unknown source \"{}\" (corner, dense, edge, boundary, contact, vertex, other)", s));
         continue;
@@ -125,9 +141,8 @@ void WritePoints(const std::vector<ClassPoint>& points, const fs::path& path) {
   std::string out = "# asbuilt points v1\n# class x y z sigma_m source frame\n";
   out.reserve(out.size() + points.size() * 56);
   for (const ClassPoint& p : points) {
-    out += fmt::format("{} {:.5f} {:.5f} {:.5f} {:.5f} {} {}\n", LabelClassName(p.label),
-                       p.position_m.x(), p.position_m.y(), p.position_m.z(), p.sigma_m,
-                       PointSourceName(p.source), p.frame);
+    out += fmt::format("{} {:.5f} {:.5f} {:.5f} {:.5f} {} {}\n", LabelClassName(p.label), p.position_m.x(),
+                       p.position_m.y(), p.position_m.z(), p.sigma_m, PointSourceName(p.source), p.frame);
   }
   WriteFileAtomic(path, out);
 }

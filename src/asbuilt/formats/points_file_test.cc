@@ -13,10 +13,9 @@ namespace fs = std::filesystem;
 
 TEST(PointsFile, RoundTripsToFiveDecimals) {
   fs::path p = fs::temp_directory_path() / "asbuilt_points_roundtrip.txt";
-  std::vector<ClassPoint> points = {
-      {LabelClass::kWall, Vec3(1.234567, -2.5, 1.5), 0.004, PointSource::kCorner, 3},
-      {LabelClass::kWindow, Vec3(0, 4, 2.1), 0.0, PointSource::kDense, 0},
-      {LabelClass::kDoor, Vec3(1, 2, 1.0), 0.03, PointSource::kBoundary, 5}};
+  std::vector<ClassPoint> points = {{LabelClass::kWall, Vec3(1.234567, -2.5, 1.5), 0.004, PointSource::kCorner, 3},
+                                    {LabelClass::kWindow, Vec3(0, 4, 2.1), 0.0, PointSource::kDense, 0},
+                                    {LabelClass::kDoor, Vec3(1, 2, 1.0), 0.03, PointSource::kBoundary, 5}};
   WritePoints(points, p);
   std::vector<ClassPoint> back = ReadPoints(p);
   ASSERT_EQ(back.size(), 3u);
@@ -48,8 +47,7 @@ TEST(PointsFile, BadLinesNameFileAndLine) {
     ASSERT_EQ(e.problems().size(), 3u);
     EXPECT_EQ(e.problems()[0].ToString(),
               p.string() + ": line 2: unknown class \"roof\" (expected wall, door or window)");
-    EXPECT_EQ(e.problems()[1].ToString(),
-              p.string() + ": line 3: column 3: expected a finite number, got \"x\"");
+    EXPECT_EQ(e.problems()[1].ToString(), p.string() + ": line 3: column 3: expected a finite number, got \"x\"");
     EXPECT_NE(e.problems()[2].message.find("got 2"), std::string::npos);
   }
 }

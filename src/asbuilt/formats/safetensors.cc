@@ -105,7 +105,8 @@ SafeTensorsFile ParseSafeTensors(std::string_view bytes, const std::string& file
   std::sort(spans.begin(), spans.end());
   std::uint64_t at = 0;
   for (const auto& [b, e] : spans) {
-    if (b != at) throw InputError(file, "data_offsets", fmt::format("tensor data overlaps or leaves a gap at byte {}", at));
+    if (b != at)
+      throw InputError(file, "data_offsets", fmt::format("tensor data overlaps or leaves a gap at byte {}", at));
     at = e;
   }
   if (at != data.size()) {

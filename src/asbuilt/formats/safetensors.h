@@ -23,9 +23,9 @@
 namespace asbuilt {
 
 struct SafeTensor {
-  std::string dtype;           // "F32", "F16", "BF16", "F64", "I64", "I32", "I16", "I8", "U8", "BOOL".
+  std::string dtype;  // "F32", "F16", "BF16", "F64", "I64", "I32", "I16", "I8", "U8", "BOOL".
   std::vector<std::int64_t> shape;
-  std::string data;            // numel × DtypeBytes(dtype) little-endian bytes.
+  std::string data;  // numel × DtypeBytes(dtype) little-endian bytes.
   std::int64_t numel() const;
 };
 

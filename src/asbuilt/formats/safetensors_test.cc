@@ -77,8 +77,7 @@ TEST(SafeTensors, RejectsInconsistentFilesNamingTheField) {
             std::string::npos);
   EXPECT_NE(MessageOf(Header(R"({"x":{"dtype":"F32","shape":[-2],"data_offsets":[0,8]}})", d8)).find("x.shape"),
             std::string::npos);
-  EXPECT_NE(MessageOf(Header(R"({"x":{"dtype":"F32","shape":[3],"data_offsets":[0,8]}})", d8))
-                .find("x.data_offsets"),
+  EXPECT_NE(MessageOf(Header(R"({"x":{"dtype":"F32","shape":[3],"data_offsets":[0,8]}})", d8)).find("x.data_offsets"),
             std::string::npos);
   EXPECT_NE(MessageOf(Header(R"({"x":{"dtype":"F32","shape":[2],"data_offsets":[0,16]}})", d8)).find("outside"),
             std::string::npos);

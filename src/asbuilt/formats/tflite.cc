@@ -45,8 +45,8 @@ class FlatReader {
   template <typename T>
   T Scalar(std::size_t pos, const std::string& field) const {
     if (pos > bytes_.size() || bytes_.size() - pos < sizeof(T)) {
-      Fail(field, fmt::format("offset {} is past the end of the file ({} bytes): truncated or not a TFLite model",
-                              pos, bytes_.size()));
+      Fail(field, fmt::format("offset {} is past the end of the file ({} bytes): truncated or not a TFLite model", pos,
+                              bytes_.size()));
     }
     T value;
     std::memcpy(&value, bytes_.data() + pos, sizeof(T));
@@ -85,9 +85,7 @@ class FlatReader {
   }
 
   // Follows the uoffset stored at `pos`.
-  std::size_t Deref(std::size_t pos, const std::string& field) const {
-    return pos + Scalar<std::uint32_t>(pos, field);
-  }
+  std::size_t Deref(std::size_t pos, const std::string& field) const { return pos + Scalar<std::uint32_t>(pos, field); }
 
   // A vector field: position of its first element and its length (0, 0 if absent).
   std::pair<std::size_t, std::size_t> Vector(const Table& t, int id, std::size_t element_size,
@@ -139,11 +137,12 @@ class FlatReader {
 };
 
 // Reads the options table of one operator according to its builtin code.
-TfliteOptions ReadOptions(const FlatReader& r, const FlatReader::Table& options, int code,
-                          const std::string& field) {
+TfliteOptions ReadOptions(const FlatReader& r, const FlatReader::Table& options, int code, const std::string& field) {
   TfliteOptions o;
   auto i32 = [&](int id, int fallback) { return r.FieldScalar<std::int32_t>(options, id, fallback, field); };
-  auto u8 = [&](int id, int fallback) { return static_cast<int>(r.FieldScalar<std::uint8_t>(options, id, fallback, field)); };
+  auto u8 = [&](int id, int fallback) {
+    return static_cast<int>(r.FieldScalar<std::uint8_t>(options, id, fallback, field));
+  };
   switch (static_cast<TfliteOp>(code)) {
     case TfliteOp::kConv2d:
       o.padding_same = u8(0, 0) == 0;
@@ -193,10 +192,10 @@ TfliteOptions ReadOptions(const FlatReader& r, const FlatReader::Table& options,
 
 std::string TfliteOpName(int code) {
   static const std::map<int, std::string> names = {
-      {0, "ADD"}, {1, "AVERAGE_POOL_2D"}, {2, "CONCATENATION"}, {3, "CONV_2D"},
-      {4, "DEPTHWISE_CONV_2D"}, {6, "DEQUANTIZE"}, {17, "MAX_POOL_2D"}, {18, "MUL"},
-      {19, "RELU"}, {21, "RELU6"}, {22, "RESHAPE"}, {23, "RESIZE_BILINEAR"}, {25, "SOFTMAX"},
-      {32, "CUSTOM"}, {34, "PAD"}, {40, "MEAN"}, {49, "SPLIT"}, {56, "ARG_MAX"}, {114, "QUANTIZE"}};
+      {0, "ADD"},        {1, "AVERAGE_POOL_2D"},  {2, "CONCATENATION"}, {3, "CONV_2D"},   {4, "DEPTHWISE_CONV_2D"},
+      {6, "DEQUANTIZE"}, {17, "MAX_POOL_2D"},     {18, "MUL"},          {19, "RELU"},     {21, "RELU6"},
+      {22, "RESHAPE"},   {23, "RESIZE_BILINEAR"}, {25, "SOFTMAX"},      {32, "CUSTOM"},   {34, "PAD"},
+      {40, "MEAN"},      {49, "SPLIT"},           {56, "ARG_MAX"},      {114, "QUANTIZE"}};
   auto it = names.find(code);
   return it != names.end() ? it->second : fmt::format("builtin {}", code);
 }
@@ -231,7 +230,8 @@ TfliteModel ParseTflite(std::string_view bytes, const std::string& file) {
     tensor.shape = r.ScalarVector<std::int32_t>(t, tensor_field::kShape, field + ".shape");
     tensor.type = r.FieldScalar<std::int8_t>(t, tensor_field::kType, 0, field + ".type");
     const auto buffer = r.FieldScalar<std::uint32_t>(t, tensor_field::kBuffer, 0, field + ".buffer");
-    if (buffer >= buffers.size()) r.Fail(field + ".buffer", fmt::format("buffer {} of {} does not exist", buffer, buffers.size()));
+    if (buffer >= buffers.size())
+      r.Fail(field + ".buffer", fmt::format("buffer {} of {} does not exist", buffer, buffers.size()));
     tensor.data = r.ScalarVector<std::uint8_t>(buffers[buffer], 0, fmt::format("buffers[{}].data", buffer));
     if (auto q = r.SubTable(t, tensor_field::kQuantization, field + ".quantization")) {
       tensor.quantization.scale = r.ScalarVector<float>(*q, quant_field::kScale, field + ".quantization.scale");
@@ -277,9 +277,7 @@ TfliteModel ParseTflite(std::string_view bytes, const std::string& file) {
   return model;
 }
 
-TfliteModel ReadTflite(const std::filesystem::path& path) {
-  return ParseTflite(ReadFile(path), path.string());
-}
+TfliteModel ReadTflite(const std::filesystem::path& path) { return ParseTflite(ReadFile(path), path.string()); }
 
 std::vector<float> DequantizedData(const TfliteModel& model, int index) {
   const TfliteTensor& t = model.tensors.at(index);
@@ -289,9 +287,16 @@ std::vector<float> DequantizedData(const TfliteModel& model, int index) {
   auto fail = [&](const std::string& message) -> void { throw InputError(model.file, field, message); };
   std::size_t element = 0;
   switch (static_cast<TfliteType>(t.type)) {
-    case TfliteType::kFloat32: case TfliteType::kInt32: element = 4; break;
-    case TfliteType::kUInt8: case TfliteType::kInt8: element = 1; break;
-    default: fail(fmt::format("tensor type {} is not supported (float32, int32, uint8, int8 are)", t.type));
+    case TfliteType::kFloat32:
+    case TfliteType::kInt32:
+      element = 4;
+      break;
+    case TfliteType::kUInt8:
+    case TfliteType::kInt8:
+      element = 1;
+      break;
+    default:
+      fail(fmt::format("tensor type {} is not supported (float32, int32, uint8, int8 are)", t.type));
   }
   if (t.data.size() != count * element) {
     fail(fmt::format("holds {} bytes, its shape needs {}", t.data.size(), count * element));
@@ -319,8 +324,12 @@ std::vector<float> DequantizedData(const TfliteModel& model, int index) {
     const std::size_t c = channels > 1 ? (i / inner) % channels : 0;
     double raw = 0;
     switch (static_cast<TfliteType>(t.type)) {
-      case TfliteType::kUInt8: raw = t.data[i]; break;
-      case TfliteType::kInt8: raw = static_cast<std::int8_t>(t.data[i]); break;
+      case TfliteType::kUInt8:
+        raw = t.data[i];
+        break;
+      case TfliteType::kInt8:
+        raw = static_cast<std::int8_t>(t.data[i]);
+        break;
       default: {
         std::int32_t v;
         std::memcpy(&v, t.data.data() + 4 * i, 4);

@@ -58,32 +58,32 @@ enum class TfliteOp : int {
 std::string TfliteOpName(int builtin_code);  // "CONV_2D", or "builtin 77".
 
 struct TfliteQuantization {
-  std::vector<float> scale;          // One per tensor or one per channel; empty = not quantised.
+  std::vector<float> scale;  // One per tensor or one per channel; empty = not quantised.
   std::vector<std::int64_t> zero_point;
-  int quantized_dimension = 0;       // The channel axis of per-channel scales.
+  int quantized_dimension = 0;  // The channel axis of per-channel scales.
 };
 
 struct TfliteTensor {
   std::string name;
   std::vector<int> shape;
-  int type = 0;                      // TfliteType value (other values are kept as read).
+  int type = 0;  // TfliteType value (other values are kept as read).
   TfliteQuantization quantization;
-  std::vector<std::uint8_t> data;    // Constant data; empty for activations.
+  std::vector<std::uint8_t> data;  // Constant data; empty for activations.
 };
 
 // The options of the operators asbuilt runs (fields of TFLite's option tables,
 // with the schema's defaults where the file leaves them out).
 struct TfliteOptions {
-  bool padding_same = true;          // Padding: SAME (true) or VALID.
+  bool padding_same = true;  // Padding: SAME (true) or VALID.
   int stride_w = 1, stride_h = 1;
   int dilation_w = 1, dilation_h = 1;
   int depth_multiplier = 1;
-  int filter_w = 1, filter_h = 1;    // Pooling windows.
-  int activation = 0;                // 0 none, 1 RELU, 2 RELU_N1_TO_1, 3 RELU6.
-  int axis = 0;                      // CONCATENATION.
-  int num_splits = 0;                // SPLIT.
+  int filter_w = 1, filter_h = 1;                          // Pooling windows.
+  int activation = 0;                                      // 0 none, 1 RELU, 2 RELU_N1_TO_1, 3 RELU6.
+  int axis = 0;                                            // CONCATENATION.
+  int num_splits = 0;                                      // SPLIT.
   bool align_corners = false, half_pixel_centers = false;  // RESIZE_BILINEAR.
-  bool keep_dims = false;            // MEAN.
+  bool keep_dims = false;                                  // MEAN.
 };
 
 struct TfliteOperator {
@@ -93,11 +93,11 @@ struct TfliteOperator {
 };
 
 struct TfliteModel {
-  std::string file;                  // As given, for messages.
+  std::string file;  // As given, for messages.
   std::string description;
-  std::vector<TfliteTensor> tensors;  // Of the first subgraph.
+  std::vector<TfliteTensor> tensors;      // Of the first subgraph.
   std::vector<TfliteOperator> operators;  // In execution order.
-  std::vector<int> inputs, outputs;  // Tensor indices.
+  std::vector<int> inputs, outputs;       // Tensor indices.
 };
 
 // Parses a model held in memory; `file` names it in errors.

@@ -107,10 +107,7 @@ TEST(Tflite, RefusesATruncatedModelNamingTheField) {
   }
 }
 
-TEST(Tflite, RefusesAFileThatIsMissing) {
-  EXPECT_THROW(ReadTflite("/nonexistent/model.tflite"), InputError);
-}
-
+TEST(Tflite, RefusesAFileThatIsMissing) { EXPECT_THROW(ReadTflite("/nonexistent/model.tflite"), InputError); }
 
 TEST(Tflite, GraphJsonKeepsTheTopologyAndLeavesTheFiltersOut) {
   SKIP_WITHOUT_TEACHERS();

@@ -15,9 +15,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // ZInD's local frame → the pano frame: mirror y, scale to metres.
-Vec2 PanoFromZind(const Vec2& local, double metres_per_unit) {
-  return Vec2(local.x(), -local.y()) * metres_per_unit;
-}
+Vec2 PanoFromZind(const Vec2& local, double metres_per_unit) { return Vec2(local.x(), -local.y()) * metres_per_unit; }
 
 std::optional<Vec2> ReadZindPoint(const JsonField& f) {
   auto v = f.NumberArray(2);
@@ -100,16 +98,17 @@ ZindLayout ParseLayout(const JsonField& f, const PanoScale& scale, const ZindRea
       if (auto p = ReadZindPoint(vertices.At(i))) layout.vertices_m.push_back(PanoFromZind(*p, scale.metres_per_unit));
     }
   }
-  const std::pair<const char*, ZindOpeningKind> kinds[] = {
-      {"doors", ZindOpeningKind::kDoor}, {"windows", ZindOpeningKind::kWindow}, {"openings", ZindOpeningKind::kOpening}};
+  const std::pair<const char*, ZindOpeningKind> kinds[] = {{"doors", ZindOpeningKind::kDoor},
+                                                           {"windows", ZindOpeningKind::kWindow},
+                                                           {"openings", ZindOpeningKind::kOpening}};
   for (const auto& [key, kind] : kinds) {
     JsonField list = f.Optional(key);
     if (!list.present()) continue;
     auto n = list.ArraySize();
     if (!n) continue;
     if (*n % 3 != 0) {
-      list.AddError(fmt::format("expected 3 entries per {} (end A, end B, [bottom z, top z]), got {} entries",
-                                key, *n));
+      list.AddError(
+          fmt::format("expected 3 entries per {} (end A, end B, [bottom z, top z]), got {} entries", key, *n));
       continue;
     }
     for (std::size_t i = 0; i < *n; i += 3) {
@@ -136,8 +135,8 @@ ZindLayout ParseLayout(const JsonField& f, const PanoScale& scale, const ZindRea
       if (layout.vertices_m.size() >= 3) {
         PlaceOnWall(o, layout.vertices_m, options.max_opening_offset_m);
         if (o.wall < 0) {
-          list.At(i).AddWarning(fmt::format("lies on no wall of the layout (within {} m); left unplaced",
-                                            options.max_opening_offset_m));
+          list.At(i).AddWarning(
+              fmt::format("lies on no wall of the layout (within {} m); left unplaced", options.max_opening_offset_m));
         }
       }
       layout.openings.push_back(o);
@@ -187,7 +186,8 @@ ZindPanorama ParsePanorama(const JsonField& f, const fs::path& dir, std::optiona
   if (auto v = f.Required("image_path").String()) {
     p.image_path = *v;
     p.image = dir / *v;
-    if (!fs::is_regular_file(p.image)) f.Required("image_path").AddError(fmt::format("no such file: {}", p.image.string()));
+    if (!fs::is_regular_file(p.image))
+      f.Required("image_path").AddError(fmt::format("no such file: {}", p.image.string()));
   }
 
   // metres = ZInD units × floor_plan_transformation.scale × scale_meters_per_coordinate.
@@ -218,8 +218,10 @@ ZindPanorama ParsePanorama(const JsonField& f, const fs::path& dir, std::optiona
   p.floor_from_pano.translation() = Vec2(translation.x(), -translation.y()) * (scale.metres_per_unit / transform_scale);
 
   p.layout_raw = ParseLayout(f.Required("layout_raw"), scale, options);
-  if (f.Optional("layout_complete").present()) p.layout_complete = ParseLayout(f.Optional("layout_complete"), scale, options);
-  if (f.Optional("layout_visible").present()) p.layout_visible = ParseLayout(f.Optional("layout_visible"), scale, options);
+  if (f.Optional("layout_complete").present())
+    p.layout_complete = ParseLayout(f.Optional("layout_complete"), scale, options);
+  if (f.Optional("layout_visible").present())
+    p.layout_visible = ParseLayout(f.Optional("layout_visible"), scale, options);
   return p;
 }
 
@@ -264,18 +266,24 @@ ZindTour ParseTour(const nlohmann::json& root, const fs::path& dir, const ZindRe
 
 const char* ZindOpeningKindName(ZindOpeningKind kind) {
   switch (kind) {
-    case ZindOpeningKind::kDoor: return "door";
-    case ZindOpeningKind::kWindow: return "window";
-    case ZindOpeningKind::kOpening: return "opening";
+    case ZindOpeningKind::kDoor:
+      return "door";
+    case ZindOpeningKind::kWindow:
+      return "window";
+    case ZindOpeningKind::kOpening:
+      return "opening";
   }
   return "?";
 }
 
 const char* ZindLayoutKindName(ZindLayoutKind kind) {
   switch (kind) {
-    case ZindLayoutKind::kRaw: return "raw";
-    case ZindLayoutKind::kComplete: return "complete";
-    case ZindLayoutKind::kVisible: return "visible";
+    case ZindLayoutKind::kRaw:
+      return "raw";
+    case ZindLayoutKind::kComplete:
+      return "complete";
+    case ZindLayoutKind::kVisible:
+      return "visible";
   }
   return "?";
 }
@@ -297,9 +305,14 @@ std::string ZindPanorama::Name() const {
 const ZindLayout& ZindPanorama::Layout(ZindLayoutKind kind) const {
   const std::optional<ZindLayout>* layout = nullptr;
   switch (kind) {
-    case ZindLayoutKind::kRaw: return layout_raw;
-    case ZindLayoutKind::kComplete: layout = &layout_complete; break;
-    case ZindLayoutKind::kVisible: layout = &layout_visible; break;
+    case ZindLayoutKind::kRaw:
+      return layout_raw;
+    case ZindLayoutKind::kComplete:
+      layout = &layout_complete;
+      break;
+    case ZindLayoutKind::kVisible:
+      layout = &layout_visible;
+      break;
   }
   if (layout == nullptr || !layout->has_value()) {
     throw InvalidArgument(fmt::format("{}: has no layout_{}", Name(), ZindLayoutKindName(kind)));
@@ -309,11 +322,11 @@ const ZindLayout& ZindPanorama::Layout(ZindLayoutKind kind) const {
 
 std::string ZindPanorama::ToString() const {
   const std::string unit = metric ? "m" : "camera heights";
-  return fmt::format("{} ({}, {}, {}): camera {:.3f} {}, ceiling {:.2f} {}, {} walls, {} doors, {} windows, {} passages",
-                     pano_id, label, is_primary ? "primary" : "secondary", is_inside ? "inside" : "outside",
-                     camera_height_m, unit, ceiling_height_m, unit, layout_raw.vertices_m.size(),
-                     layout_raw.Count(ZindOpeningKind::kDoor), layout_raw.Count(ZindOpeningKind::kWindow),
-                     layout_raw.Count(ZindOpeningKind::kOpening));
+  return fmt::format(
+      "{} ({}, {}, {}): camera {:.3f} {}, ceiling {:.2f} {}, {} walls, {} doors, {} windows, {} passages", pano_id,
+      label, is_primary ? "primary" : "secondary", is_inside ? "inside" : "outside", camera_height_m, unit,
+      ceiling_height_m, unit, layout_raw.vertices_m.size(), layout_raw.Count(ZindOpeningKind::kDoor),
+      layout_raw.Count(ZindOpeningKind::kWindow), layout_raw.Count(ZindOpeningKind::kOpening));
 }
 
 void ZindReadOptions::Check() const {
@@ -337,7 +350,8 @@ const ZindPanorama* ZindTour::Find(const std::string& key) const {
 }
 
 std::string ZindTour::ToString() const {
-  const auto primary = std::count_if(panoramas.begin(), panoramas.end(), [](const ZindPanorama& p) { return p.is_primary; });
+  const auto primary =
+      std::count_if(panoramas.begin(), panoramas.end(), [](const ZindPanorama& p) { return p.is_primary; });
   return fmt::format("ZInD tour {}: {} panoramas, {} primary, {} primary inside", dir.string(), panoramas.size(),
                      primary, BenchmarkPanoramas().size());
 }
@@ -359,7 +373,9 @@ ZindTour ReadZindTour(const fs::path& path, const ZindReadOptions& options) {
 Plan ZindTruthPlan(const ZindPanorama& pano, ZindLayoutKind kind) {
   const ZindLayout& layout = pano.Layout(kind);
   const std::size_t n = layout.vertices_m.size();
-  if (n < 3) throw InvalidArgument(fmt::format("{}: layout_{} has {} vertices, a room needs 3", pano.Name(), ZindLayoutKindName(kind), n));
+  if (n < 3)
+    throw InvalidArgument(
+        fmt::format("{}: layout_{} has {} vertices, a room needs 3", pano.Name(), ZindLayoutKindName(kind), n));
   // Counter-clockwise walls; wall i of the plan is layout edge map[i].
   const bool ccw = PolygonArea(layout.vertices_m) > 0;
   std::vector<Vec2> polygon = layout.vertices_m;

@@ -94,8 +94,8 @@ struct ZindPanorama {
   bool is_primary = false;       // The panorama the annotator drew the room from.
   bool is_inside = true;         // Taken inside its layout (false: looking into a closet from outside).
   bool is_ceiling_flat = true;
-  std::filesystem::path image;   // The equirectangular JPEG, resolved against the tour folder.
-  std::string image_path;        // As written in the file (relative to the tour folder).
+  std::filesystem::path image;  // The equirectangular JPEG, resolved against the tour folder.
+  std::string image_path;       // As written in the file (relative to the tour folder).
 
   // Scale: metres per ZInD local unit = floor_plan_transformation.scale ×
   // scale_meters_per_coordinate[floor]. ZInD's units make the camera 1 unit
@@ -134,8 +134,8 @@ struct ZindReadOptions {
 };
 
 struct ZindTour {
-  std::filesystem::path dir;   // The tour folder (zind_data.json's folder).
-  std::filesystem::path file;  // zind_data.json.
+  std::filesystem::path dir;            // The tour folder (zind_data.json's folder).
+  std::filesystem::path file;           // zind_data.json.
   std::vector<ZindPanorama> panoramas;  // In file order.
 
   // Primary panoramas taken inside their layout: the ones whose raw layout
@@ -163,8 +163,7 @@ ZindTour ReadZindTour(const std::filesystem::path& path, const ZindReadOptions& 
 Plan ZindTruthPlan(const ZindPanorama& pano, ZindLayoutKind layout = ZindLayoutKind::kRaw);
 
 // The ZInD licence line every output derived from ZInD carries.
-inline constexpr const char* kZindNotice =
-    "ZInD: academic use only; research measurement only, never training data";
+inline constexpr const char* kZindNotice = "ZInD: academic use only; research measurement only, never training data";
 
 }  // namespace asbuilt
 

@@ -27,8 +27,8 @@ TEST(ZindTour, ReadsTheSampleTour) {
     EXPECT_TRUE(p->is_primary && p->is_inside) << p->Name();
     EXPECT_TRUE(fs::is_regular_file(p->image)) << p->image;
   }
-  EXPECT_EQ(tour.ToString(), fmt::format("ZInD tour {}: 32 panoramas, 19 primary, 13 primary inside",
-                                         kSampleTour.string()));
+  EXPECT_EQ(tour.ToString(),
+            fmt::format("ZInD tour {}: 32 panoramas, 19 primary, 13 primary inside", kSampleTour.string()));
   // Natural order: pano_2 before pano_4 in partial_room_09.
   EXPECT_EQ(tour.Find("floor_01/complete_room_06/partial_room_09/pano_2"), tour.Find("pano_2"));
   EXPECT_EQ(tour.Find("panos/floor_01_partial_room_01_pano_15.jpg")->pano_id, "pano_15");
@@ -94,7 +94,8 @@ TEST(ZindTour, FloorFromPanoBringsTwoPanoramasOfARoomTogether) {
   for (const Vec2& va : a.layout_complete->vertices_m) {
     const Vec2 fa = a.floor_from_pano * va;
     double nearest = 1e9;
-    for (const Vec2& vb : b.layout_complete->vertices_m) nearest = std::min(nearest, (b.floor_from_pano * vb - fa).norm());
+    for (const Vec2& vb : b.layout_complete->vertices_m)
+      nearest = std::min(nearest, (b.floor_from_pano * vb - fa).norm());
     EXPECT_LT(nearest, 0.05) << fa.transpose();
   }
   // And the two cameras are apart, as they were in the house.

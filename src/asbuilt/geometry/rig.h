@@ -68,21 +68,18 @@ Mat3 WorldFromCameraRotation(double yaw_rad);
 Vec3 EyeCentre(const RigPose& pose, double baseline_m, StereoEye eye);
 
 // Rigid transform camera → world for one eye of the rig.
-Eigen::Isometry3d WorldFromCamera(const RigPose& pose, double baseline_m,
-                                  StereoEye eye);
+Eigen::Isometry3d WorldFromCamera(const RigPose& pose, double baseline_m, StereoEye eye);
 
 // Pixel (u, v) with depth z (along the optical axis) → camera-frame point.
 Vec3 UnprojectToCamera(const PinholeCamera& camera, const Vec2& pixel, double z_m);
 // Camera-frame point → pixel; nullopt when the point is not in front (z ≤ 0).
-std::optional<Vec2> ProjectFromCamera(const PinholeCamera& camera,
-                                      const Vec3& point_in_camera);
+std::optional<Vec2> ProjectFromCamera(const PinholeCamera& camera, const Vec3& point_in_camera);
 
 // Rectified parallel stereo: depth from disparity d = u_left − u_right,
 // Z = fx·B/d (nullopt for d ≤ 0), and its standard deviation for a disparity
 // error σ_d: σ_Z = Z²·σ_d/(fx·B).
 std::optional<double> DepthFromDisparity(double fx, double baseline_m, double disparity_px);
-double DepthSigmaFromDisparitySigma(double fx, double baseline_m, double z_m,
-                                    double disparity_sigma_px);
+double DepthSigmaFromDisparitySigma(double fx, double baseline_m, double z_m, double disparity_sigma_px);
 
 }  // namespace asbuilt
 

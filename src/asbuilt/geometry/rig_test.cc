@@ -85,8 +85,7 @@ TEST(PinholeCamera, CheckNamesTheField) {
 }
 
 TEST(PinholeCamera, PrintsItself) {
-  EXPECT_EQ(PinholeCamera{}.ToString(),
-            "PinholeCamera(640x480 fx=400.000 fy=400.000 cx=319.500 cy=239.500)");
+  EXPECT_EQ(PinholeCamera{}.ToString(), "PinholeCamera(640x480 fx=400.000 fy=400.000 cx=319.500 cy=239.500)");
 }
 
 }  // namespace

@@ -159,7 +159,8 @@ void MergePartitions(Plan& plan, const std::vector<int>& room_of_wall, const std
 }  // namespace
 
 void HomePlanOptions::Check() const {
-  if (!(beside_gap_m >= 0 && beside_gap_m <= 100)) throw InvalidArgument("HomePlanOptions: beside_gap_m must be in [0, 100]");
+  if (!(beside_gap_m >= 0 && beside_gap_m <= 100))
+    throw InvalidArgument("HomePlanOptions: beside_gap_m must be in [0, 100]");
   if (!(max_wall_thickness_m > 0 && max_wall_thickness_m <= 1)) {
     throw InvalidArgument("HomePlanOptions: max_wall_thickness_m must be in (0, 1]");
   }
@@ -311,7 +312,8 @@ HomeScore ScoreHome(const std::vector<HomeRoomInput>& rooms, const HomePlacement
       score.centroid_error_m.push_back(dp);
       score.yaw_error_deg.push_back(dy);
       PlanRoom room;
-      for (const Vec2& p : OutlineOf(rooms[r].plan)) room.polygon.push_back(best * placement.rooms[r].floor_from_room * p);
+      for (const Vec2& p : OutlineOf(rooms[r].plan))
+        room.polygon.push_back(best * placement.rooms[r].floor_from_room * p);
       if (room.polygon.size() >= 3) predicted.rooms.push_back(std::move(room));
     } else {
       score.centroid_error_m.push_back(NAN);

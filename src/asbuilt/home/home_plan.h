@@ -48,9 +48,9 @@ struct HomeScoreOptions {
 
 struct HomeScore {
   int rooms = 0;
-  int placed = 0;          // Rooms the placement placed (links or hints).
-  int within = 0;          // Of those, within the tolerances after alignment.
-  double floor_iou = 0.0;  // Union of placed outlines against union of true outlines.
+  int placed = 0;                                       // Rooms the placement placed (links or hints).
+  int within = 0;                                       // Of those, within the tolerances after alignment.
+  double floor_iou = 0.0;                               // Union of placed outlines against union of true outlines.
   std::vector<double> centroid_error_m, yaw_error_deg;  // Per room (NaN: not placed).
   Eigen::Isometry2d truth_from_home = Eigen::Isometry2d::Identity();
   std::string ToString() const;  // "12/13 rooms within 10 cm and 1°, floor IoU 0.962".

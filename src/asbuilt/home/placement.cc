@@ -186,7 +186,8 @@ double OpeningsAgainstWalls(const RoomGeom& x, const RoomGeom& y, const Placemen
     const double s = ProjectOnFace(*f, d.c, 0).along;
     bool meets = false;
     for (const Hole& e : y.doors) {
-      meets |= e.wall == wall && std::abs(ProjectOnFace(*f, e.c, 0).along - s) < 0.35 && WidthsMatch(d.width, e.width, o);
+      meets |=
+          e.wall == wall && std::abs(ProjectOnFace(*f, e.c, 0).along - s) < 0.35 && WidthsMatch(d.width, e.width, o);
     }
     score += meets ? kDoorsMeet : -kDoorIntoWall;
   }
@@ -265,13 +266,13 @@ Pose LinkTransform(const Hole& a, const Hole& b, double thickness) {
 struct State {
   std::vector<char> placed;
   std::vector<Pose> pose;
-  std::vector<int> link_of;            // Per room: index into links, -1.
+  std::vector<int> link_of;             // Per room: index into links, -1.
   std::vector<std::vector<char>> used;  // Per room, per door (index into RoomGeom::doors).
   std::vector<RoomLink> links;
   double score = 0.0;
   int count = 0;
   Vec2 lo = Vec2::Constant(1e300), hi = Vec2::Constant(-1e300);  // Bounding box in the home's axes.
-  double covered_m2 = 0.0;  // Floor of the rooms placed.
+  double covered_m2 = 0.0;                                       // Floor of the rooms placed.
 
   // Which rooms are where, to tell placements apart (centimetres, degrees).
   std::string Signature() const {
@@ -288,7 +289,7 @@ struct State {
 struct Candidate {
   int from_state = 0;
   int a_room = 0, a_door = -1, b_room = 0, b_door = -1;  // Indices into RoomGeom::doors; −1: one-sided.
-  int a_wall = -1, b_wall = -1;  // A one-sided link's plain wall.
+  int a_wall = -1, b_wall = -1;                          // A one-sided link's plain wall.
   Pose pose = Pose::Identity();
   double score = 0.0;
   bool by_user = false;
@@ -480,8 +481,13 @@ class Placer {
             if (s.used[b][j] || Forbidden(ra, rb)) continue;
             const bool asked = AskedFor(ra, rb);
             if (!asked && !WidthsMatch(da.width, db.width, o_)) continue;
-            add({.from_state = index, .a_room = a, .a_door = i, .b_room = b, .b_door = j,
-                 .pose = s.pose[a] * LinkTransform(da, db, o_.wall_thickness_m), .by_user = asked},
+            add({.from_state = index,
+                 .a_room = a,
+                 .a_door = i,
+                 .b_room = b,
+                 .b_door = j,
+                 .pose = s.pose[a] * LinkTransform(da, db, o_.wall_thickness_m),
+                 .by_user = asked},
                 -kWidthPerM * std::abs(da.width - db.width) + (asked ? kUserLink : 0.0));
           }
           if (!one_sided_) continue;
@@ -493,7 +499,12 @@ class Placer {
             const Face& g = gb.walls[k];
             if (g.Length() < da.width + 0.1) continue;
             for (double sl : Slides(u, f.Length(), g.Length(), da.width)) {
-              add({.from_state = index, .a_room = a, .a_door = i, .b_room = b, .b_door = -1, .b_wall = k,
+              add({.from_state = index,
+                   .a_room = a,
+                   .a_door = i,
+                   .b_room = b,
+                   .b_door = -1,
+                   .b_wall = k,
                    .pose = FaceTransform(f, u, g, sl, o_.wall_thickness_m)},
                   kDoorIntoWall - kOneSided);
             }
@@ -510,7 +521,12 @@ class Placer {
             const Face& f = pa.walls[k];
             if (f.Length() < db.width + 0.1) continue;
             for (double uu : Slides(sc, g.Length(), f.Length(), db.width)) {
-              add({.from_state = index, .a_room = a, .a_door = -1, .b_room = b, .b_door = j, .a_wall = k,
+              add({.from_state = index,
+                   .a_room = a,
+                   .a_door = -1,
+                   .b_room = b,
+                   .b_door = j,
+                   .a_wall = k,
                    .pose = FaceTransform(f, uu, g, sc, o_.wall_thickness_m)},
                   kDoorIntoWall - kOneSided);
             }
@@ -656,8 +672,8 @@ std::vector<FaceTie> FindFaceTies(const std::vector<RoomGeom>& geoms, const Stat
 }
 
 // Returns each link's and then each tie's distance left (metres).
-std::vector<double> Refine(const std::vector<RoomGeom>& geoms, const std::vector<char>& held,
-                           const PlacementOptions& o, const std::vector<FaceTie>& ties, State& s, double& thickness) {
+std::vector<double> Refine(const std::vector<RoomGeom>& geoms, const std::vector<char>& held, const PlacementOptions& o,
+                           const std::vector<FaceTie>& ties, State& s, double& thickness) {
   std::vector<int> var(s.placed.size(), -1);
   int n_var = 0;
   for (std::size_t r = 0; r < s.placed.size(); ++r) {
@@ -786,16 +802,18 @@ HomePlacement Finish(const std::vector<HomeRoomInput>& rooms, const std::vector<
     if (held[r] && static_cast<int>(r) != seed) {
       p.placed_by = "moved by hand";
     } else if (static_cast<int>(r) == seed) {
-      p.placed_by = held[r] && std::any_of(c.fixed.begin(), c.fixed.end(), [&](const auto& f) { return f.first == seed; })
-                        ? "moved by hand"
-                        : "first room";
+      p.placed_by =
+          held[r] && std::any_of(c.fixed.begin(), c.fixed.end(), [&](const auto& f) { return f.first == seed; })
+              ? "moved by hand"
+              : "first room";
     } else if (p.link >= 0 || (p.placed && std::any_of(h.links.begin(), h.links.end(), [&](const RoomLink& l) {
-                                  return l.a.room == static_cast<int>(r) || l.b.room == static_cast<int>(r);
-                                }))) {
+                                 return l.a.room == static_cast<int>(r) || l.b.room == static_cast<int>(r);
+                               }))) {
       // Its own link, or (the root of a search grown from it) its first link.
       if (p.link < 0) {
         for (std::size_t k = 0; k < h.links.size() && p.link < 0; ++k) {
-          if (h.links[k].a.room == static_cast<int>(r) || h.links[k].b.room == static_cast<int>(r)) p.link = static_cast<int>(k);
+          if (h.links[k].a.room == static_cast<int>(r) || h.links[k].b.room == static_cast<int>(r))
+            p.link = static_cast<int>(k);
         }
       }
       const RoomLink& l = h.links[p.link];
@@ -873,9 +891,7 @@ Eigen::Isometry2d PoseTransform(const PlanPose& pose) {
   return t;
 }
 
-PlanPose TransformPose(const Eigen::Isometry2d& t) {
-  return {t.translation(), YawOf(t) * 180 / std::numbers::pi};
-}
+PlanPose TransformPose(const Eigen::Isometry2d& t) { return {t.translation(), YawOf(t) * 180 / std::numbers::pi}; }
 
 double FitScore(const std::vector<HomeRoomInput>& rooms, const std::vector<Eigen::Isometry2d>& poses,
                 const std::vector<char>& placed, const PlacementOptions& options, std::vector<std::string>* detail) {

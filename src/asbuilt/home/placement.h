@@ -93,7 +93,7 @@ struct PlacementOptions {
 struct RoomPlacement {
   bool placed = false;
   Eigen::Isometry2d floor_from_room = Eigen::Isometry2d::Identity();
-  int link = -1;  // Index into HomePlacement::links that placed it; -1: first room, hint, or none.
+  int link = -1;          // Index into HomePlacement::links that placed it; -1: first room, hint, or none.
   std::string placed_by;  // "first room", "door kitchen#1 = hall#3", "hint", "not placed: …".
 };
 

@@ -96,7 +96,8 @@ Surveyed Survey(const TestHome& home, unsigned seed) {
   Surveyed s;
   for (std::size_t r = 0; r < home.names.size(); ++r) {
     const Pose floor_from_room = RandomPose(rng);
-    s.rooms.push_back({.name = home.names[r], .plan = Moved(home.RoomPlan(static_cast<int>(r)), floor_from_room.inverse())});
+    s.rooms.push_back(
+        {.name = home.names[r], .plan = Moved(home.RoomPlan(static_cast<int>(r)), floor_from_room.inverse())});
     s.truth.push_back(floor_from_room);
     s.outlines.push_back(home.outlines[r]);
   }

@@ -29,7 +29,8 @@ SyntheticHome MakeSyntheticHome(unsigned seed, const SyntheticHomeOptions& o) {
     for (Vec2& c : corners) c = room_from_floor * c + Vec2(Normal(rng, o.jitter_m), Normal(rng, o.jitter_m));
     Plan plan;
     const std::size_t n = corners.size();
-    for (std::size_t k = 0; k < n; ++k) plan.walls.push_back({.start = corners[k], .end = corners[(k + 1) % n], .height = 2.6});
+    for (std::size_t k = 0; k < n; ++k)
+      plan.walls.push_back({.start = corners[k], .end = corners[(k + 1) % n], .height = 2.6});
     for (const HomeLayoutOpening& h : layout.openings) {
       if (h.room != static_cast<int>(r) || (h.kind == OpeningKind::kDoor && rng.Chance(o.missed_door))) continue;
       const PlanWall& w = plan.walls[h.wall];

@@ -11,18 +11,24 @@ namespace asbuilt {
 
 const char* PixelTypeName(PixelType type) {
   switch (type) {
-    case PixelType::kU8: return "8-bit";
-    case PixelType::kU16: return "16-bit";
-    case PixelType::kF32: return "32-bit float";
+    case PixelType::kU8:
+      return "8-bit";
+    case PixelType::kU16:
+      return "16-bit";
+    case PixelType::kF32:
+      return "32-bit float";
   }
   return "?";
 }
 
 std::size_t PixelTypeBytes(PixelType type) {
   switch (type) {
-    case PixelType::kU8: return 1;
-    case PixelType::kU16: return 2;
-    case PixelType::kF32: return 4;
+    case PixelType::kU8:
+      return 1;
+    case PixelType::kU16:
+      return 2;
+    case PixelType::kF32:
+      return 4;
   }
   return 1;
 }

@@ -23,7 +23,7 @@ enum class PixelType {
   kU16,  // std::uint16_t: depth in millimetres, instance ids.
   kF32,  // float: linear radiance.
 };
-const char* PixelTypeName(PixelType type);  // "8-bit", "16-bit", "32-bit float".
+const char* PixelTypeName(PixelType type);   // "8-bit", "16-bit", "32-bit float".
 std::size_t PixelTypeBytes(PixelType type);  // 1, 2, 4.
 
 class Image {

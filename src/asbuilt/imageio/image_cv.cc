@@ -49,9 +49,15 @@ cv::Mat AsMat(const Image& image) {
   if (image.empty()) return cv::Mat();
   int depth = CV_8U;
   switch (image.type()) {
-    case PixelType::kU8: depth = CV_8U; break;
-    case PixelType::kU16: depth = CV_16U; break;
-    case PixelType::kF32: depth = CV_32F; break;
+    case PixelType::kU8:
+      depth = CV_8U;
+      break;
+    case PixelType::kU16:
+      depth = CV_16U;
+      break;
+    case PixelType::kF32:
+      depth = CV_32F;
+      break;
   }
   cv::Mat mat(image.height(), image.width(), CV_MAKETYPE(depth, image.channels()), image.pixels().get(),
               image.row_stride_bytes());
@@ -66,12 +72,18 @@ Image AsImage(const cv::Mat& mat) {
   CheckArgument(mat.dims == 2, fmt::format("AsImage: a {}-dimensional Mat, needs 2", mat.dims));
   PixelType type = PixelType::kU8;
   switch (mat.depth()) {
-    case CV_8U: type = PixelType::kU8; break;
-    case CV_16U: type = PixelType::kU16; break;
-    case CV_32F: type = PixelType::kF32; break;
+    case CV_8U:
+      type = PixelType::kU8;
+      break;
+    case CV_16U:
+      type = PixelType::kU16;
+      break;
+    case CV_32F:
+      type = PixelType::kF32;
+      break;
     default:
-      throw InvalidArgument(fmt::format("AsImage: Mat depth {}, needs 8-bit, 16-bit unsigned or 32-bit float",
-                                        mat.depth()));
+      throw InvalidArgument(
+          fmt::format("AsImage: Mat depth {}, needs 8-bit, 16-bit unsigned or 32-bit float", mat.depth()));
   }
   // The buffer's owner is a copy of the Mat header (it holds the Mat's
   // reference count); the aliasing pointer addresses its first pixel.

@@ -17,10 +17,14 @@ namespace {
 
 const char* DepthName(int depth) {
   switch (depth) {
-    case CV_8U: return "8-bit";
-    case CV_16U: return "16-bit";
-    case CV_32F: return "32-bit float";
-    default: return "unusual depth";
+    case CV_8U:
+      return "8-bit";
+    case CV_16U:
+      return "16-bit";
+    case CV_32F:
+      return "32-bit float";
+    default:
+      return "unusual depth";
   }
 }
 
@@ -81,9 +85,9 @@ cv::Mat ReadColourImage(const fs::path& path, const std::string& field) {
 cv::Mat ReadColourImageAnyDepth(const fs::path& path, const std::string& field) {
   cv::Mat image = Decode(path, field, cv::IMREAD_COLOR | cv::IMREAD_ANYDEPTH);
   if (image.depth() != CV_8U && image.depth() != CV_16U && image.depth() != CV_32F) {
-    throw InputError(path.string(), field,
-                     fmt::format("expected an 8-bit, 16-bit or 32-bit float colour image, got {}",
-                                 DepthName(image.depth())));
+    throw InputError(
+        path.string(), field,
+        fmt::format("expected an 8-bit, 16-bit or 32-bit float colour image, got {}", DepthName(image.depth())));
   }
   return image;
 }
@@ -96,8 +100,8 @@ cv::Mat ReadLabelImage(const fs::path& path, const std::string& field) {
   cv::Mat image = Decode(path, field, cv::IMREAD_UNCHANGED);
   if (image.type() != CV_8UC1) {
     throw InputError(path.string(), field,
-                     fmt::format("expected a single-channel 8-bit label PNG, got {} channel{}, {}",
-                                 image.channels(), image.channels() == 1 ? "" : "s", DepthName(image.depth())));
+                     fmt::format("expected a single-channel 8-bit label PNG, got {} channel{}, {}", image.channels(),
+                                 image.channels() == 1 ? "" : "s", DepthName(image.depth())));
   }
   return image;
 }
@@ -107,8 +111,8 @@ cv::Mat ReadDepthImage(const fs::path& path, const std::string& field) {
   if (image.type() != CV_16UC1 && image.type() != CV_32FC1) {
     throw InputError(path.string(), field,
                      fmt::format("expected a single-channel 16-bit (mm) or 32-bit float (m) depth image, got {} "
-                                 "channel{}, {}", image.channels(), image.channels() == 1 ? "" : "s",
-                                 DepthName(image.depth())));
+                                 "channel{}, {}",
+                                 image.channels(), image.channels() == 1 ? "" : "s", DepthName(image.depth())));
   }
   return image;
 }
@@ -117,8 +121,8 @@ cv::Mat ReadImageAsStored(const fs::path& path, const std::string& field) {
   return Decode(path, field, cv::IMREAD_UNCHANGED);
 }
 
-void CheckImageSize(const cv::Mat& image, int width_px, int height_px, const fs::path& path,
-                    const std::string& field, const std::string& what) {
+void CheckImageSize(const cv::Mat& image, int width_px, int height_px, const fs::path& path, const std::string& field,
+                    const std::string& what) {
   if (image.cols == width_px && image.rows == height_px) return;
   throw InputError(path.string(), field,
                    fmt::format("image is {}x{}, {} is {}x{}", image.cols, image.rows, what, width_px, height_px));

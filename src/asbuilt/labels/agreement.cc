@@ -23,14 +23,13 @@ void LabelAgreement::Add(const LabelAgreement& o) {
 }
 
 std::string LabelAgreement::ToString() const {
-  return fmt::format("agreement {:.2f} % (band {:.2f} %, interior {:.2f} %) over {} px", 100 * Overall(),
-                     100 * Band(), 100 * Interior(), pixels);
+  return fmt::format("agreement {:.2f} % (band {:.2f} %, interior {:.2f} %) over {} px", 100 * Overall(), 100 * Band(),
+                     100 * Interior(), pixels);
 }
 
 LabelAgreement CompareLabels(const cv::Mat& predicted, const cv::Mat& exact, const AgreementOptions& options) {
   options.Check();
-  CheckArgument(predicted.type() == CV_8UC1 && exact.type() == CV_8UC1,
-                "CompareLabels: label maps must be CV_8UC1");
+  CheckArgument(predicted.type() == CV_8UC1 && exact.type() == CV_8UC1, "CompareLabels: label maps must be CV_8UC1");
   CheckArgument(predicted.size() == exact.size(), "CompareLabels: label maps differ in size");
   // Band: the neighbourhood's min and max exact label differ.
   const int w = 2 * options.boundary_band_px + 1;

@@ -41,8 +41,7 @@ struct LabelAgreement {
 };
 
 // Throws InvalidArgument if the maps differ in size or are not CV_8UC1.
-LabelAgreement CompareLabels(const cv::Mat& predicted, const cv::Mat& exact,
-                             const AgreementOptions& options = {});
+LabelAgreement CompareLabels(const cv::Mat& predicted, const cv::Mat& exact, const AgreementOptions& options = {});
 
 }  // namespace asbuilt
 

@@ -38,8 +38,7 @@ TEST(CompareLabels, WiderBandCoversMore) {
 
 TEST(CompareLabels, RejectsMismatchedSizes) {
   EXPECT_THROW(CompareLabels(cv::Mat(3, 3, CV_8UC1), cv::Mat(3, 4, CV_8UC1)), InvalidArgument);
-  EXPECT_THROW(CompareLabels(cv::Mat(3, 3, CV_8UC1), cv::Mat(3, 3, CV_8UC1), {.boundary_band_px = 0}),
-               InvalidArgument);
+  EXPECT_THROW(CompareLabels(cv::Mat(3, 3, CV_8UC1), cv::Mat(3, 3, CV_8UC1), {.boundary_band_px = 0}), InvalidArgument);
 }
 
 }  // namespace

@@ -114,8 +114,7 @@ void FinishMaskPalette(const PaletteCalibrateOptions& options, const MaskSums& s
   for (std::size_t i = 0; i < sums.sum.size(); ++i) {
     PaletteColour& c = summary.palette.colours[i];
     if (sums.count[i] == 0) {
-      summary.warnings.push_back(
-          fmt::format("no {} pixels in the masks: kept the nominal colour", LabelIdName(c.id)));
+      summary.warnings.push_back(fmt::format("no {} pixels in the masks: kept the nominal colour", LabelIdName(c.id)));
       continue;
     }
     // Sums are BGR; the palette is RGB.
@@ -270,8 +269,8 @@ std::string CalibrateSummary::BriefReport() const {
                                 idmaps == 1 ? "" : "s", palette.method, pixels / 1e6, seconds);
   for (std::size_t i = 0; i < palette.colours.size(); ++i) {
     const PaletteColour& c = palette.colours[i];
-    out += fmt::format("{}{} rgb({:.1f}, {:.1f}, {:.1f})", i ? ", " : "", LabelIdName(c.id), c.rgb[0], c.rgb[1],
-                       c.rgb[2]);
+    out +=
+        fmt::format("{}{} rgb({:.1f}, {:.1f}, {:.1f})", i ? ", " : "", LabelIdName(c.id), c.rgb[0], c.rgb[1], c.rgb[2]);
   }
   if (!failed.empty()) out += fmt::format("; {} skipped", failed.size());
   return out;

@@ -46,8 +46,8 @@ struct PaletteCalibrateOptions {
 struct CalibrateSummary {
   Palette palette;
   int idmaps = 0;
-  std::int64_t pixels = 0;         // Pixels the centroids were measured on.
-  std::vector<Problem> failed;     // Inputs that could not be read (skipped).
+  std::int64_t pixels = 0;            // Pixels the centroids were measured on.
+  std::vector<Problem> failed;        // Inputs that could not be read (skipped).
   std::vector<std::string> warnings;  // E.g. a class with no pixels.
   double seconds = 0.0;
 
@@ -66,8 +66,7 @@ CalibrateSummary CalibrateByClustering(const PaletteCalibrateOptions& options, c
 // and skipped; throws InputError if nothing could be read.
 CalibrateSummary CalibrateFiles(const PaletteCalibrateOptions& options,
                                 const std::vector<std::filesystem::path>& idmaps,
-                                const std::vector<std::filesystem::path>& masks,
-                                const ProgressCallback& progress = {});
+                                const std::vector<std::filesystem::path>& masks, const ProgressCallback& progress = {});
 
 }  // namespace asbuilt
 

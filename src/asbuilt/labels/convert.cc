@@ -71,8 +71,8 @@ cv::Mat ConvertIdMap(const cv::Mat& idmap_bgr, const Palette& palette, double th
 }
 
 std::string ConvertSummary::BriefReport() const {
-  std::string out = fmt::format("converted {} ID map{} ({:.1f} Mpx, {:.2f} % beyond threshold) in {:.2f} s",
-                                converted, converted == 1 ? "" : "s", pixels / 1e6,
+  std::string out = fmt::format("converted {} ID map{} ({:.1f} Mpx, {:.2f} % beyond threshold) in {:.2f} s", converted,
+                                converted == 1 ? "" : "s", pixels / 1e6,
                                 pixels > 0 ? 100.0 * beyond_threshold / pixels : 0.0, seconds);
   if (!failed.empty()) out += fmt::format("; {} failed", failed.size());
   return out;
@@ -88,28 +88,30 @@ ConvertSummary ConvertIdMapFiles(const ConvertOptions& options, const Palette& p
   std::mutex mutex;
   std::atomic<int> done{0};
   tbb::task_arena arena(options.num_threads > 0 ? options.num_threads : tbb::task_arena::automatic);
-  arena.execute([&] { tbb::parallel_for(std::size_t{0}, idmaps.size(), [&](std::size_t i) {
-    const fs::path& input = idmaps[i];
-    try {
-      cv::Mat idmap = ReadColourImage(input);
-      std::int64_t beyond = 0;
-      cv::Mat labels = ConvertIdMap(idmap, palette, options.threshold, &beyond);
-      WriteLabelImage(output_dir / (input.stem().string() + ".png"), labels);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, idmaps.size(), [&](std::size_t i) {
+      const fs::path& input = idmaps[i];
+      try {
+        cv::Mat idmap = ReadColourImage(input);
+        std::int64_t beyond = 0;
+        cv::Mat labels = ConvertIdMap(idmap, palette, options.threshold, &beyond);
+        WriteLabelImage(output_dir / (input.stem().string() + ".png"), labels);
+        std::lock_guard lock(mutex);
+        ++summary.converted;
+        summary.pixels += labels.total();
+        summary.beyond_threshold += beyond;
+      } catch (const InputError& e) {
+        std::lock_guard lock(mutex);
+        for (const Problem& p : e.problems()) summary.failed.push_back(p);
+      } catch (const Error& e) {
+        std::lock_guard lock(mutex);
+        summary.failed.push_back({input.string(), "", e.what()});
+      }
+      int n = ++done;
       std::lock_guard lock(mutex);
-      ++summary.converted;
-      summary.pixels += labels.total();
-      summary.beyond_threshold += beyond;
-    } catch (const InputError& e) {
-      std::lock_guard lock(mutex);
-      for (const Problem& p : e.problems()) summary.failed.push_back(p);
-    } catch (const Error& e) {
-      std::lock_guard lock(mutex);
-      summary.failed.push_back({input.string(), "", e.what()});
-    }
-    int n = ++done;
-    std::lock_guard lock(mutex);
-    ReportProgress(progress, {"convert", n, static_cast<std::int64_t>(idmaps.size()), input.filename().string()});
-  }); });
+      ReportProgress(progress, {"convert", n, static_cast<std::int64_t>(idmaps.size()), input.filename().string()});
+    });
+  });
   std::sort(summary.failed.begin(), summary.failed.end(),
             [](const Problem& a, const Problem& b) { return a.file < b.file; });
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

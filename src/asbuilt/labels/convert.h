@@ -51,8 +51,7 @@ struct ConvertSummary {
 // be read is recorded in `failed` and the others go on.
 ConvertSummary ConvertIdMapFiles(const ConvertOptions& options, const Palette& palette,
                                  const std::vector<std::filesystem::path>& idmaps,
-                                 const std::filesystem::path& output_dir,
-                                 const ProgressCallback& progress = {});
+                                 const std::filesystem::path& output_dir, const ProgressCallback& progress = {});
 
 // The image files (png, jpg, …) directly inside `dir`, sorted, hidden and
 // AtomicFile temp files skipped. Throws InputError if `dir` is not a folder.

@@ -24,11 +24,11 @@ cv::Vec3b Bgr(int r, int g, int b) { return cv::Vec3b(b, g, r); }
 
 TEST(ConvertIdMap, NearestColourWinsAndFarPixelsBecomeBackground) {
   cv::Mat idmap(1, 5, CV_8UC3);
-  idmap.at<cv::Vec3b>(0, 0) = Bgr(180, 50, 30);   // Near wall (200,40,40): d ≈ 24.5.
-  idmap.at<cv::Vec3b>(0, 1) = Bgr(40, 160, 70);   // Near door.
-  idmap.at<cv::Vec3b>(0, 2) = Bgr(50, 85, 170);   // Near window.
-  idmap.at<cv::Vec3b>(0, 3) = Bgr(10, 5, 5);      // Near background.
-  idmap.at<cv::Vec3b>(0, 4) = Bgr(200, 200, 200); // Far from everything.
+  idmap.at<cv::Vec3b>(0, 0) = Bgr(180, 50, 30);    // Near wall (200,40,40): d ≈ 24.5.
+  idmap.at<cv::Vec3b>(0, 1) = Bgr(40, 160, 70);    // Near door.
+  idmap.at<cv::Vec3b>(0, 2) = Bgr(50, 85, 170);    // Near window.
+  idmap.at<cv::Vec3b>(0, 3) = Bgr(10, 5, 5);       // Near background.
+  idmap.at<cv::Vec3b>(0, 4) = Bgr(200, 200, 200);  // Far from everything.
   std::int64_t beyond = -1;
   cv::Mat labels = ConvertIdMap(idmap, Palette::Nominal(), 80.0, &beyond);
   ASSERT_EQ(labels.type(), CV_8UC1);

@@ -136,7 +136,8 @@ cv::Mat SyntheticRoomLabels(int width_px, int height_px, std::uint64_t seed) {
   // Door: on the floor line, about 0.75 of the wall height.
   const double dx0 = uni(0.05, 0.7) * w, dx1 = dx0 + uni(0.1, 0.2) * w;
   const double dtop = 0.25;
-  fill({{dx0, floor_at(dx0)}, {dx1, floor_at(dx1)},
+  fill({{dx0, floor_at(dx0)},
+        {dx1, floor_at(dx1)},
         {dx1, ceil_at(dx1) + dtop * (floor_at(dx1) - ceil_at(dx1))},
         {dx0, ceil_at(dx0) + dtop * (floor_at(dx0) - ceil_at(dx0))}},
        2, labels);

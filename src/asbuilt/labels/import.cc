@@ -43,8 +43,7 @@ std::string Trim(std::string s) {
   return s;
 }
 
-cv::Mat MapIds(const fs::path& input, const std::array<std::uint8_t, 256>& table, int max_id,
-               const char* format_name) {
+cv::Mat MapIds(const fs::path& input, const std::array<std::uint8_t, 256>& table, int max_id, const char* format_name) {
   cv::Mat raw = ReadLabelImage(input);
   double lo = 0, hi = 0;
   cv::Point hi_at;
@@ -62,13 +61,26 @@ cv::Mat MapIds(const fs::path& input, const std::array<std::uint8_t, 256>& table
 
 const std::map<std::string, std::uint8_t>& DefaultLabelMeNames() {
   static const std::map<std::string, std::uint8_t> kNames = {
-      {"wall", kWall},           {"walls", kWall},
-      {"door", kDoor},           {"doors", kDoor},         {"double door", kDoor}, {"double_door", kDoor},
-      {"doorway", kDoor},        {"screen door", kDoor},   {"screen_door", kDoor},
-      {"window", kWindow},       {"windows", kWindow},     {"windowpane", kWindow},
-      {"window pane", kWindow},  {"window_pane", kWindow},
-      {"background", kBackground}, {"_background_", kBackground},
-      {"ignore", kIgnore},       {"__ignore__", kIgnore},  {"_ignore_", kIgnore},   {"void", kIgnore},
+      {"wall", kWall},
+      {"walls", kWall},
+      {"door", kDoor},
+      {"doors", kDoor},
+      {"double door", kDoor},
+      {"double_door", kDoor},
+      {"doorway", kDoor},
+      {"screen door", kDoor},
+      {"screen_door", kDoor},
+      {"window", kWindow},
+      {"windows", kWindow},
+      {"windowpane", kWindow},
+      {"window pane", kWindow},
+      {"window_pane", kWindow},
+      {"background", kBackground},
+      {"_background_", kBackground},
+      {"ignore", kIgnore},
+      {"__ignore__", kIgnore},
+      {"_ignore_", kIgnore},
+      {"void", kIgnore},
   };
   return kNames;
 }
@@ -122,17 +134,21 @@ void FillCircle(cv::Mat& labels, const std::array<double, 2>& centre, double rad
 
 const char* AnnotationFormatName(AnnotationFormat format) {
   switch (format) {
-    case AnnotationFormat::kAde20k: return "ade20k";
-    case AnnotationFormat::kNyu40: return "nyuv2";
-    case AnnotationFormat::kLabelMe: return "labelme";
-    case AnnotationFormat::kPalette: return "palette";
+    case AnnotationFormat::kAde20k:
+      return "ade20k";
+    case AnnotationFormat::kNyu40:
+      return "nyuv2";
+    case AnnotationFormat::kLabelMe:
+      return "labelme";
+    case AnnotationFormat::kPalette:
+      return "palette";
   }
   return "?";
 }
 
 std::optional<AnnotationFormat> ParseAnnotationFormat(std::string_view name) {
-  for (AnnotationFormat f : {AnnotationFormat::kAde20k, AnnotationFormat::kNyu40, AnnotationFormat::kLabelMe,
-                             AnnotationFormat::kPalette}) {
+  for (AnnotationFormat f :
+       {AnnotationFormat::kAde20k, AnnotationFormat::kNyu40, AnnotationFormat::kLabelMe, AnnotationFormat::kPalette}) {
     if (name == AnnotationFormatName(f)) return f;
   }
   if (name == "nyu40" || name == "nyu") return AnnotationFormat::kNyu40;
@@ -277,7 +293,8 @@ std::string ImportSummary::BriefReport() const {
   if (total > 0) {
     static const char* kNames[] = {"background", "wall", "door", "window", "ignore"};
     out += ":";
-    for (int i = 0; i < 5; ++i) out += fmt::format("{} {} {:.1f} %", i ? "," : "", kNames[i], 100.0 * class_pixels[i] / total);
+    for (int i = 0; i < 5; ++i)
+      out += fmt::format("{} {} {:.1f} %", i ? "," : "", kNames[i], 100.0 * class_pixels[i] / total);
   }
   if (!failed.empty()) out += fmt::format("; {} failed", failed.size());
   return out;

@@ -68,9 +68,9 @@ TEST(ImportAde20k, MapsDoorsWindowsAndScreenDoors) {
   auto t = Ade20kMapping(true);
   EXPECT_EQ(t[1], 1);
   EXPECT_EQ(t[9], 3);
-  EXPECT_EQ(t[15], 2);   // door;double;door
-  EXPECT_EQ(t[59], 2);   // screen;door;screen
-  EXPECT_EQ(t[64], 0);   // blind;screen is not a door
+  EXPECT_EQ(t[15], 2);  // door;double;door
+  EXPECT_EQ(t[59], 2);  // screen;door;screen
+  EXPECT_EQ(t[64], 0);  // blind;screen is not a door
   EXPECT_EQ(t[0], 255);
   EXPECT_EQ(Ade20kMapping(false)[0], 0);
 }
@@ -167,9 +167,9 @@ TEST(ImportPalette, ColourMasksMapThroughThePalette) {
   Palette p;
   p.colours = {{1, {128, 0, 0}, 0}, {2, {0, 128, 0}, 0}, {3, {0, 0, 128}, 0}};  // VOC-like colours.
   cv::Mat mask(10, 10, CV_8UC3, cv::Scalar(0, 0, 0));
-  mask.rowRange(0, 5).setTo(cv::Scalar(0, 0, 128));    // wall (BGR).
-  mask.rowRange(5, 7).setTo(cv::Scalar(2, 126, 1));    // door, JPEG-ish.
-  mask.rowRange(7, 8).setTo(cv::Scalar(128, 0, 0));    // window.
+  mask.rowRange(0, 5).setTo(cv::Scalar(0, 0, 128));  // wall (BGR).
+  mask.rowRange(5, 7).setTo(cv::Scalar(2, 126, 1));  // door, JPEG-ish.
+  mask.rowRange(7, 8).setTo(cv::Scalar(128, 0, 0));  // window.
   cv::imwrite((dir / "m.png").string(), mask);
   Counts c = Count(ImportAnnotation(dir / "m.png", {.format = AnnotationFormat::kPalette, .palette = p}));
   EXPECT_EQ(c.wall, 50);

@@ -40,9 +40,8 @@ Palette ParsePalette(const fs::path& path, JsonDiagnostics& diag) {
     }
     if (auto v = c.Optional("class").String()) {
       if (diag.ok() && *v != LabelIdName(colour.id)) {
-        c.Optional("class").AddWarning(
-            fmt::format("class \"{}\" does not match id {} ({}); the id is used", *v, colour.id,
-                        LabelIdName(colour.id)));
+        c.Optional("class").AddWarning(fmt::format("class \"{}\" does not match id {} ({}); the id is used", *v,
+                                                   colour.id, LabelIdName(colour.id)));
       }
     }
     JsonField rgb = c.Required("rgb");
@@ -90,8 +89,8 @@ std::string Palette::ToString() const {
   std::string out = fmt::format("Palette({}:", method);
   for (std::size_t i = 0; i < colours.size(); ++i) {
     const PaletteColour& c = colours[i];
-    out += fmt::format("{} {} rgb({:.1f}, {:.1f}, {:.1f})", i == 0 ? "" : ",", LabelIdName(c.id), c.rgb[0],
-                       c.rgb[1], c.rgb[2]);
+    out += fmt::format("{} {} rgb({:.1f}, {:.1f}, {:.1f})", i == 0 ? "" : ",", LabelIdName(c.id), c.rgb[0], c.rgb[1],
+                       c.rgb[2]);
   }
   if (threshold) out += fmt::format("; threshold {:.1f}", *threshold);
   return out + ")";
@@ -115,9 +114,8 @@ nlohmann::json PaletteToJson(const Palette& palette) {
   nlohmann::json colours = nlohmann::json::array();
   for (const PaletteColour& c : palette.colours) {
     auto round1 = [](double v) { return std::round(v * 1000.0) / 1000.0; };
-    nlohmann::json jc = {{"class", LabelIdName(c.id)},
-                         {"id", c.id},
-                         {"rgb", {round1(c.rgb[0]), round1(c.rgb[1]), round1(c.rgb[2])}}};
+    nlohmann::json jc = {
+        {"class", LabelIdName(c.id)}, {"id", c.id}, {"rgb", {round1(c.rgb[0]), round1(c.rgb[1]), round1(c.rgb[2])}}};
     if (c.pixels > 0) jc["pixels"] = c.pixels;
     if (c.rms_distance > 0) jc["rms_distance"] = round1(c.rms_distance);
     colours.push_back(std::move(jc));

@@ -24,8 +24,8 @@ nlohmann::json MakeResultReply(const nlohmann::json& id, nlohmann::json result) 
   return {{"jsonrpc", "2.0"}, {"id", id}, {"result", std::move(result)}};
 }
 
-nlohmann::json MakeErrorReply(const nlohmann::json& id, JsonRpcCode code,
-                              std::string_view message, nlohmann::json data) {
+nlohmann::json MakeErrorReply(const nlohmann::json& id, JsonRpcCode code, std::string_view message,
+                              nlohmann::json data) {
   nlohmann::json error = {{"code", static_cast<int>(code)}, {"message", message}};
   if (!data.is_null()) error["data"] = std::move(data);
   return {{"jsonrpc", "2.0"}, {"id", id}, {"error", std::move(error)}};
@@ -70,8 +70,7 @@ std::optional<InputLine> LineReader::Next() {
       return std::nullopt;
     }
     if (!line.text.empty() && line.text.back() == '\r') line.text.pop_back();
-    bool blank = !line.too_long &&
-                 line.text.find_first_not_of(" \t\r") == std::string::npos;
+    bool blank = !line.too_long && line.text.find_first_not_of(" \t\r") == std::string::npos;
     if (blank) {
       if (!ended_by_newline) {
         in_->setstate(std::ios::eofbit);
@@ -98,7 +97,9 @@ std::size_t JsonNestingDepth(std::string_view text) {
       continue;
     }
     switch (c) {
-      case '"': in_string = true; break;
+      case '"':
+        in_string = true;
+        break;
       case '[':
       case '{':
         max_depth = std::max(max_depth, ++depth);
@@ -107,7 +108,8 @@ std::size_t JsonNestingDepth(std::string_view text) {
       case '}':
         if (depth > 0) --depth;
         break;
-      default: break;
+      default:
+        break;
     }
   }
   return max_depth;
@@ -121,16 +123,15 @@ void JsonRpcDispatcher::AddNotification(std::string name, NotificationHandler ha
   notifications_[std::move(name)] = std::move(handler);
 }
 
-nlohmann::json JsonRpcDispatcher::Error(const nlohmann::json& id, JsonRpcCode code,
-                                        std::string_view message, nlohmann::json data) {
+nlohmann::json JsonRpcDispatcher::Error(const nlohmann::json& id, JsonRpcCode code, std::string_view message,
+                                        nlohmann::json data) {
   ++counts_.errors;
   spdlog::debug("mcp: error {} for id {}: {}", static_cast<int>(code), SerializeMessage(id), message);
   return MakeErrorReply(id, code, message, std::move(data));
 }
 
 std::optional<nlohmann::json> JsonRpcDispatcher::HandleLine(
-    const InputLine& line,
-    const std::function<RequestContext(const nlohmann::json& id)>& make_context) {
+    const InputLine& line, const std::function<RequestContext(const nlohmann::json& id)>& make_context) {
   if (line.too_long) {
     return Error(nullptr, JsonRpcCode::kInvalidRequest,
                  fmt::format("request too large: {} bytes, the limit is {} bytes; send "
@@ -149,15 +150,13 @@ std::optional<nlohmann::json> JsonRpcDispatcher::HandleLine(
     return Error(nullptr, JsonRpcCode::kParseError,
                  fmt::format("parse error: not valid JSON at {}", ParseErrorDetail(e.what())));
   } catch (const nlohmann::json::exception& e) {
-    return Error(nullptr, JsonRpcCode::kParseError,
-                 fmt::format("parse error: {}", ParseErrorDetail(e.what())));
+    return Error(nullptr, JsonRpcCode::kParseError, fmt::format("parse error: {}", ParseErrorDetail(e.what())));
   }
   return HandleMessage(message, make_context);
 }
 
 std::optional<nlohmann::json> JsonRpcDispatcher::HandleMessage(
-    const nlohmann::json& message,
-    const std::function<RequestContext(const nlohmann::json& id)>& make_context) {
+    const nlohmann::json& message, const std::function<RequestContext(const nlohmann::json& id)>& make_context) {
   if (!message.is_array()) return HandleSingle(message, make_context);
   // A batch (JSON-RPC 2.0 §6).
   if (!allow_batches_) {
@@ -170,14 +169,12 @@ std::optional<nlohmann::json> JsonRpcDispatcher::HandleMessage(
   }
   if (message.size() > limits_.max_batch_size) {
     return Error(nullptr, JsonRpcCode::kInvalidRequest,
-                 fmt::format("batch of {} messages, the limit is {}", message.size(),
-                             limits_.max_batch_size));
+                 fmt::format("batch of {} messages, the limit is {}", message.size(), limits_.max_batch_size));
   }
   nlohmann::json replies = nlohmann::json::array();
   for (const nlohmann::json& m : message) {
     if (m.is_object() && m.value("method", "") == "initialize") {
-      replies.push_back(Error(m.contains("id") && IsValidId(m["id"]) ? m["id"] : nullptr,
-                              JsonRpcCode::kInvalidRequest,
+      replies.push_back(Error(m.contains("id") && IsValidId(m["id"]) ? m["id"] : nullptr, JsonRpcCode::kInvalidRequest,
                               "initialize must not be part of a batch"));
       continue;
     }
@@ -188,12 +185,10 @@ std::optional<nlohmann::json> JsonRpcDispatcher::HandleMessage(
 }
 
 std::optional<nlohmann::json> JsonRpcDispatcher::HandleSingle(
-    const nlohmann::json& message,
-    const std::function<RequestContext(const nlohmann::json& id)>& make_context) {
+    const nlohmann::json& message, const std::function<RequestContext(const nlohmann::json& id)>& make_context) {
   if (!message.is_object()) {
     return Error(nullptr, JsonRpcCode::kInvalidRequest,
-                 fmt::format("invalid request: expected a JSON object, got {}",
-                             message.type_name()));
+                 fmt::format("invalid request: expected a JSON object, got {}", message.type_name()));
   }
   auto id_it = message.find("id");
   bool has_id = id_it != message.end();
@@ -201,8 +196,7 @@ std::optional<nlohmann::json> JsonRpcDispatcher::HandleSingle(
 
   auto version = message.find("jsonrpc");
   if (version == message.end() || *version != "2.0") {
-    return Error(reply_id, JsonRpcCode::kInvalidRequest,
-                 "invalid request: \"jsonrpc\" must be \"2.0\"");
+    return Error(reply_id, JsonRpcCode::kInvalidRequest, "invalid request: \"jsonrpc\" must be \"2.0\"");
   }
   auto method_it = message.find("method");
   if (method_it == message.end()) {
@@ -211,12 +205,10 @@ std::optional<nlohmann::json> JsonRpcDispatcher::HandleSingle(
       spdlog::debug("mcp: ignoring a response from the client (id {})", SerializeMessage(reply_id));
       return std::nullopt;
     }
-    return Error(reply_id, JsonRpcCode::kInvalidRequest,
-                 "invalid request: missing \"method\"");
+    return Error(reply_id, JsonRpcCode::kInvalidRequest, "invalid request: missing \"method\"");
   }
   if (!method_it->is_string()) {
-    return Error(reply_id, JsonRpcCode::kInvalidRequest,
-                 "invalid request: \"method\" must be a string");
+    return Error(reply_id, JsonRpcCode::kInvalidRequest, "invalid request: \"method\" must be a string");
   }
   const std::string& method = method_it->get_ref<const std::string&>();
   nlohmann::json params = nlohmann::json::object();
@@ -226,8 +218,7 @@ std::optional<nlohmann::json> JsonRpcDispatcher::HandleSingle(
         spdlog::warn("mcp: notification {} with params that are not an object; ignored", method);
         return std::nullopt;
       }
-      return Error(reply_id, JsonRpcCode::kInvalidRequest,
-                   "invalid request: \"params\" must be an object");
+      return Error(reply_id, JsonRpcCode::kInvalidRequest, "invalid request: \"params\" must be an object");
     }
     params = *p;
   }
@@ -247,15 +238,13 @@ std::optional<nlohmann::json> JsonRpcDispatcher::HandleSingle(
     return std::nullopt;
   }
   if (!IsValidId(*id_it)) {
-    return Error(nullptr, JsonRpcCode::kInvalidRequest,
-                 "invalid request: \"id\" must be a string or a number");
+    return Error(nullptr, JsonRpcCode::kInvalidRequest, "invalid request: \"id\" must be a string or a number");
   }
 
   ++counts_.requests;
   auto handler = methods_.find(method);
   if (handler == methods_.end()) {
-    return Error(reply_id, JsonRpcCode::kMethodNotFound,
-                 fmt::format("method not found: {}", method));
+    return Error(reply_id, JsonRpcCode::kMethodNotFound, fmt::format("method not found: {}", method));
   }
   try {
     if (gate_) gate_(method);
@@ -268,8 +257,7 @@ std::optional<nlohmann::json> JsonRpcDispatcher::HandleSingle(
     return Error(reply_id, e.code(), e.what(), e.data());
   } catch (const std::exception& e) {
     spdlog::error("mcp: {} failed: {}", method, e.what());
-    return Error(reply_id, JsonRpcCode::kInternalError,
-                 fmt::format("internal error: {}", e.what()));
+    return Error(reply_id, JsonRpcCode::kInternalError, fmt::format("internal error: {}", e.what()));
   }
 }
 

@@ -44,8 +44,7 @@ enum class JsonRpcCode : int {
 // Thrown by a method handler to answer with a specific JSON-RPC error.
 class JsonRpcError : public Error {
  public:
-  JsonRpcError(JsonRpcCode code, const std::string& message,
-               nlohmann::json data = nullptr)
+  JsonRpcError(JsonRpcCode code, const std::string& message, nlohmann::json data = nullptr)
       : Error(message), code_(code), data_(std::move(data)) {}
   JsonRpcCode code() const { return code_; }
   const nlohmann::json& data() const { return data_; }
@@ -56,8 +55,8 @@ class JsonRpcError : public Error {
 };
 
 nlohmann::json MakeResultReply(const nlohmann::json& id, nlohmann::json result);
-nlohmann::json MakeErrorReply(const nlohmann::json& id, JsonRpcCode code,
-                              std::string_view message, nlohmann::json data = nullptr);
+nlohmann::json MakeErrorReply(const nlohmann::json& id, JsonRpcCode code, std::string_view message,
+                              nlohmann::json data = nullptr);
 nlohmann::json MakeNotification(std::string_view method, nlohmann::json params);
 
 // Serialises a message as one line (no trailing newline). Invalid UTF-8 in
@@ -66,10 +65,10 @@ std::string SerializeMessage(const nlohmann::json& message);
 
 // One line of input as read by LineReader.
 struct InputLine {
-  std::string text;        // Without the newline (and a trailing '\r').
-  std::size_t bytes = 0;   // Length of the full line, even when truncated.
-  bool too_long = false;   // Longer than the limit: `text` is empty.
-  std::size_t limit = 0;   // The reader's limit, for the error message.
+  std::string text;       // Without the newline (and a trailing '\r').
+  std::size_t bytes = 0;  // Length of the full line, even when truncated.
+  bool too_long = false;  // Longer than the limit: `text` is empty.
+  std::size_t limit = 0;  // The reader's limit, for the error message.
 };
 
 // Reads newline-delimited messages without ever holding more than
@@ -77,8 +76,7 @@ struct InputLine {
 // reported as too_long, so a huge request cannot exhaust memory.
 class LineReader {
  public:
-  LineReader(std::istream& in, std::size_t max_line_bytes)
-      : in_(&in), max_line_bytes_(max_line_bytes) {}
+  LineReader(std::istream& in, std::size_t max_line_bytes) : in_(&in), max_line_bytes_(max_line_bytes) {}
   // The next non-blank line; nullopt at end of input.
   std::optional<InputLine> Next();
 
@@ -89,18 +87,18 @@ class LineReader {
 
 // What a handler knows about the request it serves.
 struct RequestContext {
-  nlohmann::json id;           // The request id (string or number).
+  nlohmann::json id;  // The request id (string or number).
   std::string method;
-  nlohmann::json meta;         // params._meta, or null.
-  std::stop_token stop;        // Requested when the client cancels or disconnects.
+  nlohmann::json meta;   // params._meta, or null.
+  std::stop_token stop;  // Requested when the client cancels or disconnects.
   // Sends a notification to the client while the request runs (progress).
   std::function<void(const nlohmann::json&)> notify;
 };
 
 // Limits on the shape of a message (before any method sees it).
 struct JsonRpcLimits {
-  std::size_t max_depth = 64;        // Nesting of arrays/objects.
-  std::size_t max_batch_size = 64;   // Messages in one batch.
+  std::size_t max_depth = 64;       // Nesting of arrays/objects.
+  std::size_t max_batch_size = 64;  // Messages in one batch.
 };
 
 // Routes parsed messages to handlers and builds the replies.
@@ -108,8 +106,7 @@ class JsonRpcDispatcher {
  public:
   // Returns the `result` member; throws JsonRpcError for a specific error.
   // Any other exception becomes -32603 internal error with its message.
-  using MethodHandler =
-      std::function<nlohmann::json(const nlohmann::json& params, RequestContext& ctx)>;
+  using MethodHandler = std::function<nlohmann::json(const nlohmann::json& params, RequestContext& ctx)>;
   using NotificationHandler = std::function<void(const nlohmann::json& params)>;
   // Called before every request; throws JsonRpcError to refuse it (e.g. "not
   // initialised yet").
@@ -129,12 +126,10 @@ class JsonRpcDispatcher {
   // (notifications, client responses). `make_context` supplies the stop
   // token and notifier of each request; it may be empty.
   std::optional<nlohmann::json> HandleLine(
-      const InputLine& line,
-      const std::function<RequestContext(const nlohmann::json& id)>& make_context = {});
+      const InputLine& line, const std::function<RequestContext(const nlohmann::json& id)>& make_context = {});
   // Same for a message already parsed.
   std::optional<nlohmann::json> HandleMessage(
-      const nlohmann::json& message,
-      const std::function<RequestContext(const nlohmann::json& id)>& make_context = {});
+      const nlohmann::json& message, const std::function<RequestContext(const nlohmann::json& id)>& make_context = {});
 
   // Counters for the session summary.
   struct Counts {
@@ -144,8 +139,7 @@ class JsonRpcDispatcher {
 
  private:
   std::optional<nlohmann::json> HandleSingle(
-      const nlohmann::json& message,
-      const std::function<RequestContext(const nlohmann::json& id)>& make_context);
+      const nlohmann::json& message, const std::function<RequestContext(const nlohmann::json& id)>& make_context);
   nlohmann::json Error(const nlohmann::json& id, JsonRpcCode code, std::string_view message,
                        nlohmann::json data = nullptr);
 

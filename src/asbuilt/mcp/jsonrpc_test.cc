@@ -21,9 +21,8 @@ JsonRpcDispatcher EchoDispatcher() {
   rpc.AddMethod("fail", [](const nlohmann::json&, RequestContext&) -> nlohmann::json {
     throw JsonRpcError(JsonRpcCode::kInvalidParams, "params.x: required");
   });
-  rpc.AddMethod("crash", [](const nlohmann::json&, RequestContext&) -> nlohmann::json {
-    throw std::runtime_error("boom");
-  });
+  rpc.AddMethod("crash",
+                [](const nlohmann::json&, RequestContext&) -> nlohmann::json { throw std::runtime_error("boom"); });
   return rpc;
 }
 
@@ -97,13 +96,11 @@ TEST(JsonRpcDispatcher, InvalidUtf8InTheRequestStillGivesAWritableReply) {
 
 TEST(JsonRpcDispatcher, MalformedRequestsAreInvalidRequests) {
   auto rpc = EchoDispatcher();
-  for (const char* bad : {
-           R"(42)", R"("x")", R"({"id":1,"method":"echo"})",
-           R"({"jsonrpc":"1.0","id":1,"method":"echo"})", R"({"jsonrpc":"2.0","id":1})",
-           R"({"jsonrpc":"2.0","id":1,"method":5})",
-           R"({"jsonrpc":"2.0","id":1,"method":"echo","params":[1]})",
-           R"({"jsonrpc":"2.0","id":null,"method":"echo"})",
-           R"({"jsonrpc":"2.0","id":{"a":1},"method":"echo"})"}) {
+  for (const char* bad :
+       {R"(42)", R"("x")", R"({"id":1,"method":"echo"})", R"({"jsonrpc":"1.0","id":1,"method":"echo"})",
+        R"({"jsonrpc":"2.0","id":1})", R"({"jsonrpc":"2.0","id":1,"method":5})",
+        R"({"jsonrpc":"2.0","id":1,"method":"echo","params":[1]})", R"({"jsonrpc":"2.0","id":null,"method":"echo"})",
+        R"({"jsonrpc":"2.0","id":{"a":1},"method":"echo"})"}) {
     auto reply = rpc.HandleLine(Line(bad));
     ASSERT_TRUE(reply) << bad;
     EXPECT_EQ(ErrorCode(*reply), -32600) << bad;
@@ -143,9 +140,8 @@ TEST(JsonRpcDispatcher, NotificationsAndResponsesGetNoReply) {
 
 TEST(JsonRpcDispatcher, BatchesAreRefusedUnlessAllowed) {
   auto rpc = EchoDispatcher();
-  std::string batch =
-      R"([{"jsonrpc":"2.0","id":1,"method":"echo"},{"jsonrpc":"2.0","method":"note"},)"
-      R"({"jsonrpc":"2.0","id":2,"method":"nope"}])";
+  std::string batch = R"([{"jsonrpc":"2.0","id":1,"method":"echo"},{"jsonrpc":"2.0","method":"note"},)"
+                      R"({"jsonrpc":"2.0","id":2,"method":"nope"}])";
   auto reply = rpc.HandleLine(Line(batch));
   ASSERT_TRUE(reply);
   ASSERT_TRUE(reply->is_object());

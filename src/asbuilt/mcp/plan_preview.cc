@@ -171,11 +171,11 @@ void PlanPreviewOptions::Check() const {
   CheckArgument(width_px >= 64 && width_px <= 4096,
                 fmt::format("PlanPreviewOptions.width_px = {}, must be in 64..4096", width_px));
   CheckArgument(max_height_px >= 64 && max_height_px <= 4096,
-                fmt::format("PlanPreviewOptions.max_height_px = {}, must be in 64..4096",
-                            max_height_px));
+                fmt::format("PlanPreviewOptions.max_height_px = {}, must be in 64..4096", max_height_px));
   CheckArgument(margin_px >= 0 && 2 * margin_px < std::min(width_px, max_height_px) - 16,
                 fmt::format("PlanPreviewOptions.margin_px = {}, must be >= 0 and leave room "
-                            "for the drawing", margin_px));
+                            "for the drawing",
+                            margin_px));
 }
 
 std::string RenderPlanPreviewPng(const Scene& scene, const PlanPreviewOptions& options) {

@@ -17,11 +17,11 @@
 namespace asbuilt::mcp {
 
 struct PlanPreviewOptions {
-  int width_px = 768;          // Image width; the height follows the scene's aspect.
-  int max_height_px = 1536;    // Cap on the height (tall scenes are scaled down).
-  int margin_px = 48;          // Around the drawing (room for labels).
-  bool wall_labels = true;     // "0: 6.00 m" beside each wall.
-  bool view_rays = true;       // One short ray per viewpoint from the rig.
+  int width_px = 768;        // Image width; the height follows the scene's aspect.
+  int max_height_px = 1536;  // Cap on the height (tall scenes are scaled down).
+  int margin_px = 48;        // Around the drawing (room for labels).
+  bool wall_labels = true;   // "0: 6.00 m" beside each wall.
+  bool view_rays = true;     // One short ray per viewpoint from the rig.
 
   // Throws InvalidArgument naming the field ("PlanPreviewOptions.width_px = 10, must be in 64..4096").
   void Check() const;

@@ -13,8 +13,8 @@ Scene RoomWithDoorAndWindow() {
   Room r;
   r.polygon = {{0, 0}, {6, 0}, {6, 8}, {0, 8}};
   r.openings.push_back({.kind = OpeningKind::kDoor, .wall = 1, .offset_m = 1, .width_m = 1});
-  r.openings.push_back({.kind = OpeningKind::kWindow, .wall = 2, .offset_m = 2, .width_m = 1.5,
-                        .height_m = 1.2, .sill_m = 0.9});
+  r.openings.push_back(
+      {.kind = OpeningKind::kWindow, .wall = 2, .offset_m = 2, .width_m = 1.5, .height_m = 1.2, .sill_m = 0.9});
   s.rooms.push_back(r);
   s.furniture.push_back({.name = "table", .centre_m = Vec2(3, 4)});
   s.turn = TurnInPlace{.position_m = Vec3(3, 3, 1.5), .step_deg = 45};

@@ -37,19 +37,15 @@ constexpr std::string_view kInstructions =
 void McpServerOptions::Check() const {
   CheckArgument(!workspace.empty(), "McpServerOptions.workspace is empty, must name a folder");
   CheckArgument(max_request_bytes >= 1024,
-                fmt::format("McpServerOptions.max_request_bytes = {}, must be >= 1024",
-                            max_request_bytes));
+                fmt::format("McpServerOptions.max_request_bytes = {}, must be >= 1024", max_request_bytes));
   CheckArgument(progress_interval_ms >= 0,
-                fmt::format("McpServerOptions.progress_interval_ms = {}, must be >= 0",
-                            progress_interval_ms));
+                fmt::format("McpServerOptions.progress_interval_ms = {}, must be >= 0", progress_interval_ms));
   limits.Check();
 }
 
 std::string McpSessionSummary::BriefReport() const {
-  return fmt::format("mcp session: {} ({}, {}), {}, {}{}; protocol {}",
-                     Plural(requests, "request", "requests"),
-                     Plural(tool_calls, "tool call", "tool calls"),
-                     Plural(tool_errors, "tool error", "tool errors"),
+  return fmt::format("mcp session: {} ({}, {}), {}, {}{}; protocol {}", Plural(requests, "request", "requests"),
+                     Plural(tool_calls, "tool call", "tool calls"), Plural(tool_errors, "tool error", "tool errors"),
                      Plural(notifications, "notification", "notifications"),
                      Plural(protocol_errors, "protocol error", "protocol errors"),
                      cancelled ? fmt::format(", {} cancelled", cancelled) : "",
@@ -70,8 +66,7 @@ struct McpServer::State {
   const Send* send = nullptr;
   std::stop_token stop;
 
-  explicit State(const McpServerOptions& o)
-      : options(o), tools(Workspace(o.workspace), o.limits) {}
+  explicit State(const McpServerOptions& o) : options(o), tools(Workspace(o.workspace), o.limits) {}
 };
 
 McpServer::McpServer(const McpServerOptions& options) {
@@ -103,31 +98,26 @@ McpServer::McpServer(const McpServerOptions& options) {
     }
     std::string asked = v->get<std::string>();
     // Answer with the revision asked for when we speak it, else our latest.
-    s.protocol_version = asked == kProtocolVersion20250326 ? std::string(kProtocolVersion20250326)
-                                                           : std::string(kLatestProtocolVersion);
+    s.protocol_version =
+        asked == kProtocolVersion20250326 ? std::string(kProtocolVersion20250326) : std::string(kLatestProtocolVersion);
     s.summary.protocol_version = s.protocol_version;
     s.rpc.set_allow_batches(s.protocol_version == kProtocolVersion20250326);
     s.initialize_answered = true;
     std::string client = params.contains("clientInfo") && params["clientInfo"].is_object()
                              ? params["clientInfo"].value("name", std::string("?"))
                              : std::string("?");
-    spdlog::info("mcp: client \"{}\" asked for protocol {}, answering {}", client, asked,
-                 s.protocol_version);
+    spdlog::info("mcp: client \"{}\" asked for protocol {}, answering {}", client, asked, s.protocol_version);
     return nlohmann::json{
         {"protocolVersion", s.protocol_version},
         {"capabilities", {{"tools", {{"listChanged", false}}}}},
-        {"serverInfo", {{"name", "asbuilt"}, {"title", "asbuilt scene server"},
-                        {"version", ASBUILT_VERSION}}},
+        {"serverInfo", {{"name", "asbuilt"}, {"title", "asbuilt scene server"}, {"version", ASBUILT_VERSION}}},
         {"instructions", kInstructions}};
   });
-  s.rpc.AddNotification("notifications/initialized",
-                        [&s](const nlohmann::json&) { s.initialized_notified = true; });
+  s.rpc.AddNotification("notifications/initialized", [&s](const nlohmann::json&) { s.initialized_notified = true; });
   s.rpc.AddNotification("notifications/cancelled", [](const nlohmann::json&) {
     // Acted on by ServeMcp's reader thread while the request runs.
   });
-  s.rpc.AddMethod("ping", [](const nlohmann::json&, RequestContext&) {
-    return nlohmann::json::object();
-  });
+  s.rpc.AddMethod("ping", [](const nlohmann::json&, RequestContext&) { return nlohmann::json::object(); });
   s.rpc.AddMethod("tools/list", [&s](const nlohmann::json& params, RequestContext&) {
     if (auto c = params.find("cursor"); c != params.end() && !c->is_string() && !c->is_null()) {
       throw JsonRpcError(JsonRpcCode::kInvalidParams, "params.cursor: must be a string");
@@ -143,8 +133,7 @@ McpServer::McpServer(const McpServerOptions& options) {
     if (s.tools.Find(tool) == nullptr) {
       std::string names;
       for (const ToolSpec& t : s.tools.specs()) names += (names.empty() ? "" : ", ") + t.name;
-      throw JsonRpcError(JsonRpcCode::kInvalidParams,
-                         fmt::format("Unknown tool: {}; tools: {}", tool, names));
+      throw JsonRpcError(JsonRpcCode::kInvalidParams, fmt::format("Unknown tool: {}; tools: {}", tool, names));
     }
     nlohmann::json arguments = nullptr;
     if (auto a = params.find("arguments"); a != params.end() && !a->is_null()) {
@@ -156,8 +145,7 @@ McpServer::McpServer(const McpServerOptions& options) {
     // Progress notifications when the client asked for them (a token in _meta).
     ToolCallContext call;
     call.stop = ctx.stop;
-    nlohmann::json token = ctx.meta.is_object() ? ctx.meta.value("progressToken", nlohmann::json())
-                                                : nlohmann::json();
+    nlohmann::json token = ctx.meta.is_object() ? ctx.meta.value("progressToken", nlohmann::json()) : nlohmann::json();
     if ((token.is_string() || token.is_number()) && ctx.notify) {
       auto last_sent = std::make_shared<Clock::time_point>();
       auto last_value = std::make_shared<double>(-1.0);
@@ -211,8 +199,7 @@ void McpServer::HandleLine(const InputLine& line, const Send& send, std::stop_to
 
 std::vector<nlohmann::json> McpServer::HandleText(std::string_view line) {
   std::vector<nlohmann::json> out;
-  InputLine in{.text = std::string(line), .bytes = line.size(),
-               .limit = state_->options.max_request_bytes};
+  InputLine in{.text = std::string(line), .bytes = line.size(), .limit = state_->options.max_request_bytes};
   if (line.size() > state_->options.max_request_bytes) {
     in.text.clear();
     in.too_long = true;
@@ -255,8 +242,8 @@ McpSessionSummary ServeMcp(const McpServerOptions& options, std::istream& in, st
       // A cancellation must reach the running request now, not after it.
       if (!line->too_long && line->text.find("notifications/cancelled") != std::string::npos) {
         nlohmann::json m = nlohmann::json::parse(line->text, nullptr, false);
-        if (m.is_object() && m.value("method", "") == "notifications/cancelled" &&
-            m.contains("params") && m["params"].is_object() && m["params"].contains("requestId")) {
+        if (m.is_object() && m.value("method", "") == "notifications/cancelled" && m.contains("params") &&
+            m["params"].is_object() && m["params"].contains("requestId")) {
           std::lock_guard lock(mu);
           if (running_id && *running_id == m["params"]["requestId"]) {
             spdlog::info("mcp: client cancelled request {}", running_id->dump());
@@ -316,15 +303,18 @@ McpSessionSummary ServeMcp(const McpServerOptions& options, std::istream& in, st
       stop = running_stop.get_token();
     }
     if (!output_ok) continue;  // Drain input until the client's end closes.
-    server.HandleLine(line, [&](const nlohmann::json& message) {
-      // The client asked us not to answer a request it cancelled (at end of
-      // input the answer is still written: stdout may outlive stdin).
-      if (stop.stop_requested() && message.contains("id") && !message.contains("method")) {
-        std::lock_guard lock(mu);
-        if (!eof) return;
-      }
-      send(message);
-    }, stop);
+    server.HandleLine(
+        line,
+        [&](const nlohmann::json& message) {
+          // The client asked us not to answer a request it cancelled (at end of
+          // input the answer is still written: stdout may outlive stdin).
+          if (stop.stop_requested() && message.contains("id") && !message.contains("method")) {
+            std::lock_guard lock(mu);
+            if (!eof) return;
+          }
+          send(message);
+        },
+        stop);
     std::lock_guard lock(mu);
     running_id.reset();
   }

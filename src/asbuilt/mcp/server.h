@@ -38,9 +38,9 @@ inline constexpr std::string_view kLatestProtocolVersion = "2025-06-18";
 inline constexpr std::string_view kProtocolVersion20250326 = "2025-03-26";
 
 struct McpServerOptions {
-  std::filesystem::path workspace;             // Required; created if missing.
-  std::size_t max_request_bytes = 4u << 20;    // One message (line); larger → -32600.
-  ToolLimits limits;                           // Scene/image/view/file limits.
+  std::filesystem::path workspace;           // Required; created if missing.
+  std::size_t max_request_bytes = 4u << 20;  // One message (line); larger → -32600.
+  ToolLimits limits;                         // Scene/image/view/file limits.
   // Minimum interval between progress notifications of one request (the
   // last update of a stage is always sent).
   int progress_interval_ms = 100;
@@ -51,13 +51,13 @@ struct McpServerOptions {
 };
 
 struct McpSessionSummary {
-  std::size_t requests = 0;        // Requests answered (any method).
-  std::size_t notifications = 0;   // Notifications received.
-  std::size_t protocol_errors = 0; // JSON-RPC error replies sent.
+  std::size_t requests = 0;         // Requests answered (any method).
+  std::size_t notifications = 0;    // Notifications received.
+  std::size_t protocol_errors = 0;  // JSON-RPC error replies sent.
   std::size_t tool_calls = 0;
-  std::size_t tool_errors = 0;     // Tool results with isError.
-  std::size_t cancelled = 0;       // Requests cancelled (by the client or end of input).
-  std::string protocol_version;    // Negotiated; empty if never initialised.
+  std::size_t tool_errors = 0;   // Tool results with isError.
+  std::size_t cancelled = 0;     // Requests cancelled (by the client or end of input).
+  std::string protocol_version;  // Negotiated; empty if never initialised.
 
   // "mcp session: 14 requests (9 tool calls, 1 tool error), 2 notifications,
   // 1 protocol error; protocol 2025-06-18".

@@ -34,9 +34,8 @@ std::string Initialize(int id = 1, std::string_view version = "2025-06-18") {
 class ServerTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    root_ = fs::temp_directory_path() /
-            ("asbuilt_server_test_" + std::to_string(::getpid()) + "_" +
-             ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    root_ = fs::temp_directory_path() / ("asbuilt_server_test_" + std::to_string(::getpid()) + "_" +
+                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(root_);
     options_.workspace = root_ / "ws";
   }
@@ -78,8 +77,7 @@ TEST_F(ServerTest, NegotiatesOlderAndUnknownRevisions) {
   McpServer new_client(options_);
   EXPECT_EQ(One(new_client, Initialize(1, "2099-01-01"))["result"]["protocolVersion"], "2025-06-18");
   McpServer bad(options_);
-  EXPECT_EQ(One(bad, Request(1, "initialize", {{"capabilities", nlohmann::json::object()}}))["error"]["code"],
-            -32602);
+  EXPECT_EQ(One(bad, Request(1, "initialize", {{"capabilities", nlohmann::json::object()}}))["error"]["code"], -32602);
 }
 
 TEST_F(ServerTest, OnlyPingBeforeInitialize) {
@@ -125,8 +123,7 @@ TEST_F(ServerTest, ProtocolMistakesAreJsonRpcErrors) {
   nlohmann::json r = One(server, Call(8, "make_coffee"));
   EXPECT_EQ(r["error"]["code"], -32602);
   EXPECT_THAT(r["error"]["message"].get<std::string>(), HasSubstr("Unknown tool: make_coffee"));
-  EXPECT_EQ(One(server, Request(9, "tools/call", {{"name", "add_room"}, {"arguments", 5}}))["error"]["code"],
-            -32602);
+  EXPECT_EQ(One(server, Request(9, "tools/call", {{"name", "add_room"}, {"arguments", 5}}))["error"]["code"], -32602);
   EXPECT_EQ(One(server, R"({"jsonrpc":"2.0","id":10})")["error"]["code"], -32600);
   // The server still works afterwards.
   EXPECT_TRUE(One(server, Request(11, "ping"))["result"].is_object());
@@ -162,7 +159,8 @@ TEST_F(ServerTest, RequestSizeLimit) {
 TEST_F(ServerTest, ServeMcpWritesOnlyProtocolLinesAndSurvivesGarbage) {
   std::stringstream in, out;
   in << Initialize() << "\n"
-     << R"({"jsonrpc":"2.0","method":"notifications/initialized"})" << "\n"
+     << R"({"jsonrpc":"2.0","method":"notifications/initialized"})"
+     << "\n"
      << "garbage\n"
      << "\n"
      << Call(2, "add_room", {{"width_m", 6}, {"depth_m", 8}}) << "\n"
@@ -233,14 +231,14 @@ class LineHookBuf : public std::streambuf {
 TEST_F(ServerTest, ClientLeavingMidRenderLeavesNoPartialCapture) {
   int fds[2];
   ASSERT_EQ(::pipe(fds), 0);
-  std::string requests =
-      Initialize() + "\n" + R"({"jsonrpc":"2.0","method":"notifications/initialized"})" + "\n" +
-      Call(2, "add_room", {{"width_m", 4}, {"depth_m", 3}}) + "\n" +
-      Call(3, "place_rig", {{"step_deg", 30}, {"width_px", 48}, {"height_px", 32}}) + "\n" +
-      Request(4, "tools/call",
-              {{"name", "render_capture"},
-               {"arguments", {{"output", "captures/gone"}, {"samples_per_pixel", 1}}},
-               {"_meta", {{"progressToken", "tok"}}}}) + "\n";
+  std::string requests = Initialize() + "\n" + R"({"jsonrpc":"2.0","method":"notifications/initialized"})" + "\n" +
+                         Call(2, "add_room", {{"width_m", 4}, {"depth_m", 3}}) + "\n" +
+                         Call(3, "place_rig", {{"step_deg", 30}, {"width_px", 48}, {"height_px", 32}}) + "\n" +
+                         Request(4, "tools/call",
+                                 {{"name", "render_capture"},
+                                  {"arguments", {{"output", "captures/gone"}, {"samples_per_pixel", 1}}},
+                                  {"_meta", {{"progressToken", "tok"}}}}) +
+                         "\n";
   ASSERT_EQ(::write(fds[1], requests.data(), requests.size()), static_cast<ssize_t>(requests.size()));
   int progress_seen = 0;
   LineHookBuf out_buf([&](const std::string& line) {
@@ -280,11 +278,10 @@ TEST_F(ServerTest, ProgressNotificationsPrecedeTheReply) {
      << Call(3, "place_rig", {{"yaws_deg", {0, 120, 240}}, {"width_px", 48}, {"height_px", 32}}) << "\n";
   McpServer server(options_);
   for (std::string line; std::getline(in, line);) server.HandleText(line);
-  auto messages = server.HandleText(
-      Request(4, "tools/call",
-              {{"name", "render_capture"},
-               {"arguments", {{"output", "cap"}, {"samples_per_pixel", 1}}},
-               {"_meta", {{"progressToken", 99}}}}));
+  auto messages = server.HandleText(Request(4, "tools/call",
+                                            {{"name", "render_capture"},
+                                             {"arguments", {{"output", "cap"}, {"samples_per_pixel", 1}}},
+                                             {"_meta", {{"progressToken", 99}}}}));
   ASSERT_GE(messages.size(), 2u);
   double last = -1;
   for (std::size_t i = 0; i + 1 < messages.size(); ++i) {

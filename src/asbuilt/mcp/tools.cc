@@ -52,9 +52,8 @@ std::string Bullets(const std::vector<std::string>& lines) {
 
 std::vector<std::string_view> TextureNames() {
   std::vector<std::string_view> out;
-  for (TextureKind k : {TextureKind::kNone, TextureKind::kPlaster, TextureKind::kPaint,
-                        TextureKind::kWallpaper, TextureKind::kWood, TextureKind::kTiles,
-                        TextureKind::kCarpet, TextureKind::kConcrete}) {
+  for (TextureKind k : {TextureKind::kNone, TextureKind::kPlaster, TextureKind::kPaint, TextureKind::kWallpaper,
+                        TextureKind::kWood, TextureKind::kTiles, TextureKind::kCarpet, TextureKind::kConcrete}) {
     out.push_back(TextureKindName(k));
   }
   return out;
@@ -65,9 +64,9 @@ struct FurniturePreset {
   Vec3 size_m;
 };
 const FurniturePreset kFurniturePresets[] = {
-    {"box", {1.0, 0.6, 0.75}},      {"table", {1.6, 0.9, 0.75}},  {"desk", {1.4, 0.7, 0.75}},
-    {"chair", {0.5, 0.5, 0.9}},     {"bed", {1.6, 2.0, 0.5}},     {"sofa", {2.0, 0.9, 0.85}},
-    {"wardrobe", {1.2, 0.6, 2.0}},  {"shelf", {0.9, 0.35, 1.8}},  {"cabinet", {0.8, 0.45, 0.9}},
+    {"box", {1.0, 0.6, 0.75}},     {"table", {1.6, 0.9, 0.75}}, {"desk", {1.4, 0.7, 0.75}},
+    {"chair", {0.5, 0.5, 0.9}},    {"bed", {1.6, 2.0, 0.5}},    {"sofa", {2.0, 0.9, 0.85}},
+    {"wardrobe", {1.2, 0.6, 2.0}}, {"shelf", {0.9, 0.35, 1.8}}, {"cabinet", {0.8, 0.45, 0.9}},
 };
 
 std::vector<std::string_view> FurnitureKinds() {
@@ -104,10 +103,10 @@ int WallFacing(const Room& room, std::string_view side) {
     }
   }
   if (best < 0 || best_dot < std::cos(DegToRad(30.0))) {
-    throw InvalidArgument(fmt::format(
-        "arguments.side: no wall of this room faces {}; give the wall number instead. "
-        "Walls:\n{}",
-        side, DescribeWalls(room)));
+    throw InvalidArgument(
+        fmt::format("arguments.side: no wall of this room faces {}; give the wall number instead. "
+                    "Walls:\n{}",
+                    side, DescribeWalls(room)));
   }
   return best;
 }
@@ -134,48 +133,81 @@ std::vector<Field> CaptureRenderToolFields(const ToolLimits& limits) {
 std::vector<Field> OpeningFields(OpeningKind kind, const ToolLimits& limits) {
   bool door = kind == OpeningKind::kDoor;
   std::vector<Field> f = {
-      {.name = "room", .kind = FieldKind::kInteger,
-       .description = "Room index (0 = first room added).", .minimum = 0.0,
-       .maximum = limits.max_rooms - 1.0, .default_value = 0},
-      {.name = "wall", .kind = FieldKind::kInteger,
+      {.name = "room",
+       .kind = FieldKind::kInteger,
+       .description = "Room index (0 = first room added).",
+       .minimum = 0.0,
+       .maximum = limits.max_rooms - 1.0,
+       .default_value = 0},
+      {.name = "wall",
+       .kind = FieldKind::kInteger,
        .description = "Wall number (see add_room's reply or describe_scene). Give wall or side.",
-       .minimum = 0.0, .maximum = limits.max_polygon_points - 1.0},
-      {.name = "side", .kind = FieldKind::kEnum,
+       .minimum = 0.0,
+       .maximum = limits.max_polygon_points - 1.0},
+      {.name = "side",
+       .kind = FieldKind::kEnum,
        .description = "Compass side instead of a wall number: the wall facing that way "
                       "(north = +y, east = +x).",
        .choices = kCompass},
-      {.name = "offset_m", .kind = FieldKind::kNumber,
+      {.name = "offset_m",
+       .kind = FieldKind::kNumber,
        .description = "Distance along the wall from its start corner to the near edge of the "
                       "opening. Omit to centre it (or to space several evenly).",
-       .minimum = 0.0, .maximum = 1000.0},
-      {.name = "width_m", .kind = FieldKind::kNumber, .description = "Clear opening width.",
-       .exclusive_minimum = 0.0, .maximum = 20.0, .default_value = door ? 0.9 : 1.2},
-      {.name = "height_m", .kind = FieldKind::kNumber, .description = "Clear opening height.",
-       .exclusive_minimum = 0.0, .maximum = 20.0, .default_value = door ? 2.1 : 1.2},
-      {.name = "count", .kind = FieldKind::kInteger,
+       .minimum = 0.0,
+       .maximum = 1000.0},
+      {.name = "width_m",
+       .kind = FieldKind::kNumber,
+       .description = "Clear opening width.",
+       .exclusive_minimum = 0.0,
+       .maximum = 20.0,
+       .default_value = door ? 0.9 : 1.2},
+      {.name = "height_m",
+       .kind = FieldKind::kNumber,
+       .description = "Clear opening height.",
+       .exclusive_minimum = 0.0,
+       .maximum = 20.0,
+       .default_value = door ? 2.1 : 1.2},
+      {.name = "count",
+       .kind = FieldKind::kInteger,
        .description = door ? "How many identical doors to space evenly along the wall."
                            : "How many identical windows to space evenly along the wall.",
-       .minimum = 1.0, .maximum = 8.0, .default_value = 1},
-      {.name = "material", .kind = FieldKind::kString,
+       .minimum = 1.0,
+       .maximum = 8.0,
+       .default_value = 1},
+      {.name = "material",
+       .kind = FieldKind::kString,
        .description = "Material name (set_material); default: the built-in door/window look.",
        .max_length = 64},
   };
   if (door) {
-    f.push_back({.name = "open_deg", .kind = FieldKind::kNumber,
+    f.push_back({.name = "open_deg",
+                 .kind = FieldKind::kNumber,
                  .description = "Door leaf angle: 0 closed, 90 wide open; swings into the room.",
-                 .minimum = 0.0, .maximum = 180.0, .default_value = 0.0});
-    f.push_back({.name = "hinge", .kind = FieldKind::kEnum,
+                 .minimum = 0.0,
+                 .maximum = 180.0,
+                 .default_value = 0.0});
+    f.push_back({.name = "hinge",
+                 .kind = FieldKind::kEnum,
                  .description = "Hinge side seen from inside the room.",
-                 .choices = {"left", "right"}, .default_value = "left"});
+                 .choices = {"left", "right"},
+                 .default_value = "left"});
   } else {
-    f.push_back({.name = "sill_m", .kind = FieldKind::kNumber,
+    f.push_back({.name = "sill_m",
+                 .kind = FieldKind::kNumber,
                  .description = "Height of the bottom of the opening above the floor.",
-                 .minimum = 0.0, .maximum = 20.0, .default_value = 0.9});
-    f.push_back({.name = "frame_width_m", .kind = FieldKind::kNumber,
-                 .description = "Width of the window frame profile.", .minimum = 0.0,
-                 .maximum = 0.5, .default_value = 0.05});
-    f.push_back({.name = "glass", .kind = FieldKind::kBool,
-                 .description = "Whether the window is glazed.", .default_value = true});
+                 .minimum = 0.0,
+                 .maximum = 20.0,
+                 .default_value = 0.9});
+    f.push_back({.name = "frame_width_m",
+                 .kind = FieldKind::kNumber,
+                 .description = "Width of the window frame profile.",
+                 .minimum = 0.0,
+                 .maximum = 0.5,
+                 .default_value = 0.05});
+    f.push_back({.name = "glass",
+                 .kind = FieldKind::kBool,
+                 .description = "Whether the window is glazed.",
+                 .default_value = true});
   }
   return f;
 }
@@ -198,11 +230,10 @@ void ToolLimits::Check() const {
   positive(max_views, "max_views");
   CheckArgument(max_image_width_px >= 16,
                 fmt::format("ToolLimits.max_image_width_px = {}, must be >= 16", max_image_width_px));
-  CheckArgument(max_image_height_px >= 16, fmt::format("ToolLimits.max_image_height_px = {}, must be >= 16",
-                                                       max_image_height_px));
+  CheckArgument(max_image_height_px >= 16,
+                fmt::format("ToolLimits.max_image_height_px = {}, must be >= 16", max_image_height_px));
   CheckArgument(max_preview_width_px >= 64 && max_preview_width_px <= 4096,
-                fmt::format("ToolLimits.max_preview_width_px = {}, must be in 64..4096",
-                            max_preview_width_px));
+                fmt::format("ToolLimits.max_preview_width_px = {}, must be in 64..4096", max_preview_width_px));
   CheckArgument(max_text_chars > 0, "ToolLimits.max_text_chars = 0, must be > 0");
   CheckArgument(max_file_bytes > 0, "ToolLimits.max_file_bytes = 0, must be > 0");
 }
@@ -234,15 +265,13 @@ nlohmann::json ToolResult::ToJson() const {
 }
 
 nlohmann::json ToolSpec::ToJson() const {
-  return {{"name", name},
-          {"title", title},
-          {"description", description},
-          {"inputSchema", FieldsSchema(fields)},
-          {"annotations",
-           {{"title", title},
-            {"readOnlyHint", read_only},
-            {"destructiveHint", destructive},
-            {"openWorldHint", false}}}};
+  return {
+      {"name", name},
+      {"title", title},
+      {"description", description},
+      {"inputSchema", FieldsSchema(fields)},
+      {"annotations",
+       {{"title", title}, {"readOnlyHint", read_only}, {"destructiveHint", destructive}, {"openWorldHint", false}}}};
 }
 
 std::size_t CountViews(const Scene& scene) {
@@ -261,12 +290,12 @@ std::string DescribeWalls(const Room& room) {
     std::vector<std::string> on_wall;
     for (const Opening& o : room.openings) {
       if (o.wall == w) {
-        on_wall.push_back(fmt::format("{} {:.2f} m at offset {:.2f} m", OpeningKindName(o.kind),
-                                      o.width_m, o.offset_m));
+        on_wall.push_back(
+            fmt::format("{} {:.2f} m at offset {:.2f} m", OpeningKindName(o.kind), o.width_m, o.offset_m));
       }
     }
-    out += fmt::format("  wall {}: {} → {}, {:.2f} m, faces {}{}", w, P2(WallStart(room, w)),
-                       P2(WallEnd(room, w)), WallLength(room, w), WallCompassName(room, w),
+    out += fmt::format("  wall {}: {} → {}, {:.2f} m, faces {}{}", w, P2(WallStart(room, w)), P2(WallEnd(room, w)),
+                       WallLength(room, w), WallCompassName(room, w),
                        on_wall.empty() ? "" : fmt::format(" ({})", fmt::join(on_wall, "; ")));
   }
   return out;
@@ -274,8 +303,7 @@ std::string DescribeWalls(const Room& room) {
 
 // ------------------------------------------------------------------ table
 
-SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
-    : workspace_(std::move(workspace)), limits_(limits) {
+SceneTools::SceneTools(Workspace workspace, ToolLimits limits) : workspace_(std::move(workspace)), limits_(limits) {
   limits_.Check();
   // In tools/list order.
   RegisterBuildTools();
@@ -288,18 +316,28 @@ SceneTools::SceneTools(Workspace workspace, ToolLimits limits)
 void SceneTools::RegisterBuildTools() {
   const ToolLimits& L = limits_;
   ToolSpec s;
-  s = {.name = "new_scene", .title = "New scene",
-       .description = "Start a new, empty scene (discards the current one). Then add rooms "
-                      "with add_room." + std::string(kConventions),
-       .fields = {{.name = "name", .kind = FieldKind::kString, .description = "Scene name.",
-                   .max_length = 128, .default_value = "room"},
-                  {.name = "seed", .kind = FieldKind::kInteger,
+  s = {.name = "new_scene",
+       .title = "New scene",
+       .description =
+           "Start a new, empty scene (discards the current one). Then add rooms "
+           "with add_room." +
+           std::string(kConventions),
+       .fields = {{.name = "name",
+                   .kind = FieldKind::kString,
+                   .description = "Scene name.",
+                   .max_length = 128,
+                   .default_value = "room"},
+                  {.name = "seed",
+                   .kind = FieldKind::kInteger,
                    .description = "Seed for procedural textures and exterior objects.",
-                   .minimum = 0.0, .maximum = 4294967295.0, .default_value = 0}},
+                   .minimum = 0.0,
+                   .maximum = 4294967295.0,
+                   .default_value = 0}},
        .destructive = true};
   Register(s, &SceneTools::NewScene);
 
-  s = {.name = "add_room", .title = "Add room",
+  s = {.name = "add_room",
+       .title = "Add room",
        .description =
            "Add a room: either a rectangle (width_m along x/east, depth_m along y/north, its "
            "south-west corner at origin) or a polygon of inner wall-face corners. The rectangle "
@@ -307,71 +345,111 @@ void SceneTools::RegisterBuildTools() {
            "and the compass direction each faces, for add_door/add_window." +
            std::string(kConventions),
        .fields = {
-           {.name = "width_m", .kind = FieldKind::kNumber,
+           {.name = "width_m",
+            .kind = FieldKind::kNumber,
             .description = "Rectangle size along x (east-west). Give with depth_m, or give polygon.",
-            .exclusive_minimum = 0.0, .maximum = 200.0},
-           {.name = "depth_m", .kind = FieldKind::kNumber,
-            .description = "Rectangle size along y (north-south).", .exclusive_minimum = 0.0,
+            .exclusive_minimum = 0.0,
             .maximum = 200.0},
-           {.name = "polygon", .kind = FieldKind::kPolygon,
+           {.name = "depth_m",
+            .kind = FieldKind::kNumber,
+            .description = "Rectangle size along y (north-south).",
+            .exclusive_minimum = 0.0,
+            .maximum = 200.0},
+           {.name = "polygon",
+            .kind = FieldKind::kPolygon,
             .description = "Corners [[x, y], ...] of the inner wall faces, in order around the "
                            "room, not repeating the first (counter-clockwise preferred; "
                            "clockwise is reversed).",
-            .min_items = 3, .max_items = static_cast<std::size_t>(L.max_polygon_points)},
-           {.name = "origin", .kind = FieldKind::kPoint2,
+            .min_items = 3,
+            .max_items = static_cast<std::size_t>(L.max_polygon_points)},
+           {.name = "origin",
+            .kind = FieldKind::kPoint2,
             .description = "Where the rectangle's south-west corner goes; for a polygon, added to "
                            "every corner.",
             .default_value = {0.0, 0.0}},
-           {.name = "rotation_deg", .kind = FieldKind::kNumber,
-            .description = "Counter-clockwise rotation about origin.", .minimum = -360.0,
-            .maximum = 360.0, .default_value = 0.0},
-           {.name = "height_m", .kind = FieldKind::kNumber, .description = "Floor to ceiling.",
-            .exclusive_minimum = 0.0, .maximum = 20.0, .default_value = 2.7},
-           {.name = "wall_thickness_m", .kind = FieldKind::kNumber,
+           {.name = "rotation_deg",
+            .kind = FieldKind::kNumber,
+            .description = "Counter-clockwise rotation about origin.",
+            .minimum = -360.0,
+            .maximum = 360.0,
+            .default_value = 0.0},
+           {.name = "height_m",
+            .kind = FieldKind::kNumber,
+            .description = "Floor to ceiling.",
+            .exclusive_minimum = 0.0,
+            .maximum = 20.0,
+            .default_value = 2.7},
+           {.name = "wall_thickness_m",
+            .kind = FieldKind::kNumber,
             .description = "Wall thickness outwards from the inner face.",
-            .exclusive_minimum = 0.0, .maximum = 2.0, .default_value = 0.2},
-           {.name = "name", .kind = FieldKind::kString, .description = "Room name.",
-            .max_length = 128},
+            .exclusive_minimum = 0.0,
+            .maximum = 2.0,
+            .default_value = 0.2},
+           {.name = "name", .kind = FieldKind::kString, .description = "Room name.", .max_length = 128},
        }};
   Register(s, &SceneTools::AddRoom);
 
-  s = {.name = "add_door", .title = "Add door",
-       .description = "Add a door (or several, evenly spaced) to a room's wall, by wall number "
-                      "or compass side. Offsets run from the wall's start corner." +
-                      std::string(kConventions),
+  s = {.name = "add_door",
+       .title = "Add door",
+       .description =
+           "Add a door (or several, evenly spaced) to a room's wall, by wall number "
+           "or compass side. Offsets run from the wall's start corner." +
+           std::string(kConventions),
        .fields = OpeningFields(OpeningKind::kDoor, L)};
   Register(s, &SceneTools::AddDoor);
 
-  s = {.name = "add_window", .title = "Add window",
-       .description = "Add a window (or several, evenly spaced) to a room's wall, by wall number "
-                      "or compass side, with its sill height. Offsets run from the wall's start "
-                      "corner." + std::string(kConventions),
+  s = {.name = "add_window",
+       .title = "Add window",
+       .description =
+           "Add a window (or several, evenly spaced) to a room's wall, by wall number "
+           "or compass side, with its sill height. Offsets run from the wall's start "
+           "corner." +
+           std::string(kConventions),
        .fields = OpeningFields(OpeningKind::kWindow, L)};
   Register(s, &SceneTools::AddWindow);
 
-  s = {.name = "add_furniture", .title = "Add furniture",
-       .description = "Add a furniture box standing on the floor (it hides parts of walls in "
-                      "renders, like real furniture). Pick a kind for typical sizes, or give "
-                      "size_m." + std::string(kConventions),
+  s = {.name = "add_furniture",
+       .title = "Add furniture",
+       .description =
+           "Add a furniture box standing on the floor (it hides parts of walls in "
+           "renders, like real furniture). Pick a kind for typical sizes, or give "
+           "size_m." +
+           std::string(kConventions),
        .fields = {
-           {.name = "centre", .kind = FieldKind::kPoint2, .description = "Footprint centre [x, y].",
-            .required = true, .minimum = -1000.0, .maximum = 1000.0},
-           {.name = "kind", .kind = FieldKind::kEnum,
+           {.name = "centre",
+            .kind = FieldKind::kPoint2,
+            .description = "Footprint centre [x, y].",
+            .required = true,
+            .minimum = -1000.0,
+            .maximum = 1000.0},
+           {.name = "kind",
+            .kind = FieldKind::kEnum,
             .description = "Preset that sets a typical size (size_m overrides it).",
-            .choices = FurnitureKinds(), .default_value = "box"},
-           {.name = "size_m", .kind = FieldKind::kPoint3,
+            .choices = FurnitureKinds(),
+            .default_value = "box"},
+           {.name = "size_m",
+            .kind = FieldKind::kPoint3,
             .description = "[width (local x), depth (local y), height], each > 0.",
-            .exclusive_minimum = 0.0, .maximum = 20.0},
-           {.name = "yaw_deg", .kind = FieldKind::kNumber,
-            .description = "Counter-clockwise rotation of the footprint.", .minimum = -360.0,
-            .maximum = 360.0, .default_value = 0.0},
-           {.name = "elevation_m", .kind = FieldKind::kNumber,
-            .description = "Bottom above the floor (wall shelves).", .minimum = 0.0,
-            .maximum = 20.0, .default_value = 0.0},
-           {.name = "material", .kind = FieldKind::kString, .description = "Material name.",
-            .max_length = 64, .default_value = "furniture"},
-           {.name = "name", .kind = FieldKind::kString, .description = "Name; default: the kind.",
-            .max_length = 128},
+            .exclusive_minimum = 0.0,
+            .maximum = 20.0},
+           {.name = "yaw_deg",
+            .kind = FieldKind::kNumber,
+            .description = "Counter-clockwise rotation of the footprint.",
+            .minimum = -360.0,
+            .maximum = 360.0,
+            .default_value = 0.0},
+           {.name = "elevation_m",
+            .kind = FieldKind::kNumber,
+            .description = "Bottom above the floor (wall shelves).",
+            .minimum = 0.0,
+            .maximum = 20.0,
+            .default_value = 0.0},
+           {.name = "material",
+            .kind = FieldKind::kString,
+            .description = "Material name.",
+            .max_length = 64,
+            .default_value = "furniture"},
+           {.name = "name", .kind = FieldKind::kString, .description = "Name; default: the kind.", .max_length = 128},
        }};
   Register(s, &SceneTools::AddFurniture);
 }
@@ -380,121 +458,212 @@ void SceneTools::RegisterBuildTools() {
 void SceneTools::RegisterStyleTools() {
   const ToolLimits& L = limits_;
   ToolSpec s;
-  s = {.name = "set_material", .title = "Set material",
-       .description = "Define or change a material (colour, roughness, procedural texture) and "
-                      "optionally apply it to walls, floors, ceilings, furniture, doors or "
-                      "windows. Built-in names: wall, floor, ceiling, door, window_frame, glass, "
-                      "furniture, skirting; changing one of these restyles everything using it.",
+  s = {.name = "set_material",
+       .title = "Set material",
+       .description =
+           "Define or change a material (colour, roughness, procedural texture) and "
+           "optionally apply it to walls, floors, ceilings, furniture, doors or "
+           "windows. Built-in names: wall, floor, ceiling, door, window_frame, glass, "
+           "furniture, skirting; changing one of these restyles everything using it.",
        .fields = {
-           {.name = "name", .kind = FieldKind::kString, .description = "Material name.",
-            .required = true, .max_length = 64},
-           {.name = "base_color", .kind = FieldKind::kColor,
+           {.name = "name",
+            .kind = FieldKind::kString,
+            .description = "Material name.",
+            .required = true,
+            .max_length = 64},
+           {.name = "base_color",
+            .kind = FieldKind::kColor,
             .description = "Linear RGB, each 0..1 (e.g. [0.8, 0.8, 0.75] off-white)."},
-           {.name = "roughness", .kind = FieldKind::kNumber,
-            .description = "0 glossy … 1 matte.", .minimum = 0.0, .maximum = 1.0},
-           {.name = "texture", .kind = FieldKind::kEnum, .description = "Procedural texture.",
+           {.name = "roughness",
+            .kind = FieldKind::kNumber,
+            .description = "0 glossy … 1 matte.",
+            .minimum = 0.0,
+            .maximum = 1.0},
+           {.name = "texture",
+            .kind = FieldKind::kEnum,
+            .description = "Procedural texture.",
             .choices = TextureNames()},
-           {.name = "texture_scale_m", .kind = FieldKind::kNumber,
+           {.name = "texture_scale_m",
+            .kind = FieldKind::kNumber,
             .description = "Feature size of the texture (tile size, plank width…).",
-            .exclusive_minimum = 0.0, .maximum = 10.0},
-           {.name = "secondary_color", .kind = FieldKind::kColor,
+            .exclusive_minimum = 0.0,
+            .maximum = 10.0},
+           {.name = "secondary_color",
+            .kind = FieldKind::kColor,
             .description = "Second colour (grout, wood grain), each 0..1."},
-           {.name = "apply_to", .kind = FieldKind::kEnum,
+           {.name = "apply_to",
+            .kind = FieldKind::kEnum,
             .description = "Also assign the material to these surfaces.",
             .choices = {"none", "walls", "floor", "ceiling", "furniture", "doors", "windows"},
             .default_value = "none"},
-           {.name = "room", .kind = FieldKind::kInteger,
+           {.name = "room",
+            .kind = FieldKind::kInteger,
             .description = "With apply_to walls/floor/ceiling/doors/windows: only this room "
                            "(default: every room).",
-            .minimum = 0.0, .maximum = L.max_rooms - 1.0},
+            .minimum = 0.0,
+            .maximum = L.max_rooms - 1.0},
        }};
   Register(s, &SceneTools::SetMaterial);
 
-  s = {.name = "set_lighting", .title = "Set lighting",
-       .description = "Set the lights: replace all lights with one (mode replace) or add one "
-                      "(mode add): a ceiling area light, a point light or the sun; and the "
-                      "ambient level and sky. kind none with mode replace removes all lights." +
-                      std::string(kConventions),
+  s = {.name = "set_lighting",
+       .title = "Set lighting",
+       .description =
+           "Set the lights: replace all lights with one (mode replace) or add one "
+           "(mode add): a ceiling area light, a point light or the sun; and the "
+           "ambient level and sky. kind none with mode replace removes all lights." +
+           std::string(kConventions),
        .fields = {
-           {.name = "mode", .kind = FieldKind::kEnum, .description = "Replace all lights or add one.",
-            .choices = {"replace", "add"}, .default_value = "replace"},
-           {.name = "kind", .kind = FieldKind::kEnum, .description = "Light type.",
-            .choices = {"area", "point", "sun", "none"}, .default_value = "area"},
-           {.name = "position_m", .kind = FieldKind::kPoint3,
+           {.name = "mode",
+            .kind = FieldKind::kEnum,
+            .description = "Replace all lights or add one.",
+            .choices = {"replace", "add"},
+            .default_value = "replace"},
+           {.name = "kind",
+            .kind = FieldKind::kEnum,
+            .description = "Light type.",
+            .choices = {"area", "point", "sun", "none"},
+            .default_value = "area"},
+           {.name = "position_m",
+            .kind = FieldKind::kPoint3,
             .description = "[x, y, z]; default: above the first room's centre, just under the "
                            "ceiling. Ignored for the sun.",
-            .minimum = -1000.0, .maximum = 1000.0},
-           {.name = "size_m", .kind = FieldKind::kPoint2,
-            .description = "Area light panel size [x, y].", .exclusive_minimum = 0.0,
-            .maximum = 20.0, .default_value = {1.2, 0.3}},
-           {.name = "color", .kind = FieldKind::kColor, .description = "Linear RGB, each 0..1.",
+            .minimum = -1000.0,
+            .maximum = 1000.0},
+           {.name = "size_m",
+            .kind = FieldKind::kPoint2,
+            .description = "Area light panel size [x, y].",
+            .exclusive_minimum = 0.0,
+            .maximum = 20.0,
+            .default_value = {1.2, 0.3}},
+           {.name = "color",
+            .kind = FieldKind::kColor,
+            .description = "Linear RGB, each 0..1.",
             .default_value = {1.0, 0.95, 0.9}},
-           {.name = "intensity", .kind = FieldKind::kNumber,
-            .description = "Relative brightness (1 = typical).", .exclusive_minimum = 0.0,
-            .maximum = 100.0, .default_value = 1.0},
-           {.name = "azimuth_deg", .kind = FieldKind::kNumber,
+           {.name = "intensity",
+            .kind = FieldKind::kNumber,
+            .description = "Relative brightness (1 = typical).",
+            .exclusive_minimum = 0.0,
+            .maximum = 100.0,
+            .default_value = 1.0},
+           {.name = "azimuth_deg",
+            .kind = FieldKind::kNumber,
             .description = "Sun: direction it shines from, counter-clockwise from east.",
-            .minimum = -360.0, .maximum = 360.0, .default_value = 135.0},
-           {.name = "elevation_deg", .kind = FieldKind::kNumber,
-            .description = "Sun: height above the horizon.", .minimum = 0.0, .maximum = 90.0,
+            .minimum = -360.0,
+            .maximum = 360.0,
+            .default_value = 135.0},
+           {.name = "elevation_deg",
+            .kind = FieldKind::kNumber,
+            .description = "Sun: height above the horizon.",
+            .minimum = 0.0,
+            .maximum = 90.0,
             .default_value = 35.0},
-           {.name = "ambient", .kind = FieldKind::kNumber,
-            .description = "Ambient fill light, 0..1.", .minimum = 0.0, .maximum = 1.0},
-           {.name = "sky", .kind = FieldKind::kBool,
-            .description = "Whether a sky is seen through windows."},
+           {.name = "ambient",
+            .kind = FieldKind::kNumber,
+            .description = "Ambient fill light, 0..1.",
+            .minimum = 0.0,
+            .maximum = 1.0},
+           {.name = "sky", .kind = FieldKind::kBool, .description = "Whether a sky is seen through windows."},
        }};
   Register(s, &SceneTools::SetLighting);
 
-  s = {.name = "place_rig", .title = "Place stereo rig",
-       .description = fmt::format(
-           "Place the stereo camera rig and choose its views: either a turn in place (step_deg, "
-           "start_deg, count; count 0 = a full turn) or a list of yaws. Yaw 0 looks north (+y), "
-           "90 looks west (counter-clockwise). Also sets the image size, field of view and "
-           "baseline. Limits: at most {} views, images at most {}×{} px.",
-           L.max_views, L.max_image_width_px, L.max_image_height_px),
+  s = {.name = "place_rig",
+       .title = "Place stereo rig",
+       .description = fmt::format("Place the stereo camera rig and choose its views: either a turn in place (step_deg, "
+                                  "start_deg, count; count 0 = a full turn) or a list of yaws. Yaw 0 looks north (+y), "
+                                  "90 looks west (counter-clockwise). Also sets the image size, field of view and "
+                                  "baseline. Limits: at most {} views, images at most {}×{} px.",
+                                  L.max_views, L.max_image_width_px, L.max_image_height_px),
        .fields = {
-           {.name = "position", .kind = FieldKind::kPoint2,
+           {.name = "position",
+            .kind = FieldKind::kPoint2,
             .description = "Rig centre [x, y]; default: the centre of the room.",
-            .minimum = -1000.0, .maximum = 1000.0},
-           {.name = "room", .kind = FieldKind::kInteger,
-            .description = "Room whose centre is the default position.", .minimum = 0.0,
-            .maximum = L.max_rooms - 1.0, .default_value = 0},
-           {.name = "height_m", .kind = FieldKind::kNumber,
-            .description = "Camera height above the floor.", .exclusive_minimum = 0.0,
-            .maximum = 20.0, .default_value = 1.5},
-           {.name = "yaws_deg", .kind = FieldKind::kNumberList,
-            .description = "Explicit view directions (instead of a turn).", .minimum = -360.0,
-            .maximum = 360.0, .min_items = 1, .max_items = static_cast<std::size_t>(L.max_views)},
-           {.name = "step_deg", .kind = FieldKind::kNumber, .description = "Turn step.",
-            .exclusive_minimum = 0.0, .maximum = 360.0, .default_value = 30.0},
-           {.name = "start_deg", .kind = FieldKind::kNumber, .description = "Yaw of the first view.",
-            .minimum = -360.0, .maximum = 360.0, .default_value = 0.0},
-           {.name = "count", .kind = FieldKind::kInteger,
+            .minimum = -1000.0,
+            .maximum = 1000.0},
+           {.name = "room",
+            .kind = FieldKind::kInteger,
+            .description = "Room whose centre is the default position.",
+            .minimum = 0.0,
+            .maximum = L.max_rooms - 1.0,
+            .default_value = 0},
+           {.name = "height_m",
+            .kind = FieldKind::kNumber,
+            .description = "Camera height above the floor.",
+            .exclusive_minimum = 0.0,
+            .maximum = 20.0,
+            .default_value = 1.5},
+           {.name = "yaws_deg",
+            .kind = FieldKind::kNumberList,
+            .description = "Explicit view directions (instead of a turn).",
+            .minimum = -360.0,
+            .maximum = 360.0,
+            .min_items = 1,
+            .max_items = static_cast<std::size_t>(L.max_views)},
+           {.name = "step_deg",
+            .kind = FieldKind::kNumber,
+            .description = "Turn step.",
+            .exclusive_minimum = 0.0,
+            .maximum = 360.0,
+            .default_value = 30.0},
+           {.name = "start_deg",
+            .kind = FieldKind::kNumber,
+            .description = "Yaw of the first view.",
+            .minimum = -360.0,
+            .maximum = 360.0,
+            .default_value = 0.0},
+           {.name = "count",
+            .kind = FieldKind::kInteger,
             .description = "Views in the turn; 0 = a full turn (360 / step_deg).",
-            .minimum = 0.0, .maximum = static_cast<double>(L.max_views), .default_value = 0},
-           {.name = "width_px", .kind = FieldKind::kInteger, .description = "Image width.",
-            .minimum = 16.0, .maximum = static_cast<double>(L.max_image_width_px)},
-           {.name = "height_px", .kind = FieldKind::kInteger, .description = "Image height.",
-            .minimum = 16.0, .maximum = static_cast<double>(L.max_image_height_px)},
-           {.name = "hfov_deg", .kind = FieldKind::kNumber,
-            .description = "Horizontal field of view.", .minimum = 10.0, .maximum = 150.0},
-           {.name = "baseline_m", .kind = FieldKind::kNumber,
-            .description = "Distance between the two cameras.", .minimum = 0.01, .maximum = 2.0},
+            .minimum = 0.0,
+            .maximum = static_cast<double>(L.max_views),
+            .default_value = 0},
+           {.name = "width_px",
+            .kind = FieldKind::kInteger,
+            .description = "Image width.",
+            .minimum = 16.0,
+            .maximum = static_cast<double>(L.max_image_width_px)},
+           {.name = "height_px",
+            .kind = FieldKind::kInteger,
+            .description = "Image height.",
+            .minimum = 16.0,
+            .maximum = static_cast<double>(L.max_image_height_px)},
+           {.name = "hfov_deg",
+            .kind = FieldKind::kNumber,
+            .description = "Horizontal field of view.",
+            .minimum = 10.0,
+            .maximum = 150.0},
+           {.name = "baseline_m",
+            .kind = FieldKind::kNumber,
+            .description = "Distance between the two cameras.",
+            .minimum = 0.01,
+            .maximum = 2.0},
        }};
   Register(s, &SceneTools::PlaceRig);
 
-  s = {.name = "remove_item", .title = "Remove item",
-       .description = "Remove a room, an opening (door/window) of a room, a piece of furniture, a "
-                      "light or a scene material, by index (describe_scene lists them).",
-       .fields = {
-           {.name = "what", .kind = FieldKind::kEnum, .description = "What to remove.",
-            .required = true, .choices = {"room", "opening", "furniture", "light", "material"}},
-           {.name = "index", .kind = FieldKind::kInteger,
-            .description = "Index of the item (openings: within the room).", .required = true,
-            .minimum = 0.0, .maximum = 100000.0},
-           {.name = "room", .kind = FieldKind::kInteger, .description = "Room of the opening.",
-            .minimum = 0.0, .maximum = L.max_rooms - 1.0, .default_value = 0},
-       },
+  s = {.name = "remove_item",
+       .title = "Remove item",
+       .description =
+           "Remove a room, an opening (door/window) of a room, a piece of furniture, a "
+           "light or a scene material, by index (describe_scene lists them).",
+       .fields =
+           {
+               {.name = "what",
+                .kind = FieldKind::kEnum,
+                .description = "What to remove.",
+                .required = true,
+                .choices = {"room", "opening", "furniture", "light", "material"}},
+               {.name = "index",
+                .kind = FieldKind::kInteger,
+                .description = "Index of the item (openings: within the room).",
+                .required = true,
+                .minimum = 0.0,
+                .maximum = 100000.0},
+               {.name = "room",
+                .kind = FieldKind::kInteger,
+                .description = "Room of the opening.",
+                .minimum = 0.0,
+                .maximum = L.max_rooms - 1.0,
+                .default_value = 0},
+           },
        .destructive = true};
   Register(s, &SceneTools::RemoveItem);
 }
@@ -504,67 +673,87 @@ void SceneTools::RegisterStyleTools() {
 void SceneTools::RegisterWholeSceneTools() {
   const ToolLimits& L = limits_;
   ToolSpec s;
-  s = {.name = "scene_from_text", .title = "Scene from text",
-       .description = fmt::format(
-           "Build a whole scene from an English description with the built-in parser (no "
-           "network), replacing the current scene, e.g. \"a 6 by 8 m classroom, 3 m high, a 1 m "
-           "door on the east wall and two 1.5 m windows on the north wall\". The reply says which "
-           "words were not used. At most {} characters.",
-           L.max_text_chars),
-       .fields = Concat({{.name = "text", .kind = FieldKind::kString,
-                          .description = "The description.", .required = true,
+  s = {.name = "scene_from_text",
+       .title = "Scene from text",
+       .description =
+           fmt::format("Build a whole scene from an English description with the built-in parser (no "
+                       "network), replacing the current scene, e.g. \"a 6 by 8 m classroom, 3 m high, a 1 m "
+                       "door on the east wall and two 1.5 m windows on the north wall\". The reply says which "
+                       "words were not used. At most {} characters.",
+                       L.max_text_chars),
+       .fields = Concat({{.name = "text",
+                          .kind = FieldKind::kString,
+                          .description = "The description.",
+                          .required = true,
                           .max_length = L.max_text_chars}},
                         SceneTextOptionFields().Fields()),
        .destructive = true};
   Register(s, &SceneTools::SceneFromText);
 
-  s = {.name = "random_scene", .title = "Random scene",
-       .description = "Replace the current scene with a procedural room (the generator of "
-                      "`asbuilt scene random`): rectangular, L-shaped or rotated, 1-4 doors and "
-                      "windows, furniture, random materials and lights, a turn-in-place rig. "
-                      "Deterministic per seed.",
+  s = {.name = "random_scene",
+       .title = "Random scene",
+       .description =
+           "Replace the current scene with a procedural room (the generator of "
+           "`asbuilt scene random`): rectangular, L-shaped or rotated, 1-4 doors and "
+           "windows, furniture, random materials and lights, a turn-in-place rig. "
+           "Deterministic per seed.",
        .fields = Concat({RandomSceneSeedField()}, RandomSceneOptionFields().Fields()),
        .destructive = true};
   Register(s, &SceneTools::RandomSceneTool);
 
-  s = {.name = "describe_scene", .title = "Describe scene",
-       .description = "Plain-language summary of the current scene (rooms, walls with numbers "
-                      "and directions, openings, furniture, lights, rig) and warnings.",
+  s = {.name = "describe_scene",
+       .title = "Describe scene",
+       .description =
+           "Plain-language summary of the current scene (rooms, walls with numbers "
+           "and directions, openings, furniture, lights, rig) and warnings.",
        .fields = {},
        .read_only = true};
   Register(s, &SceneTools::Describe);
 
-  s = {.name = "validate_scene", .title = "Validate scene",
-       .description = "Check the current scene and list every problem with its field path "
-                      "(open or crossing polygons, openings off their wall or overlapping, sills "
-                      "too high, rig outside the room, unknown materials…).",
+  s = {.name = "validate_scene",
+       .title = "Validate scene",
+       .description =
+           "Check the current scene and list every problem with its field path "
+           "(open or crossing polygons, openings off their wall or overlapping, sills "
+           "too high, rig outside the room, unknown materials…).",
        .fields = {},
        .read_only = true};
   Register(s, &SceneTools::Validate);
 
-  s = {.name = "get_scene", .title = "Get scene JSON",
+  s = {.name = "get_scene",
+       .title = "Get scene JSON",
        .description = "The current scene as scene JSON (the format save_scene writes).",
        .fields = {},
        .read_only = true};
   Register(s, &SceneTools::GetScene);
 
-  s = {.name = "render_preview", .title = "Render preview",
-       .description = fmt::format(
-           "A PNG picture of the scene: view plan (default) draws it from above with walls, "
-           "doors, windows, furniture, lights, the rig and wall numbers; view camera renders "
-           "what the left camera of viewpoint view_index sees. Width at most {} px (plan) or "
-           "{} px (camera).",
-           L.max_preview_width_px, L.max_image_width_px),
-       .fields = {
-           {.name = "view", .kind = FieldKind::kEnum, .description = "plan (top-down) or camera.",
-            .choices = {"plan", "camera"}, .default_value = "plan"},
-           {.name = "width_px", .kind = FieldKind::kInteger, .description = "Image width.",
-            .minimum = 64.0, .maximum = static_cast<double>(L.max_preview_width_px),
-            .default_value = 768},
-           {.name = "view_index", .kind = FieldKind::kInteger,
-            .description = "Camera view: which viewpoint (place_rig).", .minimum = 0.0,
-            .maximum = L.max_views - 1.0, .default_value = 0},
-       },
+  s = {.name = "render_preview",
+       .title = "Render preview",
+       .description = fmt::format("A PNG picture of the scene: view plan (default) draws it from above with walls, "
+                                  "doors, windows, furniture, lights, the rig and wall numbers; view camera renders "
+                                  "what the left camera of viewpoint view_index sees. Width at most {} px (plan) or "
+                                  "{} px (camera).",
+                                  L.max_preview_width_px, L.max_image_width_px),
+       .fields =
+           {
+               {.name = "view",
+                .kind = FieldKind::kEnum,
+                .description = "plan (top-down) or camera.",
+                .choices = {"plan", "camera"},
+                .default_value = "plan"},
+               {.name = "width_px",
+                .kind = FieldKind::kInteger,
+                .description = "Image width.",
+                .minimum = 64.0,
+                .maximum = static_cast<double>(L.max_preview_width_px),
+                .default_value = 768},
+               {.name = "view_index",
+                .kind = FieldKind::kInteger,
+                .description = "Camera view: which viewpoint (place_rig).",
+                .minimum = 0.0,
+                .maximum = L.max_views - 1.0,
+                .default_value = 0},
+           },
        .read_only = true};
   Register(s, &SceneTools::RenderPreview);
 }
@@ -572,30 +761,35 @@ void SceneTools::RegisterWholeSceneTools() {
 // render_capture, export_plan, save_scene, load_scene.
 void SceneTools::RegisterOutputTools() {
   const ToolLimits& L = limits_;
-  const Field path_field_required = {
-      .name = "path", .kind = FieldKind::kString, .required = true, .max_length = 512};
+  const Field path_field_required = {.name = "path", .kind = FieldKind::kString, .required = true, .max_length = 512};
   ToolSpec s;
-  s = {.name = "render_capture", .title = "Render capture",
-       .description = fmt::format(
-           "Render a labelled stereo capture of every viewpoint (left/right images, labels, "
-           "depth, capture.json, truth.json) into a folder of the workspace. Long: sends "
-           "progress notifications when the request has a progressToken. The folder appears "
-           "only when complete. At most {} views.",
-           L.max_views),
-       .fields = Concat(
-           {{.name = "output", .kind = FieldKind::kString,
-             .description = "Folder to create, relative to the workspace (e.g. \"captures/a\").",
-             .required = true, .max_length = 512},
-            {.name = "overwrite", .kind = FieldKind::kBool,
-             .description = "Replace the folder if it exists.", .default_value = false}},
-           CaptureRenderToolFields(L))};
+  s = {.name = "render_capture",
+       .title = "Render capture",
+       .description = fmt::format("Render a labelled stereo capture of every viewpoint (left/right images, labels, "
+                                  "depth, capture.json, truth.json) into a folder of the workspace. Long: sends "
+                                  "progress notifications when the request has a progressToken. The folder appears "
+                                  "only when complete. At most {} views.",
+                                  L.max_views),
+       .fields = Concat({{.name = "output",
+                          .kind = FieldKind::kString,
+                          .description = "Folder to create, relative to the workspace (e.g. \"captures/a\").",
+                          .required = true,
+                          .max_length = 512},
+                         {.name = "overwrite",
+                          .kind = FieldKind::kBool,
+                          .description = "Replace the folder if it exists.",
+                          .default_value = false}},
+                        CaptureRenderToolFields(L))};
   Register(s, &SceneTools::RenderCapture);
 
-  s = {.name = "export_plan", .title = "Export plan",
-       .description = "The exact floor plan of the scene as plan JSON (version, units, walls "
-                      "as inner-face lines, openings with width/height/sill on their wall, "
-                      "rooms with area); with path, also written into the workspace.",
-       .fields = {{.name = "path", .kind = FieldKind::kString,
+  s = {.name = "export_plan",
+       .title = "Export plan",
+       .description =
+           "The exact floor plan of the scene as plan JSON (version, units, walls "
+           "as inner-face lines, openings with width/height/sill on their wall, "
+           "rooms with area); with path, also written into the workspace.",
+       .fields = {{.name = "path",
+                   .kind = FieldKind::kString,
                    .description = "Optional file to write, ending in .json (e.g. "
                                   "\"plans/truth.json\").",
                    .max_length = 512}},
@@ -604,15 +798,18 @@ void SceneTools::RegisterOutputTools() {
 
   Field save_path = path_field_required;
   save_path.description = "File to write, relative to the workspace, ending in .json.";
-  s = {.name = "save_scene", .title = "Save scene",
-       .description = "Write the current scene as scene JSON into the workspace (replacing the "
-                      "file if it exists).",
+  s = {.name = "save_scene",
+       .title = "Save scene",
+       .description =
+           "Write the current scene as scene JSON into the workspace (replacing the "
+           "file if it exists).",
        .fields = {save_path}};
   Register(s, &SceneTools::SaveScene);
 
   Field load_path = path_field_required;
   load_path.description = "Scene JSON file relative to the workspace.";
-  s = {.name = "load_scene", .title = "Load scene",
+  s = {.name = "load_scene",
+       .title = "Load scene",
        .description = fmt::format("Replace the current scene with a scene JSON file from the "
                                   "workspace (validated; at most {} bytes).",
                                   L.max_file_bytes),
@@ -647,14 +844,12 @@ std::string SceneTools::ToolsMarkdown() const {
     if (auto at = description.find(kConventions); at != std::string::npos) {
       description.erase(at, kConventions.size());
     }
-    out += fmt::format("### `{}` — {}\n\n{}\n\n{}\n", s.name, s.title, description,
-                       FieldsMarkdown(s.fields));
+    out += fmt::format("### `{}` — {}\n\n{}\n\n{}\n", s.name, s.title, description, FieldsMarkdown(s.fields));
   }
   return out;
 }
 
-ToolResult SceneTools::Call(std::string_view name, const nlohmann::json& arguments,
-                            const ToolCallContext& ctx) {
+ToolResult SceneTools::Call(std::string_view name, const nlohmann::json& arguments, const ToolCallContext& ctx) {
   std::size_t index = 0;
   while (index < specs_.size() && specs_[index].name != name) ++index;
   if (index == specs_.size()) {
@@ -667,8 +862,8 @@ ToolResult SceneTools::Call(std::string_view name, const nlohmann::json& argumen
   } catch (const Cancelled& e) {
     return ToolResult::Failure(e.what());
   } catch (const FieldArgsError& e) {
-    return ToolResult::Failure(fmt::format("{}: invalid arguments (nothing was changed):{}",
-                                           spec.name, Bullets(e.problems())));
+    return ToolResult::Failure(
+        fmt::format("{}: invalid arguments (nothing was changed):{}", spec.name, Bullets(e.problems())));
   } catch (const InputError& e) {
     std::vector<std::string> lines;
     for (const Problem& p : e.problems()) lines.push_back(p.ToString());
@@ -698,8 +893,8 @@ void SceneTools::CheckSceneLimits(const Scene& s) const {
   for (std::size_t r = 0; r < s.rooms.size(); ++r) {
     openings += s.rooms[r].openings.size();
     if (s.rooms[r].polygon.size() > static_cast<std::size_t>(L.max_polygon_points)) {
-      over.push_back(fmt::format("rooms[{}] has {} corners; the limit is {}", r,
-                                 s.rooms[r].polygon.size(), L.max_polygon_points));
+      over.push_back(
+          fmt::format("rooms[{}] has {} corners; the limit is {}", r, s.rooms[r].polygon.size(), L.max_polygon_points));
     }
   }
   limit(openings, L.max_openings, "doors and windows");
@@ -708,12 +903,11 @@ void SceneTools::CheckSceneLimits(const Scene& s) const {
   limit(s.materials.size(), L.max_materials, "materials");
   std::size_t views = CountViews(s);
   if (views > static_cast<std::size_t>(L.max_views)) {
-    over.push_back(fmt::format("{} views; the limit is {} (use a larger step_deg or a count)",
-                               views, L.max_views));
+    over.push_back(fmt::format("{} views; the limit is {} (use a larger step_deg or a count)", views, L.max_views));
   }
   if (s.rig.width_px > L.max_image_width_px || s.rig.height_px > L.max_image_height_px) {
-    over.push_back(fmt::format("images of {}×{} px; the limit is {}×{}", s.rig.width_px,
-                               s.rig.height_px, L.max_image_width_px, L.max_image_height_px));
+    over.push_back(fmt::format("images of {}×{} px; the limit is {}×{}", s.rig.width_px, s.rig.height_px,
+                               L.max_image_width_px, L.max_image_height_px));
   }
   if (!over.empty()) {
     throw InvalidArgument(fmt::format("scene too large (server limits):{}", Bullets(over)));
@@ -735,8 +929,7 @@ void SceneTools::Commit(Scene next, std::string_view what) {
   }
   if (!added.empty()) {
     throw InvalidArgument(
-        fmt::format("{} would make the scene invalid, so nothing was changed:{}", what,
-                    Bullets(added)));
+        fmt::format("{} would make the scene invalid, so nothing was changed:{}", what, Bullets(added)));
   }
   scene_ = std::move(next);
 }
@@ -745,8 +938,7 @@ int SceneTools::RoomArg(const FieldArgs& a) const {
   if (scene_.rooms.empty()) throw InvalidArgument("the scene has no room yet: call add_room first");
   std::int64_t r = a.Integer("room");
   if (r >= static_cast<std::int64_t>(scene_.rooms.size())) {
-    throw InvalidArgument(fmt::format("arguments.room: the scene has rooms 0..{}, got {}",
-                                      scene_.rooms.size() - 1, r));
+    throw InvalidArgument(fmt::format("arguments.room: the scene has rooms 0..{}, got {}", scene_.rooms.size() - 1, r));
   }
   return static_cast<int>(r);
 }
@@ -765,8 +957,7 @@ ToolResult SceneTools::AddRoom(const FieldArgs& a, const ToolCallContext&) {
   bool has_rect = a.Has("width_m") || a.Has("depth_m");
   bool has_poly = a.Has("polygon");
   if (has_rect == has_poly) {
-    throw InvalidArgument(
-        "give either width_m and depth_m (a rectangle) or polygon (corners), not both or neither");
+    throw InvalidArgument("give either width_m and depth_m (a rectangle) or polygon (corners), not both or neither");
   }
   std::vector<Vec2> poly;
   if (has_rect) {
@@ -783,15 +974,15 @@ ToolResult SceneTools::AddRoom(const FieldArgs& a, const ToolCallContext&) {
   std::vector<double> origin = a.Numbers("origin");
   double rot = DegToRad(a.Number("rotation_deg"));
   for (Vec2& p : poly) {
-    p = Vec2(std::cos(rot) * p.x() - std::sin(rot) * p.y(),
-             std::sin(rot) * p.x() + std::cos(rot) * p.y()) +
+    p = Vec2(std::cos(rot) * p.x() - std::sin(rot) * p.y(), std::sin(rot) * p.x() + std::cos(rot) * p.y()) +
         Vec2(origin[0], origin[1]);
   }
   std::string note;
   if (poly.size() >= 3 && PolygonArea(poly) < 0) {
     std::reverse(poly.begin(), poly.end());
-    note = " (the corners were clockwise; they were reversed, so the walls are numbered from the "
-           "last corner given)";
+    note =
+        " (the corners were clockwise; they were reversed, so the walls are numbered from the "
+        "last corner given)";
   }
   Room room;
   room.name = a.OptString("name").value_or(fmt::format("room {}", scene_.rooms.size()));
@@ -802,11 +993,11 @@ ToolResult SceneTools::AddRoom(const FieldArgs& a, const ToolCallContext&) {
   next.rooms.push_back(room);
   Commit(std::move(next), "the room");
   const Room& added = scene_.rooms.back();
-  return ToolResult::Text(fmt::format(
-      "Added room {} \"{}\": {} corners, {:.2f} m², {:.2f} m high{}. Walls (use these numbers "
-      "with add_door/add_window):\n{}",
-      scene_.rooms.size() - 1, added.name, added.polygon.size(), PolygonArea(added.polygon),
-      added.height_m, note, DescribeWalls(added)));
+  return ToolResult::Text(
+      fmt::format("Added room {} \"{}\": {} corners, {:.2f} m², {:.2f} m high{}. Walls (use these numbers "
+                  "with add_door/add_window):\n{}",
+                  scene_.rooms.size() - 1, added.name, added.polygon.size(), PolygonArea(added.polygon), added.height_m,
+                  note, DescribeWalls(added)));
 }
 
 ToolResult SceneTools::AddDoor(const FieldArgs& a, const ToolCallContext&) {
@@ -822,17 +1013,17 @@ ToolResult SceneTools::AddOpenings(const FieldArgs& a, OpeningKind kind) {
   int r = RoomArg(a);
   const Room& room = scene_.rooms[r];
   if (a.Has("wall") == a.Has("side")) {
-    throw InvalidArgument(fmt::format(
-        "give either wall (a number) or side (north, east, south, west…), not both or neither. "
-        "Walls of room {}:\n{}",
-        r, DescribeWalls(room)));
+    throw InvalidArgument(
+        fmt::format("give either wall (a number) or side (north, east, south, west…), not both or neither. "
+                    "Walls of room {}:\n{}",
+                    r, DescribeWalls(room)));
   }
   int wall;
   if (a.Has("wall")) {
     std::int64_t w = a.Integer("wall");
     if (w >= WallCount(room)) {
-      throw InvalidArgument(fmt::format("arguments.wall: room {} has walls 0..{}, got {}. Walls:\n{}",
-                                        r, WallCount(room) - 1, w, DescribeWalls(room)));
+      throw InvalidArgument(fmt::format("arguments.wall: room {} has walls 0..{}, got {}. Walls:\n{}", r,
+                                        WallCount(room) - 1, w, DescribeWalls(room)));
     }
     wall = static_cast<int>(w);
   } else {
@@ -844,32 +1035,32 @@ ToolResult SceneTools::AddOpenings(const FieldArgs& a, OpeningKind kind) {
   const double sill = kind == OpeningKind::kWindow ? a.Number("sill_m") : 0.0;
   const int count = static_cast<int>(a.Integer("count"));
   if (sill + height > room.height_m + 1e-9) {
-    throw InvalidArgument(fmt::format(
-        "arguments.height_m: sill {:.2f} m + height {:.2f} m = {:.2f} m is above the {:.2f} m "
-        "ceiling; lower height_m{}",
-        sill, height, sill + height, room.height_m,
-        kind == OpeningKind::kWindow ? " or sill_m" : ""));
+    throw InvalidArgument(
+        fmt::format("arguments.height_m: sill {:.2f} m + height {:.2f} m = {:.2f} m is above the {:.2f} m "
+                    "ceiling; lower height_m{}",
+                    sill, height, sill + height, room.height_m, kind == OpeningKind::kWindow ? " or sill_m" : ""));
   }
   std::vector<double> offsets;
   if (a.Has("offset_m")) {
     if (count != 1) {
-      throw InvalidArgument("arguments.offset_m: give offset_m only with count 1; several "
-                            "openings are spaced evenly along the wall");
+      throw InvalidArgument(
+          "arguments.offset_m: give offset_m only with count 1; several "
+          "openings are spaced evenly along the wall");
     }
     double off = a.Number("offset_m");
     if (off + width > length + 1e-9) {
-      throw InvalidArgument(fmt::format(
-          "arguments.offset_m: the {} would end at {:.2f} m but wall {} is {:.2f} m long; use "
-          "offset_m <= {:.2f} or a narrower width_m",
-          noun, off + width, wall, length, std::max(0.0, length - width)));
+      throw InvalidArgument(
+          fmt::format("arguments.offset_m: the {} would end at {:.2f} m but wall {} is {:.2f} m long; use "
+                      "offset_m <= {:.2f} or a narrower width_m",
+                      noun, off + width, wall, length, std::max(0.0, length - width)));
     }
     offsets.push_back(off);
   } else {
     double gap = (length - count * width) / (count + 1);
     if (gap < 0.05) {
-      throw InvalidArgument(fmt::format(
-          "arguments.width_m: {} {}{} {:.2f} m wide do not fit on wall {} ({:.2f} m long)", count,
-          noun, count == 1 ? "" : "s", width, wall, length));
+      throw InvalidArgument(
+          fmt::format("arguments.width_m: {} {}{} {:.2f} m wide do not fit on wall {} ({:.2f} m long)", count, noun,
+                      count == 1 ? "" : "s", width, wall, length));
     }
     for (int i = 0; i < count; ++i) offsets.push_back(gap + i * (width + gap));
   }
@@ -902,12 +1093,11 @@ ToolResult SceneTools::AddOpenings(const FieldArgs& a, OpeningKind kind) {
   for (double off : offsets) {
     placed.push_back(fmt::format("{:.2f}–{:.2f} m", off, off + width));
   }
-  return ToolResult::Text(fmt::format(
-      "Added {} {}{} to room {} wall {} (faces {}, {:.2f} m long) at {} along the wall; {:.2f} m "
-      "wide, {:.2f} m high{}.",
-      count, noun, count == 1 ? "" : "s", r, wall, facing, length,
-      fmt::join(placed, ", "), width, height,
-      kind == OpeningKind::kWindow ? fmt::format(", sill {:.2f} m", sill) : ""));
+  return ToolResult::Text(
+      fmt::format("Added {} {}{} to room {} wall {} (faces {}, {:.2f} m long) at {} along the wall; {:.2f} m "
+                  "wide, {:.2f} m high{}.",
+                  count, noun, count == 1 ? "" : "s", r, wall, facing, length, fmt::join(placed, ", "), width, height,
+                  kind == OpeningKind::kWindow ? fmt::format(", sill {:.2f} m", sill) : ""));
 }
 
 ToolResult SceneTools::AddFurniture(const FieldArgs& a, const ToolCallContext&) {
@@ -931,18 +1121,17 @@ ToolResult SceneTools::AddFurniture(const FieldArgs& a, const ToolCallContext&) 
   Commit(std::move(next), "the furniture");
   bool inside = false;
   for (const Room& r : scene_.rooms) inside = inside || PointInPolygon(r.polygon, f.centre_m);
-  return ToolResult::Text(fmt::format(
-      "Added furniture {} \"{}\": {:.2f} × {:.2f} × {:.2f} m at {}{}.", scene_.furniture.size() - 1,
-      f.name, f.size_m.x(), f.size_m.y(), f.size_m.z(), P2(f.centre_m),
-      inside ? "" : " (warning: its centre is outside every room)"));
+  return ToolResult::Text(fmt::format("Added furniture {} \"{}\": {:.2f} × {:.2f} × {:.2f} m at {}{}.",
+                                      scene_.furniture.size() - 1, f.name, f.size_m.x(), f.size_m.y(), f.size_m.z(),
+                                      P2(f.centre_m), inside ? "" : " (warning: its centre is outside every room)"));
 }
 
 ToolResult SceneTools::SetMaterial(const FieldArgs& a, const ToolCallContext&) {
   Scene next = scene_;
   const std::string name = a.String("name");
   if (name.empty()) throw InvalidArgument("arguments.name: must not be empty");
-  auto it = std::find_if(next.materials.begin(), next.materials.end(),
-                         [&](const Material& m) { return m.name == name; });
+  auto it =
+      std::find_if(next.materials.begin(), next.materials.end(), [&](const Material& m) { return m.name == name; });
   bool created = it == next.materials.end();
   if (created) {
     const Material* base = FindMaterial(next, name);  // A built-in of that name, if any.
@@ -986,12 +1175,12 @@ ToolResult SceneTools::SetMaterial(const FieldArgs& a, const ToolCallContext&) {
   }
   Commit(std::move(next), "the material");
   const Material& done = *FindMaterial(scene_, name);
-  return ToolResult::Text(fmt::format(
-      "{} material \"{}\": colour [{:.2f}, {:.2f}, {:.2f}], roughness {:.2f}, texture {} "
-      "(scale {:.2f} m){}.",
-      created ? "Defined" : "Updated", name, done.base_color.x(), done.base_color.y(),
-      done.base_color.z(), done.roughness, TextureKindName(done.texture), done.texture_scale_m,
-      apply == "none" ? "" : fmt::format("; applied to {} {}", assigned, apply)));
+  return ToolResult::Text(
+      fmt::format("{} material \"{}\": colour [{:.2f}, {:.2f}, {:.2f}], roughness {:.2f}, texture {} "
+                  "(scale {:.2f} m){}.",
+                  created ? "Defined" : "Updated", name, done.base_color.x(), done.base_color.y(), done.base_color.z(),
+                  done.roughness, TextureKindName(done.texture), done.texture_scale_m,
+                  apply == "none" ? "" : fmt::format("; applied to {} {}", assigned, apply)));
 }
 
 ToolResult SceneTools::SetLighting(const FieldArgs& a, const ToolCallContext&) {
@@ -1032,13 +1221,12 @@ ToolResult SceneTools::SetLighting(const FieldArgs& a, const ToolCallContext&) {
                         ? fmt::format("light {}: sun from azimuth {:.0f}°, elevation {:.0f}°, "
                                       "intensity {:.2f}",
                                       i, l.azimuth_deg, l.elevation_deg, l.intensity)
-                        : fmt::format("light {}: {} at ({:.2f}, {:.2f}, {:.2f}), intensity {:.2f}",
-                                      i, LightKindName(l.kind), l.position_m.x(), l.position_m.y(),
-                                      l.position_m.z(), l.intensity));
+                        : fmt::format("light {}: {} at ({:.2f}, {:.2f}, {:.2f}), intensity {:.2f}", i,
+                                      LightKindName(l.kind), l.position_m.x(), l.position_m.y(), l.position_m.z(),
+                                      l.intensity));
   }
-  return ToolResult::Text(fmt::format("Lighting set: {} light{}, ambient {:.2f}, sky {}.{}",
-                                      scene_.lights.size(), scene_.lights.size() == 1 ? "" : "s",
-                                      scene_.environment.ambient,
+  return ToolResult::Text(fmt::format("Lighting set: {} light{}, ambient {:.2f}, sky {}.{}", scene_.lights.size(),
+                                      scene_.lights.size() == 1 ? "" : "s", scene_.environment.ambient,
                                       scene_.environment.sky ? "on" : "off", Bullets(lines)));
 }
 
@@ -1071,10 +1259,10 @@ ToolResult SceneTools::PlaceRig(const FieldArgs& a, const ToolCallContext&) {
     next.turn = t;
     std::size_t views = CountViews(next);
     if (views > static_cast<std::size_t>(limits_.max_views)) {
-      throw InvalidArgument(fmt::format(
-          "arguments.step_deg: a full turn at {} ° steps is {} views; the limit is {}: use "
-          "step_deg >= {:.1f} or give count <= {}",
-          t.step_deg, views, limits_.max_views, 360.0 / limits_.max_views, limits_.max_views));
+      throw InvalidArgument(
+          fmt::format("arguments.step_deg: a full turn at {} ° steps is {} views; the limit is {}: use "
+                      "step_deg >= {:.1f} or give count <= {}",
+                      t.step_deg, views, limits_.max_views, 360.0 / limits_.max_views, limits_.max_views));
     }
   }
   if (a.Has("width_px")) next.rig.width_px = static_cast<int>(a.Integer("width_px"));
@@ -1091,9 +1279,8 @@ ToolResult SceneTools::PlaceRig(const FieldArgs& a, const ToolCallContext&) {
   return ToolResult::Text(fmt::format(
       "Rig at ({:.2f}, {:.2f}), {:.2f} m high: {} view{} (yaw {} °), {}×{} px, {:.0f}° HFOV, "
       "baseline {:.3f} m.",
-      pos.x(), pos.y(), pos.z(), views.size(), views.size() == 1 ? "" : "s",
-      fmt::join(yaws, ", "), scene_.rig.width_px, scene_.rig.height_px,
-      scene_.rig.Camera().HorizontalFovDeg(), scene_.rig.baseline_m));
+      pos.x(), pos.y(), pos.z(), views.size(), views.size() == 1 ? "" : "s", fmt::join(yaws, ", "), scene_.rig.width_px,
+      scene_.rig.height_px, scene_.rig.Camera().HorizontalFovDeg(), scene_.rig.baseline_m));
 }
 
 ToolResult SceneTools::RemoveItem(const FieldArgs& a, const ToolCallContext&) {
@@ -1102,10 +1289,9 @@ ToolResult SceneTools::RemoveItem(const FieldArgs& a, const ToolCallContext&) {
   Scene next = scene_;
   auto erase = [&](auto& list, std::string_view noun) {
     if (i >= static_cast<std::int64_t>(list.size())) {
-      throw InvalidArgument(list.empty()
-                                ? fmt::format("arguments.index: there is no {} to remove", noun)
-                                : fmt::format("arguments.index: {} indices are 0..{}, got {}", noun,
-                                              list.size() - 1, i));
+      throw InvalidArgument(
+          list.empty() ? fmt::format("arguments.index: there is no {} to remove", noun)
+                       : fmt::format("arguments.index: {} indices are 0..{}, got {}", noun, list.size() - 1, i));
     }
     list.erase(list.begin() + i);
   };
@@ -1128,8 +1314,7 @@ ToolResult SceneTools::RemoveItem(const FieldArgs& a, const ToolCallContext&) {
 }
 
 ToolResult SceneTools::SceneFromText(const FieldArgs& a, const ToolCallContext&) {
-  SceneTextResult result =
-      ::asbuilt::SceneFromText(a.String("text"), SceneTextOptionFields().FromArgs(a));
+  SceneTextResult result = ::asbuilt::SceneFromText(a.String("text"), SceneTextOptionFields().FromArgs(a));
   CheckSceneLimits(result.scene);
   scene_ = std::move(result.scene);
   std::string out = fmt::format("New scene from the text: {}", DescribeScene(scene_));
@@ -1138,9 +1323,10 @@ ToolResult SceneTools::SceneFromText(const FieldArgs& a, const ToolCallContext&)
   }
   if (!result.assumptions.empty()) out += "\nAssumed:" + Bullets(result.assumptions);
   if (!result.unused_words.empty()) {
-    out += fmt::format("\nWords not understood (not used): {}. Adjust the scene with the other "
-                       "tools if they mattered.",
-                       fmt::join(result.unused_words, ", "));
+    out += fmt::format(
+        "\nWords not understood (not used): {}. Adjust the scene with the other "
+        "tools if they mattered.",
+        fmt::join(result.unused_words, ", "));
   }
   return ToolResult::Text(out);
 }
@@ -1163,8 +1349,8 @@ ToolResult SceneTools::Describe(const FieldArgs&, const ToolCallContext&) {
   }
   for (std::size_t i = 0; i < scene_.furniture.size(); ++i) {
     const Furniture& f = scene_.furniture[i];
-    out += fmt::format("\nFurniture {}: {} at {}, {:.2f} × {:.2f} × {:.2f} m", i, f.name,
-                       P2(f.centre_m), f.size_m.x(), f.size_m.y(), f.size_m.z());
+    out += fmt::format("\nFurniture {}: {} at {}, {:.2f} × {:.2f} × {:.2f} m", i, f.name, P2(f.centre_m), f.size_m.x(),
+                       f.size_m.y(), f.size_m.z());
   }
   std::vector<std::string> warnings;
   for (const Problem& p : ValidateScene(scene_)) warnings.push_back(ProblemText(p));
@@ -1185,10 +1371,9 @@ ToolResult SceneTools::Validate(const FieldArgs&, const ToolCallContext&) {
     list.push_back({{"path", p.field_path}, {"message", p.message}});
     lines.push_back(ProblemText(p));
   }
-  ToolResult r = ToolResult::Text(
-      problems.empty() ? "The scene is valid."
-                       : fmt::format("The scene has {} problem{}:{}", problems.size(),
-                                     problems.size() == 1 ? "" : "s", Bullets(lines)));
+  ToolResult r = ToolResult::Text(problems.empty() ? "The scene is valid."
+                                                   : fmt::format("The scene has {} problem{}:{}", problems.size(),
+                                                                 problems.size() == 1 ? "" : "s", Bullets(lines)));
   r.structured = {{"valid", problems.empty()}, {"problems", list}};
   return r;
 }
@@ -1203,11 +1388,9 @@ ToolResult SceneTools::RenderPreview(const FieldArgs& a, const ToolCallContext&)
   options.max_height_px = std::max(options.width_px * 2, 256);
   options.margin_px = std::min(48, options.width_px / 8);
   std::string png = RenderPlanPreviewPng(scene_, options);
-  ToolResult r = ToolResult::Text(fmt::format("Top-down plan of \"{}\" ({} bytes PNG).",
-                                              scene_.name, png.size()));
-  r.content.insert(r.content.begin(), ToolContent{.kind = ToolContent::Kind::kImage,
-                                                  .data = Base64Encode(png),
-                                                  .mime_type = "image/png"});
+  ToolResult r = ToolResult::Text(fmt::format("Top-down plan of \"{}\" ({} bytes PNG).", scene_.name, png.size()));
+  r.content.insert(r.content.begin(),
+                   ToolContent{.kind = ToolContent::Kind::kImage, .data = Base64Encode(png), .mime_type = "image/png"});
   return r;
 }
 
@@ -1217,16 +1400,14 @@ ToolResult SceneTools::RenderCapture(const FieldArgs& a, const ToolCallContext& 
   fs::path final_dir = workspace_.Resolve(output, "arguments.output");
   std::error_code ec;
   if (fs::exists(fs::symlink_status(final_dir, ec)) && !overwrite) {
-    throw InvalidArgument(fmt::format(
-        "arguments.output: \"{}\" already exists; choose another name or pass overwrite: true",
-        output));
+    throw InvalidArgument(
+        fmt::format("arguments.output: \"{}\" already exists; choose another name or pass overwrite: true", output));
   }
   std::vector<Problem> problems = ValidateScene(scene_);
   if (!problems.empty()) {
     std::vector<std::string> lines;
     for (const Problem& p : problems) lines.push_back(ProblemText(p));
-    throw InvalidArgument(fmt::format("the scene is not valid yet, fix these first:{}",
-                                      Bullets(lines)));
+    throw InvalidArgument(fmt::format("the scene is not valid yet, fix these first:{}", Bullets(lines)));
   }
   CheckSceneLimits(scene_);
   if (CountViews(scene_) == 0) {
@@ -1248,11 +1429,10 @@ ToolResult SceneTools::RenderCapture(const FieldArgs& a, const ToolCallContext& 
   if (ctx.stop.stop_requested()) throw Cancelled("render_capture cancelled; nothing was written");
   WriteScene(scene_, temp.path() / "scene.json");
   temp.Commit(overwrite);
-  return ToolResult::Text(fmt::format(
-      "Rendered {} view{} in {:.1f} s into {}/: capture.json, truth.json, scene.json, left/, "
-      "right/, labels/ (0 background, 1 wall, 2 door, 3 window), depth/ (uint16 mm), idmap/.",
-      summary.views, summary.views == 1 ? "" : "s", summary.seconds,
-      workspace_.Display(final_dir)));
+  return ToolResult::Text(
+      fmt::format("Rendered {} view{} in {:.1f} s into {}/: capture.json, truth.json, scene.json, left/, "
+                  "right/, labels/ (0 background, 1 wall, 2 door, 3 window), depth/ (uint16 mm), idmap/.",
+                  summary.views, summary.views == 1 ? "" : "s", summary.seconds, workspace_.Display(final_dir)));
 }
 
 ToolResult SceneTools::CameraPreview(const FieldArgs& a) {
@@ -1260,30 +1440,27 @@ ToolResult SceneTools::CameraPreview(const FieldArgs& a) {
   if (!problems.empty()) {
     std::vector<std::string> lines;
     for (const Problem& p : problems) lines.push_back(ProblemText(p));
-    throw InvalidArgument(fmt::format("the scene is not valid yet, fix these first:{}",
-                                      Bullets(lines)));
+    throw InvalidArgument(fmt::format("the scene is not valid yet, fix these first:{}", Bullets(lines)));
   }
   CheckSceneLimits(scene_);
   std::vector<Viewpoint> views = ResolveViewpoints(scene_);
   if (views.empty()) throw InvalidArgument("the scene has no views yet: call place_rig first");
   const std::int64_t index = a.Integer("view_index");
   if (index >= static_cast<std::int64_t>(views.size())) {
-    throw InvalidArgument(fmt::format("arguments.view_index: the scene has views 0..{}, got {}",
-                                      views.size() - 1, index));
+    throw InvalidArgument(
+        fmt::format("arguments.view_index: the scene has views 0..{}, got {}", views.size() - 1, index));
   }
   const int width = static_cast<int>(a.Integer("width_px"));
   if (width > limits_.max_image_width_px) {
-    throw InvalidArgument(fmt::format(
-        "arguments.width_px: camera views are at most {} px wide, got {}",
-        limits_.max_image_width_px, width));
+    throw InvalidArgument(fmt::format("arguments.width_px: camera views are at most {} px wide, got {}",
+                                      limits_.max_image_width_px, width));
   }
   // The rig's camera scaled to the asked width (same field of view).
   PinholeCamera rig = scene_.rig.Camera();
   const double s = static_cast<double>(width) / rig.width_px;
   PinholeCamera cam = rig;
   cam.width_px = width;
-  cam.height_px = std::clamp(static_cast<int>(std::lround(rig.height_px * s)), 16,
-                             limits_.max_image_height_px);
+  cam.height_px = std::clamp(static_cast<int>(std::lround(rig.height_px * s)), 16, limits_.max_image_height_px);
   cam.fx = rig.fx * s;
   cam.fy = rig.fy * s;
   cam.cx = (rig.cx + 0.5) * s - 0.5;
@@ -1294,14 +1471,13 @@ ToolResult SceneTools::CameraPreview(const FieldArgs& a) {
                                       static_cast<std::uint64_t>(index), /*right_eye=*/false);
   std::vector<unsigned char> png;
   if (!cv::imencode(".png", AsMat(view.left), png)) throw Error("PNG encoding failed");
-  ToolResult r = ToolResult::Text(fmt::format(
-      "Left camera of view {} (position ({:.2f}, {:.2f}, {:.2f}), yaw {:g}°), {}×{} px.", index,
-      views[index].position_m.x(), views[index].position_m.y(), views[index].position_m.z(),
-      views[index].yaw_deg, cam.width_px, cam.height_px));
-  r.content.insert(r.content.begin(),
-                   ToolContent{.kind = ToolContent::Kind::kImage,
-                               .data = Base64Encode(std::string(png.begin(), png.end())),
-                               .mime_type = "image/png"});
+  ToolResult r =
+      ToolResult::Text(fmt::format("Left camera of view {} (position ({:.2f}, {:.2f}, {:.2f}), yaw {:g}°), {}×{} px.",
+                                   index, views[index].position_m.x(), views[index].position_m.y(),
+                                   views[index].position_m.z(), views[index].yaw_deg, cam.width_px, cam.height_px));
+  r.content.insert(r.content.begin(), ToolContent{.kind = ToolContent::Kind::kImage,
+                                                  .data = Base64Encode(std::string(png.begin(), png.end())),
+                                                  .mime_type = "image/png"});
   return r;
 }
 
@@ -1310,8 +1486,7 @@ ToolResult SceneTools::ExportPlan(const FieldArgs& a, const ToolCallContext&) {
   if (!problems.empty()) {
     std::vector<std::string> lines;
     for (const Problem& p : problems) lines.push_back(ProblemText(p));
-    throw InvalidArgument(fmt::format("the scene is not valid yet, fix these first:{}",
-                                      Bullets(lines)));
+    throw InvalidArgument(fmt::format("the scene is not valid yet, fix these first:{}", Bullets(lines)));
   }
   Plan plan = SceneTruth(scene_);
   nlohmann::json json = PlanToJson(plan);
@@ -1337,11 +1512,11 @@ ToolResult SceneTools::SaveScene(const FieldArgs& a, const ToolCallContext&) {
   bool existed = fs::exists(target);
   WriteScene(scene_, target);
   std::size_t problems = ValidateScene(scene_).size();
-  return ToolResult::Text(fmt::format(
-      "{} {}{}.", existed ? "Replaced" : "Wrote", workspace_.Display(target),
-      problems ? fmt::format(" (the scene has {} validation problem{}; validate_scene lists them)",
-                             problems, problems == 1 ? "" : "s")
-               : ""));
+  return ToolResult::Text(
+      fmt::format("{} {}{}.", existed ? "Replaced" : "Wrote", workspace_.Display(target),
+                  problems ? fmt::format(" (the scene has {} validation problem{}; validate_scene lists them)",
+                                         problems, problems == 1 ? "" : "s")
+                           : ""));
 }
 
 ToolResult SceneTools::LoadScene(const FieldArgs& a, const ToolCallContext&) {
@@ -1353,8 +1528,8 @@ ToolResult SceneTools::LoadScene(const FieldArgs& a, const ToolCallContext&) {
   }
   auto size = fs::file_size(source, ec);
   if (ec || size > limits_.max_file_bytes) {
-    throw InvalidArgument(fmt::format("arguments.path: \"{}\" is {} bytes; the limit is {}", path,
-                                      size, limits_.max_file_bytes));
+    throw InvalidArgument(
+        fmt::format("arguments.path: \"{}\" is {} bytes; the limit is {}", path, size, limits_.max_file_bytes));
   }
   std::string text = ReadFile(source);
   JsonDiagnostics diag(path);

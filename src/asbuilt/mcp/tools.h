@@ -30,17 +30,17 @@ namespace asbuilt::mcp {
 // Hardening limits (issue 10): every one gives a clear tool error when hit.
 struct ToolLimits {
   int max_rooms = 16;
-  int max_polygon_points = 64;      // Corners per room.
-  int max_openings = 128;           // Doors + windows, all rooms.
+  int max_polygon_points = 64;  // Corners per room.
+  int max_openings = 128;       // Doors + windows, all rooms.
   int max_furniture = 256;
   int max_lights = 32;
   int max_materials = 64;
-  int max_views = 72;               // Viewpoints per capture.
-  int max_image_width_px = 1920;    // Rendered images (capture, camera preview).
+  int max_views = 72;             // Viewpoints per capture.
+  int max_image_width_px = 1920;  // Rendered images (capture, camera preview).
   int max_image_height_px = 1440;
-  int max_preview_width_px = 2048;  // Top-down plan picture.
-  std::size_t max_text_chars = 4000;       // scene_from_text input.
-  std::size_t max_file_bytes = 4u << 20;   // Files load_scene reads.
+  int max_preview_width_px = 2048;        // Top-down plan picture.
+  std::size_t max_text_chars = 4000;      // scene_from_text input.
+  std::size_t max_file_bytes = 4u << 20;  // Files load_scene reads.
 
   // Throws InvalidArgument naming the field ("ToolLimits.max_views = 0, must be > 0").
   void Check() const;
@@ -82,8 +82,8 @@ struct ToolSpec {
   std::string title;
   std::string description;
   std::vector<Field> fields;
-  bool read_only = false;     // annotations.readOnlyHint
-  bool destructive = false;   // annotations.destructiveHint (replaces state or files)
+  bool read_only = false;    // annotations.readOnlyHint
+  bool destructive = false;  // annotations.destructiveHint (replaces state or files)
 
   nlohmann::json ToJson() const;  // The tools/list entry.
 };
@@ -99,8 +99,7 @@ class SceneTools {
 
   // Runs one tool. The tool must exist (Find); bad arguments and every
   // failure a client can cause come back as is_error results.
-  ToolResult Call(std::string_view name, const nlohmann::json& arguments,
-                  const ToolCallContext& ctx = {});
+  ToolResult Call(std::string_view name, const nlohmann::json& arguments, const ToolCallContext& ctx = {});
 
   const Scene& scene() const { return scene_; }
   const Workspace& workspace() const { return workspace_; }

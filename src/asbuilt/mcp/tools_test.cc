@@ -19,9 +19,8 @@ using ::testing::Not;
 class ToolsTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    root_ = fs::temp_directory_path() /
-            ("asbuilt_tools_test_" + std::to_string(::getpid()) + "_" +
-             ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    root_ = fs::temp_directory_path() / ("asbuilt_tools_test_" + std::to_string(::getpid()) + "_" +
+                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(root_);
     tools_ = std::make_unique<SceneTools>(Workspace(root_ / "ws"), limits_);
   }
@@ -30,8 +29,7 @@ class ToolsTest : public ::testing::Test {
   // Calls a tool, expects success, returns its first text block.
   std::string Ok(std::string_view tool, const nlohmann::json& args = nullptr) {
     ToolResult r = tools_->Call(tool, args);
-    EXPECT_FALSE(r.is_error) << tool << " " << args.dump() << " → "
-                             << (r.content.empty() ? "" : r.content.back().text);
+    EXPECT_FALSE(r.is_error) << tool << " " << args.dump() << " → " << (r.content.empty() ? "" : r.content.back().text);
     for (const ToolContent& c : r.content) {
       if (c.kind == ToolContent::Kind::kText) return c.text;
     }
@@ -64,10 +62,9 @@ TEST_F(ToolsTest, EveryToolHasASchemaAndDescription) {
     EXPECT_FALSE(t["description"].get<std::string>().empty());
     EXPECT_EQ(t["annotations"]["openWorldHint"], false);
   }
-  for (const char* required :
-       {"new_scene", "add_room", "add_door", "add_window", "add_furniture", "set_material",
-        "set_lighting", "place_rig", "scene_from_text", "describe_scene", "validate_scene",
-        "render_preview", "render_capture", "export_plan", "save_scene", "load_scene"}) {
+  for (const char* required : {"new_scene", "add_room", "add_door", "add_window", "add_furniture", "set_material",
+                               "set_lighting", "place_rig", "scene_from_text", "describe_scene", "validate_scene",
+                               "render_preview", "render_capture", "export_plan", "save_scene", "load_scene"}) {
     EXPECT_TRUE(names.count(required)) << required;
   }
 }
@@ -130,8 +127,7 @@ TEST_F(ToolsTest, AddRoomArgumentErrorsSayWhatIsAllowed) {
   EXPECT_THAT(Fails("add_room", {{"width_m", 6}, {"depth_m", 8}, {"colour", "red"}}),
               HasSubstr("arguments.colour: unknown argument; allowed: width_m, depth_m"));
   // Self-intersecting polygon: the scene's own validation, scene unchanged.
-  EXPECT_THAT(Fails("add_room", {{"polygon", {{0, 0}, {4, 4}, {4, 0}, {0, 4}}}}),
-              HasSubstr("nothing was changed"));
+  EXPECT_THAT(Fails("add_room", {{"polygon", {{0, 0}, {4, 4}, {4, 0}, {0, 4}}}}), HasSubstr("nothing was changed"));
   EXPECT_TRUE(tools_->scene().rooms.empty());
 }
 
@@ -146,8 +142,7 @@ TEST_F(ToolsTest, OpeningErrorsNameTheArgument) {
               HasSubstr("arguments.height_m: sill 1.00 m + height 2.00 m = 3.00 m is above the 2.50 m ceiling"));
   EXPECT_THAT(Fails("add_door", {{"wall", 1}, {"offset_m", 2.5}, {"width_m", 0.9}}),
               HasSubstr("arguments.offset_m: the door would end at 3.40 m but wall 1 is 3.00 m long"));
-  EXPECT_THAT(Fails("add_window", {{"wall", 1}, {"count", 3}, {"width_m", 1.2}}),
-              HasSubstr("do not fit on wall 1"));
+  EXPECT_THAT(Fails("add_window", {{"wall", 1}, {"count", 3}, {"width_m", 1.2}}), HasSubstr("do not fit on wall 1"));
   EXPECT_THAT(Fails("add_door", {{"side", "up"}}), HasSubstr("arguments.side: must be one of \"north\""));
   // Overlap with an existing opening: scene validation, nothing changed.
   Ok("add_door", {{"wall", 0}, {"offset_m", 1}});
@@ -172,8 +167,8 @@ TEST_F(ToolsTest, FurnitureMaterialsLightingAndRig) {
   EXPECT_THAT(Fails("add_furniture", {{"centre", {1, 1}}, {"size_m", {0, 1, 1}}}),
               HasSubstr("arguments.size_m[0]: must be > 0"));
 
-  std::string m = Ok("set_material", {{"name", "brick"}, {"base_color", {0.6, 0.3, 0.2}},
-                                      {"texture", "tiles"}, {"apply_to", "walls"}});
+  std::string m = Ok("set_material",
+                     {{"name", "brick"}, {"base_color", {0.6, 0.3, 0.2}}, {"texture", "tiles"}, {"apply_to", "walls"}});
   EXPECT_THAT(m, HasSubstr("applied to 1 walls"));
   EXPECT_EQ(tools_->scene().rooms[0].wall_material, "brick");
   EXPECT_THAT(Fails("set_material", {{"name", "x"}, {"texture", "marble"}}),
@@ -233,8 +228,7 @@ TEST_F(ToolsTest, DescribeAndValidate) {
   v = tools_->Call("validate_scene", nullptr);
   EXPECT_EQ(v.structured["valid"], true);
   EXPECT_THAT(v.content[0].text, HasSubstr("valid"));
-  EXPECT_THAT(Fails("validate_scene", {{"strict", true}}),
-              HasSubstr("this tool takes no arguments"));
+  EXPECT_THAT(Fails("validate_scene", {{"strict", true}}), HasSubstr("this tool takes no arguments"));
 }
 
 TEST_F(ToolsTest, RenderPreviewReturnsAPngImage) {
@@ -296,15 +290,14 @@ TEST_F(ToolsTest, LoadSceneReportsFileProblemsAndLimits) {
 }
 
 TEST_F(ToolsTest, SceneFromTextBuildsTheExampleRoom) {
-  std::string reply = Ok("scene_from_text",
-                         {{"text", "a 6 by 8 m classroom, 3 m high, with a 1 m wide door on the east "
-                                   "wall and two 1.5 m windows on the north wall"}});
+  std::string reply = Ok("scene_from_text", {{"text",
+                                              "a 6 by 8 m classroom, 3 m high, with a 1 m wide door on the east "
+                                              "wall and two 1.5 m windows on the north wall"}});
   EXPECT_THAT(reply, HasSubstr("6.00 × 8.00 m"));
   ToolResult r = tools_->Call("export_plan", nullptr);
   ASSERT_FALSE(r.is_error) << r.content[0].text;
   EXPECT_EQ(r.structured["openings"].size(), 3u);
-  EXPECT_THAT(Fails("scene_from_text", {{"text", std::string(5000, 'a')}}),
-              HasSubstr("at most 4000 characters"));
+  EXPECT_THAT(Fails("scene_from_text", {{"text", std::string(5000, 'a')}}), HasSubstr("at most 4000 characters"));
 }
 
 TEST_F(ToolsTest, RandomSceneIsDeterministicPerSeedAndChecksItsOptions) {
@@ -314,10 +307,8 @@ TEST_F(ToolsTest, RandomSceneIsDeterministicPerSeedAndChecksItsOptions) {
   EXPECT_NE(SceneToJson(tools_->scene()).dump(), first);
   Ok("random_scene", {{"seed", 7}});
   EXPECT_EQ(SceneToJson(tools_->scene()).dump(), first);
-  EXPECT_THAT(Fails("random_scene", {{"max_openings", 40}}),
-              HasSubstr("arguments.max_openings: must be"));
-  EXPECT_THAT(Fails("random_scene", {{"min_side_m", 8.0}, {"max_side_m", 3.0}}),
-              HasSubstr("max_side_m"));
+  EXPECT_THAT(Fails("random_scene", {{"max_openings", 40}}), HasSubstr("arguments.max_openings: must be"));
+  EXPECT_THAT(Fails("random_scene", {{"min_side_m", 8.0}, {"max_side_m", 3.0}}), HasSubstr("max_side_m"));
 }
 
 TEST_F(ToolsTest, RemoveItem) {
@@ -364,8 +355,8 @@ TEST_F(ToolsTest, RenderCaptureWritesACompleteFolderWithProgress) {
   EXPECT_FALSE(HasTempFolders(root_ / "ws"));
   // Again without overwrite: refused before rendering; with it: replaced.
   EXPECT_THAT(Fails("render_capture", {{"output", "captures/a"}}), HasSubstr("already exists"));
-  EXPECT_FALSE(tools_->Call("render_capture", {{"output", "captures/a"}, {"overwrite", true},
-                                               {"samples_per_pixel", 1}}).is_error);
+  EXPECT_FALSE(tools_->Call("render_capture", {{"output", "captures/a"}, {"overwrite", true}, {"samples_per_pixel", 1}})
+                   .is_error);
   EXPECT_THAT(Fails("render_capture", {{"output", "../a"}}), HasSubstr("contains \"..\""));
 }
 

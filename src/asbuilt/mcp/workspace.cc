@@ -42,9 +42,9 @@ fs::path Workspace::Resolve(std::string_view relative, std::string_view argument
   std::string shown(relative.substr(0, 80));
   if (relative.size() > 80) shown += "...";
   auto refuse = [&](std::string_view why) {
-    throw InvalidArgument(fmt::format(
-        "{}: \"{}\" {}; give a relative path inside the workspace, such as \"scenes/room.json\"",
-        argument, shown, why));
+    throw InvalidArgument(
+        fmt::format("{}: \"{}\" {}; give a relative path inside the workspace, such as \"scenes/room.json\"", argument,
+                    shown, why));
   };
   if (relative.empty()) refuse("is empty");
   for (char c : relative) {
@@ -92,10 +92,8 @@ int Workspace::RemoveStaleTemps() const {
   return removed;
 }
 
-TempOutputDir::TempOutputDir(const Workspace& workspace, const fs::path& final_path)
-    : final_(final_path) {
-  temp_ = workspace.root() / fmt::format("{}{}-{}-{}", kWorkspaceTempPrefix,
-                                         final_path.filename().string(), ::getpid(),
+TempOutputDir::TempOutputDir(const Workspace& workspace, const fs::path& final_path) : final_(final_path) {
+  temp_ = workspace.root() / fmt::format("{}{}-{}-{}", kWorkspaceTempPrefix, final_path.filename().string(), ::getpid(),
                                          temp_counter.fetch_add(1));
   std::error_code ec;
   fs::create_directories(temp_, ec);
@@ -115,9 +113,8 @@ void TempOutputDir::Commit(bool replace) {
   fs::path aside;
   if (fs::exists(fs::symlink_status(final_, ec))) {
     if (!replace) {
-      throw InvalidArgument(fmt::format(
-          "{} already exists; choose another output name or pass overwrite: true",
-          final_.filename().string()));
+      throw InvalidArgument(fmt::format("{} already exists; choose another output name or pass overwrite: true",
+                                        final_.filename().string()));
     }
     aside = temp_.string() + "-old";
     fs::rename(final_, aside, ec);

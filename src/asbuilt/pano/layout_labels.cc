@@ -14,9 +14,12 @@ namespace {
 
 std::uint8_t LabelOfOpening(ZindOpeningKind kind) {
   switch (kind) {
-    case ZindOpeningKind::kDoor: return 2;
-    case ZindOpeningKind::kWindow: return 3;
-    case ZindOpeningKind::kOpening: return kPassageLabel;
+    case ZindOpeningKind::kDoor:
+      return 2;
+    case ZindOpeningKind::kWindow:
+      return 3;
+    case ZindOpeningKind::kOpening:
+      return kPassageLabel;
   }
   return kPassageLabel;
 }
@@ -105,8 +108,8 @@ Image LayoutLabels(const ZindPanorama& pano, const PanoView& view, ZindLayoutKin
   for (int v = 0; v < labels.height(); ++v) {
     std::uint8_t* row = labels.Row<std::uint8_t>(v);
     for (int u = 0; u < labels.width(); ++u) {
-      row[u] = scene.Label(world_from_camera * Vec3((u - view.camera.cx) / view.camera.fx,
-                                                    (v - view.camera.cy) / view.camera.fy, 1.0));
+      row[u] = scene.Label(world_from_camera *
+                           Vec3((u - view.camera.cx) / view.camera.fx, (v - view.camera.cy) / view.camera.fy, 1.0));
     }
   }
   return labels;
@@ -119,7 +122,8 @@ Image LayoutLabelsEquirect(const ZindPanorama& pano, int width_px, int height_px
   Image labels(width_px, height_px, 1, PixelType::kU8);
   for (int v = 0; v < height_px; ++v) {
     std::uint8_t* row = labels.Row<std::uint8_t>(v);
-    for (int u = 0; u < width_px; ++u) row[u] = scene.Label(DirectionFromEquirectPixel(Vec2(u, v), width_px, height_px));
+    for (int u = 0; u < width_px; ++u)
+      row[u] = scene.Label(DirectionFromEquirectPixel(Vec2(u, v), width_px, height_px));
   }
   return labels;
 }

@@ -38,7 +38,7 @@ Image LayoutLabels(const ZindPanorama& pano, const PanoView& view, ZindLayoutKin
 
 // The label map of the whole panorama as a W × H equirectangular image.
 Image LayoutLabelsEquirect(const ZindPanorama& pano, int width_px, int height_px,
-                             ZindLayoutKind layout = ZindLayoutKind::kRaw);
+                           ZindLayoutKind layout = ZindLayoutKind::kRaw);
 
 // Labels over an image, to look at: wall blue, door green, window red (the
 // colours of `asbuilt segment --overlay`), ignore grey; background as is.

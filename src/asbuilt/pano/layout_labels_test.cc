@@ -24,8 +24,18 @@ ZindPanorama SquareRoom() {
   p.layout_raw.vertices_m = {{-2, -2}, {2, -2}, {2, 2}, {-2, 2}};  // Walls 0: −Y, 1: +X, 2: +Y, 3: −X.
   p.layout_raw.openings = {
       {.kind = ZindOpeningKind::kDoor, .start_m = {0.5, 2}, .end_m = {-0.5, 2}, .bottom_m = 0, .top_m = 2, .wall = 2},
-      {.kind = ZindOpeningKind::kWindow, .start_m = {-2, 0.5}, .end_m = {-2, -0.5}, .bottom_m = 1, .top_m = 2, .wall = 3},
-      {.kind = ZindOpeningKind::kOpening, .start_m = {0.5, -2}, .end_m = {1.5, -2}, .bottom_m = 0, .top_m = 2.5, .wall = 0},
+      {.kind = ZindOpeningKind::kWindow,
+       .start_m = {-2, 0.5},
+       .end_m = {-2, -0.5},
+       .bottom_m = 1,
+       .top_m = 2,
+       .wall = 3},
+      {.kind = ZindOpeningKind::kOpening,
+       .start_m = {0.5, -2},
+       .end_m = {1.5, -2},
+       .bottom_m = 0,
+       .top_m = 2.5,
+       .wall = 0},
   };
   return p;
 }
@@ -45,14 +55,14 @@ TEST(LayoutLabels, LabelsWallsDoorsWindowsAndPassagesWhereTheyAre) {
   const PanoView north{.yaw_deg = 0};  // Looks along +Y, at the door's wall.
   const cv::Mat labels = AsMat(LayoutLabels(room, north));
   ASSERT_EQ(labels.size(), cv::Size(640, 480));
-  EXPECT_EQ(LabelAt(labels, north, {0, 2, 1.0}, 1.5), 2);     // Door.
-  EXPECT_EQ(LabelAt(labels, north, {0, 2, 2.2}, 1.5), 1);     // Wall above the door.
-  EXPECT_EQ(LabelAt(labels, north, {1.2, 2, 1.0}, 1.5), 1);   // Wall beside it.
-  const PanoView down{.yaw_deg = 0, .pitch_deg = -40};  // A level view sees no floor in this room.
+  EXPECT_EQ(LabelAt(labels, north, {0, 2, 1.0}, 1.5), 2);    // Door.
+  EXPECT_EQ(LabelAt(labels, north, {0, 2, 2.2}, 1.5), 1);    // Wall above the door.
+  EXPECT_EQ(LabelAt(labels, north, {1.2, 2, 1.0}, 1.5), 1);  // Wall beside it.
+  const PanoView down{.yaw_deg = 0, .pitch_deg = -40};       // A level view sees no floor in this room.
   EXPECT_EQ(LabelAt(AsMat(LayoutLabels(room, down)), down, {0.3, 1.2, 0}, 1.5), 0);  // Floor.
   EXPECT_EQ(LabelAt(AsMat(LayoutLabels(room, down)), down, {0.3, 2, 0.3}, 1.5), 2);  // Door.
-  EXPECT_EQ(labels.at<std::uint8_t>(0, 320), 0);              // Ceiling (the top row looks 31° up).
-  const PanoView west{.yaw_deg = 90};  // Looks along −X.
+  EXPECT_EQ(labels.at<std::uint8_t>(0, 320), 0);  // Ceiling (the top row looks 31° up).
+  const PanoView west{.yaw_deg = 90};             // Looks along −X.
   const cv::Mat w = AsMat(LayoutLabels(room, west));
   EXPECT_EQ(LabelAt(w, west, {-2, 0, 1.5}, 1.5), 3);  // Window.
   EXPECT_EQ(LabelAt(w, west, {-2, 0, 0.5}, 1.5), 1);  // Wall below the sill.
@@ -76,8 +86,8 @@ TEST(LayoutLabels, NearestWallHidesTheWallsBehindIt) {
   // the east wall behind the notch (x = 2, y 2.5…3.5), hidden from the camera.
   ZindPanorama room = SquareRoom();
   room.layout_raw.vertices_m = {{-2, -2}, {2, -2}, {2, 1}, {1, 1}, {1, 2}, {2, 2}, {2, 4}, {-2, 4}};
-  room.layout_raw.openings = {{.kind = ZindOpeningKind::kDoor, .start_m = {2, 2.5}, .end_m = {2, 3.5},
-                               .bottom_m = 0, .top_m = 2.5, .wall = 5}};
+  room.layout_raw.openings = {
+      {.kind = ZindOpeningKind::kDoor, .start_m = {2, 2.5}, .end_m = {2, 3.5}, .bottom_m = 0, .top_m = 2.5, .wall = 5}};
   // Towards (2, 3, 1.5): through the notch's wall (x = 1, y = 1.5) first.
   EXPECT_EQ(LayoutLabelOfRay(room, room.layout_raw, Vec3(2, 3, 0)), 1);
   // Steeply up: the notch's wall at 1.8 m distance, 3.5 m high: the ceiling first.
@@ -97,8 +107,9 @@ TEST(LayoutLabels, EquirectLabelsAgreeWithTheViews) {
   const Vec2 door = EquirectPixelFromDirection(Vec3(0, 2, 1.0 - 1.5), 720, 360);
   EXPECT_EQ(equirect.at<std::uint8_t>(static_cast<int>(std::lround(door.y())), 0), 2);
   const Vec2 window = EquirectPixelFromDirection(Vec3(-2, 0, 0), 720, 360);  // Yaw +90°: 3/4 across.
-  EXPECT_EQ(equirect.at<std::uint8_t>(static_cast<int>(std::lround(window.y())),
-                                      static_cast<int>(std::lround(window.x()))), 3);
+  EXPECT_EQ(
+      equirect.at<std::uint8_t>(static_cast<int>(std::lround(window.y())), static_cast<int>(std::lround(window.x()))),
+      3);
   EXPECT_NEAR(window.x(), 539.5, 1e-9);
 }
 

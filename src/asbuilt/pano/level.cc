@@ -68,9 +68,12 @@ std::vector<Segment> DetectSegments(const cv::Mat& grey, const LevelOptions& opt
   const int height = static_cast<int>(std::ceil(2 * f * std::tan(DegToRad(0.5 * options.view_vertical_fov_deg))));
   std::vector<PanoView> views;
   for (int set = 0; set < kViewSets; ++set) {
-    const std::vector<PanoView> turn =
-        TurnInPlaceViews({.width_px = width, .height_px = height, .fx = f, .views = options.views,
-                          .yaw_step_deg = sector_deg, .first_yaw_deg = set * sector_deg / kViewSets});
+    const std::vector<PanoView> turn = TurnInPlaceViews({.width_px = width,
+                                                         .height_px = height,
+                                                         .fx = f,
+                                                         .views = options.views,
+                                                         .yaw_step_deg = sector_deg,
+                                                         .first_yaw_deg = set * sector_deg / kViewSets});
     views.insert(views.end(), turn.begin(), turn.end());
   }
   const Image pano = AsImage(grey);
@@ -185,7 +188,8 @@ Mat3 FrameAroundUp(const std::vector<Segment>& segments, const Vec3& up, double 
     double score = 0;
     for (const Segment& s : segments) {
       const double z = std::min(std::abs(s.normal.dot(h1) / ResidualScale(s, h1)),
-                                std::abs(s.normal.dot(h2) / ResidualScale(s, h2))) / (kCauchyC * scale);
+                                std::abs(s.normal.dot(h2) / ResidualScale(s, h2))) /
+                       (kCauchyC * scale);
       score += 1.0 / (1 + z * z);
     }
     if (score > best_score) {
@@ -228,8 +232,8 @@ FrameFit FitFrame(const std::vector<Segment>& segments, const std::vector<int>& 
     }
     const Vec3 omega = normal_matrix.ldlt().solve(rhs);
     if (!omega.allFinite()) break;
-    const Mat3 turn = omega.norm() > 0 ? Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix()
-                                       : Mat3::Identity();
+    const Mat3 turn =
+        omega.norm() > 0 ? Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix() : Mat3::Identity();
     fit.frame = turn * fit.frame;
     if (omega.norm() < 1e-10) break;
   }
@@ -324,7 +328,8 @@ PanoTilt EstimatePanoTilt(const Image& equirect, const LevelOptions& options) {
     all.push_back(static_cast<int>(i));
     if (segments[i].vertical) vertical.push_back(static_cast<int>(i));
   }
-  PanoTilt tilt{.lines_used = static_cast<int>(vertical.size()), .vertical_lines = static_cast<int>(vertical.size()),
+  PanoTilt tilt{.lines_used = static_cast<int>(vertical.size()),
+                .vertical_lines = static_cast<int>(vertical.size()),
                 .sigma_deg = NAN};
   if (tilt.vertical_lines < options.min_lines) return tilt;
 

@@ -39,8 +39,8 @@
 namespace asbuilt {
 
 struct LevelOptions {
-  double max_tilt_deg = 10.0;          // Largest tilt searched; a segment whose plane misses up by more is not vertical.
-  int views = 8;                       // Views per turn (two turns, offset by half a step), evenly turned.
+  double max_tilt_deg = 10.0;  // Largest tilt searched; a segment whose plane misses up by more is not vertical.
+  int views = 8;               // Views per turn (two turns, offset by half a step), evenly turned.
   double view_vertical_fov_deg = 120;  // Each view's vertical field of view (< 180); taller sees more of each edge.
   double min_segment_deg = 3.0;        // Shortest segment used, as an angle seen from the centre.
   bool use_horizontal_lines = true;    // Also fit the room's horizontal Manhattan lines (off: vertical lines only).

@@ -49,9 +49,9 @@ double ShadeOfRay(const Vec3& ray) {
     if (std::abs(along + 0.33) < 0.03 || std::abs(along - 0.33) < 0.03) return 70;
     return z > 1.45 ? 245 : 225;
   }
-  if (z < 0.12) return 55;                 // Skirting.
-  if (z > 0.95 && z < 1.0) return 95;      // Dado rail.
-  if (z > 2.55) return 215;                // Frieze.
+  if (z < 0.12) return 55;             // Skirting.
+  if (z > 0.95 && z < 1.0) return 95;  // Dado rail.
+  if (z > 2.55) return 215;            // Frieze.
   const double seam = along / 0.5 - std::floor(along / 0.5);
   if (seam < 0.05) return 75;  // Panel seams every 0.5 m, 2.5 cm wide.
   const double base[4] = {150, 175, 135, 190};
@@ -195,8 +195,13 @@ TEST(EstimatePanoTilt, RefusesBadImagesNamingWhatIsWrong) {
 }
 
 TEST(PanoTilt, BriefReportSaysHowMuchWhichWayAndOnWhat) {
-  const PanoTilt tilt{.up_in_pano = Vec3::UnitZ(), .tilt_deg = 0.8, .toward_yaw_deg = 327.6, .lines_used = 412,
-                      .vertical_lines = 130, .sigma_deg = 0.031, .found = true};
+  const PanoTilt tilt{.up_in_pano = Vec3::UnitZ(),
+                      .tilt_deg = 0.8,
+                      .toward_yaw_deg = 327.6,
+                      .lines_used = 412,
+                      .vertical_lines = 130,
+                      .sigma_deg = 0.031,
+                      .found = true};
   EXPECT_EQ(tilt.BriefReport(), "tilted 0.80° toward yaw 328° ± 0.03°, 412 lines (130 vertical)");
   EXPECT_EQ(tilt.BriefReport(1024),
             "tilted 0.80° toward yaw 328° (column 92 of 1024) ± 0.03°, 412 lines (130 vertical)");

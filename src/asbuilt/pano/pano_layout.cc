@@ -106,7 +106,9 @@ cv::Mat CumulativeLabelVotes(const cv::Mat& labels, int rows, int columns, bool 
       continue;
     }
     for (int x = 0; x < columns; ++x) {
-      const float vote = l[x] == kBackground ? -1.0f : (l[x] == kWall || l[x] == kDoor || l[x] == kWindow) ? 1.0f : 0.0f;
+      const float vote = l[x] == kBackground                                   ? -1.0f
+                         : (l[x] == kWall || l[x] == kDoor || l[x] == kWindow) ? 1.0f
+                                                                               : 0.0f;
       here[x] = above[x] + vote;
     }
   }
@@ -149,8 +151,7 @@ struct PathFit {
 // The states of a dynamic programme's best path, step by step, from its
 // last costs and each step's back-pointers (steps × states); `score` gets
 // minus the path's cost.
-std::vector<int> Backtrack(const std::vector<float>& last_cost, const std::vector<std::int16_t>& from,
-                           double* score) {
+std::vector<int> Backtrack(const std::vector<float>& last_cost, const std::vector<std::int16_t>& from, double* score) {
   const int states = static_cast<int>(last_cost.size());
   const int steps = static_cast<int>(from.size() / last_cost.size());
   int state = static_cast<int>(std::min_element(last_cost.begin(), last_cost.end()) - last_cost.begin());
@@ -477,8 +478,8 @@ void PanoLayoutOptions::Check() const {
     CheckArgument(std::isfinite(value) && value >= 0,
                   fmt::format("PanoLayoutOptions.{} = {}, must be finite and >= 0", name, value));
   }
-  CheckArgument(min_wall_columns >= 1, fmt::format("PanoLayoutOptions.min_wall_columns = {}, must be >= 1",
-                                                   min_wall_columns));
+  CheckArgument(min_wall_columns >= 1,
+                fmt::format("PanoLayoutOptions.min_wall_columns = {}, must be >= 1", min_wall_columns));
   CheckArgument(support_half_width >= 0 && support_half_width <= 256,
                 fmt::format("PanoLayoutOptions.support_half_width = {}, must be in 0..256", support_half_width));
   CheckArgument(smooth_bins >= 0 && smooth_bins < distance_bins,
@@ -488,26 +489,31 @@ void PanoLayoutOptions::Check() const {
 const FieldList<PanoLayoutOptions>& PanoLayoutOptionFields() {
   using O = PanoLayoutOptions;
   static const FieldList<PanoLayoutOptions> kList = {
-      Bind(&O::width_px, {.name = "width_px", .description = "Working panorama width (height half of it), px.",
-                          .minimum = 64.0, .maximum = 8192.0}),
-      Bind(&O::min_distance_m, {.name = "min_distance_m", .description = "Nearest wall distance tried, m.",
+      Bind(&O::width_px, {.name = "width_px",
+                          .description = "Working panorama width (height half of it), px.",
+                          .minimum = 64.0,
+                          .maximum = 8192.0}),
+      Bind(&O::min_distance_m,
+           {.name = "min_distance_m", .description = "Nearest wall distance tried, m.", .exclusive_minimum = 0.0}),
+      Bind(&O::max_distance_m,
+           {.name = "max_distance_m", .description = "Farthest wall distance tried, m.", .exclusive_minimum = 0.0}),
+      Bind(&O::distance_bins, {.name = "distance_bins",
+                               .description = "Log-spaced distance bins between them.",
+                               .minimum = 8.0,
+                               .maximum = 4096.0}),
+      Bind(&O::min_ceiling_m,
+           {.name = "min_ceiling_m", .description = "Lowest ceiling height tried, m.", .exclusive_minimum = 0.0}),
+      Bind(&O::max_ceiling_m,
+           {.name = "max_ceiling_m", .description = "Highest ceiling height tried, m.", .exclusive_minimum = 0.0}),
+      Bind(&O::ceiling_step_m, {.name = "ceiling_step_m",
+                                .description = "Step between ceiling heights tried, m.",
                                 .exclusive_minimum = 0.0}),
-      Bind(&O::max_distance_m, {.name = "max_distance_m", .description = "Farthest wall distance tried, m.",
-                                .exclusive_minimum = 0.0}),
-      Bind(&O::distance_bins, {.name = "distance_bins", .description = "Log-spaced distance bins between them.",
-                               .minimum = 8.0, .maximum = 4096.0}),
-      Bind(&O::min_ceiling_m, {.name = "min_ceiling_m", .description = "Lowest ceiling height tried, m.",
-                               .exclusive_minimum = 0.0}),
-      Bind(&O::max_ceiling_m, {.name = "max_ceiling_m", .description = "Highest ceiling height tried, m.",
-                               .exclusive_minimum = 0.0}),
-      Bind(&O::ceiling_step_m, {.name = "ceiling_step_m", .description = "Step between ceiling heights tried, m.",
-                                .exclusive_minimum = 0.0}),
-      Bind(&O::floor_edge_weight,
-           {.name = "floor_edge_weight", .description = "Weight of the image's edge at a column's floor edge.",
-            .minimum = 0.0}),
-      Bind(&O::ceiling_edge_weight,
-           {.name = "ceiling_edge_weight", .description = "Weight of the image's edge at a column's ceiling edge.",
-            .minimum = 0.0}),
+      Bind(&O::floor_edge_weight, {.name = "floor_edge_weight",
+                                   .description = "Weight of the image's edge at a column's floor edge.",
+                                   .minimum = 0.0}),
+      Bind(&O::ceiling_edge_weight, {.name = "ceiling_edge_weight",
+                                     .description = "Weight of the image's edge at a column's ceiling edge.",
+                                     .minimum = 0.0}),
       Bind(&O::label_weight_per_row,
            {.name = "label_weight_per_row",
             .description = "Weight per row of the labels agreeing with the wall band (0: labels unused).",
@@ -515,28 +521,30 @@ const FieldList<PanoLayoutOptions>& PanoLayoutOptionFields() {
       Bind(&O::max_edge_elevation_deg,
            {.name = "max_edge_elevation_deg",
             .description = "Edges count only this close to the horizon (not the camera mount or a ceiling light), deg.",
-            .exclusive_minimum = 0.0, .maximum = 90.0}),
+            .exclusive_minimum = 0.0,
+            .maximum = 90.0}),
       Bind(&O::labels_below_horizon_only,
            {.name = "labels_below_horizon_only",
             .description = "Labels vote only below the horizon (a segmenter trained on renders takes a real "
                            "white ceiling for wall)."}),
-      Bind(&O::smooth_cost_per_bin,
-           {.name = "smooth_cost_per_bin", .description = "Cost per distance bin changed between columns.",
-            .minimum = 0.0}),
+      Bind(&O::smooth_cost_per_bin, {.name = "smooth_cost_per_bin",
+                                     .description = "Cost per distance bin changed between columns.",
+                                     .minimum = 0.0}),
       Bind(&O::manhattan,
            {.name = "manhattan",
             .description = "Walls meet at right angles (one direction and its right angles); off: any distances."}),
-      Bind(&O::corner_cost,
-           {.name = "corner_cost", .description = "Manhattan: cost of a room corner (one wall meeting the next).",
-            .minimum = 0.0}),
+      Bind(&O::corner_cost, {.name = "corner_cost",
+                             .description = "Manhattan: cost of a room corner (one wall meeting the next).",
+                             .minimum = 0.0}),
       Bind(&O::min_column_support,
            {.name = "min_column_support",
             .description = "A column shows its wall when the median edge strength at its floor plus ceiling row, "
                            "over the columns around it, is at least this (0: every column).",
             .minimum = 0.0}),
-      Bind(&O::support_half_width,
-           {.name = "support_half_width", .description = "Columns each side in that median.", .minimum = 0.0,
-            .maximum = 256.0}),
+      Bind(&O::support_half_width, {.name = "support_half_width",
+                                    .description = "Columns each side in that median.",
+                                    .minimum = 0.0,
+                                    .maximum = 256.0}),
       Bind(&O::close_polygon,
            {.name = "close_polygon",
             .description = "Manhattan: redraw every column on the room polygon the path's walls close into."}),
@@ -553,8 +561,7 @@ const FieldList<PanoLayoutOptions>& PanoLayoutOptionFields() {
       Bind(&O::smooth_bins,
            {.name = "smooth_bins", .description = "Largest smooth change between columns, bins.", .minimum = 0.0}),
       Bind(&O::jump_cost,
-           {.name = "jump_cost", .description = "Cost of a larger change (one wall before another).",
-            .minimum = 0.0}),
+           {.name = "jump_cost", .description = "Cost of a larger change (one wall before another).", .minimum = 0.0}),
   };
   return kList;
 }
@@ -585,9 +592,9 @@ std::string PanoLayout::BriefReport() const {
   const int shown = static_cast<int>(std::count(supported.begin(), supported.end(), true));
   return fmt::format("layout: ceiling {:.2f} m, walls {:.1f}–{:.1f} m away (median {:.1f} m), {}", ceiling_height_m,
                      sorted.front(), sorted.back(), sorted[sorted.size() / 2],
-                     polygon_m.empty() ? fmt::format("{} of {} columns shown", supported.empty() ? Columns() : shown,
-                                                     Columns())
-                                       : fmt::format("closed into a {}-corner polygon", polygon_m.size()));
+                     polygon_m.empty()
+                         ? fmt::format("{} of {} columns shown", supported.empty() ? Columns() : shown, Columns())
+                         : fmt::format("closed into a {}-corner polygon", polygon_m.size()));
 }
 
 PanoLayout EstimatePanoLayout(const cv::Mat& equirect_bgr, double camera_height_m, const cv::Mat& labels_equirect,
@@ -665,8 +672,8 @@ PanoLayout EstimatePanoLayout(const cv::Mat& equirect_bgr, double camera_height_
   for (int x = 0; x < columns; ++x) layout.distance_m[x] = distances_m[best.bins[x]];
   layout.supported = SupportedColumns(edges, layout, options);
   if (direction && options.close_polygon) {
-    std::vector<Vec2> polygon = ManhattanPolygon(best.states, layout.supported, distances_m, *direction, directions,
-                                                 options.min_wall_columns);
+    std::vector<Vec2> polygon =
+        ManhattanPolygon(best.states, layout.supported, distances_m, *direction, directions, options.min_wall_columns);
     std::vector<double> closed(columns);
     bool inside = !polygon.empty();
     for (int x = 0; x < columns && inside; ++x) {
@@ -686,8 +693,8 @@ PanoLayout EstimatePanoLayout(const cv::Mat& equirect_bgr, double camera_height_
 }
 
 cv::Mat EquirectFromViewLabels(const std::vector<PanoView>& views, const std::vector<cv::Mat>& labels, int width_px) {
-  CheckArgument(views.size() == labels.size(), fmt::format("EquirectFromViewLabels: {} views but {} label maps",
-                                                           views.size(), labels.size()));
+  CheckArgument(views.size() == labels.size(),
+                fmt::format("EquirectFromViewLabels: {} views but {} label maps", views.size(), labels.size()));
   CheckArgument(width_px >= 2 && width_px % 2 == 0,
                 fmt::format("EquirectFromViewLabels: width_px = {}, must be even and >= 2", width_px));
   const int rows = width_px / 2;

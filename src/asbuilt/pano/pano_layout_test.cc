@@ -102,8 +102,8 @@ TEST(EstimatePanoLayout, ClosesABoxRoomIntoItsFourCorners) {
       EstimatePanoLayout(room.Render(1024, 11), room.camera_height_m, cv::Mat(), {.close_polygon = true});
   ASSERT_EQ(layout.polygon_m.size(), 4u) << layout.BriefReport();
   const double a = DegToRad(room.rotation_deg);
-  for (const Vec2& box : {room.min_m, Vec2(room.max_m.x(), room.min_m.y()), room.max_m,
-                          Vec2(room.min_m.x(), room.max_m.y())}) {
+  for (const Vec2& box :
+       {room.min_m, Vec2(room.max_m.x(), room.min_m.y()), room.max_m, Vec2(room.min_m.x(), room.max_m.y())}) {
     const Vec2 corner(std::cos(a) * box.x() - std::sin(a) * box.y(), std::sin(a) * box.x() + std::cos(a) * box.y());
     double nearest = 1e9;
     for (const Vec2& p : layout.polygon_m) nearest = std::min(nearest, (p - corner).norm());
@@ -130,8 +130,8 @@ TEST(EstimatePanoLayout, BridgesColumnsThePhotoDoesNotShowWithTheWallsBesideThem
   };
   const PanoLayout shown = EstimatePanoLayout(photo, room.camera_height_m, cv::Mat(), {});
   EXPECT_FALSE(shown.supported[357]) << "the hidden columns are not shown";
-  const PanoLayout bridged = EstimatePanoLayout(photo, room.camera_height_m, cv::Mat(),
-                                                {.close_polygon = true, .polygon_gaps_only = true});
+  const PanoLayout bridged =
+      EstimatePanoLayout(photo, room.camera_height_m, cv::Mat(), {.close_polygon = true, .polygon_gaps_only = true});
   ASSERT_FALSE(bridged.polygon_m.empty()) << bridged.BriefReport();
   EXPECT_TRUE(bridged.supported[357]);
   EXPECT_LT(gap_error(bridged), 0.05) << "the walls beside the gap carry through it";
@@ -174,8 +174,8 @@ TEST(LayoutViewLabels, DrawsTheWallBandAndKeepsOpeningsInsideIt) {
 }
 
 TEST(EquirectFromViewLabels, EachPixelTakesTheViewThatSeesIt) {
-  const std::vector<PanoView> views = TurnInPlaceViews({.width_px = 64, .height_px = 64, .fx = 32, .views = 4,
-                                                        .yaw_step_deg = 90});
+  const std::vector<PanoView> views =
+      TurnInPlaceViews({.width_px = 64, .height_px = 64, .fx = 32, .views = 4, .yaw_step_deg = 90});
   std::vector<cv::Mat> labels;
   for (int i = 0; i < 4; ++i) labels.emplace_back(64, 64, CV_8UC1, cv::Scalar(i));
   const cv::Mat gathered = EquirectFromViewLabels(views, labels, 128);

@@ -31,9 +31,9 @@ std::string PanoViewsSummary::BriefReport() const {
 Image ReadEquirect(const fs::path& path) {
   const cv::Mat image = ReadColourImage(path);
   if (std::abs(image.cols - 2 * image.rows) > 1) {
-    throw InputError(path.string(), "",
-                     fmt::format("{}x{} is not an equirectangular panorama (twice as wide as high)", image.cols,
-                                 image.rows));
+    throw InputError(
+        path.string(), "",
+        fmt::format("{}x{} is not an equirectangular panorama (twice as wide as high)", image.cols, image.rows));
   }
   return AsImage(image);
 }
@@ -55,8 +55,8 @@ PanoViewsSummary WritePanoViews(const fs::path& panorama, const fs::path& out_di
     const std::string name = fmt::format("{:03d}.png", i);
     const Image image = RenderPanoView(equirect, view);
     WriteImageAtomic(out_dir / "images" / name, image);
-    nlohmann::json frame = {{"index", i}, {"image", "images/" + name}, {"yaw_deg", view.yaw_deg},
-                            {"pitch_deg", view.pitch_deg}};
+    nlohmann::json frame = {
+        {"index", i}, {"image", "images/" + name}, {"yaw_deg", view.yaw_deg}, {"pitch_deg", view.pitch_deg}};
     if (height) frame["position_m"] = {0.0, 0.0, *height};
     if (zind) {
       const Image labels = LayoutLabels(*zind, view, options.layout);
@@ -65,19 +65,25 @@ PanoViewsSummary WritePanoViews(const fs::path& panorama, const fs::path& out_di
       if (options.overlays) WriteImageAtomic(out_dir / "overlays" / name, DrawLabelOverlay(image, labels));
     }
     frames.push_back(std::move(frame));
-    ReportProgress(progress, {.stage = "views", .done = static_cast<std::int64_t>(i + 1),
-                              .total = static_cast<std::int64_t>(views.size())});
+    ReportProgress(
+        progress,
+        {.stage = "views", .done = static_cast<std::int64_t>(i + 1), .total = static_cast<std::int64_t>(views.size())});
   }
 
-  nlohmann::json doc = {
-      {"version", 1},
-      {"kind", "mono"},
-      {"camera",
-       {{"width", cam.width_px}, {"height", cam.height_px}, {"fx", cam.fx}, {"fy", cam.fy}, {"cx", cam.cx},
-        {"cy", cam.cy}}},
-      {"source", {{"panorama", fs::absolute(panorama).lexically_normal().string()},
-                  {"width", equirect.width()}, {"height", equirect.height()}}},
-      {"frames", std::move(frames)}};
+  nlohmann::json doc = {{"version", 1},
+                        {"kind", "mono"},
+                        {"camera",
+                         {{"width", cam.width_px},
+                          {"height", cam.height_px},
+                          {"fx", cam.fx},
+                          {"fy", cam.fy},
+                          {"cx", cam.cx},
+                          {"cy", cam.cy}}},
+                        {"source",
+                         {{"panorama", fs::absolute(panorama).lexically_normal().string()},
+                          {"width", equirect.width()},
+                          {"height", equirect.height()}}},
+                        {"frames", std::move(frames)}};
   if (zind) {
     doc["source"]["zind"] = {{"pano", zind->Name()},
                              {"layout", ZindLayoutKindName(options.layout)},

@@ -32,16 +32,17 @@ struct PanoViewsOptions {
   // Camera height above the floor, metres, for each view's position_m; a
   // ZInD panorama's own height is used when this is unset.
   std::optional<double> camera_height_m;
-  bool overlays = false;  // ZInD only: also write overlays/NNN.png.
+  bool overlays = false;                         // ZInD only: also write overlays/NNN.png.
   ZindLayoutKind layout = ZindLayoutKind::kRaw;  // ZInD only: the layout the labels come from.
   void Check() const;
 };
 
 struct PanoViewsSummary {
   int views = 0;
-  bool labels = false;  // Labels and truth.json written (a ZInD panorama).
+  bool labels = false;               // Labels and truth.json written (a ZInD panorama).
   std::filesystem::path views_json;  // The mono capture.json.
-  std::string BriefReport() const;  // "12 views 640x480 (fx 400, yaw step 30°, pitch 0°) + layout labels → OUT/capture.json".
+  std::string BriefReport()
+      const;  // "12 views 640x480 (fx 400, yaw step 30°, pitch 0°) + layout labels → OUT/capture.json".
 };
 
 // Reads `panorama` (an equirectangular image) and writes its views into

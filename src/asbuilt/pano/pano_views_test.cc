@@ -79,8 +79,8 @@ TEST(WritePanoViews, WritesLabelsOverlaysAndTruthForAnAnnotatedPanorama) {
   const fs::path dir = FreshDir("zind");
   const fs::path pano = WriteGradientPanorama(dir);
   const ZindPanorama room = Room(pano);
-  const PanoViewsSummary s = WritePanoViews(pano, dir / "out", {.turn = {.views = 2, .yaw_step_deg = 180}, .overlays = true},
-                                            &room);
+  const PanoViewsSummary s =
+      WritePanoViews(pano, dir / "out", {.turn = {.views = 2, .yaw_step_deg = 180}, .overlays = true}, &room);
   EXPECT_TRUE(s.labels);
   const nlohmann::json j = nlohmann::json::parse(ReadFile(dir / "out/capture.json"));
   EXPECT_EQ(j["notice"], kZindNotice);

@@ -24,9 +24,7 @@ Mat3 PanoView::WorldFromCamera() const {
   return WorldFromCameraRotation(DegToRad(yaw_deg)) * tilt;
 }
 
-Vec3 PanoView::RayInWorld(const Vec2& pixel) const {
-  return WorldFromCamera() * UnprojectToCamera(camera, pixel, 1.0);
-}
+Vec3 PanoView::RayInWorld(const Vec2& pixel) const { return WorldFromCamera() * UnprojectToCamera(camera, pixel, 1.0); }
 
 void PanoView::Check() const {
   camera.Check();
@@ -64,7 +62,8 @@ void TurnInPlaceOptions::Check() const {
   CheckArgument(std::isfinite(fx) && fx > 0, fmt::format("TurnInPlaceOptions.fx = {}, must be > 0", fx));
   CheckArgument(std::isfinite(fy) && fy >= 0, fmt::format("TurnInPlaceOptions.fy = {}, must be >= 0 (0 = fx)", fy));
   CheckArgument(views > 0 && views <= 3600, fmt::format("TurnInPlaceOptions.views = {}, must be in 1..3600", views));
-  CheckArgument(std::isfinite(yaw_step_deg), fmt::format("TurnInPlaceOptions.yaw_step_deg = {}, must be finite", yaw_step_deg));
+  CheckArgument(std::isfinite(yaw_step_deg),
+                fmt::format("TurnInPlaceOptions.yaw_step_deg = {}, must be finite", yaw_step_deg));
   CheckArgument(std::isfinite(first_yaw_deg),
                 fmt::format("TurnInPlaceOptions.first_yaw_deg = {}, must be finite", first_yaw_deg));
   CheckArgument(std::isfinite(pitch_deg) && std::abs(pitch_deg) < 90,
@@ -81,7 +80,8 @@ std::vector<PanoView> TurnInPlaceViews(const TurnInPlaceOptions& options) {
                              .cy = 0.5 * options.height_px - 0.5};
   std::vector<PanoView> views;
   for (int i = 0; i < options.views; ++i) {
-    views.push_back({.camera = camera, .yaw_deg = options.first_yaw_deg + i * options.yaw_step_deg,
+    views.push_back({.camera = camera,
+                     .yaw_deg = options.first_yaw_deg + i * options.yaw_step_deg,
                      .pitch_deg = options.pitch_deg});
   }
   return views;
@@ -114,8 +114,8 @@ Image RenderPanoView(const Image& equirect, const PanoView& view) {
     float* mx = map_x.ptr<float>(v);
     float* my = map_y.ptr<float>(v);
     for (int u = 0; u < w; ++u) {
-      const Vec3 ray = world_from_camera * Vec3((u - view.camera.cx) / view.camera.fx,
-                                                (v - view.camera.cy) / view.camera.fy, 1.0);
+      const Vec3 ray =
+          world_from_camera * Vec3((u - view.camera.cx) / view.camera.fx, (v - view.camera.cy) / view.camera.fy, 1.0);
       const Vec2 p = EquirectPixelFromDirection(ray, source.cols, source.rows);
       mx[u] = static_cast<float>(p.x() + kSeamPad);
       my[u] = static_cast<float>(p.y());

@@ -38,7 +38,7 @@ struct PanoView {
   Mat3 WorldFromCamera() const;
   // The viewing ray of pixel (u, v) in the pano frame (not normalised).
   Vec3 RayInWorld(const Vec2& pixel) const;
-  void Check() const;  // Throws InvalidArgument naming a bad camera field or angle.
+  void Check() const;            // Throws InvalidArgument naming a bad camera field or angle.
   std::string ToString() const;  // "PanoView(640x480 fx=400.0 yaw 30.0° pitch 0.0°)".
 };
 
@@ -49,14 +49,14 @@ Vec3 DirectionFromEquirectPixel(const Vec2& pixel, int width_px, int height_px);
 
 // Evenly turned views: `views` views, yaw first_yaw_deg + i·yaw_step_deg.
 struct TurnInPlaceOptions {
-  int width_px = 640;   // View size.
+  int width_px = 640;  // View size.
   int height_px = 480;
-  double fx = 400.0;    // Focal length, pixels (400 at 640 px wide: 77° horizontal field of view).
-  double fy = 0.0;      // 0 = fx (square pixels).
+  double fx = 400.0;  // Focal length, pixels (400 at 640 px wide: 77° horizontal field of view).
+  double fy = 0.0;    // 0 = fx (square pixels).
   int views = 12;
   double yaw_step_deg = 30.0;  // Positive turns counter-clockwise seen from above.
   double first_yaw_deg = 0.0;
-  double pitch_deg = 0.0;      // Every view's tilt, up positive; |pitch| < 90.
+  double pitch_deg = 0.0;  // Every view's tilt, up positive; |pitch| < 90.
   void Check() const;
 };
 std::vector<PanoView> TurnInPlaceViews(const TurnInPlaceOptions& options);

@@ -55,8 +55,8 @@ TEST(PanoView, OpticalAxisFollowsYawAndPitch) {
 }
 
 TEST(TurnInPlaceViews, TurnsCounterClockwiseBySteps) {
-  const std::vector<PanoView> views = TurnInPlaceViews({.width_px = 320, .height_px = 240, .fx = 200, .views = 4,
-                                                        .yaw_step_deg = 90, .pitch_deg = 10});
+  const std::vector<PanoView> views =
+      TurnInPlaceViews({.width_px = 320, .height_px = 240, .fx = 200, .views = 4, .yaw_step_deg = 90, .pitch_deg = 10});
   ASSERT_EQ(views.size(), 4u);
   EXPECT_DOUBLE_EQ(views[3].yaw_deg, 270);
   EXPECT_DOUBLE_EQ(views[1].pitch_deg, 10);
@@ -132,7 +132,8 @@ TEST(RenderPanoView, AveragesALargePanoramaForASmallView) {
   for (int v = 0; v < kH; ++v)
     for (int u = 0; u < kW; ++u) pano.at<cv::Vec3b>(v, u) = (u + v) % 2 ? cv::Vec3b(255, 255, 255) : cv::Vec3b(0, 0, 0);
   const cv::Mat view = AsMat(RenderPanoView(
-      AsImage(pano), PanoView{.camera = {.width_px = 64, .height_px = 48, .fx = 40, .fy = 40, .cx = 31.5, .cy = 23.5}}));
+      AsImage(pano),
+      PanoView{.camera = {.width_px = 64, .height_px = 48, .fx = 40, .fy = 40, .cx = 31.5, .cy = 23.5}}));
   cv::Scalar mean, stddev;
   cv::meanStdDev(view, mean, stddev);
   EXPECT_NEAR(mean[0], 127.5, 3);

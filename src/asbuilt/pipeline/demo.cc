@@ -22,8 +22,7 @@ void DemoOptions::Check() const {
 }
 
 std::string DemoSummary::BriefReport() const {
-  return fmt::format("demo: {}; rendered in {:.1f} s; survey: {}", scene_brief, render_seconds,
-                     survey.BriefReport());
+  return fmt::format("demo: {}; rendered in {:.1f} s; survey: {}", scene_brief, render_seconds, survey.BriefReport());
 }
 
 std::string ComparisonTable(const Plan& truth, const PlanScore& score) {
@@ -36,8 +35,8 @@ std::string ComparisonTable(const Plan& truth, const PlanScore& score) {
     for (const PlanWall& w : truth.walls) centre += 0.5 * (w.start + w.end);
     centre /= std::max<std::size_t>(1, truth.walls.size());
     Vec2 d = mid - centre;
-    const char* side = std::abs(d.x()) > std::abs(d.y()) ? (d.x() > 0 ? "east" : "west")
-                                                         : (d.y() > 0 ? "north" : "south");
+    const char* side =
+        std::abs(d.x()) > std::abs(d.y()) ? (d.x() > 0 ? "east" : "west") : (d.y() > 0 ? "north" : "south");
     out += fmt::format("{:<18} {:>12.3f} {:>12.3f} {:>8.2f}%\n", fmt::format("wall {} ({})", m.truth, side),
                        m.predicted_length_m, m.truth_length_m, 100 * m.RelativeLengthError());
   }
@@ -78,8 +77,7 @@ DemoSummary RunDemo(const fs::path& out_dir, const DemoOptions& options, const P
   render.render.seed = options.seed;
   render.resume = false;
   RenderCapture(scene, out_dir / "capture", render, progress);
-  summary.render_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   SurveyResult survey = RunSurvey(out_dir / "capture" / "capture.json", out_dir / "survey", options.survey, progress);
   summary.survey = survey.summary;

@@ -19,12 +19,12 @@ inline constexpr char kDemoSentence[] =
 
 struct DemoOptions {
   std::string sentence = kDemoSentence;
-  int views = 12;             // Turn-in-place views (30° steps).
+  int views = 12;  // Turn-in-place views (30° steps).
   int width_px = 640;
   int height_px = 480;
   int samples_per_pixel = 4;  // Renderer samples; more = less noise, slower.
   std::uint64_t seed = 7;
-  SurveyOptions survey;       // Model, labels source, …
+  SurveyOptions survey;  // Model, labels source, …
 
   void Check() const;
 };

@@ -168,15 +168,16 @@ void HomeSurveyOptions::Check() const {
 }
 
 std::string HomeSurveyResult::BriefReport() const {
-  const int ok = static_cast<int>(std::count_if(rooms.begin(), rooms.end(), [](const HomeRoomSurvey& r) { return r.ok; }));
+  const int ok =
+      static_cast<int>(std::count_if(rooms.begin(), rooms.end(), [](const HomeRoomSurvey& r) { return r.ok; }));
   double area = 0;
   for (const PlanRoom& room : plan.rooms) {
     if (room.pose) area += room.area_m2;
   }
   int by_doors = 0;
   for (const RoomPlacement& p : placement.best.rooms) by_doors += p.link >= 0;
-  return fmt::format("{} rooms: {} surveyed, {} placed ({} by doors, {} loops); {:.2f} m² placed; {:.0f} s", rooms.size(),
-                     ok, placement.best.Placed(), by_doors, placement.best.loops, area, seconds);
+  return fmt::format("{} rooms: {} surveyed, {} placed ({} by doors, {} loops); {:.2f} m² placed; {:.0f} s",
+                     rooms.size(), ok, placement.best.Placed(), by_doors, placement.best.loops, area, seconds);
 }
 
 HomeSurveyResult RunHomeSurvey(const fs::path& home_json, const fs::path& out_dir, const HomeSurveyOptions& options,
@@ -194,7 +195,8 @@ HomeSurveyResult RunHomeSurvey(const fs::path& home_json, const fs::path& out_di
     r.surveyed.push_back(static_cast<int>(i));
   }
   if (r.inputs.empty()) {
-    throw InputError(home_json.string(), "rooms", fmt::format("no room could be surveyed (the first: {})", r.rooms.front().error));
+    throw InputError(home_json.string(), "rooms",
+                     fmt::format("no room could be surveyed (the first: {})", r.rooms.front().error));
   }
   r.placement = PlaceRooms(r.inputs, options.placement);
   r.plan = HomePlan(r.inputs, r.placement.best, options.plan);
@@ -212,7 +214,8 @@ void WriteHomeReviewInput(const fs::path& out_dir, const std::vector<HomeRoomInp
   nlohmann::json list = nlohmann::json::array();
   for (const HomeRoomInput& r : rooms) {
     nlohmann::json j = {{"name", r.name}, {"plan", PlanToJson(r.plan)}};
-    if (r.hint) j["hint"] = {{"position_m", {r.hint->position_m.x(), r.hint->position_m.y()}}, {"yaw_deg", r.hint->yaw_deg}};
+    if (r.hint)
+      j["hint"] = {{"position_m", {r.hint->position_m.x(), r.hint->position_m.y()}}, {"yaw_deg", r.hint->yaw_deg}};
     list.push_back(std::move(j));
   }
   fs::create_directories(out_dir / "review");

@@ -94,10 +94,10 @@ fs::path WriteTwoRoomHome(const fs::path& dir, const SurveyOptions& options, boo
   const fs::path sdir = dir / "study";
   fs::create_directories(sdir / "labels");
   cv::imwrite((sdir / "pano.png").string(), cv::Mat(256, 512, CV_8UC3, cv::Scalar(128, 128, 128)));
-  WriteFileAtomic(sdir / "capture.json",
-                  nlohmann::json{{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"},
-                                 {"position_m", {0.0, 0.0, 1.4}}}
-                      .dump());
+  WriteFileAtomic(
+      sdir / "capture.json",
+      nlohmann::json{{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"}, {"position_m", {0.0, 0.0, 1.4}}}
+          .dump());
   const Turned turned{study_home_axes};
   const std::vector<PanoView> views = TurnInPlaceViews(options.panorama_views);
   for (std::size_t i = 0; i < views.size(); ++i) {
@@ -107,9 +107,9 @@ fs::path WriteTwoRoomHome(const fs::path& dir, const SurveyOptions& options, boo
     }
     cv::imwrite((sdir / "labels" / fmt::format("{:03d}.png", i)).string(), labels);
   }
-  nlohmann::json rooms = nlohmann::json::array(
-      {{{"name", "living"}, {"capture", "living/capture.json"}, {"labels", "living/labels"}},
-       {{"name", "study"}, {"capture", "study/capture.json"}, {"labels", "study/labels"}}});
+  nlohmann::json rooms =
+      nlohmann::json::array({{{"name", "living"}, {"capture", "living/capture.json"}, {"labels", "living/labels"}},
+                             {{"name", "study"}, {"capture", "study/capture.json"}, {"labels", "study/labels"}}});
   if (with_missing_room) rooms.push_back({{"name", "cellar"}, {"capture", "cellar/capture.json"}});
   WriteFileAtomic(dir / "home.json", nlohmann::json{{"version", 1}, {"kind", "home"}, {"rooms", rooms}}.dump(2));
   return dir / "home.json";
@@ -121,7 +121,8 @@ TEST(RunHomeSurvey, PlacesTwoRoomsThroughTheirDoorAndWritesOnePlan) {
   options.survey = HomeSmallViews();
   const fs::path home = WriteTwoRoomHome(dir, options.survey, /*with_missing_room=*/true);
   std::vector<std::string> lines;
-  const HomeSurveyResult r = RunHomeSurvey(home, dir / "out", options, [&](const std::string& l) { lines.push_back(l); });
+  const HomeSurveyResult r =
+      RunHomeSurvey(home, dir / "out", options, [&](const std::string& l) { lines.push_back(l); });
   // One line per room, the missing capture named and the others surveyed.
   ASSERT_EQ(lines.size(), 3u);
   ASSERT_EQ(r.rooms.size(), 3u);
@@ -183,8 +184,14 @@ TEST(RunHomeSurvey, ARenderedHomeIsPlacedWithItsPartitionsMeasured) {
   const fs::path dir = std::filesystem::temp_directory_path() / "asbuilt_home_survey_rendered";
   std::filesystem::remove_all(dir);
   SceneRng rng(3);
-  const HomeLayout layout = MakeHomeLayout(rng, {.min_rooms = 3, .max_rooms = 4, .min_width_m = 6.5, .max_width_m = 7.5,
-                                                 .min_depth_m = 5.0, .max_depth_m = 6.0, .min_room_m = 2.5, .extra_door = 1.0});
+  const HomeLayout layout = MakeHomeLayout(rng, {.min_rooms = 3,
+                                                 .max_rooms = 4,
+                                                 .min_width_m = 6.5,
+                                                 .max_width_m = 7.5,
+                                                 .min_depth_m = 5.0,
+                                                 .max_depth_m = 6.0,
+                                                 .min_room_m = 2.5,
+                                                 .extra_door = 1.0});
   const Scene scene = HomeScene(layout, 3);
   HomeRenderOptions render;
   render.capture.views = 8;
@@ -202,8 +209,7 @@ TEST(RunHomeSurvey, ARenderedHomeIsPlacedWithItsPartitionsMeasured) {
   const HomeSurveyResult r = RunHomeSurvey(rendered.home_json, dir / "out", options);
   ASSERT_EQ(r.placement.best.Placed(), static_cast<int>(layout.rooms.size())) << r.placement.best.ToString(r.inputs);
   std::vector<std::vector<Vec2>> outlines = layout.rooms;
-  const HomeScore score =
-      ScoreHome(r.inputs, r.placement.best, rendered.floor_from_room, outlines);
+  const HomeScore score = ScoreHome(r.inputs, r.placement.best, rendered.floor_from_room, outlines);
   std::string errors;
   for (std::size_t k = 0; k < score.centroid_error_m.size(); ++k) {
     errors += fmt::format(" {:.3f} m {:.2f}°", score.centroid_error_m[k], score.yaw_error_deg[k]);

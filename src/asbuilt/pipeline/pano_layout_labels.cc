@@ -30,7 +30,8 @@ PanoLayoutLabels::PanoLayoutLabels(std::unique_ptr<LabelSource> inner, const cv:
   const cv::Mat gathered = EquirectFromViewLabels(views, inner_labels, options.width_px);
   layout_ = EstimatePanoLayout(equirect_bgr, camera_height_m, gathered, options);
   spdlog::info("survey: {}", layout_.BriefReport());
-  for (std::size_t i = 0; i < views.size(); ++i) labels_.push_back(LayoutViewLabels(layout_, views[i], options.openings_from_labels ? inner_labels[i] : cv::Mat()));
+  for (std::size_t i = 0; i < views.size(); ++i)
+    labels_.push_back(LayoutViewLabels(layout_, views[i], options.openings_from_labels ? inner_labels[i] : cv::Mat()));
   picture_ = DrawPanoLayout(equirect_bgr, layout_);
   seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

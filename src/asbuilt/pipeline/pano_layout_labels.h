@@ -24,9 +24,8 @@ class PanoLayoutLabels final : public LabelSource {
   // Labels `images` (view i seen by views[i]; frames indexed 0..n−1) with
   // `inner` and builds the layout of `equirect_bgr` from camera_height_m.
   // Throws what `inner` or EstimatePanoLayout throws.
-  PanoLayoutLabels(std::unique_ptr<LabelSource> inner, const cv::Mat& equirect_bgr,
-                   const std::vector<PanoView>& views, const std::vector<cv::Mat>& images, double camera_height_m,
-                   const PanoLayoutOptions& options);
+  PanoLayoutLabels(std::unique_ptr<LabelSource> inner, const cv::Mat& equirect_bgr, const std::vector<PanoView>& views,
+                   const std::vector<cv::Mat>& images, double camera_height_m, const PanoLayoutOptions& options);
 
   std::vector<FrameLabels> Label(const std::vector<FrameImages>& frames) override;
   std::string Describe() const override;

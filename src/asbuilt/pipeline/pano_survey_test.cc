@@ -48,8 +48,13 @@ Plan TruthPlan() {
   Plan p;
   const std::vector<Vec2> c = {{kX0, kY0}, {kX1, kY0}, {kX1, kY1}, {kX0, kY1}};
   for (int i = 0; i < 4; ++i) p.walls.push_back({.start = c[i], .end = c[(i + 1) % 4], .height = kCeiling});
-  p.openings.push_back({.kind = OpeningKind::kDoor, .wall = 2, .start = {0.3, kY1}, .end = {-0.6, kY1},
-                        .width = 0.9, .height = 2.0, .sill = 0.0});
+  p.openings.push_back({.kind = OpeningKind::kDoor,
+                        .wall = 2,
+                        .start = {0.3, kY1},
+                        .end = {-0.6, kY1},
+                        .width = 0.9,
+                        .height = 2.0,
+                        .sill = 0.0});
   p.rooms.push_back({.polygon = c, .area_m2 = 12.0});
   return p;
 }
@@ -65,7 +70,9 @@ fs::path Fresh(const std::string& name) {
 // survey cuts (TurnInPlaceViews(SurveyOptions::panorama_views)).
 fs::path WritePanoramaCapture(const fs::path& dir, const SurveyOptions& options) {
   cv::imwrite((dir / "pano.png").string(), cv::Mat(256, 512, CV_8UC3, cv::Scalar(128, 128, 128)));
-  const nlohmann::json capture = {{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"},
+  const nlohmann::json capture = {{"version", 1},
+                                  {"kind", "panorama"},
+                                  {"panorama", "pano.png"},
                                   {"position_m", {kCamera.x(), kCamera.y(), kCamera.z()}}};
   WriteFileAtomic(dir / "capture.json", capture.dump());
   const std::vector<PanoView> views = TurnInPlaceViews(options.panorama_views);
@@ -130,7 +137,8 @@ TEST(RunSurvey, PanoramaCaptureSaysWhenPartOfTheRoomWasNotSeen) {
   const SurveyResult r = RunSurvey(capture, dir / "out", options);
   EXPECT_GE(r.summary.walls_unseen, 1) << r.summary.BriefReport();
   bool noted = false;
-  for (const std::string& n : r.summary.notes) noted |= n.find("larger than what this capture sees") != std::string::npos;
+  for (const std::string& n : r.summary.notes)
+    noted |= n.find("larger than what this capture sees") != std::string::npos;
   EXPECT_TRUE(noted);
 }
 
@@ -172,7 +180,9 @@ cv::Mat PaintBoxRoom(const Eigen::Matrix3d& lean = Eigen::Matrix3d::Identity(), 
 fs::path WritePaintedCapture(const std::string& name, const cv::Mat& pano) {
   const fs::path dir = Fresh(name);
   cv::imwrite((dir / "pano.png").string(), pano);
-  const nlohmann::json capture = {{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"},
+  const nlohmann::json capture = {{"version", 1},
+                                  {"kind", "panorama"},
+                                  {"panorama", "pano.png"},
                                   {"position_m", {kCamera.x(), kCamera.y(), kCamera.z()}}};
   WriteFileAtomic(dir / "capture.json", capture.dump());
   WritePlan(TruthPlan(), dir / "truth.json");

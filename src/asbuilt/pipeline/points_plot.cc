@@ -9,7 +9,7 @@
 namespace asbuilt {
 namespace {
 
-constexpr double kPlotMarginM = 0.6;   // Around truth walls, rigs and points.
+constexpr double kPlotMarginM = 0.6;  // Around truth walls, rigs and points.
 constexpr std::size_t kPlotMaxPoints = 40000;
 
 // Colours by LabelClass: background, wall, door, window.
@@ -39,8 +39,8 @@ std::vector<Vec2> CentralPointsBox(const std::vector<ClassPoint>& points) {
 
 }  // namespace
 
-std::string PointsPlotPng(const std::vector<ClassPoint>& points, const Plan& plan,
-                          const std::optional<Plan>& truth, const std::vector<Vec2>& rigs) {
+std::string PointsPlotPng(const std::vector<ClassPoint>& points, const Plan& plan, const std::optional<Plan>& truth,
+                          const std::vector<Vec2>& rigs) {
   const bool truth_walls = truth && !truth->walls.empty();
   if (plan.walls.empty() && !truth_walls && points.empty() && rigs.empty()) return {};
   PlanSheet sheet = LayOutPlanSheet(plan, {.title = "class points, measured plan, truth dashed, rigs"});

@@ -22,8 +22,8 @@ namespace asbuilt {
 // walls, points or rigs). Throws Error as LayOutPlanSheet does for a plan
 // that cannot be drawn.
 inline constexpr int kPointsPlotSidePx = 640;
-std::string PointsPlotPng(const std::vector<ClassPoint>& points, const Plan& plan,
-                          const std::optional<Plan>& truth, const std::vector<Vec2>& rigs);
+std::string PointsPlotPng(const std::vector<ClassPoint>& points, const Plan& plan, const std::optional<Plan>& truth,
+                          const std::vector<Vec2>& rigs);
 
 }  // namespace asbuilt
 

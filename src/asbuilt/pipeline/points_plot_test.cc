@@ -13,8 +13,13 @@ Plan PlotRoom(double shift_m) {
   std::vector<Vec2> c = {{0, 0}, {5, 0}, {5, 4}, {0, 4}};
   for (Vec2& p : c) p.x() += shift_m;
   for (int i = 0; i < 4; ++i) plan.walls.push_back({.start = c[i], .end = c[(i + 1) % 4], .height = 2.6});
-  plan.openings.push_back({.kind = OpeningKind::kDoor, .wall = 0, .start = c[0] + Vec2(1, 0),
-                           .end = c[0] + Vec2(1.9, 0), .width = 0.9, .height = 2.0, .sill = 0.0});
+  plan.openings.push_back({.kind = OpeningKind::kDoor,
+                           .wall = 0,
+                           .start = c[0] + Vec2(1, 0),
+                           .end = c[0] + Vec2(1.9, 0),
+                           .width = 0.9,
+                           .height = 2.0,
+                           .sill = 0.0});
   plan.rooms.push_back({.polygon = c, .area_m2 = 20});
   return plan;
 }
@@ -45,10 +50,10 @@ TEST(PointsPlotPng, DrawsThePlanSheetWithPointsTruthAndRigsOver) {
   cv::Mat img = DecodePlot(PointsPlotPng(points, plan, PlotRoom(0.3), {Vec2(2.5, 2.0)}));
   ASSERT_FALSE(img.empty());
   EXPECT_EQ(std::max(img.cols, img.rows), kPointsPlotSidePx);
-  EXPECT_GT(CountPixels(img, {56, 56, 56}, 2), 1000);   // The sheet's wall poché.
-  EXPECT_GT(CountPixels(img, {60, 170, 60}, 10), 50);   // Truth walls, dashed green.
-  EXPECT_GT(CountPixels(img, {40, 40, 220}, 10), 30);   // The rig.
-  EXPECT_GT(CountPixels(img, {40, 140, 240}, 40), 5);   // Door points.
+  EXPECT_GT(CountPixels(img, {56, 56, 56}, 2), 1000);  // The sheet's wall poché.
+  EXPECT_GT(CountPixels(img, {60, 170, 60}, 10), 50);  // Truth walls, dashed green.
+  EXPECT_GT(CountPixels(img, {40, 40, 220}, 10), 30);  // The rig.
+  EXPECT_GT(CountPixels(img, {40, 140, 240}, 40), 5);  // Door points.
 }
 
 TEST(PointsPlotPng, PointsAloneAreFramedByTheirCentralPart) {
@@ -59,9 +64,7 @@ TEST(PointsPlotPng, PointsAloneAreFramedByTheirCentralPart) {
   EXPECT_LE(std::max(img.cols, img.rows), kPointsPlotSidePx);
 }
 
-TEST(PointsPlotPng, NothingToDrawIsEmpty) {
-  EXPECT_EQ(PointsPlotPng({}, Plan{}, std::nullopt, {}), "");
-}
+TEST(PointsPlotPng, NothingToDrawIsEmpty) { EXPECT_EQ(PointsPlotPng({}, Plan{}, std::nullopt, {}), ""); }
 
 }  // namespace
 }  // namespace asbuilt

@@ -35,20 +35,15 @@ figcaption{font-size:12px;color:#5f6673;margin-top:4px}
 
 std::string Img(const std::string& bytes, const char* mime, const std::string& alt) {
   if (bytes.empty()) return "<p><i>(not available)</i></p>";
-  return fmt::format("<img alt=\"{}\" src=\"data:{};base64,{}\">", HtmlEscape(alt), mime,
-                     Base64Encode(bytes));
+  return fmt::format("<img alt=\"{}\" src=\"data:{};base64,{}\">", HtmlEscape(alt), mime, Base64Encode(bytes));
 }
 
-std::string Percent(std::optional<double> v) {
-  return v ? fmt::format("{:.2f} %", 100.0 * *v) : "–";
-}
+std::string Percent(std::optional<double> v) { return v ? fmt::format("{:.2f} %", 100.0 * *v) : "–"; }
 
 // Class for a relative error against the method's targets (≤ 2 % good, ≤ 5 % fair).
 const char* ErrorClass(double rel) { return rel <= 0.02 ? "good" : rel <= 0.05 ? "warn" : "bad"; }
 
-std::string Sigma(const std::optional<double>& s) {
-  return s ? fmt::format(" ± {:.3f}", *s) : "";
-}
+std::string Sigma(const std::optional<double>& s) { return s ? fmt::format(" ± {:.3f}", *s) : ""; }
 
 std::string WallTable(const SurveyReport& r) {
   std::string rows;
@@ -59,14 +54,13 @@ std::string WallTable(const SurveyReport& r) {
       for (const WallMatch& m : r.summary.score->wall_matches) {
         if (m.predicted != static_cast<int>(i)) continue;
         double rel = m.RelativeLengthError();
-        truth_cells = fmt::format("<td>{:.3f}</td><td class=\"{}\">{:.2f} %</td>", m.truth_length_m,
-                                  ErrorClass(rel), 100 * rel);
+        truth_cells =
+            fmt::format("<td>{:.3f}</td><td class=\"{}\">{:.2f} %</td>", m.truth_length_m, ErrorClass(rel), 100 * rel);
       }
     }
     rows += fmt::format(
-        "<tr><td>{}</td><td>({:.3f}, {:.3f})</td><td>({:.3f}, {:.3f})</td><td><b>{:.3f}</b>{}</td>{}</tr>\n",
-        i, w.start.x(), w.start.y(), w.end.x(), w.end.y(), w.Length(), Sigma(w.length_sigma_m),
-        truth_cells);
+        "<tr><td>{}</td><td>({:.3f}, {:.3f})</td><td>({:.3f}, {:.3f})</td><td><b>{:.3f}</b>{}</td>{}</tr>\n", i,
+        w.start.x(), w.start.y(), w.end.x(), w.end.y(), w.Length(), Sigma(w.length_sigma_m), truth_cells);
   }
   return fmt::format(
       "<table><tr><th>wall</th><th>start (m)</th><th>end (m)</th><th>length (m) ± 1σ</th>"
@@ -84,15 +78,15 @@ std::string OpeningTable(const SurveyReport& r) {
       for (const OpeningMatch& m : r.summary.score->opening_matches) {
         if (m.predicted != static_cast<int>(i)) continue;
         double rel = m.RelativeWidthError();
-        truth_cells = fmt::format("<td>{:.3f}</td><td class=\"{}\">{:.2f} %</td>", m.truth_width_m,
-                                  ErrorClass(rel), 100 * rel);
+        truth_cells =
+            fmt::format("<td>{:.3f}</td><td class=\"{}\">{:.2f} %</td>", m.truth_width_m, ErrorClass(rel), 100 * rel);
       }
     }
-    rows += fmt::format(
-        "<tr><td class=\"l\">{} {}</td><td>{}</td><td><b>{:.3f}</b>{}</td><td>{}</td><td>{}</td>{}</tr>\n",
-        OpeningKindName(o.kind), i, o.wall, o.width, Sigma(o.width_sigma_m),
-        o.height ? fmt::format("{:.3f}{}", *o.height, Sigma(o.height_sigma_m)) : "–",
-        o.sill ? fmt::format("{:.3f}{}", *o.sill, Sigma(o.sill_sigma_m)) : "–", truth_cells);
+    rows +=
+        fmt::format("<tr><td class=\"l\">{} {}</td><td>{}</td><td><b>{:.3f}</b>{}</td><td>{}</td><td>{}</td>{}</tr>\n",
+                    OpeningKindName(o.kind), i, o.wall, o.width, Sigma(o.width_sigma_m),
+                    o.height ? fmt::format("{:.3f}{}", *o.height, Sigma(o.height_sigma_m)) : "–",
+                    o.sill ? fmt::format("{:.3f}{}", *o.sill, Sigma(o.sill_sigma_m)) : "–", truth_cells);
   }
   return fmt::format(
       "<table><tr><th class=\"l\">opening</th><th>wall</th><th>width (m) ± 1σ</th><th>height (m)</th>"
@@ -116,11 +110,10 @@ std::string ScoreSection(const SurveyReport& r) {
   rows += row("doors", HtmlEscape(s.doors.ToString()));
   rows += row("windows", HtmlEscape(s.windows.ToString()));
   rows += row("opening width error", HtmlEscape(s.opening_width.ToString()));
-  rows += row("room area",
-              s.area_relative_error
-                  ? fmt::format("{:.2f} m² measured vs {:.2f} m² true ({:.2f} %)", *s.predicted_area_m2,
-                                *s.truth_area_m2, 100 * *s.area_relative_error)
-                  : std::string("–"));
+  rows += row("room area", s.area_relative_error
+                               ? fmt::format("{:.2f} m² measured vs {:.2f} m² true ({:.2f} %)", *s.predicted_area_m2,
+                                             *s.truth_area_m2, 100 * *s.area_relative_error)
+                               : std::string("–"));
   return fmt::format(
       "<section><h2>Accuracy against the truth plan</h2><table>{}</table>"
       "<p style=\"font-size:12px;color:#5f6673\">A wall matches a truth wall when its line is within "
@@ -136,12 +129,23 @@ std::string HtmlEscape(std::string_view text) {
   out.reserve(text.size());
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -186,29 +190,30 @@ std::string SurveyReportHtml(const SurveyReport& r) {
       "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
       "<title>{}</title><style>{}</style></head><body>\n",
       HtmlEscape(r.title), kStyle);
-  html += fmt::format("<header><h1>{}</h1><p>{}</p></header><main>\n", HtmlEscape(r.title),
-                      HtmlEscape(s.BriefReport()));
+  html +=
+      fmt::format("<header><h1>{}</h1><p>{}</p></header><main>\n", HtmlEscape(r.title), HtmlEscape(s.BriefReport()));
 
   html += VerdictSection(s.verdict);
 
   // Key figures.
   double area = s.plan.area_m2;
   html += "<section><h2>Summary</h2><div class=\"kpi\">";
-  html += fmt::format("<div><b>{}</b>frames</div><div><b>{}</b>points</div><div><b>{}</b>walls</div>"
-                      "<div><b>{}</b>openings</div><div><b>{}</b>room area</div><div><b>{:.1f} s</b>total</div>",
-                      s.frames, s.points, r.plan.walls.size(), r.plan.openings.size(),
-                      area > 0 ? fmt::format("{:.2f} m²", area) : std::string("–"), s.seconds);
+  html += fmt::format(
+      "<div><b>{}</b>frames</div><div><b>{}</b>points</div><div><b>{}</b>walls</div>"
+      "<div><b>{}</b>openings</div><div><b>{}</b>room area</div><div><b>{:.1f} s</b>total</div>",
+      s.frames, s.points, r.plan.walls.size(), r.plan.openings.size(),
+      area > 0 ? fmt::format("{:.2f} m²", area) : std::string("–"), s.seconds);
   if (s.score) {
-    html += fmt::format("<div><b>{}</b>wall length error (median)</div><div><b>{}</b>opening width error (median)</div>",
-                        Percent(s.score->wall_length.Median()), Percent(s.score->opening_width.Median()));
+    html +=
+        fmt::format("<div><b>{}</b>wall length error (median)</div><div><b>{}</b>opening width error (median)</div>",
+                    Percent(s.score->wall_length.Median()), Percent(s.score->opening_width.Median()));
   }
   html += fmt::format("</div><p>Labels from: {}.</p>", HtmlEscape(s.labels_source));
   if (!s.wall_cue.empty()) {
     html += fmt::format("<p>Walls: {}{}.</p>", HtmlEscape(s.wall_cue),
-                        std::isfinite(s.ceiling_height_m)
-                            ? fmt::format("; ceiling height {:.3f} ± {:.3f} m", s.ceiling_height_m,
-                                          s.ceiling_height_sigma_m)
-                            : "");
+                        std::isfinite(s.ceiling_height_m) ? fmt::format("; ceiling height {:.3f} ± {:.3f} m",
+                                                                        s.ceiling_height_m, s.ceiling_height_sigma_m)
+                                                          : "");
   }
   if (!s.wall_cues.empty()) {
     html += "<details open><summary>Which cue placed each wall</summary><ul>";
@@ -224,22 +229,24 @@ std::string SurveyReportHtml(const SurveyReport& r) {
 
   // The plan and the points.
   html += "<section><h2>Floor plan</h2><div class=\"grid\" style=\"grid-template-columns:2fr 1fr\">";
-  html += fmt::format("<figure class=\"plan\">{}<figcaption>The measured plan (plan.svg; also plan.dxf, plan.ifc, "
-                      "plan.pdf, plan.json).</figcaption></figure>",
-                      r.plan_svg.empty() ? std::string("<p><i>(no plan could be drawn)</i></p>")
-                                         : Img(r.plan_svg, "image/svg+xml", "floor plan"));
-  html += fmt::format("<figure>{}<figcaption>Top-down view of the measured class points (wall grey, "
-                      "door orange, window blue), the fitted walls and the rig position{}.</figcaption></figure>",
-                      Img(r.points_plot_png, "image/png", "class points"),
-                      r.truth ? "; the truth plan dashed green" : "");
+  html += fmt::format(
+      "<figure class=\"plan\">{}<figcaption>The measured plan (plan.svg; also plan.dxf, plan.ifc, "
+      "plan.pdf, plan.json).</figcaption></figure>",
+      r.plan_svg.empty() ? std::string("<p><i>(no plan could be drawn)</i></p>")
+                         : Img(r.plan_svg, "image/svg+xml", "floor plan"));
+  html += fmt::format(
+      "<figure>{}<figcaption>Top-down view of the measured class points (wall grey, "
+      "door orange, window blue), the fitted walls and the rig position{}.</figcaption></figure>",
+      Img(r.points_plot_png, "image/png", "class points"), r.truth ? "; the truth plan dashed green" : "");
   html += "</div></section>\n";
 
   if (!r.layout_jpeg.empty()) {
-    html += fmt::format("<section><h2>The panorama's layout</h2><figure>{}<figcaption>The room's floor edge (red) and "
-                        "ceiling edge (green) found from the panorama's own edges with the segmenter's labels as a "
-                        "guide ({}); the views' labels were redrawn on it (docs/survey.md \"The layout of a "
-                        "panorama\").</figcaption></figure></section>\n",
-                        Img(r.layout_jpeg, "image/jpeg", "panorama layout"), HtmlEscape(r.layout_caption));
+    html += fmt::format(
+        "<section><h2>The panorama's layout</h2><figure>{}<figcaption>The room's floor edge (red) and "
+        "ceiling edge (green) found from the panorama's own edges with the segmenter's labels as a "
+        "guide ({}); the views' labels were redrawn on it (docs/survey.md \"The layout of a "
+        "panorama\").</figcaption></figure></section>\n",
+        Img(r.layout_jpeg, "image/jpeg", "panorama layout"), HtmlEscape(r.layout_caption));
   }
   html += "<section><h2>Walls</h2>" + WallTable(r) + "</section>\n";
   html += "<section><h2>Doors and windows</h2>" + OpeningTable(r) + "</section>\n";
@@ -254,21 +261,23 @@ std::string SurveyReportHtml(const SurveyReport& r) {
   html += fmt::format("<tr><th class=\"l\">total</th><th>{:.2f}</th><th></th></tr></table></section>\n", s.seconds);
 
   // Frames.
-  html += "<section><h2>Frames</h2><p>Each row: the left image, its segmentation (wall, door, window) "
-          "and the disparity (warm = near, black = no match).</p>\n";
+  html +=
+      "<section><h2>Frames</h2><p>Each row: the left image, its segmentation (wall, door, window) "
+      "and the disparity (warm = near, black = no match).</p>\n";
   for (const ReportFrame& f : r.frames) {
-    html += fmt::format("<h3 style=\"font-size:14px;margin:10px 0 4px\">frame {} · yaw {:.1f}° · {}</h3>"
-                        "<div class=\"frame\">{}{}{}</div>\n",
-                        f.index, f.yaw_deg, HtmlEscape(f.cues), Img(f.left_jpeg, "image/jpeg", "left image"),
-                        Img(f.overlay_jpeg, "image/jpeg", "segmentation"),
-                        Img(f.disparity_jpeg, "image/jpeg", "disparity"));
+    html += fmt::format(
+        "<h3 style=\"font-size:14px;margin:10px 0 4px\">frame {} · yaw {:.1f}° · {}</h3>"
+        "<div class=\"frame\">{}{}{}</div>\n",
+        f.index, f.yaw_deg, HtmlEscape(f.cues), Img(f.left_jpeg, "image/jpeg", "left image"),
+        Img(f.overlay_jpeg, "image/jpeg", "segmentation"), Img(f.disparity_jpeg, "image/jpeg", "disparity"));
   }
   if (static_cast<int>(r.frames.size()) < s.frames) {
     html += fmt::format("<p>{} more frames not shown.</p>", s.frames - static_cast<int>(r.frames.size()));
   }
   html += "</section>\n";
-  html += fmt::format("<footer style=\"padding:0 28px 20px;font-size:12px;color:#5f6673\">asbuilt · capture {}</footer>",
-                      HtmlEscape(r.capture_path.string()));
+  html +=
+      fmt::format("<footer style=\"padding:0 28px 20px;font-size:12px;color:#5f6673\">asbuilt · capture {}</footer>",
+                  HtmlEscape(r.capture_path.string()));
   html += "</main></body></html>\n";
   return html;
 }

@@ -19,23 +19,23 @@ namespace asbuilt {
 struct ReportFrame {
   int index = -1;
   double yaw_deg = 0.0;
-  std::string left_jpeg;      // Capture thumbnail.
-  std::string overlay_jpeg;   // Segmentation overlay.
-  std::string disparity_jpeg; // Colour disparity.
-  std::string cues;           // FrameCues::BriefReport().
+  std::string left_jpeg;       // Capture thumbnail.
+  std::string overlay_jpeg;    // Segmentation overlay.
+  std::string disparity_jpeg;  // Colour disparity.
+  std::string cues;            // FrameCues::BriefReport().
 };
 
 struct SurveyReport {
-  std::string title;                 // "Survey of capture.json".
+  std::string title;  // "Survey of capture.json".
   std::filesystem::path capture_path;
   SurveySummary summary;
   Plan plan;
   std::optional<Plan> truth;
   std::vector<ReportFrame> frames;
-  std::string points_plot_png;       // Top-down plot of the class points.
-  std::string layout_jpeg;           // Panorama with its layout drawn (--pano-layout); may be empty.
-  std::string layout_caption;        // What the layout found (PanoLayout::BriefReport()).
-  std::string plan_svg;              // The drawing (plan.svg text); may be empty.
+  std::string points_plot_png;  // Top-down plot of the class points.
+  std::string layout_jpeg;      // Panorama with its layout drawn (--pano-layout); may be empty.
+  std::string layout_caption;   // What the layout found (PanoLayout::BriefReport()).
+  std::string plan_svg;         // The drawing (plan.svg text); may be empty.
 };
 
 // The HTML text of the report.

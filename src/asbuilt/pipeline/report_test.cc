@@ -13,8 +13,8 @@ TEST(SurveyReportHtml, IsSelfContainedAndListsWallsWithSigmas) {
   SurveyReport r;
   r.title = "Survey of <test>";
   r.plan.walls.push_back({.start = {0, 0}, .end = {4, 0}, .length_sigma_m = 0.012});
-  r.plan.openings.push_back({.kind = OpeningKind::kDoor, .wall = 0, .start = {1, 0}, .end = {2, 0}, .width = 1.0,
-                             .width_sigma_m = 0.01});
+  r.plan.openings.push_back(
+      {.kind = OpeningKind::kDoor, .wall = 0, .start = {1, 0}, .end = {2, 0}, .width = 1.0, .width_sigma_m = 0.01});
   r.summary.frames = 1;
   r.summary.stages = {{"plan", 0.5}};
   r.summary.seconds = 1.0;

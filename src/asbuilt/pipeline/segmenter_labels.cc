@@ -58,10 +58,10 @@ SegmenterLabels::SegmenterLabels(const std::filesystem::path& model, std::option
     }
   }
   segmenter_ = LoadSegmenter(model, segment);
-  description_ = fmt::format("segmenter {} ({}) at {}", model.filename().string(), segmenter_->info().ToString(),
-                             segment.scale_width_px > 0
-                                 ? fmt::format("{}x{}", segment.scale_width_px, segment.scale_height_px)
-                                 : std::string("its training scale"));
+  description_ =
+      fmt::format("segmenter {} ({}) at {}", model.filename().string(), segmenter_->info().ToString(),
+                  segment.scale_width_px > 0 ? fmt::format("{}x{}", segment.scale_width_px, segment.scale_height_px)
+                                             : std::string("its training scale"));
   if (wide_camera_) {
     description_ += fmt::format(", each view read as three {:.0f}°-turned square views", kTurnedPitchDeg);
   }
@@ -109,7 +109,10 @@ cv::Mat SegmenterLabels::SegmentWide(const cv::Mat& bgr) const {
       cv::warpPerspective(p[c], back, view.image_to_turned, bgr.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
                           cv::BORDER_CONSTANT, cv::Scalar(0));
       back = back.mul(view.weight);
-      if (sum[c].empty()) sum[c] = back; else sum[c] += back;
+      if (sum[c].empty())
+        sum[c] = back;
+      else
+        sum[c] += back;
     }
   }
   // argmax of the blended probabilities.

@@ -35,8 +35,8 @@ class SegmenterLabels final : public LabelSource {
   // blended by how near each pixel's ray lies to each view's axis: the
   // segmenters were trained on ordinary photos, and read the stretched floor
   // and ceiling at a tall view's ends as wall.
-  SegmenterLabels(const std::filesystem::path& model, std::optional<std::pair<int, int>> scale_px,
-                  cv::Size image_size, std::optional<PinholeCamera> camera = std::nullopt);
+  SegmenterLabels(const std::filesystem::path& model, std::optional<std::pair<int, int>> scale_px, cv::Size image_size,
+                  std::optional<PinholeCamera> camera = std::nullopt);
 
   static constexpr double kWideViewFovDeg = 100.0;
 

@@ -35,9 +35,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double Since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double Since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 std::string EncodeJpeg(const cv::Mat& image, int max_width_px = 360) {
   if (image.empty()) return {};
@@ -172,13 +170,14 @@ fs::path ModelPathFor(const std::string& name_or_path) {
 }
 
 std::string SurveySummary::BriefReport() const {
-  std::string out = fmt::format("{} frames, {} points → {} walls, {} openings", frames, points, plan.walls,
-                                plan.openings);
+  std::string out =
+      fmt::format("{} frames, {} points → {} walls, {} openings", frames, points, plan.walls, plan.openings);
   if (plan.area_m2 > 0) out += fmt::format(", {:.2f} m²", plan.area_m2);
   if (score) {
     out += fmt::format("; walls {}/{}", score->walls.matched, score->walls.truth);
     if (auto m = score->wall_length.Median()) {
-      out += fmt::format(", length err median {:.1f} % max {:.1f} %", 100 * *m, 100 * score->wall_length.Max().value_or(0));
+      out += fmt::format(", length err median {:.1f} % max {:.1f} %", 100 * *m,
+                         100 * score->wall_length.Max().value_or(0));
     }
     out += fmt::format(", openings {}/{}", score->doors.matched + score->windows.matched,
                        score->doors.truth + score->windows.truth);
@@ -219,24 +218,24 @@ struct Survey {
   StageTimes times;
   Capture capture;
   std::optional<MonoViews> views;  // A panorama's level views.
-  cv::Mat equirect;                 // With pano_layout: the panorama (8-bit BGR) and its views.
+  cv::Mat equirect;                // With pano_layout: the panorama (8-bit BGR) and its views.
   std::vector<PanoView> pano_views;
   std::pair<int, int> pano_size_px{0, 0};  // The panorama's width and height.
-  std::string levelled_jpeg;        // The panorama as surveyed, when it was levelled (review/panorama.jpg).
-  cv::Mat layout_picture;           // The panorama with its layout drawn (PanoLayoutLabels).
-  std::string layout_brief;         // PanoLayout::BriefReport().
+  std::string levelled_jpeg;               // The panorama as surveyed, when it was levelled (review/panorama.jpg).
+  cv::Mat layout_picture;                  // The panorama with its layout drawn (PanoLayoutLabels).
+  std::string layout_brief;                // PanoLayout::BriefReport().
   std::optional<Plan> truth;
   std::unique_ptr<LabelSource> labels;
   std::vector<ClassPoint> points;
   VerdictContext verdict_context;  // What the verdict reads beyond the points.
-  PlanInput plan_input;  // What the plan was fitted from (review/ re-fits it).
+  PlanInput plan_input;            // What the plan was fitted from (review/ re-fits it).
   struct LabelPng {
     int frame, width_px, height_px;
     std::string png;
   };
   std::vector<LabelPng> label_pngs;  // Each frame's labels, PNG-encoded, for review/labels/.
   std::vector<Vec2> rigs;
-  double coverage_deg = 360.0;      // Of the turn around the camera.
+  double coverage_deg = 360.0;  // Of the turn around the camera.
   std::vector<ReportFrame> report_frames;
   std::string plan_svg;  // The drawing, for the report (empty: no walls).
   SurveyResult result;
@@ -297,9 +296,11 @@ void LevelStage(Survey& s, Image& equirect) {
     equirect = LevelPanorama(equirect, tilt);
     summary.panorama_levelled = true;
     s.levelled_jpeg = EncodeJpeg(AsMat(equirect), equirect.width());
-    summary.notes.push_back(fmt::format("the panorama was levelled before the survey: {}", tilt.BriefReport(equirect.width())));
+    summary.notes.push_back(
+        fmt::format("the panorama was levelled before the survey: {}", tilt.BriefReport(equirect.width())));
   } else if (!tilt.found) {
-    summary.notes.push_back(fmt::format("the panorama's tilt could not be estimated ({}): surveyed as level", tilt.BriefReport()));
+    summary.notes.push_back(
+        fmt::format("the panorama's tilt could not be estimated ({}): surveyed as level", tilt.BriefReport()));
   }
   spdlog::info("survey: panorama {}", tilt.BriefReport(equirect.width()));
   s.times.Add("level", Since(t));
@@ -340,7 +341,8 @@ void LabelSourceStage(Survey& s) {
   if (options.labels_dir) {
     s.labels = std::make_unique<DirectoryLabels>(*options.labels_dir);
   } else if (options.use_capture_labels) {
-    if (s.views) throw InvalidArgument("a panorama capture has no labels of its own: give --labels DIR (NNN.png per view)");
+    if (s.views)
+      throw InvalidArgument("a panorama capture has no labels of its own: give --labels DIR (NNN.png per view)");
     s.labels = std::make_unique<CaptureLabels>(s.capture);
   } else {
     const auto t = Clock::now();
@@ -357,9 +359,8 @@ void LabelSourceStage(Survey& s) {
           "far better (models/MODEL_CARD.md)");
     }
     if (s.views && options.pano_layout) {
-      auto layout = std::make_unique<PanoLayoutLabels>(std::move(s.labels), s.equirect, s.pano_views,
-                                                       s.views->images, s.capture.panorama->position_m.z(),
-                                                       options.layout);
+      auto layout = std::make_unique<PanoLayoutLabels>(std::move(s.labels), s.equirect, s.pano_views, s.views->images,
+                                                       s.capture.panorama->position_m.z(), options.layout);
       s.times.Add("segment + layout", layout->seconds());
       s.layout_picture = layout->picture();
       s.layout_brief = layout->layout().BriefReport();
@@ -385,13 +386,15 @@ void PointsStage(Survey& s, const ProgressCallback& progress) {
   summary.wall_cue = gathered.wall_cue;
   if (!summary.wall_cue.empty()) spdlog::info("survey: {}", summary.wall_cue);
   summary.frame_cues = std::move(gathered.frames);
-  for (std::size_t i = 0; i < s.report_frames.size(); ++i) s.report_frames[i].cues = summary.frame_cues[i].BriefReport();
+  for (std::size_t i = 0; i < s.report_frames.size(); ++i)
+    s.report_frames[i].cues = summary.frame_cues[i].BriefReport();
   if (!gathered.contacts_used) return;
   const ResolvedContacts& contacts = gathered.contacts;
   s.verdict_context.ceiling_samples = contacts.ceiling_samples;
   spdlog::info("survey: ceiling height {} ({}); {} floor contact(s) rejected as tops of things before a wall{}",
-               contacts.ceiling ? fmt::format("{:.3f} ± {:.3f} m", contacts.ceiling->height_m, contacts.ceiling->sigma_m)
-                                : "not measured",
+               contacts.ceiling
+                   ? fmt::format("{:.3f} ± {:.3f} m", contacts.ceiling->height_m, contacts.ceiling->sigma_m)
+                   : "not measured",
                contacts.how, contacts.floor_rejected,
                contacts.ceiling_rejected > 0
                    ? fmt::format(", {} ceiling contact(s) where a frame beside saw the wall rise higher",
@@ -457,10 +460,10 @@ PlanInput SurveyPlanInput(const Survey& s) {
   const bool stereo = s.capture.kind == CaptureKind::kStereo;
   for (const CaptureFrame& f : s.frames()) {
     const RigPose pose{.position_m = f.position_m, .yaw_rad = DegToRad(f.yaw_deg)};
-    input.frames.push_back({.index = f.index,
-                            .position_m = f.position_m,
-                            .camera_m = stereo ? EyeCentre(pose, s.capture.camera.baseline_m, StereoEye::kLeft)
-                                               : f.position_m});
+    input.frames.push_back(
+        {.index = f.index,
+         .position_m = f.position_m,
+         .camera_m = stereo ? EyeCentre(pose, s.capture.camera.baseline_m, StereoEye::kLeft) : f.position_m});
   }
   return input;
 }
@@ -529,8 +532,8 @@ ReviewInput SurveyReviewInput(const Survey& s) {
     const fs::path file = s.out_dir / "review" / "labels" / fmt::format("{:03d}.png", l.frame);
     fs::create_directories(file.parent_path());
     WriteFileAtomic(file, l.png);
-    const auto frame = std::find_if(s.frames().begin(), s.frames().end(),
-                                    [&](const CaptureFrame& f) { return f.index == l.frame; });
+    const auto frame =
+        std::find_if(s.frames().begin(), s.frames().end(), [&](const CaptureFrame& f) { return f.index == l.frame; });
     const auto planned = std::find_if(s.plan_input.frames.begin(), s.plan_input.frames.end(),
                                       [&](const PlanFrame& f) { return f.index == l.frame; });
     if (frame == s.frames().end() || planned == s.plan_input.frames.end()) continue;
@@ -614,13 +617,13 @@ void ReportStage(Survey& s) {
 // The figures behind the verdict, plan-wide and per wall (null: not measured).
 nlohmann::json VerdictEvidenceJson(const PlanVerdict& v) {
   auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
-  nlohmann::json js = {{"agreement", number(v.agreement)},         {"coverage", number(v.coverage)},
-                       {"floor_ceiling", number(v.floor_ceiling)}, {"short_walls", v.short_walls},
-                       {"odd_corners", v.odd_corners},             {"walls", nlohmann::json::array()}};
+  nlohmann::json js = {
+      {"agreement", number(v.agreement)}, {"coverage", number(v.coverage)}, {"floor_ceiling", number(v.floor_ceiling)},
+      {"short_walls", v.short_walls},     {"odd_corners", v.odd_corners},   {"walls", nlohmann::json::array()}};
   if (std::isfinite(v.tilt.tilt_deg)) {
-    js["tilt_from_edges"] = {{"tilt_deg", v.tilt.tilt_deg},          {"sigma_deg", v.tilt.sigma_deg},
-                             {"toward_deg", v.tilt.toward_deg},      {"samples", v.tilt.samples},
-                             {"inlier_share", v.tilt.inlier_share},  {"scatter_m", v.tilt.scatter_m}};
+    js["tilt_from_edges"] = {{"tilt_deg", v.tilt.tilt_deg},         {"sigma_deg", v.tilt.sigma_deg},
+                             {"toward_deg", v.tilt.toward_deg},     {"samples", v.tilt.samples},
+                             {"inlier_share", v.tilt.inlier_share}, {"scatter_m", v.tilt.scatter_m}};
   }
   for (const WallVerdict& w : v.walls) {
     js["walls"].push_back({{"verdict", VerdictName(w.verdict)},
@@ -635,10 +638,14 @@ nlohmann::json VerdictEvidenceJson(const PlanVerdict& v) {
 }
 
 void WriteSummaryStage(const SurveySummary& summary, const fs::path& out_dir) {
-  nlohmann::json js = {{"brief", summary.BriefReport()}, {"capture_kind", summary.capture_kind},
-                       {"frames", summary.frames},       {"points", summary.points},
-                       {"labels_source", summary.labels_source}, {"plan", summary.plan.BriefReport()},
-                       {"notes", summary.notes},         {"seconds", summary.seconds}};
+  nlohmann::json js = {{"brief", summary.BriefReport()},
+                       {"capture_kind", summary.capture_kind},
+                       {"frames", summary.frames},
+                       {"points", summary.points},
+                       {"labels_source", summary.labels_source},
+                       {"plan", summary.plan.BriefReport()},
+                       {"notes", summary.notes},
+                       {"seconds", summary.seconds}};
   if (!summary.wall_cue.empty()) js["wall_cue"] = summary.wall_cue;
   js["wall_cues"] = summary.wall_cues;
   js["walls_unseen"] = summary.walls_unseen;

@@ -152,9 +152,8 @@ struct SurveyResult {
 // file is written atomically.
 // Throws InputError for bad captures, images or models (naming the file);
 // nothing is written then.
-SurveyResult RunSurvey(const std::filesystem::path& capture_json,
-                       const std::filesystem::path& out_dir, const SurveyOptions& options = {},
-                       const ProgressCallback& progress = {});
+SurveyResult RunSurvey(const std::filesystem::path& capture_json, const std::filesystem::path& out_dir,
+                       const SurveyOptions& options = {}, const ProgressCallback& progress = {});
 
 // The segmentation models shipped in models/, by name; the first is the default.
 struct ShippedModel {

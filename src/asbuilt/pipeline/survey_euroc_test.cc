@@ -44,9 +44,13 @@ fs::path MakeEurocCapture(const fs::path& dir, int frames) {
   WriteCalibration(calibration, dir / "calibration.yml");
   const StereoRectifier rectifier = MakeStereoRectifier(calibration, {});
   Capture capture;
-  capture.camera = {.width = calibration.image_size.width, .height = calibration.image_size.height,
-                    .fx = rectifier.camera.fx, .fy = rectifier.camera.fy, .cx = rectifier.camera.cx,
-                    .cy = rectifier.camera.cy, .baseline_m = rectifier.baseline_m};
+  capture.camera = {.width = calibration.image_size.width,
+                    .height = calibration.image_size.height,
+                    .fx = rectifier.camera.fx,
+                    .fy = rectifier.camera.fy,
+                    .cx = rectifier.camera.cx,
+                    .cy = rectifier.camera.cy,
+                    .baseline_m = rectifier.baseline_m};
   capture.rectified = false;
   capture.calibration = "calibration.yml";
   for (int index = 0; index < frames; ++index) {
@@ -56,8 +60,11 @@ fs::path MakeEurocCapture(const fs::path& dir, int frames) {
     fs::copy_file(kEuroc / "cam1" / name, dir / "cam1" / name);
     // The MAV sat still: both frames are the same view (yaw and height are
     // not known in the rig's frame; the plan is drawn in the first view's).
-    capture.frames.push_back({.index = index, .left = "cam0/" + name, .right = "cam1/" + name,
-                              .yaw_deg = 0.0, .position_m = Vec3(0, 0, 1.0)});
+    capture.frames.push_back({.index = index,
+                              .left = "cam0/" + name,
+                              .right = "cam1/" + name,
+                              .yaw_deg = 0.0,
+                              .position_m = Vec3(0, 0, 1.0)});
   }
   WriteCapture(capture, dir / "capture.json");
   return dir / "capture.json";
@@ -67,12 +74,13 @@ class SurveyEuroc : public ::testing::Test {
  protected:
   void SetUp() override {
     if (!fs::exists(kEuroc / "cam0" / "sensor.yaml")) GTEST_SKIP() << kEuroc << " absent";
-    dir_ = fs::temp_directory_path() /
-           fmt::format("asbuilt_survey_euroc_{}_{}", ::testing::UnitTest::GetInstance()->current_test_info()->name(),
-                       ::getpid());
+    dir_ = fs::temp_directory_path() / fmt::format("asbuilt_survey_euroc_{}_{}",
+                                                   ::testing::UnitTest::GetInstance()->current_test_info()->name(),
+                                                   ::getpid());
     // Both pairs show the same view; the segmenter's test takes one (CPU time).
-    const bool model_test = std::string(::testing::UnitTest::GetInstance()->current_test_info()->name())
-                                .find("ShippedModel") != std::string::npos;
+    const bool model_test =
+        std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()).find("ShippedModel") !=
+        std::string::npos;
     capture_ = MakeEurocCapture(dir_, model_test ? 1 : 2);
   }
   void TearDown() override {
@@ -148,8 +156,7 @@ TEST_F(SurveyEuroc, ShippedModelRunsEndToEndAndSaysWhatItCannotMeasure) {
   EXPECT_EQ(static_cast<int>(r.summary.frame_cues.size()), 1);
   EXPECT_FALSE(r.summary.score.has_value());
   if (r.plan.walls.empty()) {
-    EXPECT_NE(std::find(r.summary.notes.begin(), r.summary.notes.end(),
-                        "no walls could be measured from this capture"),
+    EXPECT_NE(std::find(r.summary.notes.begin(), r.summary.notes.end(), "no walls could be measured from this capture"),
               r.summary.notes.end());
     // The empty plan.json says why it is empty: it is no measurement.
     const Plan written = ReadPlan(out / "plan.json");

@@ -37,7 +37,8 @@ TEST(RunSurvey, ExactLabelsOnBlenderRectangleMeetTargets) {
   EXPECT_LE(s.opening_width.Median().value_or(1), 0.02) << s.Table();
   EXPECT_LE(s.opening_width.Max().value_or(1), 0.03) << s.Table();
   EXPECT_LE(s.area_relative_error.value_or(1), 0.02) << s.Table();
-  for (const char* f : {"plan.json", "plan.svg", "plan.dxf", "plan.pdf", "plan.png", "plan.ifc", "points.txt", "points.ply", "score.json", "summary.json", "report.html"}) {
+  for (const char* f : {"plan.json", "plan.svg", "plan.dxf", "plan.pdf", "plan.png", "plan.ifc", "points.txt",
+                        "points.ply", "score.json", "summary.json", "report.html"}) {
     EXPECT_TRUE(fs::exists(out / f)) << f;
   }
   std::string html = ReadFile(out / "report.html");

@@ -77,8 +77,13 @@ Plan TruthPlan() {
   Plan p;
   const std::vector<Vec2> c = {{kX0, kY0}, {kX1, kY0}, {kX1, kY1}, {kX0, kY1}};
   for (int i = 0; i < 4; ++i) p.walls.push_back({.start = c[i], .end = c[(i + 1) % 4], .height = kCeiling});
-  p.openings.push_back({.kind = OpeningKind::kDoor, .wall = 2, .start = {kDoorX1, kY1}, .end = {kDoorX0, kY1},
-                        .width = kDoorX1 - kDoorX0, .height = kDoorTop, .sill = 0.0});
+  p.openings.push_back({.kind = OpeningKind::kDoor,
+                        .wall = 2,
+                        .start = {kDoorX1, kY1},
+                        .end = {kDoorX0, kY1},
+                        .width = kDoorX1 - kDoorX0,
+                        .height = kDoorTop,
+                        .sill = 0.0});
   p.rooms.push_back({.polygon = c, .area_m2 = (kX1 - kX0) * (kY1 - kY0)});
   return p;
 }
@@ -97,7 +102,9 @@ SurveyResult SurveyWith(const std::string& name, const Faults& faults) {
   fs::create_directories(dir / "labels");
   SurveyOptions options = Options();
   cv::imwrite((dir / "pano.png").string(), cv::Mat(256, 512, CV_8UC3, cv::Scalar(128, 128, 128)));
-  const nlohmann::json capture = {{"version", 1}, {"kind", "panorama"}, {"panorama", "pano.png"},
+  const nlohmann::json capture = {{"version", 1},
+                                  {"kind", "panorama"},
+                                  {"panorama", "pano.png"},
                                   {"position_m", {kCamera.x(), kCamera.y(), faults.claimed_height_m}}};
   WriteFileAtomic(dir / "capture.json", capture.dump());
   const double tilt = faults.tilt_deg * 3.14159265358979323846 / 180.0;
@@ -176,7 +183,7 @@ TEST(Verdict, AWallHiddenByFurnitureIsNamed) {
   const PlanVerdict& v = r.summary.verdict;
   EXPECT_TRUE(Mentions(v, "furniture")) << Reasons(v);
   EXPECT_NE(v.walls[0].verdict, Verdict::kGood) << Reasons(v);  // The south wall, y = −2.
-  EXPECT_FALSE(Mentions(v, "tilt")) << Reasons(v);  // The sideboard's top is no lean.
+  EXPECT_FALSE(Mentions(v, "tilt")) << Reasons(v);              // The sideboard's top is no lean.
 }
 
 }  // namespace verdict_room

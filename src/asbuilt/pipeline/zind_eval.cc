@@ -53,7 +53,8 @@ cv::Mat SheetTile(const cv::Mat& bgr, const cv::Mat& truth, const cv::Mat& pred,
   if (horizon > 0) {
     for (int half = 0; half < 2; ++half) {
       const int y = (half * bgr.rows + horizon) / 2;
-      for (int x = 0; x < tile.cols; x += 8) cv::line(tile, {x, y}, {std::min(x + 4, tile.cols - 1), y}, {255, 255, 255});
+      for (int x = 0; x < tile.cols; x += 8)
+        cv::line(tile, {x, y}, {std::min(x + 4, tile.cols - 1), y}, {255, 255, 255});
     }
   }
   cv::putText(tile, caption, {4, 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, {0, 0, 0}, 3);
@@ -78,7 +79,8 @@ cv::Mat Sheet(const std::vector<cv::Mat>& tiles, int per_row) {
 
 std::string ClassFigures(const SegmentationMetrics& m) {
   std::string s;
-  for (std::size_t c = 1; c < m.classes.size(); ++c) s += fmt::format(" {} {}", m.classes[c].name, F3(m.classes[c].iou));
+  for (std::size_t c = 1; c < m.classes.size(); ++c)
+    s += fmt::format(" {} {}", m.classes[c].name, F3(m.classes[c].iou));
   return s;
 }
 
@@ -95,33 +97,41 @@ std::string Table(const SegmentationMetrics& m) {
 std::string HtmlEscape(const std::string& s) {
   std::string out;
   for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else out += c;
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else
+      out += c;
   }
   return out;
 }
 
 std::string Report(const ZindEvalSummary& s) {
-  std::string html = "<!doctype html><meta charset=utf-8><title>asbuilt eval zind</title>\n"
-                     "<style>body{font-family:sans-serif;margin:1em}table{border-collapse:collapse}"
-                     "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}img{max-width:100%}"
-                     ".notice{background:#fee;padding:.5em;font-weight:bold}</style>\n";
+  std::string html =
+      "<!doctype html><meta charset=utf-8><title>asbuilt eval zind</title>\n"
+      "<style>body{font-family:sans-serif;margin:1em}table{border-collapse:collapse}"
+      "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}img{max-width:100%}"
+      ".notice{background:#fee;padding:.5em;font-weight:bold}</style>\n";
   html += fmt::format("<p class=notice>{}</p>\n", kZindNotice);
-  html += fmt::format("<h1>Segmenter on real photos (ZInD)</h1><p>{}<br>{} on {}<br>{}</p>\n", HtmlEscape(s.BriefReport()),
-                      HtmlEscape(s.model), HtmlEscape(s.tour), HtmlEscape(s.views));
-  html += "<p>Labels are the annotated room layout: furniture in front of a wall counts as wall; a door covers its "
-          "whole opening; ZInD passages are ignored. The upper half (above the horizon) is where furniture rarely "
-          "hides the walls. In each sheet: layout labels over the photo (top), the segmenter (bottom); wall blue, "
-          "door green, window red, ignored grey; the dashed line is the horizon.</p>\n";
-  html += "<table><tr><th>panorama</th><th>room</th><th>mIoU</th><th>wall</th><th>door</th><th>window</th>"
-          "<th>upper mIoU</th></tr>\n";
+  html += fmt::format("<h1>Segmenter on real photos (ZInD)</h1><p>{}<br>{} on {}<br>{}</p>\n",
+                      HtmlEscape(s.BriefReport()), HtmlEscape(s.model), HtmlEscape(s.tour), HtmlEscape(s.views));
+  html +=
+      "<p>Labels are the annotated room layout: furniture in front of a wall counts as wall; a door covers its "
+      "whole opening; ZInD passages are ignored. The upper half (above the horizon) is where furniture rarely "
+      "hides the walls. In each sheet: layout labels over the photo (top), the segmenter (bottom); wall blue, "
+      "door green, window red, ignored grey; the dashed line is the horizon.</p>\n";
+  html +=
+      "<table><tr><th>panorama</th><th>room</th><th>mIoU</th><th>wall</th><th>door</th><th>window</th>"
+      "<th>upper mIoU</th></tr>\n";
   for (const ZindPanoramaScore& p : s.per_panorama) {
-    html += fmt::format("<tr><td><a href='#{0}'>{0}</a></td><td>{1}</td><td>{2}</td><td>{3}</td><td>{4}</td><td>{5}</td>"
-                        "<td>{6}</td></tr>\n",
-                        HtmlEscape(p.name), HtmlEscape(p.label), F3(p.whole.miou), F3(p.whole.classes[1].iou),
-                        F3(p.whole.classes[2].iou), F3(p.whole.classes[3].iou), F3(p.upper.miou));
+    html += fmt::format(
+        "<tr><td><a href='#{0}'>{0}</a></td><td>{1}</td><td>{2}</td><td>{3}</td><td>{4}</td><td>{5}</td>"
+        "<td>{6}</td></tr>\n",
+        HtmlEscape(p.name), HtmlEscape(p.label), F3(p.whole.miou), F3(p.whole.classes[1].iou),
+        F3(p.whole.classes[2].iou), F3(p.whole.classes[3].iou), F3(p.upper.miou));
   }
   html += "</table>\n";
   for (const ZindPanoramaScore& p : s.per_panorama) {
@@ -153,9 +163,10 @@ std::string ZindEvalSummary::ToMarkdown() const {
        "annotated segments and heights, ZInD passages ignored): furniture in front of a wall counts as wall. "
        "The upper half (pixels above the horizon) is where furniture rarely hides the layout.\n\n";
   s += "Whole views:\n\n" + Table(whole) + "\nUpper half (above the horizon):\n\n" + Table(upper);
-  s += "\nPer panorama (mIoU; wall, door, window IoU; upper-half mIoU). A class a room lacks scores 0 where the "
-       "segmenter predicts it anyway (mmseg's definition), – where neither has it:\n\n| panorama | room | mIoU | wall | "
-       "door | window | upper mIoU |\n|---|---|---|---|---|---|---|\n";
+  s +=
+      "\nPer panorama (mIoU; wall, door, window IoU; upper-half mIoU). A class a room lacks scores 0 where the "
+      "segmenter predicts it anyway (mmseg's definition), – where neither has it:\n\n| panorama | room | mIoU | wall | "
+      "door | window | upper mIoU |\n|---|---|---|---|---|---|---|\n";
   for (const ZindPanoramaScore& p : per_panorama) {
     s += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", p.name, p.label, F3(p.whole.miou),
                      F3(p.whole.classes[1].iou), F3(p.whole.classes[2].iou), F3(p.whole.classes[3].iou),
@@ -167,17 +178,20 @@ std::string ZindEvalSummary::ToMarkdown() const {
 nlohmann::json ZindEvalSummary::ToJson() const {
   nlohmann::json per = nlohmann::json::array();
   for (const ZindPanoramaScore& p : per_panorama) {
-    per.push_back({{"name", p.name}, {"label", p.label}, {"views", p.views}, {"whole", p.whole.ToJson()},
-                   {"upper", p.upper.ToJson()}, {"sheet", p.sheet}});
+    per.push_back({{"name", p.name},
+                   {"label", p.label},
+                   {"views", p.views},
+                   {"whole", p.whole.ToJson()},
+                   {"upper", p.upper.ToJson()},
+                   {"sheet", p.sheet}});
   }
-  return {{"notice", kZindNotice}, {"tour", tour},      {"model", model},        {"views", views},
-          {"panoramas", panoramas}, {"images", images}, {"whole", whole.ToJson()}, {"upper", upper.ToJson()},
+  return {{"notice", kZindNotice},  {"tour", tour},      {"model", model},          {"views", views},
+          {"panoramas", panoramas}, {"images", images},  {"whole", whole.ToJson()}, {"upper", upper.ToJson()},
           {"per_panorama", per},    {"seconds", seconds}};
 }
 
 ZindEvalSummary EvaluateOnZind(Segmenter& segmenter, const ZindTour& tour, const fs::path& out_dir,
-                               const ZindEvalOptions& options, const ProgressCallback& progress,
-                               std::stop_token stop) {
+                               const ZindEvalOptions& options, const ProgressCallback& progress, std::stop_token stop) {
   options.Check();
   const auto start = std::chrono::steady_clock::now();
   std::vector<const ZindPanorama*> panoramas = tour.BenchmarkPanoramas();

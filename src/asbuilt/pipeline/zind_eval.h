@@ -38,11 +38,11 @@
 namespace asbuilt {
 
 struct ZindEvalOptions {
-  TurnInPlaceOptions turn;  // The views of each panorama (issue 21: the defaults).
+  TurnInPlaceOptions turn;                       // The views of each panorama (issue 21: the defaults).
   ZindLayoutKind layout = ZindLayoutKind::kRaw;  // The layout the labels come from.
-  int max_panoramas = 0;  // Score at most N benchmark panoramas (0 = all), for quick checks.
-  int batch_size = 4;     // Views per forward pass.
-  bool write_sheets = true;  // Contact sheets and report.html (when out_dir is given).
+  int max_panoramas = 0;                         // Score at most N benchmark panoramas (0 = all), for quick checks.
+  int batch_size = 4;                            // Views per forward pass.
+  bool write_sheets = true;                      // Contact sheets and report.html (when out_dir is given).
   // How reports name the segmenter (its file, the scale it ran at); empty:
   // the checkpoint's own description (SegmenterInfo::ToString()).
   std::string segmenter_name;

@@ -36,8 +36,7 @@ double NextCoarserScale(double scale) {
 // Throws Error naming `name` if the plan cannot be drawn or the sheet's
 // extent overflows.
 template <typename Size>
-PlanSheet FitSheet(const Plan& plan, const DrawingOptions& o, double limit, const Size& size,
-                   const std::string& name) {
+PlanSheet FitSheet(const Plan& plan, const DrawingOptions& o, double limit, const Size& size, const std::string& name) {
   CheckPlanDrawable(plan, name);
   double scale = o.scale;
   PlanSheet sheet = LayOutPlanSheet(plan, o, scale);
@@ -62,9 +61,7 @@ PlanSheet FitSheet(const Plan& plan, const DrawingOptions& o, double limit, cons
 }
 
 // Longest side of the SVG/PDF page, paper mm.
-double PageSideMm(const PlanSheet& sheet) {
-  return std::max(sheet.Width(), sheet.Height()) * 1000.0 / sheet.scale;
-}
+double PageSideMm(const PlanSheet& sheet) { return std::max(sheet.Width(), sheet.Height()) * 1000.0 / sheet.scale; }
 
 // PNG pixels per world metre at the sheet's scale (the paper resolution of
 // png_px_per_m at options.scale kept).
@@ -73,27 +70,25 @@ double PngPxPerM(const PlanSheet& sheet, const DrawingOptions& o) { return o.png
 // Logs that `path` is drawn at a coarser scale than asked for, if it is.
 void WarnIfReduced(const PlanSheet& sheet, const DrawingOptions& o, const fs::path& path, const std::string& limit) {
   if (sheet.scale == o.scale) return;
-  spdlog::warn("{}: at 1:{} the drawing would exceed {}; drawn at 1:{} (the sheet is {:.0f} x {:.0f} m)",
-               path.string(), SheetScaleText(o.scale), limit, SheetScaleText(sheet.scale), sheet.Width(),
-               sheet.Height());
+  spdlog::warn("{}: at 1:{} the drawing would exceed {}; drawn at 1:{} (the sheet is {:.0f} x {:.0f} m)", path.string(),
+               SheetScaleText(o.scale), limit, SheetScaleText(sheet.scale), sheet.Width(), sheet.Height());
 }
 
 // The sheet for SVG and PDF: within max_page_side_mm, else an Error.
 PlanSheet PageSheet(const Plan& plan, const DrawingOptions& o, const std::string& name) {
   PlanSheet sheet = FitSheet(plan, o, o.max_page_side_mm, PageSideMm, name);
   if (PageSideMm(sheet) > o.max_page_side_mm) {
-    throw Error(fmt::format("{}: cannot draw the plan: its annotation alone needs {:.0f} mm, more than "
-                            "DrawingOptions.max_page_side_mm = {}",
-                            name, PageSideMm(sheet), o.max_page_side_mm));
+    throw Error(
+        fmt::format("{}: cannot draw the plan: its annotation alone needs {:.0f} mm, more than "
+                    "DrawingOptions.max_page_side_mm = {}",
+                    name, PageSideMm(sheet), o.max_page_side_mm));
   }
   return sheet;
 }
 
 // The sheet for PNG: within max_png_side_px where the annotation allows.
 PlanSheet PngSheet(const Plan& plan, const DrawingOptions& o, const std::string& name) {
-  auto side_px = [&](const PlanSheet& sheet) {
-    return std::max(sheet.Width(), sheet.Height()) * PngPxPerM(sheet, o);
-  };
+  auto side_px = [&](const PlanSheet& sheet) { return std::max(sheet.Width(), sheet.Height()) * PngPxPerM(sheet, o); };
   return FitSheet(plan, o, o.max_png_side_px, side_px, name);
 }
 
@@ -174,8 +169,7 @@ void WritePlanPng(const Plan& plan, const fs::path& path, const DrawingOptions& 
   WriteFileAtomic(path, SheetToPng(sheet, {.px_per_m = unit, .px_per_mm = mm, .max_side_px = options.max_png_side_px}));
 }
 
-void WritePlanFiles(const Plan& plan, const fs::path& folder, const DrawingOptions& options,
-                    const IfcOptions& ifc) {
+void WritePlanFiles(const Plan& plan, const fs::path& folder, const DrawingOptions& options, const IfcOptions& ifc) {
   options.Check();
   ifc.Check();
   std::error_code ec;

@@ -33,12 +33,12 @@
 namespace asbuilt {
 
 struct DrawingOptions {
-  double nominal_thickness_m = 0.2;  // Drawn thickness of walls the plan gives none for.
-  double scale = 50.0;               // Paper scale 1:scale (unless too large, see above).
-  double png_px_per_m = 120.0;       // PNG resolution at `scale`; 120 px/m ≈ 1:50 at 150 dpi.
-  double text_height_m = 0.13;       // Dimension text height in world metres at `scale` (2.6 mm at 1:50).
-  bool show_uncertainty = true;      // Print ±σ next to a dimension…
-  double significant_sigma_m = 0.0;  // …when σ is at least this (shown as at least ±1 mm).
+  double nominal_thickness_m = 0.2;           // Drawn thickness of walls the plan gives none for.
+  double scale = 50.0;                        // Paper scale 1:scale (unless too large, see above).
+  double png_px_per_m = 120.0;                // PNG resolution at `scale`; 120 px/m ≈ 1:50 at 150 dpi.
+  double text_height_m = 0.13;                // Dimension text height in world metres at `scale` (2.6 mm at 1:50).
+  bool show_uncertainty = true;               // Print ±σ next to a dimension…
+  double significant_sigma_m = 0.0;           // …when σ is at least this (shown as at least ±1 mm).
   std::string title = "as-built floor plan";  // Title line under the plan; empty: none.
   // Longest page side for SVG and PDF, paper mm; a larger sheet is drawn at a
   // coarser scale. cairo's PDF pages are at most 14400 pt = 5080 mm.

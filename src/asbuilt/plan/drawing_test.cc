@@ -315,7 +315,8 @@ TEST(PlanDrawings, AnnotationLargerThanTheLimitAtAnyScale) {
 
 TEST(PlanDrawings, AnUnreliablePlanSaysSoInEveryDrawing) {
   Plan plan = RoomWithDoorAndWindow();
-  plan.verdict = PlanVerdictNote{.verdict = "unreliable", .confidence = 0.1, .reasons = {"walls found in 20 % of the turn"}};
+  plan.verdict =
+      PlanVerdictNote{.verdict = "unreliable", .confidence = 0.1, .reasons = {"walls found in 20 % of the turn"}};
   plan.walls[1].verdict = "unreliable";
   plan.walls[1].length_sigma_m.reset();
   const std::string svg = PlanToSvg(plan);

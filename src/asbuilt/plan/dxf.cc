@@ -42,9 +42,9 @@ class DxfOut {
 struct Entity {
   enum Kind { kLine, kArc, kText, kHatch, kPolyline } kind = kLine;
   std::string layer;
-  Vec2 a = Vec2::Zero(), b = Vec2::Zero();  // Line ends; arc centre in a.
+  Vec2 a = Vec2::Zero(), b = Vec2::Zero();        // Line ends; arc centre in a.
   double radius = 0, start_deg = 0, end_deg = 0;  // Arc.
-  double height = 0.13, angle_deg = 0;  // Text.
+  double height = 0.13, angle_deg = 0;            // Text.
   std::string text;
   std::vector<Vec2> points;  // Hatch / polyline.
   bool closed = true;        // Polyline.
@@ -53,8 +53,8 @@ struct Entity {
 };
 
 struct Dimension {
-  Vec2 p1, p2;       // Measured points (extension line origins).
-  Vec2 line1, line2; // Dimension line ends.
+  Vec2 p1, p2;        // Measured points (extension line origins).
+  Vec2 line1, line2;  // Dimension line ends.
   Vec2 text_at;
   double text_angle_deg = 0;
   std::string text;
@@ -211,10 +211,8 @@ Dimension MakeDxfDimension(const SheetDimension& dim, const SheetDimensionStyle&
       d.geometry.push_back({.kind = Entity::kLine, .layer = "DIMENSIONS", .a = a, .b = b});
     }
   }
-  d.geometry.push_back(DxfText("DIMENSIONS", {.at = g.text_at,
-                                              .angle_rad = g.text_angle_rad,
-                                              .height_m = style.text_height_m,
-                                              .text = d.text}));
+  d.geometry.push_back(DxfText(
+      "DIMENSIONS", {.at = g.text_at, .angle_rad = g.text_angle_rad, .height_m = style.text_height_m, .text = d.text}));
   return d;
 }
 
@@ -242,8 +240,8 @@ DxfModel CollectDxfModel(const PlanSheet& sheet) {
 
 // Handles fixed up front so that tables and blocks can refer to each other.
 struct DxfHandles {
-  std::string vport_table, ltype_table, layer_table, style_table, view_table, ucs_table, appid_table,
-      dimstyle_table, block_table, style_standard, model_record, paper_record, root_dict, group_dict;
+  std::string vport_table, ltype_table, layer_table, style_table, view_table, ucs_table, appid_table, dimstyle_table,
+      block_table, style_standard, model_record, paper_record, root_dict, group_dict;
   std::vector<std::string> dim_records;
 };
 DxfHandles AllocateDxfHandles(DxfOut& o, size_t dims) {
@@ -306,11 +304,11 @@ void WriteDxfTables(DxfOut& b, const DxfHandles& h, const SheetDimensionStyle& s
     int lineweight;  // 1/100 mm.
   };
   std::vector<LayerDef> layers = {{"0", 7, -3},
-                             {SheetLayerName(SheetLayer::kWalls), 7, 50},
-                             {SheetLayerName(SheetLayer::kDoors), 3, 25},
-                             {SheetLayerName(SheetLayer::kWindows), 5, 25},
-                             {SheetLayerName(SheetLayer::kDimensions), 1, 13},
-                             {SheetLayerName(SheetLayer::kText), 7, 18}};
+                                  {SheetLayerName(SheetLayer::kWalls), 7, 50},
+                                  {SheetLayerName(SheetLayer::kDoors), 3, 25},
+                                  {SheetLayerName(SheetLayer::kWindows), 5, 25},
+                                  {SheetLayerName(SheetLayer::kDimensions), 1, 13},
+                                  {SheetLayerName(SheetLayer::kText), 7, 18}};
   // A verdict layer only when the plan carries that verdict (its name is the message).
   for (SheetLayer verdict : {SheetLayer::kCheck, SheetLayer::kUnreliable}) {
     const char* name = SheetLayerName(verdict);

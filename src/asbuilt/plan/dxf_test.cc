@@ -64,8 +64,13 @@ TEST(PlanDxf, ReconstructedRotatedPlanWithUncertaintiesPassesTheReader) {
   for (Vec2& p : c) p = rot * p + Vec2(2, -1);
   for (int i = 0; i < 4; ++i) truth.walls.push_back({.start = c[i], .end = c[(i + 1) % 4], .height = 2.6});
   Vec2 d = (c[1] - c[0]).normalized();
-  truth.openings.push_back({.kind = OpeningKind::kDoor, .wall = 0, .start = c[0] + 1.0 * d, .end = c[0] + 1.9 * d,
-                            .width = 0.9, .height = 2.0, .sill = 0.0});
+  truth.openings.push_back({.kind = OpeningKind::kDoor,
+                            .wall = 0,
+                            .start = c[0] + 1.0 * d,
+                            .end = c[0] + 1.9 * d,
+                            .width = 0.9,
+                            .height = 2.0,
+                            .sill = 0.0});
   truth.rooms.push_back({.polygon = c, .area_m2 = 20});
   PlanResult r = ReconstructPlan(SamplePointsFromPlan(truth, {}, 5), {});
   ShellResult run = CheckWithEzdxf(r.plan, "reconstructed");

@@ -153,9 +153,7 @@ std::string PointText(const Vec2& p) { return fmt::format("({}, {})", p.x(), p.y
 bool Finite(const Vec2& p) { return std::isfinite(p.x()) && std::isfinite(p.y()); }
 
 void CheckModellable(const Plan& plan, const std::string& name) {
-  auto fail = [&](const std::string& what) {
-    throw Error(fmt::format("{}: cannot model the plan: {}", name, what));
-  };
+  auto fail = [&](const std::string& what) { throw Error(fmt::format("{}: cannot model the plan: {}", name, what)); };
   auto check_size = [&](const std::optional<double>& v, const std::string& field) {
     if (v && !std::isfinite(*v)) fail(fmt::format("{} = {} is not finite", field, *v));
   };
@@ -240,8 +238,7 @@ std::vector<ResolvedWall> ResolveWalls(const Plan& plan, const IfcOptions& o) {
 
 class IfcModel {
  public:
-  IfcModel(const Plan& plan, const IfcOptions& options)
-      : plan_(plan), o_(options), guid_(PlanToJson(plan).dump()) {}
+  IfcModel(const Plan& plan, const IfcOptions& options) : plan_(plan), o_(options), guid_(PlanToJson(plan).dump()) {}
 
   std::string Data() {
     Context();
@@ -259,8 +256,8 @@ class IfcModel {
     for (size_t i = 0; i < plan_.openings.size(); ++i) {
       const PlanOpening& op = plan_.openings[i];
       const int number = op.kind == OpeningKind::kDoor ? ++doors : ++windows;
-      contained.push_back(Opening(static_cast<int>(i), number, walls[op.wall], wall_ids[op.wall],
-                                  wall_placements[op.wall]));
+      contained.push_back(
+          Opening(static_cast<int>(i), number, walls[op.wall], wall_ids[op.wall], wall_placements[op.wall]));
     }
     double room_height_m = o_.default_wall_height_m;
     if (!walls.empty()) {
@@ -292,7 +289,8 @@ class IfcModel {
     const int location = (x == 0 && y == 0 && z == 0) ? origin_ : Point3(x, y, z);
     std::string dir = "$";
     if (ref_direction) dir = Ref(out_.Add("IFCDIRECTION", Reals({ref_direction->x(), ref_direction->y(), 0.0})));
-    return out_.Add("IFCAXIS2PLACEMENT3D", fmt::format("{},{},{}", Ref(location), dir == "$" ? "$" : Ref(z_axis_), dir));
+    return out_.Add("IFCAXIS2PLACEMENT3D",
+                    fmt::format("{},{},{}", Ref(location), dir == "$" ? "$" : Ref(z_axis_), dir));
   }
   int LocalPlacement(int relative_to, int placement) {
     return out_.Add("IFCLOCALPLACEMENT", fmt::format("{},{}", relative_to ? Ref(relative_to) : "$", Ref(placement)));
@@ -310,7 +308,8 @@ class IfcModel {
   }
   int Rectangle(double x_m, double y_m, double centre_x_m, double centre_y_m) {
     const int centre = out_.Add("IFCAXIS2PLACEMENT2D", fmt::format("{},$", Ref(Point2(Vec2(centre_x_m, centre_y_m)))));
-    return out_.Add("IFCRECTANGLEPROFILEDEF", fmt::format(".AREA.,$,{},{},{}", Ref(centre), StepReal(x_m), StepReal(y_m)));
+    return out_.Add("IFCRECTANGLEPROFILEDEF",
+                    fmt::format(".AREA.,$,{},{},{}", Ref(centre), StepReal(x_m), StepReal(y_m)));
   }
   int Shape(const std::vector<int>& representations) {
     return out_.Add("IFCPRODUCTDEFINITIONSHAPE", "$,$," + Refs(representations));
@@ -348,7 +347,8 @@ class IfcModel {
     Rel("IFCRELDEFINESBYPROPERTIES", {Refs({object}), Ref(set)});
   }
   // Base quantities (IFC4 Qto_… sets): (name, entity, value).
-  void Quantities(int object, const std::string& name, const std::vector<std::tuple<std::string, std::string, double>>& qs) {
+  void Quantities(int object, const std::string& name,
+                  const std::vector<std::tuple<std::string, std::string, double>>& qs) {
     std::vector<int> ids;
     for (const auto& [qname, type, value] : qs) {
       ids.push_back(out_.Add(type, fmt::format("{},$,$,{},$", StepString(qname), StepReal(value))));
@@ -364,8 +364,10 @@ class IfcModel {
     const int north = out_.Add("IFCDIRECTION", Reals({0.0, 1.0}));
     model_ = out_.Add("IFCGEOMETRICREPRESENTATIONCONTEXT",
                       fmt::format("$,'Model',3,1.E-05,{},{}", Ref(identity_), Ref(north)));
-    body_ = out_.Add("IFCGEOMETRICREPRESENTATIONSUBCONTEXT", fmt::format("'Body','Model',*,*,*,*,{},$,.MODEL_VIEW.,$", Ref(model_)));
-    axis_ = out_.Add("IFCGEOMETRICREPRESENTATIONSUBCONTEXT", fmt::format("'Axis','Model',*,*,*,*,{},$,.GRAPH_VIEW.,$", Ref(model_)));
+    body_ = out_.Add("IFCGEOMETRICREPRESENTATIONSUBCONTEXT",
+                     fmt::format("'Body','Model',*,*,*,*,{},$,.MODEL_VIEW.,$", Ref(model_)));
+    axis_ = out_.Add("IFCGEOMETRICREPRESENTATIONSUBCONTEXT",
+                     fmt::format("'Axis','Model',*,*,*,*,{},$,.GRAPH_VIEW.,$", Ref(model_)));
     std::vector<int> units = {
         out_.Add("IFCSIUNIT", "*,.LENGTHUNIT.,$,.METRE."),
         out_.Add("IFCSIUNIT", "*,.AREAUNIT.,$,.SQUARE_METRE."),
@@ -376,13 +378,17 @@ class IfcModel {
   }
 
   void Spatial() {
-    const int project = out_.Add("IFCPROJECT", fmt::format("{},$,$,$,({}),{}", Root(o_.project_name), Ref(model_), Ref(units_)));
+    const int project =
+        out_.Add("IFCPROJECT", fmt::format("{},$,$,$,({}),{}", Root(o_.project_name), Ref(model_), Ref(units_)));
     site_placement_ = LocalPlacement(0, identity_);
-    const int site = out_.Add("IFCSITE", fmt::format("{},$,{},$,$,.ELEMENT.,$,$,$,$,$", Root(o_.project_name), Ref(site_placement_)));
+    const int site = out_.Add(
+        "IFCSITE", fmt::format("{},$,{},$,$,.ELEMENT.,$,$,$,$,$", Root(o_.project_name), Ref(site_placement_)));
     const int building_placement = LocalPlacement(site_placement_, identity_);
-    const int building = out_.Add("IFCBUILDING", fmt::format("{},$,{},$,$,.ELEMENT.,$,$,$", Root(o_.project_name), Ref(building_placement)));
+    const int building = out_.Add(
+        "IFCBUILDING", fmt::format("{},$,{},$,$,.ELEMENT.,$,$,$", Root(o_.project_name), Ref(building_placement)));
     storey_placement_ = LocalPlacement(building_placement, identity_);
-    storey_ = out_.Add("IFCBUILDINGSTOREY", fmt::format("{},$,{},$,$,.ELEMENT.,0.", Root(o_.storey_name), Ref(storey_placement_)));
+    storey_ = out_.Add("IFCBUILDINGSTOREY",
+                       fmt::format("{},$,{},$,$,.ELEMENT.,0.", Root(o_.storey_name), Ref(storey_placement_)));
     Rel("IFCRELAGGREGATES", {Ref(project), Refs({site})});
     Rel("IFCRELAGGREGATES", {Ref(site), Refs({building})});
     Rel("IFCRELAGGREGATES", {Ref(building), Refs({storey_})});
@@ -395,17 +401,21 @@ class IfcModel {
     std::string shape = "$";  // A zero-length wall has no geometry.
     if (!w.degenerate) {
       const int axis_line = Polyline({Vec2(0, 0), Vec2(w.length_m, 0)}, false);
-      const int axis = out_.Add("IFCSHAPEREPRESENTATION", fmt::format("{},'Axis','Curve2D',({})", Ref(axis_), Ref(axis_line)));
-      const int profile = out_.Add("IFCARBITRARYCLOSEDPROFILEDEF", fmt::format(".AREA.,$,{}", Ref(Polyline(w.footprint, true))));
+      const int axis =
+          out_.Add("IFCSHAPEREPRESENTATION", fmt::format("{},'Axis','Curve2D',({})", Ref(axis_), Ref(axis_line)));
+      const int profile =
+          out_.Add("IFCARBITRARYCLOSEDPROFILEDEF", fmt::format(".AREA.,$,{}", Ref(Polyline(w.footprint, true))));
       shape = Ref(Shape({axis, BodyRep(Extrusion(profile, w.height_m))}));
     }
-    const int wall = out_.Add("IFCWALL", fmt::format("{},$,{},{},{},.NOTDEFINED.",
-                                                     Root(fmt::format("Wall {}", index + 1), fmt::format("plan.json walls[{}]", index)),
-                                                     Ref(placement), shape, StepString(fmt::format("W{}", index + 1))));
+    const int wall = out_.Add(
+        "IFCWALL", fmt::format("{},$,{},{},{},.NOTDEFINED.",
+                               Root(fmt::format("Wall {}", index + 1), fmt::format("plan.json walls[{}]", index)),
+                               Ref(placement), shape, StepString(fmt::format("W{}", index + 1))));
     std::vector<Property> props = {Integer("PlanIndex", index, "index in plan.json walls"),
                                    Length("Length", w.length_m)};
     if (pw.length_sigma_m) props.push_back(Sigma("LengthSigma", *pw.length_sigma_m));
-    if (pw.verdict) props.push_back(Label("Verdict", *pw.verdict, "asbuilt's verdict on this length: good, check or unreliable"));
+    if (pw.verdict)
+      props.push_back(Label("Verdict", *pw.verdict, "asbuilt's verdict on this length: good, check or unreliable"));
     props.push_back(Length("Thickness", w.thickness_m));
     props.push_back(Flag("ThicknessIsDefault", w.thickness_default,
                          w.thickness_default ? "not measured: the exporter's default thickness" : "measured"));
@@ -413,9 +423,10 @@ class IfcModel {
     props.push_back(Flag("HeightIsDefault", w.height_default,
                          w.height_default ? "not measured: the exporter's default height" : "measured"));
     PropertySet(wall, "Asbuilt_Dimensions", props);
-    Quantities(wall, "Qto_WallBaseQuantities", {{"Length", "IFCQUANTITYLENGTH", w.length_m},
-                                                {"Width", "IFCQUANTITYLENGTH", w.thickness_m},
-                                                {"Height", "IFCQUANTITYLENGTH", w.height_m}});
+    Quantities(wall, "Qto_WallBaseQuantities",
+               {{"Length", "IFCQUANTITYLENGTH", w.length_m},
+                {"Width", "IFCQUANTITYLENGTH", w.thickness_m},
+                {"Height", "IFCQUANTITYLENGTH", w.height_m}});
     return {wall, placement};
   }
 
@@ -437,23 +448,26 @@ class IfcModel {
 
     // The void: a box through the wall, from the opening's start, sill up.
     const int placement = LocalPlacement(wall_placement, Placement3(centre_m - width_m / 2, 0.0, sill_m));
-    const int box = Extrusion(Rectangle(width_m, w.thickness_m + 2 * kOpeningMarginM, width_m / 2, -w.thickness_m / 2), height_m);
-    const int opening = out_.Add("IFCOPENINGELEMENT", fmt::format("{},$,{},{},$,.OPENING.",
-                                                                  Root("Opening for " + label, description), Ref(placement),
-                                                                  Ref(Shape({BodyRep(box)}))));
+    const int box =
+        Extrusion(Rectangle(width_m, w.thickness_m + 2 * kOpeningMarginM, width_m / 2, -w.thickness_m / 2), height_m);
+    const int opening =
+        out_.Add("IFCOPENINGELEMENT", fmt::format("{},$,{},{},$,.OPENING.", Root("Opening for " + label, description),
+                                                  Ref(placement), Ref(Shape({BodyRep(box)}))));
     Rel("IFCRELVOIDSELEMENT", {Ref(wall), Ref(opening)});
-    Quantities(opening, "Qto_OpeningElementBaseQuantities", {{"Width", "IFCQUANTITYLENGTH", width_m},
-                                                              {"Height", "IFCQUANTITYLENGTH", height_m},
-                                                              {"Depth", "IFCQUANTITYLENGTH", w.thickness_m}});
+    Quantities(opening, "Qto_OpeningElementBaseQuantities",
+               {{"Width", "IFCQUANTITYLENGTH", width_m},
+                {"Height", "IFCQUANTITYLENGTH", height_m},
+                {"Depth", "IFCQUANTITYLENGTH", w.thickness_m}});
 
     // The filling: a panel in the middle of the wall.
     const int fill_placement = LocalPlacement(placement, identity_);
-    const int panel = Extrusion(Rectangle(width_m, std::min(kPanelThicknessM, w.thickness_m), width_m / 2, -w.thickness_m / 2), height_m);
+    const int panel = Extrusion(
+        Rectangle(width_m, std::min(kPanelThicknessM, w.thickness_m), width_m / 2, -w.thickness_m / 2), height_m);
     const std::string tag = fmt::format("{}{}", door ? "D" : "WIN", number);
     const int filling = out_.Add(door ? "IFCDOOR" : "IFCWINDOW",
-                                 fmt::format("{},$,{},{},{},{},{},{},$,$", Root(label, description), Ref(fill_placement),
-                                             Ref(Shape({BodyRep(panel)})), StepString(tag), StepReal(height_m),
-                                             StepReal(width_m), door ? ".DOOR." : ".WINDOW."));
+                                 fmt::format("{},$,{},{},{},{},{},{},$,$", Root(label, description),
+                                             Ref(fill_placement), Ref(Shape({BodyRep(panel)})), StepString(tag),
+                                             StepReal(height_m), StepReal(width_m), door ? ".DOOR." : ".WINDOW."));
     Rel("IFCRELFILLSELEMENT", {Ref(opening), Ref(filling)});
     std::vector<Property> props = {Integer("PlanIndex", index, "index in plan.json openings"),
                                    Integer("PlanWallIndex", op.wall, "index in plan.json walls of the host wall"),
@@ -463,10 +477,11 @@ class IfcModel {
     if (op.height_sigma_m) props.push_back(Sigma("HeightSigma", *op.height_sigma_m));
     props.push_back(Flag("HeightIsDefault", height_default,
                          height_default ? "not measured: the exporter's default height" : "measured"));
-    props.push_back({"Sill", fmt::format("IFCLENGTHMEASURE({})", StepReal(sill_m)), "height of the opening's bottom above the floor"});
+    props.push_back({"Sill", fmt::format("IFCLENGTHMEASURE({})", StepReal(sill_m)),
+                     "height of the opening's bottom above the floor"});
     if (op.sill_sigma_m) props.push_back(Sigma("SillSigma", *op.sill_sigma_m));
-    props.push_back(Flag("SillIsDefault", sill_default,
-                         sill_default ? "not measured: the exporter's default sill" : "measured"));
+    props.push_back(
+        Flag("SillIsDefault", sill_default, sill_default ? "not measured: the exporter's default sill" : "measured"));
     PropertySet(filling, "Asbuilt_Dimensions", props);
     Quantities(filling, door ? "Qto_DoorBaseQuantities" : "Qto_WindowBaseQuantities",
                {{"Width", "IFCQUANTITYLENGTH", width_m}, {"Height", "IFCQUANTITYLENGTH", height_m}});
@@ -481,15 +496,17 @@ class IfcModel {
     const int placement = LocalPlacement(storey_placement_, identity_);
     std::string shape = "$";  // A room without area has no geometry.
     if (polygon.size() >= 3 && std::abs(PolygonArea(polygon)) > 1e-12) {
-      const int profile = out_.Add("IFCARBITRARYCLOSEDPROFILEDEF", fmt::format(".AREA.,$,{}", Ref(Polyline(polygon, true))));
+      const int profile =
+          out_.Add("IFCARBITRARYCLOSEDPROFILEDEF", fmt::format(".AREA.,$,{}", Ref(Polyline(polygon, true))));
       shape = Ref(Shape({BodyRep(Extrusion(profile, height_m))}));
     }
     const std::string name = room.name ? *room.name : fmt::format("Room {}", index + 1);
-    const int space = out_.Add("IFCSPACE", fmt::format("{},$,{},{},$,.ELEMENT.,.SPACE.,$",
-                                                       Root(name, fmt::format("plan.json rooms[{}]", index)),
-                                                       Ref(placement), shape));
-    std::vector<Property> props = {Integer("PlanIndex", index, "index in plan.json rooms"),
-                                   {"Area", fmt::format("IFCAREAMEASURE({})", StepReal(room.area_m2)), "floor area, m2"}};
+    const int space =
+        out_.Add("IFCSPACE", fmt::format("{},$,{},{},$,.ELEMENT.,.SPACE.,$",
+                                         Root(name, fmt::format("plan.json rooms[{}]", index)), Ref(placement), shape));
+    std::vector<Property> props = {
+        Integer("PlanIndex", index, "index in plan.json rooms"),
+        {"Area", fmt::format("IFCAREAMEASURE({})", StepReal(room.area_m2)), "floor area, m2"}};
     if (room.area_sigma_m2) {
       props.push_back({"AreaSigma", fmt::format("IFCAREAMEASURE({})", StepReal(*room.area_sigma_m2)),
                        "1 sigma (standard uncertainty, 68 %), m2"});
@@ -497,17 +514,18 @@ class IfcModel {
     if (plan_.verdict) {
       const PlanVerdictNote& v = *plan_.verdict;
       props.push_back(Label("Verdict", v.verdict,
-                            v.verdict == "good" ? "asbuilt's verdict on this plan: good to use"
+                            v.verdict == "good"    ? "asbuilt's verdict on this plan: good to use"
                             : v.verdict == "check" ? "asbuilt's verdict on this plan: check before use"
                                                    : "asbuilt's verdict on this plan: unreliable, not a measurement"));
       props.push_back({"Confidence", fmt::format("IFCRATIOMEASURE({})", StepReal(v.confidence)), "0 to 1"});
       for (std::size_t k = 0; k < v.reasons.size(); ++k) {
-        props.push_back({fmt::format("VerdictReason{}", k + 1), fmt::format("IFCTEXT({})", StepString(v.reasons[k])), ""});
+        props.push_back(
+            {fmt::format("VerdictReason{}", k + 1), fmt::format("IFCTEXT({})", StepString(v.reasons[k])), ""});
       }
     }
     PropertySet(space, "Asbuilt_Dimensions", props);
-    Quantities(space, "Qto_SpaceBaseQuantities", {{"NetFloorArea", "IFCQUANTITYAREA", room.area_m2},
-                                                  {"Height", "IFCQUANTITYLENGTH", height_m}});
+    Quantities(space, "Qto_SpaceBaseQuantities",
+               {{"NetFloorArea", "IFCQUANTITYAREA", room.area_m2}, {"Height", "IFCQUANTITYLENGTH", height_m}});
     return space;
   }
 

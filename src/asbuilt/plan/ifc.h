@@ -41,11 +41,11 @@ namespace asbuilt {
 
 struct IfcOptions {
   // Dimensions a plan may lack; each use is marked …IsDefault in the file.
-  double default_wall_thickness_m = 0.2;    // Not measured by a survey from inside the room.
-  double default_wall_height_m = 2.5;       // Walls without a height.
-  double default_door_height_m = 2.1;       // Doors without a height.
-  double default_window_height_m = 1.2;     // Windows without a height.
-  double default_window_sill_m = 0.9;       // Windows without a sill (doors: 0).
+  double default_wall_thickness_m = 0.2;         // Not measured by a survey from inside the room.
+  double default_wall_height_m = 2.5;            // Walls without a height.
+  double default_door_height_m = 2.1;            // Doors without a height.
+  double default_window_height_m = 1.2;          // Windows without a height.
+  double default_window_sill_m = 0.9;            // Windows without a sill (doors: 0).
   std::string project_name = "as-built survey";  // IfcProject.Name; also site and building.
   std::string storey_name = "Ground floor";      // IfcBuildingStorey.Name.
   // FILE_NAME time stamp (ISO 8601). Empty: the current UTC time; set it for

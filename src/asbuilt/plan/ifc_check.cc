@@ -122,7 +122,8 @@ class Checker {
   void Compare(const std::string& what, double read, double expected) {
     const double d = std::abs(read - expected);
     if (std::isfinite(d)) max_difference_ = std::max(max_difference_, d);
-    if (!(d <= kTolerance)) Problem(what + ": read " + std::to_string(read) + ", plan.json " + std::to_string(expected));
+    if (!(d <= kTolerance))
+      Problem(what + ": read " + std::to_string(read) + ", plan.json " + std::to_string(expected));
   }
 
   // ---- geometry ----
@@ -301,7 +302,9 @@ class Checker {
       const Isometry3d world = World(wall->m_ObjectPlacement);
       // Axis: the inner face line, from the wall's start to its end.
       auto axis = Representation(wall, L"Axis");
-      std::vector<Vector3d> line = axis && axis->m_Items.size() == 1 ? PolylinePoints(std::dynamic_pointer_cast<IfcCurve>(axis->m_Items[0])) : std::vector<Vector3d>{};
+      std::vector<Vector3d> line = axis && axis->m_Items.size() == 1
+                                       ? PolylinePoints(std::dynamic_pointer_cast<IfcCurve>(axis->m_Items[0]))
+                                       : std::vector<Vector3d>{};
       if (line.size() != 2) {
         Problem(what + ": no 'Axis' polyline of two points");
       } else {
@@ -409,7 +412,8 @@ class Checker {
       Compare(what + " centre y", 0.5 * (start.y() + end.y()), po.Centre().y());
       if (po.height) Compare(what + " height", height, *po.height);
       if (po.sill) Compare(what + " sill", start.z(), *po.sill);
-      if (Boolean(sets, "HeightIsDefault") != std::optional<bool>(!po.height)) Problem(what + ": HeightIsDefault wrong");
+      if (Boolean(sets, "HeightIsDefault") != std::optional<bool>(!po.height))
+        Problem(what + ": HeightIsDefault wrong");
       if (Boolean(sets, "SillIsDefault") != std::optional<bool>(!po.sill)) Problem(what + ": SillIsDefault wrong");
       Compare(what + " Width", Number(sets, "Width").value_or(NAN), po.width);
       Compare(what + " Height", Number(sets, "Height").value_or(NAN), height);

@@ -63,12 +63,27 @@ Plan ClassroomTruth() {
   for (int i = 0; i < 4; ++i) {
     plan.walls.push_back({.start = c[i], .end = c[(i + 1) % 4], .thickness = 0.25, .height = 3.0});
   }
-  plan.openings.push_back({.kind = OpeningKind::kDoor, .wall = 1, .start = {6, 0.5}, .end = {6, 1.5}, .width = 1.0,
-                           .height = 2.1, .sill = 0.0});
-  plan.openings.push_back({.kind = OpeningKind::kWindow, .wall = 2, .start = {5, 8}, .end = {3.5, 8}, .width = 1.5,
-                           .height = 1.4, .sill = 0.9});
-  plan.openings.push_back({.kind = OpeningKind::kWindow, .wall = 2, .start = {2.5, 8}, .end = {1, 8}, .width = 1.5,
-                           .height = 1.4, .sill = 0.9});
+  plan.openings.push_back({.kind = OpeningKind::kDoor,
+                           .wall = 1,
+                           .start = {6, 0.5},
+                           .end = {6, 1.5},
+                           .width = 1.0,
+                           .height = 2.1,
+                           .sill = 0.0});
+  plan.openings.push_back({.kind = OpeningKind::kWindow,
+                           .wall = 2,
+                           .start = {5, 8},
+                           .end = {3.5, 8},
+                           .width = 1.5,
+                           .height = 1.4,
+                           .sill = 0.9});
+  plan.openings.push_back({.kind = OpeningKind::kWindow,
+                           .wall = 2,
+                           .start = {2.5, 8},
+                           .end = {1, 8},
+                           .width = 1.5,
+                           .height = 1.4,
+                           .sill = 0.9});
   plan.rooms.push_back({.polygon = c, .area_m2 = 48.0});
   return plan;
 }
@@ -82,10 +97,20 @@ Plan ReconstructedRotatedRoom() {
   for (Vec2& p : c) p = rot * p + Vec2(2, -1);
   for (int i = 0; i < 4; ++i) truth.walls.push_back({.start = c[i], .end = c[(i + 1) % 4], .height = 2.6});
   Vec2 d0 = (c[1] - c[0]).normalized(), d2 = (c[3] - c[2]).normalized();
-  truth.openings.push_back({.kind = OpeningKind::kDoor, .wall = 0, .start = c[0] + 1.0 * d0, .end = c[0] + 1.9 * d0,
-                            .width = 0.9, .height = 2.0, .sill = 0.0});
-  truth.openings.push_back({.kind = OpeningKind::kWindow, .wall = 2, .start = c[2] + 1.5 * d2,
-                            .end = c[2] + 2.7 * d2, .width = 1.2, .height = 1.3, .sill = 0.9});
+  truth.openings.push_back({.kind = OpeningKind::kDoor,
+                            .wall = 0,
+                            .start = c[0] + 1.0 * d0,
+                            .end = c[0] + 1.9 * d0,
+                            .width = 0.9,
+                            .height = 2.0,
+                            .sill = 0.0});
+  truth.openings.push_back({.kind = OpeningKind::kWindow,
+                            .wall = 2,
+                            .start = c[2] + 1.5 * d2,
+                            .end = c[2] + 2.7 * d2,
+                            .width = 1.2,
+                            .height = 1.3,
+                            .sill = 0.9});
   truth.rooms.push_back({.polygon = c, .area_m2 = 20});
   return ReconstructPlan(SamplePointsFromPlan(truth, {}, 5), {}).plan;
 }

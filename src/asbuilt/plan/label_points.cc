@@ -34,8 +34,7 @@ std::vector<ClassPoint> PointsFromLabelledDepth(const Capture& capture, const La
     if (depth.type() != CV_16UC1) {
       throw InputError(depth_path.string(), field + ".depth", "expected a 16-bit (mm) depth image, got 32-bit float");
     }
-    const Eigen::Isometry3d world_from_cam =
-        WorldFromCamera(frame.Pose(), capture.camera.baseline_m, StereoEye::kLeft);
+    const Eigen::Isometry3d world_from_cam = WorldFromCamera(frame.Pose(), capture.camera.baseline_m, StereoEye::kLeft);
     for (int v = 0; v < labels.rows; v += options.stride_px) {
       const std::uint8_t* lrow = labels.ptr<std::uint8_t>(v);
       const std::uint16_t* drow = depth.ptr<std::uint16_t>(v);

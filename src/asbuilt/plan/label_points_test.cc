@@ -11,9 +11,7 @@ namespace asbuilt {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path RoomDir(const char* room) {
-  return fs::path(ASBUILT_SHARED_DATA_DIR) / "blender-rooms-public" / room;
-}
+fs::path RoomDir(const char* room) { return fs::path(ASBUILT_SHARED_DATA_DIR) / "blender-rooms-public" / room; }
 
 TEST(PointsFromLabelledDepth, PutsWallPointsOnTheTruthWalls) {
   fs::path dir = RoomDir("p01_rect_1door_2win");

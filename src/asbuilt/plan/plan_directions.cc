@@ -39,8 +39,10 @@ void WidenForBend(const std::vector<WallPoint>& pts, WallLine& line, const PlanO
   std::vector<double> sorted = along;
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
   const double mid = sorted[sorted.size() / 2];
-  const auto a = TlsDirection(pts, line.members, [&](size_t k) { return along[k] < mid; }, o.max_independent_points);
-  const auto b = TlsDirection(pts, line.members, [&](size_t k) { return along[k] >= mid; }, o.max_independent_points);
+  const auto a = TlsDirection(
+      pts, line.members, [&](size_t k) { return along[k] < mid; }, o.max_independent_points);
+  const auto b = TlsDirection(
+      pts, line.members, [&](size_t k) { return along[k] >= mid; }, o.max_independent_points);
   if (!a || !b) return;
   const double before = line.var_theta;
   for (const auto& [theta, var] : {*a, *b}) {
@@ -48,9 +50,11 @@ void WidenForBend(const std::vector<WallPoint>& pts, WallLine& line, const PlanO
     if (off > o.bend_sigmas * std::sqrt(var)) line.var_theta = std::max(line.var_theta, off * off);
   }
   if (line.var_theta > before) {
-    spdlog::debug("plan: line ({:.3f}, {:.3f}) → ({:.3f}, {:.3f}) θ {:.2f}° is bent: halves {:.2f}°, {:.2f}°; σ {:.3f}° → {:.2f}°",
-                  line.Start().x(), line.Start().y(), line.End().x(), line.End().y(), RadToDeg(line.theta),
-                  RadToDeg(a->first), RadToDeg(b->first), RadToDeg(std::sqrt(before)), RadToDeg(std::sqrt(line.var_theta)));
+    spdlog::debug(
+        "plan: line ({:.3f}, {:.3f}) → ({:.3f}, {:.3f}) θ {:.2f}° is bent: halves {:.2f}°, {:.2f}°; σ {:.3f}° → "
+        "{:.2f}°",
+        line.Start().x(), line.Start().y(), line.End().x(), line.End().y(), RadToDeg(line.theta), RadToDeg(a->first),
+        RadToDeg(b->first), RadToDeg(std::sqrt(before)), RadToDeg(std::sqrt(line.var_theta)));
   }
 }
 
@@ -60,8 +64,7 @@ std::vector<Direction> ClusterDirections(const std::vector<WallLine>& lines, con
   auto weight = [](const WallLine& l) { return 1.0 / (l.var_theta + 1e-12); };
   std::vector<int> order(lines.size());
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](int a, int b) { return lines[a].votes > lines[b].votes; });
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return lines[a].votes > lines[b].votes; });
   std::vector<std::vector<std::pair<double, double>>> clusters;
   std::vector<double> centre;
   for (int i : order) {
@@ -132,9 +135,10 @@ bool SnapNoisyLineToAxis(const std::vector<WallPoint>& pts, WallLine& line, cons
     WallLine snapped = FitWallLine(pts, line.members, line.theta - diff, o.max_independent_points, o.max_gap_m);
     if (snapped.chi2 - line.chi2 < static_cast<double>(line.members.size()) ||
         std::abs(diff) <= o.snap_sigmas * std::sqrt(line.var_theta)) {
-      spdlog::debug("plan: a noisy line {:.1f}° ±{:.1f}° off the frame snapped onto it: ({:.3f}, {:.3f}) → ({:.3f}, {:.3f})",
-                    RadToDeg(diff), RadToDeg(std::sqrt(line.var_theta)), line.Start().x(), line.Start().y(),
-                    line.End().x(), line.End().y());
+      spdlog::debug(
+          "plan: a noisy line {:.1f}° ±{:.1f}° off the frame snapped onto it: ({:.3f}, {:.3f}) → ({:.3f}, {:.3f})",
+          RadToDeg(diff), RadToDeg(std::sqrt(line.var_theta)), line.Start().x(), line.Start().y(), line.End().x(),
+          line.End().y());
       snapped.var_theta = dirs[axis].Var();
       line = std::move(snapped);
       return true;
@@ -152,10 +156,11 @@ void SnapLineToDirection(const std::vector<WallPoint>& pts, WallLine& line, cons
                          const PlanOptions& o) {
   for (const Direction& d : frame.directions) {
     double diff = AngleDiffModPi(line.theta, d.theta);
-    double tol = frame.manhattan ? DegToRad(o.manhattan_snap_max_deg)
-                                 : std::min(DegToRad(o.snap_max_deg),
-                                            std::max(DegToRad(o.snap_min_deg),
-                                                     o.snap_sigmas * std::sqrt(line.var_theta + d.Var())));
+    double tol =
+        frame.manhattan
+            ? DegToRad(o.manhattan_snap_max_deg)
+            : std::min(DegToRad(o.snap_max_deg),
+                       std::max(DegToRad(o.snap_min_deg), o.snap_sigmas * std::sqrt(line.var_theta + d.Var())));
     if (std::abs(diff) <= tol) {
       WallLine snapped = FitWallLine(pts, line.members, line.theta - diff, o.max_independent_points, o.max_gap_m);
       snapped.var_theta = d.Var();

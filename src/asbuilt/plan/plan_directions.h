@@ -24,8 +24,8 @@
 namespace asbuilt {
 
 struct Direction {
-  double theta = 0;  // In [0, π).
-  double sum_w = 0;  // Σ 1/var_theta of its lines.
+  double theta = 0;                           // In [0, π).
+  double sum_w = 0;                           // Σ 1/var_theta of its lines.
   double Var() const { return 1.0 / sum_w; }  // rad².
 };
 

@@ -150,8 +150,8 @@ TEST(PlanDirections, AWallBentByItsContactsDoesNotTurnTheRoom) {
   std::vector<ClassPoint> points;
   ContactPieces pieces(10, 0.01);
   auto piece = [&](const Vec2& a, const Vec2& b, int n) { pieces.Add(points, a, b, n); };
-  piece({0.0, 2.35}, {0.0, 4.05}, 240);    // West: exact.
-  piece({2.66, 0.05}, {2.66, 1.96}, 180);  // The notch: exact.
+  piece({0.0, 2.35}, {0.0, 4.05}, 240);      // West: exact.
+  piece({2.66, 0.05}, {2.66, 1.96}, 180);    // The notch: exact.
   piece({3.47, -0.20}, {7.58, -0.01}, 520);  // South, two pieces.
   piece({2.73, -0.03}, {6.39, -0.17}, 160);
   piece({7.51, 0.04}, {7.62, 2.61}, 320);  // East, two pieces.
@@ -188,10 +188,10 @@ TEST(PlanDirections, ADirectionKnownOnlyToDegreesIsSquaredPastTheCap) {
     for (const auto& [a, b, n] : parts) pieces.Add(points, a, b, n);
     ends.push_back(static_cast<int>(points.size()));
   };
-  wall({{{0.0, 4.05}, {0.0, 2.35}, 240}});   // West.
-  wall({{{2.66, 1.96}, {2.66, 0.05}, 180}});  // The notch.
+  wall({{{0.0, 4.05}, {0.0, 2.35}, 240}});                                           // West.
+  wall({{{2.66, 1.96}, {2.66, 0.05}, 180}});                                         // The notch.
   wall({{{2.70, 0.0}, {5.10, -0.042}, 300}, {{5.10, -0.042}, {7.45, 0.267}, 300}});  // South: bent.
-  wall({{{7.49, 0.05}, {7.49, 4.05}, 400}});  // East.
+  wall({{{7.49, 0.05}, {7.49, 4.05}, 400}});                                         // East.
   auto snapped = [&](const PlanOptions& o) {
     const PlanPoints planar = PlanarizePoints(points, o);
     EXPECT_EQ(planar.walls.points.size(), points.size());

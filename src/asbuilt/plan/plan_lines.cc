@@ -152,8 +152,8 @@ std::vector<int> RefinedInliers(const std::vector<WallPoint>& pts, const std::ve
 // What sequential RANSAC keeps between rounds.
 struct RansacState {
   std::vector<WallLine> lines;
-  std::vector<bool> taken;   // Per point: a member of an accepted line.
-  double best_density = 0;   // Votes per metre of the densest wall so far.
+  std::vector<bool> taken;  // Per point: a member of an accepted line.
+  double best_density = 0;  // Votes per metre of the densest wall so far.
 };
 
 // Splits a hypothesis' inliers into dense runs along their fitted line and
@@ -164,9 +164,8 @@ bool AcceptRuns(const std::vector<WallPoint>& pts, std::vector<int>& inliers, do
                 const PlanOptions& o, RansacState& state) {
   WallLine fit = FitWallLine(pts, inliers, std::nullopt, o.max_independent_points, o.max_gap_m);
   Vec2 dir = fit.Dir();
-  std::sort(inliers.begin(), inliers.end(), [&](int a, int b) {
-    return dir.dot(pts[a].p - fit.c) < dir.dot(pts[b].p - fit.c);
-  });
+  std::sort(inliers.begin(), inliers.end(),
+            [&](int a, int b) { return dir.dot(pts[a].p - fit.c) < dir.dot(pts[b].p - fit.c); });
   std::vector<double> ts;
   for (int k : inliers) ts.push_back(dir.dot(pts[k].p - fit.c));
   bool accepted = false;

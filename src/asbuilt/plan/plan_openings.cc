@@ -63,8 +63,7 @@ struct EdgePair {
 // half of [a, b] belong to edge a, those in the upper half to edge b. An edge
 // with at least `min_boundary_points` becomes the median of its positions,
 // with a variance from their spread (MAD); the other edge keeps the extent's.
-EdgePair BoundaryEdges(const std::vector<double>& ts, double a, double b, double extent_var,
-                       const PlanOptions& o) {
+EdgePair BoundaryEdges(const std::vector<double>& ts, double a, double b, double extent_var, const PlanOptions& o) {
   EdgePair out{a, b, extent_var, extent_var, false, false};
   const double mid = 0.5 * (a + b);
   const std::vector<double> lo(ts.begin(), std::lower_bound(ts.begin(), ts.end(), mid));
@@ -105,8 +104,7 @@ struct OpeningPoint {
 // openings' own points with label edges on the wall at both of its ends;
 // an occluder in front of one opening leaves a gap too, but no wall edges
 // at it. Splits `group` (sorted by t) at such gaps.
-std::vector<std::vector<OpeningPoint>> SplitAtPiers(const std::vector<OpeningPoint>& group,
-                                                    const PlanOptions& o) {
+std::vector<std::vector<OpeningPoint>> SplitAtPiers(const std::vector<OpeningPoint>& group, const PlanOptions& o) {
   constexpr double kMinPier = 0.06, kReach = 0.05;
   std::vector<double> inner, edges;
   for (const OpeningPoint& g : group) (g.boundary ? edges : inner).push_back(g.t);
@@ -227,7 +225,6 @@ std::optional<Leaf> FindLeaf(std::vector<Vec2> pts, const Vec2& wall_start, cons
   return leaf;
 }
 
-
 // Door points standing in front of each wall (beyond opening_front_m, up to
 // leaf_max_distance_m, and within that of its ends): where open leaves are
 // looked for (FindLeaf).
@@ -283,9 +280,9 @@ std::vector<std::vector<OpeningPoint>> ProjectOntoWalls(const std::vector<const 
       // allows (a far wall's edges scatter 5–30 cm; dropped, they left a
       // door's width to where its points stop).
       const bool boundary = p->source == PointSource::kBoundary;
-      const double front =
-          boundary ? std::max(o.opening_front_m, std::min(o.inlier_sigmas * sigma, o.max_inlier_distance_m))
-                   : o.opening_front_m;
+      const double front = boundary
+                               ? std::max(o.opening_front_m, std::min(o.inlier_sigmas * sigma, o.max_inlier_distance_m))
+                               : o.opening_front_m;
       if (r > front || r < -o.opening_band_m) continue;
       double t = d.dot(xy - w.start);
       // Noisy points (error mostly along the viewing ray) are projected
@@ -369,8 +366,7 @@ bool DoorWidthFromLeaf(EdgePair& edges, double extent_a, double extent_b, double
     const bool hinge_seen = std::abs(leaf->t_hinge - clear_seen) < kHingeTolerance;
     const double width = hinge_seen ? leaf->WidthFrom(w.start + clear_seen * d) : leaf->width;
     const double clear_unseen = unseen_b ? clear_seen + width : clear_seen - width;
-    if (width <= o.min_opening_width_m ||
-        (!hinge_seen && std::abs(leaf->t_hinge - clear_unseen) >= kHingeTolerance)) {
+    if (width <= o.min_opening_width_m || (!hinge_seen && std::abs(leaf->t_hinge - clear_unseen) >= kHingeTolerance)) {
       continue;
     }
     const double var = (unseen_b ? edges.var_a : edges.var_b) + o.leaf_edge_sigma_m * o.leaf_edge_sigma_m;
@@ -453,8 +449,8 @@ std::optional<PlanOpening> MeasureOpening(const std::vector<OpeningPoint>& group
   // of the opening's points (recessed glass, jambs, depth noise).
   EdgePair edges = BoundaryEdges(boundary_ts, extent_a, extent_b, extent_var, o);
   CorrectFarLabelEdges(edges, w, d, o);
-  spdlog::debug("plan: wall {} {} group: extent [{:.3f}, {:.3f}], edges [{:.3f}{}, {:.3f}{}], {} boundary points",
-                wi, door ? "door" : "window", extent_a, extent_b, edges.a, edges.from_boundary_a ? " (label edge)" : "",
+  spdlog::debug("plan: wall {} {} group: extent [{:.3f}, {:.3f}], edges [{:.3f}{}, {:.3f}{}], {} boundary points", wi,
+                door ? "door" : "window", extent_a, extent_b, edges.a, edges.from_boundary_a ? " (label edge)" : "",
                 edges.b, edges.from_boundary_b ? " (label edge)" : "", boundary_ts.size());
   const bool from_leaf = door && edges.from_boundary_a != edges.from_boundary_b &&
                          DoorWidthFromLeaf(edges, extent_a, extent_b, casing, w, d, wall_leaf_pts, wi, o);

@@ -25,8 +25,8 @@ std::vector<ClassPoint> WindowPoints(const WindowRows& rows) {
   const int n = static_cast<int>(std::lround(rows.height / rows.step));
   for (int i = 0; i <= 120; ++i) {
     for (int k = 0; k <= n; ++k) {
-      points.push_back({LabelClass::kWindow, Vec3(1.0 + 0.01 * i, 0.0, rows.bottom + rows.step * k), 0.005,
-                        PointSource::kDense, 0});
+      points.push_back(
+          {LabelClass::kWindow, Vec3(1.0 + 0.01 * i, 0.0, rows.bottom + rows.step * k), 0.005, PointSource::kDense, 0});
     }
   }
   return points;
@@ -68,8 +68,8 @@ TEST(FindOpenings, EdgesWithoutLabelEdgesTakeTheExtentEdgeSigma) {
   };
   const double plain = sigma({.extent_edge_sigma_m = 0, .label_edge_sigma_mrad = 0});
   ASSERT_GT(plain, 0.0);
-  EXPECT_NEAR(sigma({.extent_edge_sigma_m = 0.05, .label_edge_sigma_mrad = 0}), std::hypot(plain, 0.05 * std::sqrt(2.0)),
-              1e-9);
+  EXPECT_NEAR(sigma({.extent_edge_sigma_m = 0.05, .label_edge_sigma_mrad = 0}),
+              std::hypot(plain, 0.05 * std::sqrt(2.0)), 1e-9);
   EXPECT_NEAR(sigma({.extent_edge_sigma_m = 0, .label_edge_sigma_mrad = 5}), plain, 1e-9);
 }
 
@@ -141,7 +141,8 @@ TEST(FindOpenings, LabelEdgesAloneAreNoOpening) {
   // With the door's own points beside the edge it is a door.
   std::vector<ClassPoint> own;
   for (double x = 1.0; x < 1.5; x += 0.01) {
-    for (double z = 0.1; z <= 2.0; z += 0.1) own.push_back({LabelClass::kDoor, Vec3(x, 0, z), 0.005, PointSource::kDense, 0});
+    for (double z = 0.1; z <= 2.0; z += 0.1)
+      own.push_back({LabelClass::kDoor, Vec3(x, 0, z), 0.005, PointSource::kDense, 0});
   }
   for (const ClassPoint& p : own) pointers.push_back(&p);
   EXPECT_EQ(FindOpenings(pointers, walls, view.head<2>(), o).openings.size(), 1u);
@@ -210,7 +211,8 @@ TEST(FindOpenings, ALabelEdgesSigmaGrowsWithRangeSquaredOverDistance) {
   };
   const auto expected = [](const Vec3& view) {
     double var = 0;
-    for (const double x : {1.0, 2.2}) var += std::pow(0.005 * (std::pow(x - view.x(), 2) + std::pow(view.y(), 2)) / view.y(), 2);
+    for (const double x : {1.0, 2.2})
+      var += std::pow(0.005 * (std::pow(x - view.x(), 2) + std::pow(view.y(), 2)) / view.y(), 2);
     return var;
   };
   const Vec3 head_on(1.6, 2, 1.5), oblique(-2, 1, 1.5);
@@ -232,8 +234,8 @@ TEST(PlanOpenings, OpeningWidthsComeFromLabelEdgesOnTheWall) {
     const double casing = door ? 0.07 : 0.05;
     for (double z = 1.0; z < 1.5; z += 0.02) {
       for (const Vec2& xy : {Vec2(o.start - (casing + 0.12) * along), Vec2(o.end + (casing + 0.12) * along)}) {
-        points.push_back({door ? LabelClass::kDoor : LabelClass::kWindow, Vec3(xy.x(), xy.y(), z), 0.005,
-                          PointSource::kDense, 0});
+        points.push_back(
+            {door ? LabelClass::kDoor : LabelClass::kWindow, Vec3(xy.x(), xy.y(), z), 0.005, PointSource::kDense, 0});
       }
     }
   }

@@ -13,36 +13,36 @@
 namespace asbuilt {
 
 struct PlanOptions {
-  double epsilon_m = 0.05;            // Collinearity tolerance ε: base half-width of a wall's inlier band, m.
-  double inlier_sigmas = 3.0;         // A point is also an inlier within this many of its own σ…
-  double max_inlier_distance_m = 0.3; // …but never farther than this from the line, m.
-  double nominal_sigma_m = 0.01;      // σ for points whose file gives 0 (paper-style files), m.
-  double vote_sigma_m = 0.02;         // Vote = min(1, (vote_sigma_m/σ)²): exact contacts outvote noisy stereo, m.
-  int min_wall_points = 30;           // Fewer votes: not a wall (outliers, clutter)…
-  double min_wall_fraction = 0.005;   // …nor fewer than this fraction of all wall votes.
-  double min_wall_length_m = 0.3;     // Shorter point runs are not walls, m.
-  double max_gap_m = 1.0;             // A line's points split into separate walls at longer gaps, m.
-  double min_relative_density = 0.05; // Walls need this fraction of the densest wall's votes per metre.
-  int ransac_iterations = 250;        // Hypotheses per line; more = surer on clutter, slower.
-  int ransac_subset_points = 3000;    // Hypotheses are scored on a random subset of this size.
-  double snap_sigmas = 3.0;           // Snap to a dominant direction within this many σ of the fit…
-  double snap_max_deg = 5.0;          // …and never more than this many degrees.
+  double epsilon_m = 0.05;              // Collinearity tolerance ε: base half-width of a wall's inlier band, m.
+  double inlier_sigmas = 3.0;           // A point is also an inlier within this many of its own σ…
+  double max_inlier_distance_m = 0.3;   // …but never farther than this from the line, m.
+  double nominal_sigma_m = 0.01;        // σ for points whose file gives 0 (paper-style files), m.
+  double vote_sigma_m = 0.02;           // Vote = min(1, (vote_sigma_m/σ)²): exact contacts outvote noisy stereo, m.
+  int min_wall_points = 30;             // Fewer votes: not a wall (outliers, clutter)…
+  double min_wall_fraction = 0.005;     // …nor fewer than this fraction of all wall votes.
+  double min_wall_length_m = 0.3;       // Shorter point runs are not walls, m.
+  double max_gap_m = 1.0;               // A line's points split into separate walls at longer gaps, m.
+  double min_relative_density = 0.05;   // Walls need this fraction of the densest wall's votes per metre.
+  int ransac_iterations = 250;          // Hypotheses per line; more = surer on clutter, slower.
+  int ransac_subset_points = 3000;      // Hypotheses are scored on a random subset of this size.
+  double snap_sigmas = 3.0;             // Snap to a dominant direction within this many σ of the fit…
+  double snap_max_deg = 5.0;            // …and never more than this many degrees.
   double manhattan_snap_max_deg = 8.0;  // In a Manhattan frame, every line this close to an axis snaps, deg.
-  double snap_min_deg = 0.05;         // Always snap within this (depth quantisation, exact labels), deg.
-  double manhattan_max_deg = 3.0;     // Two dominant directions this close to 90° (or their σ) may form a frame, deg…
-  double manhattan_always_deg = 1.0;  // …and this close always do (docs/plan.md, "Option notes").
-  double noisy_snap_max_deg = 25.0;   // In a frame, a line this far off an axis snaps when the axis fits its noise.
-  double bend_sigmas = 3.0;           // A line whose halves differ by this many σ is bent; its σ widens (0: off).
-  double parallel_max_deg = 20.0;     // Neighbours closer than this in angle are not intersected, deg.
+  double snap_min_deg = 0.05;           // Always snap within this (depth quantisation, exact labels), deg.
+  double manhattan_max_deg = 3.0;  // Two dominant directions this close to 90° (or their σ) may form a frame, deg…
+  double manhattan_always_deg = 1.0;    // …and this close always do (docs/plan.md, "Option notes").
+  double noisy_snap_max_deg = 25.0;     // In a frame, a line this far off an axis snaps when the axis fits its noise.
+  double bend_sigmas = 3.0;             // A line whose halves differ by this many σ is bent; its σ widens (0: off).
+  double parallel_max_deg = 20.0;       // Neighbours closer than this in angle are not intersected, deg.
   double max_corner_extension_m = 2.5;  // A corner may lie at most this far beyond a wall's points, m.
-  double door_casing_m = 0.07;        // Door labels extend this far beyond the clear opening (casing), m.
-  double window_casing_m = 0.05;      // Window labels extend this far beyond the clear opening, m.
-  double casing_depth_m = 0.015;      // Casings stand this far in front of the wall face (label edges seen past them), m.
-  double casing_sigma_m = 0.01;       // Uncertainty of the casing widths and depth (enters the ± of openings), m.
-  double opening_band_m = 0.3;        // Door/window points within this behind a wall's line belong to it…
-  double opening_front_m = 0.03;      // …and within this in front: casings (not sill boards, not open leaves).
-  double opening_gap_m = 0.25;        // Openings on one wall are split at gaps longer than this, m.
-  int min_opening_points = 12;        // Fewer points: not an opening.
+  double door_casing_m = 0.07;          // Door labels extend this far beyond the clear opening (casing), m.
+  double window_casing_m = 0.05;        // Window labels extend this far beyond the clear opening, m.
+  double casing_depth_m = 0.015;  // Casings stand this far in front of the wall face (label edges seen past them), m.
+  double casing_sigma_m = 0.01;   // Uncertainty of the casing widths and depth (enters the ± of openings), m.
+  double opening_band_m = 0.3;    // Door/window points within this behind a wall's line belong to it…
+  double opening_front_m = 0.03;  // …and within this in front: casings (not sill boards, not open leaves).
+  double opening_gap_m = 0.25;    // Openings on one wall are split at gaps longer than this, m.
+  int min_opening_points = 12;    // Fewer points: not an opening.
   double min_opening_width_m = 0.25;  // Narrower clear openings are dropped, m.
   double edge_level = 0.01;           // Opening extent: 2 cm bins with at least this fraction of a full bin.
   int min_boundary_points = 4;        // Label-edge points needed per side to measure a width from them.
@@ -55,7 +55,7 @@ struct PlanOptions {
   // fraction of a pixel or more); along the wall it is range²/h times that,
   // h the viewpoint's distance from the wall, mrad. Unset: auto, ForLabels().
   std::optional<double> label_edge_sigma_mrad;
-  int max_independent_points = 400;   // Dense points are correlated: cap the points a ± assumes.
+  int max_independent_points = 400;            // Dense points are correlated: cap the points a ± assumes.
   double shared_sigma_fraction = 0.5;          // Share of a wall's contacts' median σ that does not average out.
   double shared_stereo_sigma_fraction = 0.15;  // The same for stereo points (the matcher's sub-pixel bias).
   // Relative 1σ of a room-wide scale error of the contact-placed walls about
@@ -69,9 +69,9 @@ struct PlanOptions {
   // times this times its distance from the rig, all together. Unset: survey
   // sets it from its ceiling estimate (σ_H / (H − h)); elsewhere 0.
   std::optional<double> ceiling_scale_sigma;
-  std::optional<Vec3> viewpoint_m;    // Capture centre (rig position, world m), if known; improves openings.
-  bool one_viewpoint = false;         // Every point seen from viewpoint_m (panorama/mono): one wall per bearing.
-  std::uint64_t seed = 1;             // RANSAC sampling.
+  std::optional<Vec3> viewpoint_m;  // Capture centre (rig position, world m), if known; improves openings.
+  bool one_viewpoint = false;       // Every point seen from viewpoint_m (panorama/mono): one wall per bearing.
+  std::uint64_t seed = 1;           // RANSAC sampling.
 
   // These options with the auto ones (unset) resolved for labels of this
   // origin: 0 for a capture's exact labels, the kSegmented… values for

@@ -69,11 +69,10 @@ std::vector<WallLine> OrderAroundViewpoint(std::vector<WallLine> lines, const Ve
     for (size_t b = 0; b < ordered.size(); ++b) {
       if (a == b || drop[b]) continue;
       double d = std::abs(WrapAngle(ordered[a].mid_angle - ordered[b].mid_angle));
-      double overlap = std::min(ordered[a].span, ordered[b].span) / 2 +
-                       std::max(ordered[a].span, ordered[b].span) / 2 - d;
+      double overlap =
+          std::min(ordered[a].span, ordered[b].span) / 2 + std::max(ordered[a].span, ordered[b].span) / 2 - d;
       overlap = std::min(overlap, std::min(ordered[a].span, ordered[b].span));
-      if (overlap > 0.5 * ordered[a].span &&
-          ordered[a].line.votes * 3 < ordered[b].line.votes &&
+      if (overlap > 0.5 * ordered[a].span && ordered[a].line.votes * 3 < ordered[b].line.votes &&
           ordered[a].line.votes < strong) {
         drop[a] = true;
       }
@@ -337,8 +336,10 @@ std::optional<std::pair<WallLine, WallLine>> TwoConnectors(const RingGap& g, con
   if (!(corner && (*corner - g.p).dot(g.gap) > 0 && (g.q - *corner).dot(g.gap) > 0)) return std::nullopt;
   FinishConnector(c1, g.p, *corner, *corner - g.p, g.z_top());
   FinishConnector(c2, *corner, g.q, g.q - *corner, g.z_top());
-  spdlog::debug("plan: two connectors through vertices ({:.3f}, {:.3f}) → ({:.3f}, {:.3f}), turning at "
-                "({:.3f}, {:.3f})", g.p.x(), g.p.y(), g.q.x(), g.q.y(), corner->x(), corner->y());
+  spdlog::debug(
+      "plan: two connectors through vertices ({:.3f}, {:.3f}) → ({:.3f}, {:.3f}), turning at "
+      "({:.3f}, {:.3f})",
+      g.p.x(), g.p.y(), g.q.x(), g.q.y(), corner->x(), corner->y());
   return std::pair{std::move(c1), std::move(c2)};
 }
 
@@ -419,7 +420,8 @@ int CloseGap(const WallLine& a, const WallLine& b, WallLine& b_copy, std::vector
   if (x) {
     const double ta = a.Dir().dot(*x - a.c), tb = b.Dir().dot(*x - b.c);
     const bool at_corner = std::any_of(vertices.all.begin(), vertices.all.end(), [&](const RoomVertex& v) {
-      return RoomVertices::OnLine(a, v) && RoomVertices::OnLine(b, v) && (v.p - *x).norm() <= std::max(0.2, 3 * v.sigma);
+      return RoomVertices::OnLine(a, v) && RoomVertices::OnLine(b, v) &&
+             (v.p - *x).norm() <= std::max(0.2, 3 * v.sigma);
     });
     if (at_corner && ta > a.t_min && tb < b.t_max) {
       closed.back().t_max = std::max(a.t_max, ta);

@@ -124,7 +124,7 @@ TEST(PlanRing, AWallWithNoPointsIsPlacedFromTheVertexAtItsEnd) {
     std::erase_if(points, [](const ClassPoint& p) {
       const Vec2 q = p.position_m.head<2>();
       return (q.y() > 2.3 && q.y() < 2.9 && q.x() > 2.7) ||  // The notch's wall: nothing.
-             (q.x() > 5.7 && q.y() > 1.2) ||                  // Its neighbours: in part.
+             (q.x() > 5.7 && q.y() > 1.2) ||                 // Its neighbours: in part.
              (q.x() > 2.3 && q.x() < 2.9 && q.y() < 3.8);
     });
     AddVertex(points, {6, 2.6});
@@ -166,7 +166,7 @@ TEST(PlanRing, AConnectorRunsThroughTheVertexInItsGap) {
   const Plan truth = PolygonPlan({{0, 0}, {4.424, 0}, {4.424, 3.486}, {2.347, 3.486}, {2.347, 2.184}, {0, 2.184}});
   std::vector<ClassPoint> points;
   auto piece = [&](const Vec2& a, const Vec2& b, int n) { AddWallRun(points, a, b, n, PointSource::kDense); };
-  piece({0.05, 0.0}, {4.38, 0.0}, 800);     // South.
+  piece({0.05, 0.0}, {4.38, 0.0}, 800);      // South.
   piece({4.424, 0.05}, {4.424, 3.44}, 700);  // East.
   piece({4.38, 3.486}, {2.93, 3.486}, 300);  // The wing's north wall, beyond the wardrobe.
   piece({2.30, 2.184}, {0.05, 2.184}, 450);  // North of the main part.
@@ -191,8 +191,8 @@ TEST(PlanRing, AVertexJoinsTwoWallsAcrossALineSeenThroughThem) {
     std::erase_if(points, [](const ClassPoint& p) { return p.position_m.y() < 0.3 && p.position_m.x() < 5.5; });
     for (int i = 0; i < 300; ++i) {
       const double x = 1.0 + 2.5 * i / 300.0;
-      points.push_back({LabelClass::kWall, Vec3(x, -1.6 - 0.3 * x + 0.005 * ((i % 5) - 2), 0.0), 0.01,
-                        PointSource::kDense, 0});
+      points.push_back(
+          {LabelClass::kWall, Vec3(x, -1.6 - 0.3 * x + 0.005 * ((i % 5) - 2), 0.0), 0.01, PointSource::kDense, 0});
     }
     AddVertex(points, {0, 0});
     PlanOptions options{.viewpoint_m = SampleViewpoint(truth, sample), .seed = seed};

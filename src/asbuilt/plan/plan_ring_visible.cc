@@ -30,14 +30,14 @@ struct VisibleCandidate {
 
 double BinBearing(int b) { return (b + 0.5) * 2 * kPi / kVisibleBins - kPi; }
 
-int BearingBin(const Vec2 &d) {
+int BearingBin(const Vec2& d) {
   const double a = std::atan2(d.y(), d.x());
   const int b = static_cast<int>(std::floor((a + kPi) / (2 * kPi) * kVisibleBins));
   return std::clamp(b, 0, kVisibleBins - 1);
 }
 
 // Range along the ray from `view` at bearing `a` to the candidate, or ∞.
-double RayRange(const VisibleCandidate &c, const Vec2 &view, double a) {
+double RayRange(const VisibleCandidate& c, const Vec2& view, double a) {
   const Vec2 n = c.Normal();
   const double denom = n.dot(Vec2(std::cos(a), std::sin(a)));
   if (std::abs(denom) < 1e-9) return kVisibleInf;
@@ -48,11 +48,11 @@ double RayRange(const VisibleCandidate &c, const Vec2 &view, double a) {
 // Peaks of the wall points' offsets along the normal of direction `theta`:
 // votes within ±epsilon_m, at least min_wall_points, at least 2·epsilon_m
 // apart, the strongest kVisiblePeaksPerDirection.
-std::vector<VisibleCandidate> OffsetPeaks(const std::vector<WallPoint> &pts, const Direction &dir,
-                                          const PlanOptions &o) {
+std::vector<VisibleCandidate> OffsetPeaks(const std::vector<WallPoint>& pts, const Direction& dir,
+                                          const PlanOptions& o) {
   const Vec2 n = NormalOf(dir.theta);
   std::vector<std::pair<double, double>> offsets;  // (n·p, vote)
-  for (const WallPoint &p : pts) offsets.push_back({n.dot(p.p), p.vote});
+  for (const WallPoint& p : pts) offsets.push_back({n.dot(p.p), p.vote});
   std::sort(offsets.begin(), offsets.end());
   std::vector<std::pair<double, double>> windows;  // (mean offset, votes) per point's window.
   size_t lo = 0, hi = 0;
@@ -70,21 +70,21 @@ std::vector<VisibleCandidate> OffsetPeaks(const std::vector<WallPoint> &pts, con
     }
     if (votes >= o.min_wall_points) windows.push_back({weighted / votes, votes});
   }
-  std::sort(windows.begin(), windows.end(), [](const auto &a, const auto &b) { return a.second > b.second; });
+  std::sort(windows.begin(), windows.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
   std::vector<VisibleCandidate> peaks;
-  for (const auto &[rho, v] : windows) {
+  for (const auto& [rho, v] : windows) {
     if (static_cast<int>(peaks.size()) >= kVisiblePeaksPerDirection) break;
     bool near = false;
-    for (const VisibleCandidate &c : peaks) near = near || std::abs(c.rho - rho) < 2 * o.epsilon_m;
+    for (const VisibleCandidate& c : peaks) near = near || std::abs(c.rho - rho) < 2 * o.epsilon_m;
     if (!near) peaks.push_back({.theta = dir.theta, .var_theta = dir.Var(), .rho = rho});
   }
   return peaks;
 }
 
-std::vector<VisibleCandidate> VisibleCandidates(const WallPoints &walls, const std::vector<WallLine> &lines,
-                                                const DirectionFrame &frame, const PlanOptions &o) {
+std::vector<VisibleCandidate> VisibleCandidates(const WallPoints& walls, const std::vector<WallLine>& lines,
+                                                const DirectionFrame& frame, const PlanOptions& o) {
   std::vector<VisibleCandidate> out;
-  for (const WallLine &l : lines) {
+  for (const WallLine& l : lines) {
     bool off_axis = frame.manhattan;
     for (int a : frame.axes) {
       off_axis = off_axis && std::abs(AngleDiffModPi(l.theta, frame.directions[a].theta)) > DegToRad(1.0);
@@ -92,8 +92,8 @@ std::vector<VisibleCandidate> VisibleCandidates(const WallPoints &walls, const s
     out.push_back({.theta = l.theta, .off_axis = off_axis, .var_theta = l.var_theta, .rho = l.Normal().dot(l.c)});
   }
   const size_t from_lines = out.size();
-  for (const Direction &d : frame.directions) {
-    for (const VisibleCandidate &p : OffsetPeaks(walls.points, d, o)) {
+  for (const Direction& d : frame.directions) {
+    for (const VisibleCandidate& p : OffsetPeaks(walls.points, d, o)) {
       bool known = false;
       for (size_t k = 0; k < from_lines && !known; ++k) {
         const double dtheta = AngleDiffModPi(out[k].theta, p.theta);
@@ -109,7 +109,7 @@ std::vector<VisibleCandidate> VisibleCandidates(const WallPoints &walls, const s
 
 // The change cost between candidates a and b at the boundary before bin b0:
 // a corner when they meet within a bin of that bearing, else a jump.
-double ChangeCost(const VisibleCandidate &a, const VisibleCandidate &b, const Vec2 &view, int b0, double corner) {
+double ChangeCost(const VisibleCandidate& a, const VisibleCandidate& b, const Vec2& view, int b0, double corner) {
   if (a.off_axis || b.off_axis) return kVisibleJumpCorners * corner;
   const Vec2 na = a.Normal(), nb = b.Normal();
   const double det = na.x() * nb.y() - na.y() * nb.x();
@@ -126,9 +126,9 @@ double ChangeCost(const VisibleCandidate &a, const VisibleCandidate &b, const Ve
 // One candidate per bin (Viterbi along bins start, start + 1, … around the
 // circle), the first bin's candidate fixed when `first` ≥ 0 and the change
 // back to it paid at the end.
-std::vector<int> DecodeBins(const std::vector<std::vector<double>> &score,
-                            const std::vector<std::vector<double>> &change,
-                            const std::vector<std::vector<char>> &corner_at, int start, int first, double corner) {
+std::vector<int> DecodeBins(const std::vector<std::vector<double>>& score,
+                            const std::vector<std::vector<double>>& change,
+                            const std::vector<std::vector<char>>& corner_at, int start, int first, double corner) {
   const int n = static_cast<int>(score.front().size());
   std::vector<double> best(n), next(n);
   std::vector<std::vector<int>> from(kVisibleBins, std::vector<int>(n, -1));
@@ -166,11 +166,11 @@ std::vector<int> DecodeBins(const std::vector<std::vector<double>> &score,
 
 }  // namespace
 
-std::vector<WallLine> SelectVisibleLines(const WallPoints &walls, std::vector<WallLine> lines,
-                                         const DirectionFrame &frame, const PlanOptions &o) {
+std::vector<WallLine> SelectVisibleLines(const WallPoints& walls, std::vector<WallLine> lines,
+                                         const DirectionFrame& frame, const PlanOptions& o) {
   if (!o.viewpoint_m || walls.points.empty()) return lines;
   const Vec2 view = o.viewpoint_m->head<2>();
-  const std::vector<WallPoint> &pts = walls.points;
+  const std::vector<WallPoint>& pts = walls.points;
   const std::vector<VisibleCandidate> cands = VisibleCandidates(walls, lines, frame, o);
   const int n = static_cast<int>(cands.size());
   if (n < 2) return lines;

@@ -45,8 +45,8 @@
 
 namespace asbuilt {
 
-std::vector<WallLine> SelectVisibleLines(const WallPoints &walls, std::vector<WallLine> lines,
-                                         const DirectionFrame &frame, const PlanOptions &o);
+std::vector<WallLine> SelectVisibleLines(const WallPoints& walls, std::vector<WallLine> lines,
+                                         const DirectionFrame& frame, const PlanOptions& o);
 
 }  // namespace asbuilt
 

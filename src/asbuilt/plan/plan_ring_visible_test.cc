@@ -47,7 +47,7 @@ TEST(SelectVisibleLines, KeepsOneWallPerBearingAndDropsClutter) {
   const std::vector<std::pair<Vec2, Vec2>> walls = {
       {{0, 0}, {5, 0}}, {{5, 0}, {5, 4}}, {{5, 4}, {0, 4}}, {{0, 4}, {0, 0}}};
   std::vector<int> found(walls.size(), 0);
-  for (const WallLine &l : lines) {
+  for (const WallLine& l : lines) {
     int on = 0;
     for (size_t w = 0; w < walls.size(); ++w) {
       const bool here = std::abs(l.Distance(walls[w].first)) < 0.01 && std::abs(l.Distance(walls[w].second)) < 0.01;
@@ -94,9 +94,13 @@ std::vector<ClassPoint> NoisyRoomPoints() {
   for (int i = 0; i < 1500; ++i) {
     const double t = u(rng), sigma = 0.03 + 0.05 * u(rng);
     const int side = i % 4;
-    const Vec2 p = side == 0 ? Vec2(5 * t, 0) : side == 1 ? Vec2(5, 4 * t) : side == 2 ? Vec2(5 * t, 4) : Vec2(0, 4 * t);
+    const Vec2 p = side == 0   ? Vec2(5 * t, 0)
+                   : side == 1 ? Vec2(5, 4 * t)
+                   : side == 2 ? Vec2(5 * t, 4)
+                               : Vec2(0, 4 * t);
     const Vec2 off = side % 2 == 0 ? Vec2(0, sigma * g(rng)) : Vec2(sigma * g(rng), 0);
-    points.push_back({LabelClass::kWall, Vec3(p.x() + off.x(), p.y() + off.y(), 0.0), sigma, PointSource::kContact, i % 12});
+    points.push_back(
+        {LabelClass::kWall, Vec3(p.x() + off.x(), p.y() + off.y(), 0.0), sigma, PointSource::kContact, i % 12});
   }
   for (int f = 0; f < 8; ++f) {  // Furniture: short runs at random angles.
     const Vec2 a(0.6 + 3.8 * u(rng), 0.6 + 2.8 * u(rng));
@@ -157,7 +161,7 @@ TEST(SelectVisibleLines, ChoosesWallsForACameraOutsideTheRoom) {
   ASSERT_EQ(snapped.lines.size(), 4u);
   const std::vector<WallLine> lines = SelectVisibleLines(planar.walls, snapped.lines, snapped.frame, o);
   EXPECT_EQ(lines.size(), 3u);
-  for (const WallLine &l : lines) EXPECT_GT(std::abs(l.Distance(Vec2(1.0, 1.6))), 0.3) << "the strip beyond the wall";
+  for (const WallLine& l : lines) EXPECT_GT(std::abs(l.Distance(Vec2(1.0, 1.6))), 0.3) << "the strip beyond the wall";
 }
 
 }  // namespace

@@ -12,12 +12,15 @@ Plan PolygonPlan(const std::vector<Vec2>& corners, double height) {
   return plan;
 }
 
-void AddPlanOpening(Plan& plan, OpeningKind kind, int wall, double offset, double width, double height,
-                    double sill) {
+void AddPlanOpening(Plan& plan, OpeningKind kind, int wall, double offset, double width, double height, double sill) {
   const PlanWall& w = plan.walls[wall];
   Vec2 d = (w.end - w.start).normalized();
-  plan.openings.push_back({.kind = kind, .wall = wall, .start = w.start + offset * d,
-                           .end = w.start + (offset + width) * d, .width = width, .height = height,
+  plan.openings.push_back({.kind = kind,
+                           .wall = wall,
+                           .start = w.start + offset * d,
+                           .end = w.start + (offset + width) * d,
+                           .width = width,
+                           .height = height,
                            .sill = sill});
 }
 

@@ -16,8 +16,7 @@ namespace asbuilt {
 Plan PolygonPlan(const std::vector<Vec2>& corners, double height = 2.7);
 
 // Adds an opening on `wall`, `offset` m from its start, `width` m wide.
-void AddPlanOpening(Plan& plan, OpeningKind kind, int wall, double offset, double width, double height,
-                    double sill);
+void AddPlanOpening(Plan& plan, OpeningKind kind, int wall, double offset, double width, double height, double sill);
 
 // `plan` rotated by `angle_deg` about the origin, then shifted.
 Plan Rotated(const Plan& plan, double angle_deg, const Vec2& shift);

@@ -11,7 +11,6 @@
 namespace asbuilt {
 namespace {
 
-
 double MedianOf(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
   return v[v.size() / 2];
@@ -67,8 +66,7 @@ std::vector<WallLine> LinesWithSharedVariance(const WallPoints& walls, const std
 // Variance of f(lines) from the θ and ρ variances of lines[l], l ∈ `used`,
 // by central differences.
 double PropagatedVariance(const std::vector<WallLine>& lines,
-                          const std::function<double(const std::vector<WallLine>&)>& f,
-                          const std::vector<int>& used) {
+                          const std::function<double(const std::vector<WallLine>&)>& f, const std::vector<int>& used) {
   auto perturbed = [&](int line, int param, double h) {
     std::vector<WallLine> moved = lines;
     if (param == 0) {
@@ -117,7 +115,8 @@ double ScaleModeVariance(const std::vector<WallLine>& lines, const std::vector<d
   if (sigma <= 0) return 0;
   auto scaled = [&](double s) {
     std::vector<WallLine> moved = lines;
-    for (std::size_t l = 0; l < moved.size(); ++l) moved[l].c = viewpoint + (1 + shares[l] * s) * (moved[l].c - viewpoint);
+    for (std::size_t l = 0; l < moved.size(); ++l)
+      moved[l].c = viewpoint + (1 + shares[l] * s) * (moved[l].c - viewpoint);
     return moved;
   };
   const double h = 1e-3 * sigma;

@@ -105,7 +105,9 @@ TEST(PropagateRingSigmas, TheCeilingHeightsErrorMovesCeilingContactWallsTogether
     }
     return walls;
   };
-  const PlanOptions o{.shared_sigma_fraction = 0, .contact_scale_sigma = 0.0, .ceiling_scale_sigma = 0.01,
+  const PlanOptions o{.shared_sigma_fraction = 0,
+                      .contact_scale_sigma = 0.0,
+                      .ceiling_scale_sigma = 0.01,
                       .viewpoint_m = Vec3(2, 1.5, 1.5)};
   const RingSigmas ceiling = PropagateRingSigmas(room(2.6), ring, o);
   EXPECT_NEAR(ceiling.wall_length_m[0], 0.04, 1e-6);

@@ -93,7 +93,8 @@ WallLine FitWallLine(const std::vector<WallPoint>& pts, std::vector<int> idx, st
   c /= sw;
   if (fixed_theta) {
     line.theta = *fixed_theta;
-  } else if (const auto free = TlsDirection(pts, idx, [](size_t) { return true; }, max_independent)) {
+  } else if (const auto free = TlsDirection(
+                 pts, idx, [](size_t) { return true; }, max_independent)) {
     line.theta = free->first;
   }
   line.c = c;

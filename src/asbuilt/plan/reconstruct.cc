@@ -28,9 +28,10 @@ std::string SourceName(const std::string& points_source) { return points_source.
 void RequireEnoughWallPoints(int wall_points, const PlanOptions& o, const std::string& points_source) {
   if (wall_points >= 2 * o.min_wall_points) return;
   if (wall_points == 0) {
-    throw Error(fmt::format("{}: 0 wall points, need at least {} (2 × PlanOptions.min_wall_points): no wall was "
-                            "labelled, or no wall pixel had a valid disparity",
-                            SourceName(points_source), 2 * o.min_wall_points));
+    throw Error(
+        fmt::format("{}: 0 wall points, need at least {} (2 × PlanOptions.min_wall_points): no wall was "
+                    "labelled, or no wall pixel had a valid disparity",
+                    SourceName(points_source), 2 * o.min_wall_points));
   }
   throw InputError(SourceName(points_source), "",
                    fmt::format("{} wall points, need at least {} (2 × PlanOptions.min_wall_points)", wall_points,
@@ -176,9 +177,8 @@ std::string PlanSummary::BriefReport() const {
       "{:.3f} s",
       walls, inferred_walls, openings,
       door_leaves > 0 ? fmt::format(" ({} door width(s) from an open leaf)", door_leaves) : std::string(),
-      closed ? "closed" : "NOT closed",
-      area_m2 >= 0 ? fmt::format("{:.2f} m²", area_m2) : std::string("no area"), manhattan ? "Manhattan frame, " : "",
-      dirs.empty() ? "none" : dirs, wall_inliers, wall_points,
+      closed ? "closed" : "NOT closed", area_m2 >= 0 ? fmt::format("{:.2f} m²", area_m2) : std::string("no area"),
+      manhattan ? "Manhattan frame, " : "", dirs.empty() ? "none" : dirs, wall_inliers, wall_points,
       rms_residual_m >= 0 ? fmt::format("{:.3f} m", rms_residual_m) : std::string("n/a"), seconds);
 }
 

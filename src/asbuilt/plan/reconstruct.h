@@ -49,18 +49,18 @@ struct PlanSummary {
   int wall_points = 0;
   int door_points = 0;
   int window_points = 0;
-  int wall_inliers = 0;        // Wall points assigned to a wall line.
-  int outliers = -1;           // Wall points in no line (−1: never computed).
-  int lines_found = 0;         // Lines before ordering/merging.
+  int wall_inliers = 0;  // Wall points assigned to a wall line.
+  int outliers = -1;     // Wall points in no line (−1: never computed).
+  int lines_found = 0;   // Lines before ordering/merging.
   int walls = 0;
-  int inferred_walls = 0;      // Connecting walls with no points of their own.
+  int inferred_walls = 0;           // Connecting walls with no points of their own.
   std::vector<bool> wall_inferred;  // Per wall of the plan: inferred (no points of its own).
   int openings = 0;
-  int door_leaves = 0;         // Door widths taken from an open leaf (hinge side hidden).
-  bool closed = false;         // Walls form a closed room polygon.
-  bool manhattan = false;      // A Manhattan frame was found and used.
+  int door_leaves = 0;                          // Door widths taken from an open leaf (hinge side hidden).
+  bool closed = false;                          // Walls form a closed room polygon.
+  bool manhattan = false;                       // A Manhattan frame was found and used.
   std::vector<double> dominant_directions_deg;  // In [0, 180).
-  double rms_residual_m = -1;  // Of wall inliers about their lines (−1: never computed).
+  double rms_residual_m = -1;                   // Of wall inliers about their lines (−1: never computed).
   double area_m2 = -1;
   double seconds = 0;
 

@@ -90,8 +90,8 @@ TEST(ReconstructPlan, MeetsTheAccuracyTargetsOnNoisyRoomsWithOutliers) {
   EXPECT_LE(*pool.width.Median(), 0.02) << pool.width.ToString();
   EXPECT_GE(pool.openings_matched, pool.openings_truth * 95 / 100);
   std::printf("sampled rooms: walls %d/%d, length %s, opening width %s, openings %d/%d\n", pool.walls_matched,
-              pool.walls_truth, pool.length.ToString().c_str(), pool.width.ToString().c_str(),
-              pool.openings_matched, pool.openings_truth);
+              pool.walls_truth, pool.length.ToString().c_str(), pool.width.ToString().c_str(), pool.openings_matched,
+              pool.openings_truth);
 }
 
 TEST(ReconstructPlan, UsesTheBlenderTruthPlansAsTruth) {

@@ -25,8 +25,8 @@ TEST(RoomPolygonOverlap, IdenticalRoomsHaveIouOne) {
 
 TEST(RoomPolygonOverlap, ShiftedSquaresMatchTheExactAnswer) {
   // Two 2×2 squares offset by (1, 1): ∩ 1 m², ∪ 7 m².
-  const auto o = RoomPolygonOverlap(RoomPlan({{0, 0}, {2, 0}, {2, 2}, {0, 2}}),
-                                    RoomPlan({{1, 1}, {3, 1}, {3, 3}, {1, 3}}));
+  const auto o =
+      RoomPolygonOverlap(RoomPlan({{0, 0}, {2, 0}, {2, 2}, {0, 2}}), RoomPlan({{1, 1}, {3, 1}, {3, 3}, {1, 3}}));
   ASSERT_TRUE(o);
   EXPECT_NEAR(o->intersection_m2, 1.0, 1e-3);
   EXPECT_NEAR(o->union_m2, 7.0, 1e-3);
@@ -47,8 +47,8 @@ TEST(RoomPolygonOverlap, LShapedAndRotatedRoomsAreExactToTheRowStep) {
   // A square turned 45° about its centre against itself upright: ∩ is the
   // regular octagon of inradius 1, area 8(√2 − 1).
   const double r = std::sqrt(2.0);
-  const auto o = RoomPolygonOverlap(RoomPlan({{0, -r}, {r, 0}, {0, r}, {-r, 0}}),
-                                    RoomPlan({{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}));
+  const auto o =
+      RoomPolygonOverlap(RoomPlan({{0, -r}, {r, 0}, {0, r}, {-r, 0}}), RoomPlan({{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}));
   ASSERT_TRUE(o);
   EXPECT_NEAR(o->intersection_m2, 8 * (r - 1), 2e-3);
 }

@@ -11,7 +11,6 @@
 namespace asbuilt {
 namespace {
 
-
 // True when the open segment p→q properly crosses segment a→b.
 bool Crosses(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) {
   Vec2 r = q - p, s = b - a;
@@ -65,8 +64,7 @@ Vec3 SampleViewpoint(const Plan& plan, const SampleOptions& options) {
   return Vec3(c.x(), c.y(), 1.45);
 }
 
-std::vector<ClassPoint> SamplePointsFromPlan(const Plan& plan, const SampleOptions& options,
-                                             std::uint64_t seed) {
+std::vector<ClassPoint> SamplePointsFromPlan(const Plan& plan, const SampleOptions& options, std::uint64_t seed) {
   options.Check();
   CheckArgument(!plan.walls.empty(), "SamplePointsFromPlan: the plan has no walls");
   std::mt19937_64 rng(seed);
@@ -94,8 +92,7 @@ std::vector<ClassPoint> SamplePointsFromPlan(const Plan& plan, const SampleOptio
     a.normalize();
     Vec3 b = ray.cross(a);
     double sigma = options.sigma_base_m + options.sigma_per_m2 * d * d;
-    Vec3 noisy = p + sigma * gauss(rng) * ray +
-                 options.lateral_fraction * sigma * (gauss(rng) * a + gauss(rng) * b);
+    Vec3 noisy = p + sigma * gauss(rng) * ray + options.lateral_fraction * sigma * (gauss(rng) * a + gauss(rng) * b);
     points.push_back({label, noisy, sigma, options.source, -1});
   };
 
@@ -108,9 +105,9 @@ std::vector<ClassPoint> SamplePointsFromPlan(const Plan& plan, const SampleOptio
     // Label areas of this wall's openings, in (t, z) wall coordinates.
     struct Area {
       LabelClass label;
-      double t0, t1, z0, z1;     // Labelled extent (clear opening + casing).
-      double c0, c1, s0, s1;     // Clear opening.
-      double recess_m;           // Glass / leaf behind the face.
+      double t0, t1, z0, z1;  // Labelled extent (clear opening + casing).
+      double c0, c1, s0, s1;  // Clear opening.
+      double recess_m;        // Glass / leaf behind the face.
     };
     std::vector<Area> areas;
     for (const PlanOpening& o : plan.openings) {
@@ -122,8 +119,8 @@ std::vector<ClassPoint> SamplePointsFromPlan(const Plan& plan, const SampleOptio
       double sill = o.sill.value_or(door ? 0.0 : 0.9);
       double h = o.height.value_or(door ? 2.1 : 1.2);
       areas.push_back({door ? LabelClass::kDoor : LabelClass::kWindow, c0 - casing, c1 + casing,
-                       std::max(0.0, sill - (door ? 0.0 : casing)), std::min(height, sill + h + casing), c0, c1,
-                       sill, sill + h, door ? 0.03 : 0.5 * w.thickness.value_or(0.2)});
+                       std::max(0.0, sill - (door ? 0.0 : casing)), std::min(height, sill + h + casing), c0, c1, sill,
+                       sill + h, door ? 0.03 : 0.5 * w.thickness.value_or(0.2)});
     }
     auto sample_at = [&](double t, double z) {
       LabelClass label = LabelClass::kWall;

@@ -11,9 +11,7 @@
 namespace asbuilt {
 namespace {
 
-std::string Percent(std::optional<double> v) {
-  return v ? fmt::format("{:.2f} %", 100.0 * *v) : std::string("n/a");
-}
+std::string Percent(std::optional<double> v) { return v ? fmt::format("{:.2f} %", 100.0 * *v) : std::string("n/a"); }
 
 std::optional<double> Ratio(int num, int den) {
   if (den <= 0) return std::nullopt;
@@ -64,18 +62,21 @@ std::vector<Candidate> Assign(std::vector<Candidate> candidates, int np, int nt)
   return out;
 }
 
-nlohmann::json OptionalJson(std::optional<double> v) {
-  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-}
+nlohmann::json OptionalJson(std::optional<double> v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
 
 nlohmann::json CountJson(const MatchCount& c) {
-  return {{"predicted", c.predicted}, {"truth", c.truth}, {"matched", c.matched},
-          {"recall", OptionalJson(c.Recall())}, {"precision", OptionalJson(c.Precision())}};
+  return {{"predicted", c.predicted},
+          {"truth", c.truth},
+          {"matched", c.matched},
+          {"recall", OptionalJson(c.Recall())},
+          {"precision", OptionalJson(c.Precision())}};
 }
 
 nlohmann::json ErrorsJson(const RelativeErrors& e) {
-  return {{"count", e.values.size()}, {"median", OptionalJson(e.Median())},
-          {"max", OptionalJson(e.Max())}, {"values", e.values}};
+  return {{"count", e.values.size()},
+          {"median", OptionalJson(e.Median())},
+          {"max", OptionalJson(e.Max())},
+          {"values", e.values}};
 }
 
 }  // namespace
@@ -85,12 +86,12 @@ void ScoreOptions::Check() const {
                 fmt::format("ScoreOptions.wall_max_angle_deg = {}, must be in (0, 90]", wall_max_angle_deg));
   CheckArgument(wall_max_distance_m > 0,
                 fmt::format("ScoreOptions.wall_max_distance_m = {}, must be > 0", wall_max_distance_m));
-  CheckArgument(wall_min_overlap_fraction >= 0 && wall_min_overlap_fraction <= 1,
-                fmt::format("ScoreOptions.wall_min_overlap_fraction = {}, must be in [0, 1]",
-                            wall_min_overlap_fraction));
-  CheckArgument(opening_max_centre_distance_m > 0,
-                fmt::format("ScoreOptions.opening_max_centre_distance_m = {}, must be > 0",
-                            opening_max_centre_distance_m));
+  CheckArgument(
+      wall_min_overlap_fraction >= 0 && wall_min_overlap_fraction <= 1,
+      fmt::format("ScoreOptions.wall_min_overlap_fraction = {}, must be in [0, 1]", wall_min_overlap_fraction));
+  CheckArgument(
+      opening_max_centre_distance_m > 0,
+      fmt::format("ScoreOptions.opening_max_centre_distance_m = {}, must be > 0", opening_max_centre_distance_m));
 }
 
 std::optional<double> MatchCount::Recall() const { return Ratio(matched, truth); }
@@ -119,13 +120,9 @@ std::string RelativeErrors::ToString() const {
   return fmt::format("median {}, max {} (n = {})", Percent(Median()), Percent(Max()), values.size());
 }
 
-double WallMatch::RelativeLengthError() const {
-  return std::abs(predicted_length_m - truth_length_m) / truth_length_m;
-}
+double WallMatch::RelativeLengthError() const { return std::abs(predicted_length_m - truth_length_m) / truth_length_m; }
 
-double OpeningMatch::RelativeWidthError() const {
-  return std::abs(predicted_width_m - truth_width_m) / truth_width_m;
-}
+double OpeningMatch::RelativeWidthError() const { return std::abs(predicted_width_m - truth_width_m) / truth_width_m; }
 
 PlanScore ScorePlan(const Plan& predicted, const Plan& truth, const ScoreOptions& options) {
   options.Check();
@@ -142,8 +139,7 @@ PlanScore ScorePlan(const Plan& predicted, const Plan& truth, const ScoreOptions
       if (wp.Length() <= 0 || wt.Length() <= 0) continue;
       double angle = LineAngle(wp.end - wp.start, wt.end - wt.start);
       if (RadToDeg(angle) >= options.wall_max_angle_deg) continue;
-      double dist = 0.5 * (DistanceToLine(wp.start, wt.start, wt.end) +
-                           DistanceToLine(wp.end, wt.start, wt.end));
+      double dist = 0.5 * (DistanceToLine(wp.start, wt.start, wt.end) + DistanceToLine(wp.end, wt.start, wt.end));
       if (dist >= options.wall_max_distance_m) continue;
       // Overlap of the two walls projected onto the truth wall's direction.
       Vec2 d = (wt.end - wt.start).normalized();
@@ -158,8 +154,11 @@ PlanScore ScorePlan(const Plan& predicted, const Plan& truth, const ScoreOptions
   for (const Candidate& c : Assign(candidates, np, nt)) {
     const PlanWall& wp = predicted.walls[c.p];
     const PlanWall& wt = truth.walls[c.t];
-    WallMatch m{.predicted = c.p, .truth = c.t, .predicted_length_m = wp.Length(),
-                .truth_length_m = wt.Length(), .mean_distance_m = c.cost,
+    WallMatch m{.predicted = c.p,
+                .truth = c.t,
+                .predicted_length_m = wp.Length(),
+                .truth_length_m = wt.Length(),
+                .mean_distance_m = c.cost,
                 .angle_deg = RadToDeg(LineAngle(wp.end - wp.start, wt.end - wt.start)),
                 .predicted_length_sigma_m = wp.length_sigma_m};
     score.wall_matches.push_back(m);
@@ -194,8 +193,12 @@ PlanScore ScorePlan(const Plan& predicted, const Plan& truth, const ScoreOptions
     for (const Candidate& c : matched) {
       const PlanOpening& op = predicted.openings[pi[c.p]];
       const PlanOpening& ot = truth.openings[ti[c.t]];
-      OpeningMatch m{.kind = kind, .predicted = pi[c.p], .truth = ti[c.t], .predicted_width_m = op.width,
-                     .truth_width_m = ot.width, .centre_distance_m = c.cost,
+      OpeningMatch m{.kind = kind,
+                     .predicted = pi[c.p],
+                     .truth = ti[c.t],
+                     .predicted_width_m = op.width,
+                     .truth_width_m = ot.width,
+                     .centre_distance_m = c.cost,
                      .predicted_width_sigma_m = op.width_sigma_m};
       errors.values.push_back(m.RelativeWidthError());
       score.opening_width.values.push_back(m.RelativeWidthError());
@@ -254,7 +257,8 @@ std::string UncertaintyCalibration::ToString() const {
 
 void AddToCalibration(const PlanScore& score, UncertaintyCalibration* walls, UncertaintyCalibration* widths,
                       UncertaintyCalibration* areas) {
-  for (const WallMatch& m : score.wall_matches) walls->Add(m.predicted_length_m, m.truth_length_m, m.predicted_length_sigma_m);
+  for (const WallMatch& m : score.wall_matches)
+    walls->Add(m.predicted_length_m, m.truth_length_m, m.predicted_length_sigma_m);
   for (const OpeningMatch& m : score.opening_matches) {
     widths->Add(m.predicted_width_m, m.truth_width_m, m.predicted_width_sigma_m);
   }
@@ -268,36 +272,32 @@ std::string PlanScore::ToString() const {
       "walls {}/{} (precision {}), length err median {} max {}; doors {}/{}, windows {}/{}, "
       "width err median {} max {}; area err {}",
       walls.matched, walls.truth,
-      walls.Precision() ? fmt::format("{:.1f} %", 100 * *walls.Precision()) : std::string("n/a"), Percent(wall_length.Median()), Percent(wall_length.Max()),
-      doors.matched, doors.truth, windows.matched, windows.truth, Percent(opening_width.Median()),
-      Percent(opening_width.Max()), Percent(area_relative_error));
+      walls.Precision() ? fmt::format("{:.1f} %", 100 * *walls.Precision()) : std::string("n/a"),
+      Percent(wall_length.Median()), Percent(wall_length.Max()), doors.matched, doors.truth, windows.matched,
+      windows.truth, Percent(opening_width.Median()), Percent(opening_width.Max()), Percent(area_relative_error));
 }
 
 std::string PlanScore::Table() const {
-  auto ratio = [](std::optional<double> v) {
-    return v ? fmt::format("{:.1f} %", 100 * *v) : std::string("n/a");
-  };
+  auto ratio = [](std::optional<double> v) { return v ? fmt::format("{:.1f} %", 100 * *v) : std::string("n/a"); };
   std::string out;
-  out += fmt::format("{:<10} {:>9} {:>6} {:>8} {:>9} {:>10} {:>16} {:>13}\n", "item", "predicted", "truth",
-                     "matched", "recall", "precision", "rel. err median", "rel. err max");
+  out += fmt::format("{:<10} {:>9} {:>6} {:>8} {:>9} {:>10} {:>16} {:>13}\n", "item", "predicted", "truth", "matched",
+                     "recall", "precision", "rel. err median", "rel. err max");
   auto row = [&](const char* name, const MatchCount& c, const RelativeErrors& e) {
-    out += fmt::format("{:<10} {:>9} {:>6} {:>8} {:>9} {:>10} {:>16} {:>13}\n", name, c.predicted, c.truth,
-                       c.matched, ratio(c.Recall()), ratio(c.Precision()), Percent(e.Median()),
-                       Percent(e.Max()));
+    out += fmt::format("{:<10} {:>9} {:>6} {:>8} {:>9} {:>10} {:>16} {:>13}\n", name, c.predicted, c.truth, c.matched,
+                       ratio(c.Recall()), ratio(c.Precision()), Percent(e.Median()), Percent(e.Max()));
   };
   row("walls", walls, wall_length);
   row("doors", doors, door_width);
   row("windows", windows, window_width);
   out += fmt::format("room area: predicted {}, truth {}, relative error {}\n",
                      predicted_area_m2 ? fmt::format("{:.3f} m²", *predicted_area_m2) : "n/a",
-                     truth_area_m2 ? fmt::format("{:.3f} m²", *truth_area_m2) : "n/a",
-                     Percent(area_relative_error));
+                     truth_area_m2 ? fmt::format("{:.3f} m²", *truth_area_m2) : "n/a", Percent(area_relative_error));
   out += "(walls: length error; doors, windows: width error)\n";
   for (const WallMatch& m : wall_matches) {
-    out += fmt::format("  wall {:>2} ↔ truth {:>2}: {:.3f} m vs {:.3f} m ({:+.2f} %), offset {:.3f} m, {:.2f}°\n",
-                       m.predicted, m.truth, m.predicted_length_m, m.truth_length_m,
-                       100 * (m.predicted_length_m - m.truth_length_m) / m.truth_length_m, m.mean_distance_m,
-                       m.angle_deg);
+    out +=
+        fmt::format("  wall {:>2} ↔ truth {:>2}: {:.3f} m vs {:.3f} m ({:+.2f} %), offset {:.3f} m, {:.2f}°\n",
+                    m.predicted, m.truth, m.predicted_length_m, m.truth_length_m,
+                    100 * (m.predicted_length_m - m.truth_length_m) / m.truth_length_m, m.mean_distance_m, m.angle_deg);
   }
   for (const OpeningMatch& m : opening_matches) {
     out += fmt::format("  {:<6} {:>2} ↔ truth {:>2}: width {:.3f} m vs {:.3f} m ({:+.2f} %), centres {:.3f} m apart\n",
@@ -322,17 +322,25 @@ nlohmann::json PlanScoreToJson(const PlanScore& score) {
                     {"relative_error", OptionalJson(score.area_relative_error)}};
   nlohmann::json wm = nlohmann::json::array();
   for (const WallMatch& m : score.wall_matches) {
-    wm.push_back({{"predicted", m.predicted}, {"truth", m.truth}, {"predicted_length_m", m.predicted_length_m},
-                  {"truth_length_m", m.truth_length_m}, {"mean_distance_m", m.mean_distance_m},
-                  {"angle_deg", m.angle_deg}, {"relative_length_error", m.RelativeLengthError()},
+    wm.push_back({{"predicted", m.predicted},
+                  {"truth", m.truth},
+                  {"predicted_length_m", m.predicted_length_m},
+                  {"truth_length_m", m.truth_length_m},
+                  {"mean_distance_m", m.mean_distance_m},
+                  {"angle_deg", m.angle_deg},
+                  {"relative_length_error", m.RelativeLengthError()},
                   {"predicted_length_sigma_m", OptionalJson(m.predicted_length_sigma_m)}});
   }
   j["wall_matches"] = wm;
   nlohmann::json om = nlohmann::json::array();
   for (const OpeningMatch& m : score.opening_matches) {
-    om.push_back({{"kind", OpeningKindName(m.kind)}, {"predicted", m.predicted}, {"truth", m.truth},
-                  {"predicted_width_m", m.predicted_width_m}, {"truth_width_m", m.truth_width_m},
-                  {"centre_distance_m", m.centre_distance_m}, {"relative_width_error", m.RelativeWidthError()},
+    om.push_back({{"kind", OpeningKindName(m.kind)},
+                  {"predicted", m.predicted},
+                  {"truth", m.truth},
+                  {"predicted_width_m", m.predicted_width_m},
+                  {"truth_width_m", m.truth_width_m},
+                  {"centre_distance_m", m.centre_distance_m},
+                  {"relative_width_error", m.RelativeWidthError()},
                   {"predicted_width_sigma_m", OptionalJson(m.predicted_width_sigma_m)}});
   }
   j["opening_matches"] = om;

@@ -29,9 +29,9 @@
 namespace asbuilt {
 
 struct ScoreOptions {
-  double wall_max_angle_deg = 10.0;          // Max angle between matched wall lines.
-  double wall_max_distance_m = 0.25;         // Max mean endpoint-to-line distance.
-  double wall_min_overlap_fraction = 0.5;    // Min overlap, as a fraction of the shorter wall.
+  double wall_max_angle_deg = 10.0;            // Max angle between matched wall lines.
+  double wall_max_distance_m = 0.25;           // Max mean endpoint-to-line distance.
+  double wall_min_overlap_fraction = 0.5;      // Min overlap, as a fraction of the shorter wall.
   double opening_max_centre_distance_m = 0.3;  // Max distance between matched opening centres.
 
   void Check() const;
@@ -88,8 +88,8 @@ struct PlanScore {
   MatchCount windows;
   RelativeErrors door_width;
   RelativeErrors window_width;
-  RelativeErrors opening_width;  // Doors and windows together.
-  std::optional<double> predicted_area_m2;  // nullopt when the plan has no room.
+  RelativeErrors opening_width;                   // Doors and windows together.
+  std::optional<double> predicted_area_m2;        // nullopt when the plan has no room.
   std::optional<double> predicted_area_sigma_m2;  // Its ±, combined over rooms.
   std::optional<double> truth_area_m2;
   std::optional<double> area_relative_error;  // nullopt when either has no room.

@@ -74,8 +74,8 @@ TEST(ScorePlan, MatchesOneToOneAndCountsExtrasAgainstPrecision) {
 TEST(ScorePlan, OpeningsMatchOnlyTheSameKindWithinTheCentreDistance) {
   Plan truth = Rectangle(5, 4);
   Plan predicted = Rectangle(5, 4);
-  predicted.openings[0].kind = OpeningKind::kWindow;                 // Wrong kind.
-  predicted.openings[1].start += Vec2(0.35, 0);                      // Centre 0.35 m off.
+  predicted.openings[0].kind = OpeningKind::kWindow;  // Wrong kind.
+  predicted.openings[1].start += Vec2(0.35, 0);       // Centre 0.35 m off.
   predicted.openings[1].end += Vec2(0.35, 0);
   PlanScore s = ScorePlan(predicted, truth);
   EXPECT_EQ(s.doors.matched, 0);
@@ -122,9 +122,9 @@ TEST(ScorePlan, BlenderTruthScoresPerfectlyAgainstItself) {
 TEST(UncertaintyCalibration, CountsTruthWithinOneAndTwoSigmaAndTheBias) {
   UncertaintyCalibration c;
   EXPECT_FALSE(c.Within(1.0).has_value());
-  c.Add(10.05, 10.0, 0.1);  // 0.5σ.
-  c.Add(9.85, 10.0, 0.1);   // 1.5σ.
-  c.Add(10.3, 10.0, 0.1);   // 3σ.
+  c.Add(10.05, 10.0, 0.1);          // 0.5σ.
+  c.Add(9.85, 10.0, 0.1);           // 1.5σ.
+  c.Add(10.3, 10.0, 0.1);           // 3σ.
   c.Add(10.0, 10.0, std::nullopt);  // No ±: within only when exact.
   EXPECT_DOUBLE_EQ(*c.Within(1.0), 0.5);
   EXPECT_DOUBLE_EQ(*c.Within(2.0), 0.75);

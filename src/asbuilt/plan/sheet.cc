@@ -30,8 +30,7 @@ SheetPath SheetSegment(const Vec2& a, const Vec2& b, double width_mm, const Shee
   return {.points = {a, b}, .stroke = SheetStroke{.colour = colour, .width_mm = width_mm}};
 }
 
-SheetPath SheetPolygon(std::vector<Vec2> points, const SheetColour& fill, const SheetColour& stroke,
-                       double stroke_mm) {
+SheetPath SheetPolygon(std::vector<Vec2> points, const SheetColour& fill, const SheetColour& stroke, double stroke_mm) {
   return {.points = std::move(points),
           .closed = true,
           .fill = fill,
@@ -193,7 +192,10 @@ void AddOpenings(PlanSheet& sheet, const LayoutContext& c) {
       double to = std::atan2(in.y(), in.x());
       if (SheetWrapPositive(to - from) > kPi) std::swap(from, to);
       sheet.Add(layer, SheetView::kBoth,
-                SheetArc{.centre = a, .radius_m = width, .from_rad = from, .to_rad = to,
+                SheetArc{.centre = a,
+                         .radius_m = width,
+                         .from_rad = from,
+                         .to_rad = to,
                          .stroke = {.colour = kSheetBlack, .width_mm = 0.13}});
       sheet.Grow(leaf_end);
     } else {
@@ -361,10 +363,11 @@ void AddRoomLabels(PlanSheet& sheet, const LayoutContext& c) {
     const Vec2 at = finite && PointInPolygon(room.polygon, centroid) ? centroid : mean;
     const bool sigma = c.o.show_uncertainty && room.area_sigma_m2.has_value();
     const double sigma_m2 = sigma ? std::max(0.01, *room.area_sigma_m2) : 0.0;
-    std::string area = sigma ? fmt::format("{:.2f} ± {:.2f} m²", room.area_m2, sigma_m2)
-                             : fmt::format("{:.2f} m²", room.area_m2);
-    sheet.Add(SheetLayer::kText, SheetView::kPaper,
-              SheetText{at + Vec2(0, 0.05 * c.paper), 0, 1.4 * c.text_height_m, 0.5, RoomTitle(room), true, kSheetBlack});
+    std::string area =
+        sigma ? fmt::format("{:.2f} ± {:.2f} m²", room.area_m2, sigma_m2) : fmt::format("{:.2f} m²", room.area_m2);
+    sheet.Add(
+        SheetLayer::kText, SheetView::kPaper,
+        SheetText{at + Vec2(0, 0.05 * c.paper), 0, 1.4 * c.text_height_m, 0.5, RoomTitle(room), true, kSheetBlack});
     sheet.Add(SheetLayer::kText, SheetView::kPaper,
               SheetText{at - Vec2(0, 0.22 * c.paper), 0, 1.2 * c.text_height_m, 0.5, area, false, kSheetBlack});
     const std::string ascii = AsciiText(room.name ? *room.name + " " + area : area);
@@ -439,14 +442,22 @@ std::string SheetScaleText(double scale) {
 
 const char* SheetLayerName(SheetLayer layer) {
   switch (layer) {
-    case SheetLayer::kWalls: return "WALLS";
-    case SheetLayer::kDoors: return "DOORS";
-    case SheetLayer::kWindows: return "WINDOWS";
-    case SheetLayer::kDimensions: return "DIMENSIONS";
-    case SheetLayer::kText: return "TEXT";
-    case SheetLayer::kOverlay: return "OVERLAY";
-    case SheetLayer::kCheck: return "CHECK_BEFORE_USE";
-    case SheetLayer::kUnreliable: return "UNRELIABLE_NOT_A_MEASUREMENT";
+    case SheetLayer::kWalls:
+      return "WALLS";
+    case SheetLayer::kDoors:
+      return "DOORS";
+    case SheetLayer::kWindows:
+      return "WINDOWS";
+    case SheetLayer::kDimensions:
+      return "DIMENSIONS";
+    case SheetLayer::kText:
+      return "TEXT";
+    case SheetLayer::kOverlay:
+      return "OVERLAY";
+    case SheetLayer::kCheck:
+      return "CHECK_BEFORE_USE";
+    case SheetLayer::kUnreliable:
+      return "UNRELIABLE_NOT_A_MEASUREMENT";
   }
   return "?";
 }

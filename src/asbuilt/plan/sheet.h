@@ -45,7 +45,8 @@ struct SheetColour {
 // "good" (formats/plan_file.h PlanVerdictNote): their names say it in a CAD
 // program's layer list.
 enum class SheetLayer : std::uint8_t { kWalls, kDoors, kWindows, kDimensions, kText, kOverlay, kCheck, kUnreliable };
-const char* SheetLayerName(SheetLayer layer);  // "WALLS", "DOORS", …, "OVERLAY", "CHECK_BEFORE_USE", "UNRELIABLE_NOT_A_MEASUREMENT".
+const char* SheetLayerName(
+    SheetLayer layer);  // "WALLS", "DOORS", …, "OVERLAY", "CHECK_BEFORE_USE", "UNRELIABLE_NOT_A_MEASUREMENT".
 
 // Which drawings a primitive belongs to (a bit set).
 enum class SheetView : std::uint8_t { kPaper = 1, kModel = 2, kBoth = 3 };
@@ -97,11 +98,11 @@ struct SheetDots {
 // How dimensions look (the DXF's dimension style); lengths in world metres
 // at the sheet's scale, widths in paper mm.
 struct SheetDimensionStyle {
-  double text_height_m = 0.13;   // Cap height of the text.
-  double extension_gap_m = 0.05; // From the measured point to the extension line.
-  double overshoot_m = 0.08;     // Of extension and dimension lines past each other.
-  double tick_m = 0.07;          // Half length of the 45° tick.
-  double text_gap_m = 0.04;      // From the dimension line up to the text's baseline.
+  double text_height_m = 0.13;    // Cap height of the text.
+  double extension_gap_m = 0.05;  // From the measured point to the extension line.
+  double overshoot_m = 0.08;      // Of extension and dimension lines past each other.
+  double tick_m = 0.07;           // Half length of the 45° tick.
+  double text_gap_m = 0.04;       // From the dimension line up to the text's baseline.
   double line_mm = 0.13;
   double tick_mm = 0.35;
   SheetColour colour{0.1, 0.1, 0.35};
@@ -121,11 +122,11 @@ struct SheetDimension {
 // A dimension's drawn geometry under a style (what both the paper
 // serialisers and the DXF's dimension blocks draw).
 struct SheetDimensionGeometry {
-  Vec2 line1, line2;                  // Dimension line ends, opposite p1 and p2.
+  Vec2 line1, line2;                                                 // Dimension line ends, opposite p1 and p2.
   std::vector<std::pair<Vec2, Vec2>> extension_and_dimension_lines;  // 3 lines.
   std::vector<std::pair<Vec2, Vec2>> ticks;                          // 2 lines.
-  Vec2 text_at;                       // Baseline centre.
-  double text_angle_rad = 0;          // Readable: left-to-right or bottom-to-top.
+  Vec2 text_at;                                                      // Baseline centre.
+  double text_angle_rad = 0;                                         // Readable: left-to-right or bottom-to-top.
 };
 SheetDimensionGeometry DimensionGeometry(const SheetDimension& dimension, const SheetDimensionStyle& style);
 
@@ -177,7 +178,7 @@ std::string SheetScaleText(double scale);
 struct PaperDrawing {
   std::vector<SheetPath> polygons;  // Closed.
   std::vector<SheetDots> dots;
-  std::vector<SheetPath> lines;     // Open.
+  std::vector<SheetPath> lines;  // Open.
   std::vector<SheetArc> arcs;
   std::vector<SheetText> texts;
 };

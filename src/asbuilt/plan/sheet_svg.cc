@@ -17,11 +17,20 @@ std::string SvgEscape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -93,8 +102,8 @@ std::string SheetToSvg(const PlanSheet& sheet) {
     Vec2 p1 = a.centre + a.radius_m * Vec2(std::cos(a.to_rad), std::sin(a.to_rad));
     double sweep = SvgWrapPositive(a.to_rad - a.from_rad);
     // World counter-clockwise is clockwise in SVG's y-down frame: sweep-flag 0.
-    s += fmt::format("<path d=\"M {:.4f} {:.4f} A {:.4f} {:.4f} 0 {} 0 {:.4f} {:.4f}\"{}/>\n", X(p0), Y(p0),
-                     a.radius_m, a.radius_m, sweep > kPi ? 1 : 0, X(p1), Y(p1), SvgStroke(a.stroke, mm));
+    s += fmt::format("<path d=\"M {:.4f} {:.4f} A {:.4f} {:.4f} 0 {} 0 {:.4f} {:.4f}\"{}/>\n", X(p0), Y(p0), a.radius_m,
+                     a.radius_m, sweep > kPi ? 1 : 0, X(p1), Y(p1), SvgStroke(a.stroke, mm));
   }
   s += "</g>\n<g id=\"text\" font-family=\"DejaVu Sans, Arial, sans-serif\">\n";
   for (const SheetText& t : paper.texts) {

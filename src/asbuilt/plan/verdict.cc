@@ -16,8 +16,6 @@
 namespace asbuilt {
 namespace {
 
-
-
 // 0 at `bad`, 1 at `good`, linear between (either order).
 double Ramp(double x, double bad, double good) {
   if (!std::isfinite(x)) return 1.0;
@@ -36,7 +34,7 @@ Hit CastRay(const Plan& plan, const Vec2& origin, const Vec2& dir) {
     const Vec2 a = plan.walls[w].start - origin, e = plan.walls[w].end - plan.walls[w].start;
     const double denom = dir.x() * e.y() - dir.y() * e.x();
     if (std::abs(denom) < 1e-12) continue;
-    const double t = (a.x() * e.y() - a.y() * e.x()) / denom;  // Along the ray.
+    const double t = (a.x() * e.y() - a.y() * e.x()) / denom;      // Along the ray.
     const double u = (a.x() * dir.y() - a.y() * dir.x()) / denom;  // Along the wall, 0–1.
     if (t > 1e-6 && u >= -1e-9 && u <= 1 + 1e-9 && t < best.distance) best = {static_cast<int>(w), t};
   }
@@ -46,9 +44,9 @@ Hit CastRay(const Plan& plan, const Vec2& origin, const Vec2& dir) {
 
 // What the wall points of one bearing bin say about the plan.
 struct Bin {
-  std::vector<double> errors;        // Signed relative distance errors, (d_point − d_plan) / d_plan.
-  std::vector<double> floor_errors;  // The same, of floor contacts only.
-  std::vector<double> sigmas;        // Points' σ / d_plan.
+  std::vector<double> errors;                    // Signed relative distance errors, (d_point − d_plan) / d_plan.
+  std::vector<double> floor_errors;              // The same, of floor contacts only.
+  std::vector<double> sigmas;                    // Points' σ / d_plan.
   std::vector<double> floor_dist, ceiling_dist;  // Contacts' distances from the viewpoint.
   bool Seen() const { return errors.size() >= 3; }
 };
@@ -58,7 +56,7 @@ struct BinStats {
   bool hidden_floor = false;  // Ceiling contacts but no floor contact.
   double median_error = NAN;
   double floor_ceiling = NAN;
-  int wall = -1;  // The plan wall the bin's centre ray meets…
+  int wall = -1;                 // The plan wall the bin's centre ray meets…
   double plan_distance_m = NAN;  // …this far from the viewpoint.
 };
 
@@ -76,9 +74,12 @@ std::string WallVerdict::Why() const { return JoinReasons(reasons); }
 
 const char* VerdictName(Verdict v) {
   switch (v) {
-    case Verdict::kGood: return "good";
-    case Verdict::kCheck: return "check";
-    case Verdict::kUnreliable: return "unreliable";
+    case Verdict::kGood:
+      return "good";
+    case Verdict::kCheck:
+      return "check";
+    case Verdict::kUnreliable:
+      return "unreliable";
   }
   return "unreliable";
 }
@@ -106,7 +107,8 @@ void VerdictOptions::Check() const {
   positive(floor_ceiling_check, "floor_ceiling_check");
   positive(floor_ceiling_unreliable, "floor_ceiling_unreliable");
   positive(short_wall_m, "short_wall_m");
-  CheckArgument(max_short_walls >= 0, fmt::format("VerdictOptions.max_short_walls = {}, must be >= 0", max_short_walls));
+  CheckArgument(max_short_walls >= 0,
+                fmt::format("VerdictOptions.max_short_walls = {}, must be >= 0", max_short_walls));
   positive(odd_angle_deg, "odd_angle_deg");
   positive(min_ceiling_m, "min_ceiling_m");
   positive(min_door_height_m, "min_door_height_m");
@@ -134,8 +136,8 @@ std::string PlanVerdict::BriefReport() const {
 namespace {
 
 // The bins of the turn about the viewpoint, filled from the wall points.
-std::vector<BinStats> BinEvidence(const PlanInput& input, const Plan& plan, const Vec2& viewpoint,
-                                  double ceiling_m, const VerdictOptions& options) {
+std::vector<BinStats> BinEvidence(const PlanInput& input, const Plan& plan, const Vec2& viewpoint, double ceiling_m,
+                                  const VerdictOptions& options) {
   const int n_bins = static_cast<int>(std::lround(360.0 / options.bin_deg));
   std::vector<Bin> bins(n_bins);
   auto bin_of = [&](const Vec2& d) {
@@ -252,9 +254,10 @@ void JudgeWallLines(const std::vector<BinStats>& bins, const PlanSummary& summar
                       which_way));
     if (e.hidden_floor > options.hidden_floor_check) {
       v.verdict = Worse(v.verdict, Verdict::kCheck);
-      v.reasons.push_back(fmt::format("its floor edge is hidden along {} of what was seen (furniture before it?): "
-                                      "placed from its ceiling edge alone",
-                                      Percent(e.hidden_floor)));
+      v.reasons.push_back(
+          fmt::format("its floor edge is hidden along {} of what was seen (furniture before it?): "
+                      "placed from its ceiling edge alone",
+                      Percent(e.hidden_floor)));
     }
     grade(e.floor_ceiling, options.floor_ceiling_check, options.floor_ceiling_unreliable,
           fmt::format("its floor and ceiling edges put it {} apart", Percent(e.floor_ceiling)));
@@ -298,7 +301,8 @@ int OddCorners(const Plan& plan, const VerdictOptions& options) {
   const int n = static_cast<int>(plan.walls.size());
   int odd = 0;
   for (int w = 0; w < n; ++w) {
-    const Vec2 a = plan.walls[w].end - plan.walls[w].start, b = plan.walls[(w + 1) % n].end - plan.walls[(w + 1) % n].start;
+    const Vec2 a = plan.walls[w].end - plan.walls[w].start,
+               b = plan.walls[(w + 1) % n].end - plan.walls[(w + 1) % n].start;
     if (a.norm() < 1e-9 || b.norm() < 1e-9) continue;
     const double deg = std::acos(std::clamp(a.dot(b) / (a.norm() * b.norm()), -1.0, 1.0)) * 180.0 / kPi;
     const double off = std::min({std::abs(deg), std::abs(deg - 90.0), std::abs(deg - 180.0)});
@@ -365,8 +369,8 @@ void JudgeWholePlan(const PlanInput& input, const PlanResult& fit, const std::ve
                       "ceiling edges disagree round the room as a tilted camera's do — level it and survey again",
                       out.tilt.tilt_deg, out.tilt.sigma_deg, out.tilt.toward_deg));
   }
-  if (std::isfinite(context.photo_tilt_deg) &&
-      (context.photo_tilt_deg > options.max_photo_tilt_deg || context.photo_tilt_sigma_deg > options.max_photo_tilt_sigma_deg)) {
+  if (std::isfinite(context.photo_tilt_deg) && (context.photo_tilt_deg > options.max_photo_tilt_deg ||
+                                                context.photo_tilt_sigma_deg > options.max_photo_tilt_sigma_deg)) {
     judge(Verdict::kCheck, 0.8,
           fmt::format("the photo was tilted {:.1f}° (± {:.2f}°) and levelled from its lines: too much to trust the far "
                       "walls blindly",
@@ -386,7 +390,8 @@ void JudgeWholePlan(const PlanInput& input, const PlanResult& fit, const std::ve
   const double ceiling = input.ceiling_height_m;
   const bool tilted = out.tilt.Found(options.max_tilt_scatter_m) && out.tilt.tilt_deg > options.tilt_check_deg;
   const double scale_ceiling = std::isfinite(ceiling) ? ceiling : tilted ? out.tilt.ceiling_m : NAN;
-  if (std::isfinite(scale_ceiling) && (scale_ceiling < options.min_ceiling_m || scale_ceiling > options.max_ceiling_m)) {
+  if (std::isfinite(scale_ceiling) &&
+      (scale_ceiling < options.min_ceiling_m || scale_ceiling > options.max_ceiling_m)) {
     judge(Verdict::kUnreliable, 0.4,
           fmt::format("the ceiling measures {:.2f} m: is the camera height right? (the whole room scales with it)",
                       scale_ceiling));
@@ -396,8 +401,9 @@ void JudgeWholePlan(const PlanInput& input, const PlanResult& fit, const std::ve
   for (const PlanOpening& o : plan.openings) {
     if (o.kind != OpeningKind::kDoor || !o.height) continue;
     if (*o.height < options.min_door_height_m || *o.height > options.max_door_height_m) {
-      judge(Verdict::kCheck, 0.8,
-            fmt::format("a door {:.2f} m high: is the camera height right? (the whole room scales with it)", *o.height));
+      judge(
+          Verdict::kCheck, 0.8,
+          fmt::format("a door {:.2f} m high: is the camera height right? (the whole room scales with it)", *o.height));
       break;
     }
   }
@@ -425,10 +431,10 @@ void JudgeWholePlan(const PlanInput& input, const PlanResult& fit, const std::ve
           ? 1.0 - 0.5 * Ramp(out.floor_ceiling, options.floor_ceiling_check, options.floor_ceiling_unreliable)
           : 1.0;
   const double check_share = perimeter > 0 ? (doubtful - unreliable) / perimeter : 0.0;
-  out.confidence = std::clamp(out.agreement * coverage_factor * floor_ceiling_factor *
-                                  std::sqrt(std::max(0.0, 1.0 - unreliable_share)) * (1.0 - 0.5 * check_share) *
-                                  confidence,
-                              0.0, 1.0);
+  out.confidence =
+      std::clamp(out.agreement * coverage_factor * floor_ceiling_factor *
+                     std::sqrt(std::max(0.0, 1.0 - unreliable_share)) * (1.0 - 0.5 * check_share) * confidence,
+                 0.0, 1.0);
 }
 
 }  // namespace

@@ -36,35 +36,38 @@ enum class Verdict { kGood = 0, kCheck = 1, kUnreliable = 2 };
 const char* VerdictName(Verdict v);  // "good", "check", "unreliable"
 
 struct VerdictOptions {
-  double bin_deg = 2.0;                  // Bearing bins about the viewpoint, deg.
-  double agree_relative = 0.05;          // A bin agrees when its median |d_point − d_plan| / d_plan is below this…
-  double agree_sigmas = 2.5;             // …or below this many of its points' median σ (stereo noise)…
-  double agree_max_relative = 0.12;      // …but never above this.
-  double good_agreement = 0.85;          // Plan: share of seen bins that agree, at least this for "good"…
-  double unreliable_agreement = 0.6;     // …below this "unreliable".
-  double good_coverage = 0.6;            // Plan (one-camera 360° captures): share of bins seen, at least this for "good"…
-  double unreliable_coverage = 0.3;      // …below this "unreliable".
-  double wall_good_seen = 0.4;           // Wall: share of its span's bins seen, at least this for "good"…
-  double wall_unreliable_seen = 0.15;    // …below this "unreliable".
-  double wall_good_agreement = 0.8;      // Wall: share of its seen bins that agree, at least this for "good"…
+  double bin_deg = 2.0;               // Bearing bins about the viewpoint, deg.
+  double agree_relative = 0.05;       // A bin agrees when its median |d_point − d_plan| / d_plan is below this…
+  double agree_sigmas = 2.5;          // …or below this many of its points' median σ (stereo noise)…
+  double agree_max_relative = 0.12;   // …but never above this.
+  double good_agreement = 0.85;       // Plan: share of seen bins that agree, at least this for "good"…
+  double unreliable_agreement = 0.6;  // …below this "unreliable".
+  double good_coverage = 0.6;  // Plan (one-camera 360° captures): share of bins seen, at least this for "good"…
+  double unreliable_coverage = 0.3;        // …below this "unreliable".
+  double wall_good_seen = 0.4;             // Wall: share of its span's bins seen, at least this for "good"…
+  double wall_unreliable_seen = 0.15;      // …below this "unreliable".
+  double wall_good_agreement = 0.8;        // Wall: share of its seen bins that agree, at least this for "good"…
   double wall_unreliable_agreement = 0.5;  // …below this "unreliable".
-  double floor_ceiling_check = 0.04;     // Median relative floor/ceiling disagreement above this: "check"…
+  double floor_ceiling_check = 0.04;       // Median relative floor/ceiling disagreement above this: "check"…
   double floor_ceiling_unreliable = 0.12;  // …above this "unreliable".
-  double short_wall_m = 0.3;             // Walls shorter than this are suspect (spurious jogs)…
-  int max_short_walls = 2;               // …more of them than this make the shape doubtful.
-  double odd_angle_deg = 10.0;           // In a Manhattan room, corners this far from 90°/180° are odd…
-  double max_odd_corner_share = 0.25;    // …more than this share of them (and more than 2) make the shape doubtful.
-  double max_tilt_scatter_m = 0.04;      // A lean is read from the ceiling samples only when they scatter less than this about it.
-  double max_photo_tilt_deg = 5.0;       // A photo levelled from a larger tilt: "check" (lens, stitching, a room not square)…
-  double max_photo_tilt_sigma_deg = 0.3; // …and one whose levelling is less sure than this.
-  double min_ceiling_m = 2.0;            // A ceiling measured outside [min, max] is implausible (camera height?).
+  double short_wall_m = 0.3;               // Walls shorter than this are suspect (spurious jogs)…
+  int max_short_walls = 2;                 // …more of them than this make the shape doubtful.
+  double odd_angle_deg = 10.0;             // In a Manhattan room, corners this far from 90°/180° are odd…
+  double max_odd_corner_share = 0.25;      // …more than this share of them (and more than 2) make the shape doubtful.
+  double max_tilt_scatter_m =
+      0.04;  // A lean is read from the ceiling samples only when they scatter less than this about it.
+  double max_photo_tilt_deg =
+      5.0;  // A photo levelled from a larger tilt: "check" (lens, stitching, a room not square)…
+  double max_photo_tilt_sigma_deg = 0.3;  // …and one whose levelling is less sure than this.
+  double min_ceiling_m = 2.0;             // A ceiling measured outside [min, max] is implausible (camera height?).
   double max_ceiling_m = 5.0;
-  double min_door_height_m = 1.75;       // Doors outside [min, max] are implausible (camera height?).
+  double min_door_height_m = 1.75;  // Doors outside [min, max] are implausible (camera height?).
   double max_door_height_m = 2.6;
-  double min_area_m2 = 2.0;              // Smaller rooms are implausible.
-  double tilt_check_deg = 0.4;           // A photo tilted more than this (read from its edges): "check"…
-  double tilt_unreliable_deg = 1.5;      // …more than this "unreliable".
-  double hidden_floor_check = 0.9;       // A wall whose floor edge is hidden along more than this share of its seen span: "check".
+  double min_area_m2 = 2.0;          // Smaller rooms are implausible.
+  double tilt_check_deg = 0.4;       // A photo tilted more than this (read from its edges): "check"…
+  double tilt_unreliable_deg = 1.5;  // …more than this "unreliable".
+  double hidden_floor_check =
+      0.9;  // A wall whose floor edge is hidden along more than this share of its seen span: "check".
 
   void Check() const;
 };
@@ -86,13 +89,13 @@ struct VerdictContext {
 // A camera's tilt read from its floor and ceiling edges: round the room,
 // the ceiling height each column implies rises and falls with the lean.
 struct LabelTilt {
-  double tilt_deg = NAN;         // NaN: too few columns saw both edges.
+  double tilt_deg = NAN;  // NaN: too few columns saw both edges.
   double sigma_deg = NAN;
-  double toward_deg = NAN;       // The bearing the camera leans toward (plan frame).
-  double ceiling_m = NAN;        // The ceiling height with the lean taken out.
+  double toward_deg = NAN;  // The bearing the camera leans toward (plan frame).
+  double ceiling_m = NAN;   // The ceiling height with the lean taken out.
   int samples = 0;
-  double inlier_share = 0.0;     // Of the samples, those the lean explains (the rest: tops, stray edges).
-  double scatter_m = NAN;        // Robust σ of the samples about the fitted lean.
+  double inlier_share = 0.0;  // Of the samples, those the lean explains (the rest: tops, stray edges).
+  double scatter_m = NAN;     // Robust σ of the samples about the fitted lean.
   // A lean is read only when it explains most samples closely: a misread
   // photo's edges scatter, and some sinusoid always fits part of them.
   bool Found(double max_scatter_m = 0.04) const {
@@ -103,18 +106,19 @@ LabelTilt TiltFromCeilingSamples(const PlanInput& input, const std::vector<Ceili
 
 // The evidence behind one wall's verdict.
 struct WallEvidenceFigures {
-  double seen = 0.0;       // Share of the bins its span covers that hold points.
-  double agreement = NAN;  // Share of its seen bins that agree (NaN: none seen).
+  double seen = 0.0;           // Share of the bins its span covers that hold points.
+  double agreement = NAN;      // Share of its seen bins that agree (NaN: none seen).
   double floor_ceiling = NAN;  // Median relative floor/ceiling distance disagreement (NaN: not measured).
   double median_error = NAN;   // Median signed relative distance error of its points ((point − plan) / plan).
   double hidden_floor = 0.0;   // Share of its seen span with ceiling contacts but no floor contact.
-  double offset_sigma_m = NAN; // 68th percentile of its bins' |median distance error|, m: how far its points scatter off it.
+  double offset_sigma_m =
+      NAN;  // 68th percentile of its bins' |median distance error|, m: how far its points scatter off it.
 };
 
 struct WallVerdict {
   Verdict verdict = Verdict::kGood;
   Verdict own = Verdict::kGood;  // From its own line's evidence (not its neighbours' or its length).
-  double confidence = 1.0;  // 0–1.
+  double confidence = 1.0;       // 0–1.
   std::vector<std::string> reasons;
   WallEvidenceFigures evidence;
 
@@ -123,7 +127,7 @@ struct WallVerdict {
 
 struct PlanVerdict {
   Verdict verdict = Verdict::kGood;
-  double confidence = 1.0;  // 0–1; ranks plans by how far they can be trusted.
+  double confidence = 1.0;           // 0–1; ranks plans by how far they can be trusted.
   std::vector<std::string> reasons;  // Why not "good" (empty when good).
   std::vector<WallVerdict> walls;    // Per plan wall.
   // Plan-wide evidence.

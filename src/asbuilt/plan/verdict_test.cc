@@ -34,8 +34,11 @@ PlanInput BoxInput() {
     if (d.y() < -1e-9) t = std::min(t, (kY0 - kCamera.y()) / d.y());
     const Vec2 xy = kCamera.head<2>() + t * d;
     for (double z : {0.0, kCeiling}) {
-      in.points.push_back({.label = LabelClass::kWall, .position_m = Vec3(xy.x(), xy.y(), z), .sigma_m = 0.01,
-                           .source = PointSource::kContact, .frame = 0});
+      in.points.push_back({.label = LabelClass::kWall,
+                           .position_m = Vec3(xy.x(), xy.y(), z),
+                           .sigma_m = 0.01,
+                           .source = PointSource::kContact,
+                           .frame = 0});
     }
   }
   return in;

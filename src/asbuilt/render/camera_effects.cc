@@ -23,9 +23,7 @@ inline float ToneMap(float x) {
   return std::clamp(y, 0.0f, 1.0f);
 }
 
-inline float LinearToSrgb(float x) {
-  return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
-}
+inline float LinearToSrgb(float x) { return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f; }
 
 // A standard normal value from a hashed key (Box–Muller).
 inline float HashGaussian(std::uint64_t key) {
@@ -39,10 +37,10 @@ inline float HashGaussian(std::uint64_t key) {
 
 std::string ViewEffects::ToString() const {
   return fmt::format(
-      "ViewEffects(exposure={:.3f} white_balance=[{:.3f}, {:.3f}, {:.3f}] vignetting={:.3f} "
-      "blur_sigma_px={:.3f} noise_sigma={:.4f} jpeg_quality={})",
-      exposure, white_balance.x(), white_balance.y(), white_balance.z(), vignetting, blur_sigma_px,
-      noise_sigma, jpeg_quality) +
+             "ViewEffects(exposure={:.3f} white_balance=[{:.3f}, {:.3f}, {:.3f}] vignetting={:.3f} "
+             "blur_sigma_px={:.3f} noise_sigma={:.4f} jpeg_quality={})",
+             exposure, white_balance.x(), white_balance.y(), white_balance.z(), vignetting, blur_sigma_px, noise_sigma,
+             jpeg_quality) +
          (chromatic_aberration_px == 0 && sharpen == 0 && saturation == 1
               ? std::string()
               : fmt::format(" phone(chromatic_aberration_px={:.3f} sharpen={:.3f} saturation={:.3f})",

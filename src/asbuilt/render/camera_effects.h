@@ -14,18 +14,18 @@
 namespace asbuilt {
 
 struct ViewEffects {
-  double exposure = 1.0;                   // Multiplier on the automatic exposure.
-  Vec3 white_balance = Vec3::Ones();       // Per-channel gains (linear RGB).
-  double vignetting = 0.0;                 // Light lost in the image corners, [0, 1).
-  double blur_sigma_px = 0.0;              // Gaussian blur (defocus, lens softness).
-  double noise_sigma = 0.0;                // Sensor noise at mid-grey, in [0, 1] units.
-  int jpeg_quality = 0;                    // 0: none; else JPEG round trip at this quality.
+  double exposure = 1.0;              // Multiplier on the automatic exposure.
+  Vec3 white_balance = Vec3::Ones();  // Per-channel gains (linear RGB).
+  double vignetting = 0.0;            // Light lost in the image corners, [0, 1).
+  double blur_sigma_px = 0.0;         // Gaussian blur (defocus, lens softness).
+  double noise_sigma = 0.0;           // Sensor noise at mid-grey, in [0, 1] units.
+  int jpeg_quality = 0;               // 0: none; else JPEG round trip at this quality.
   // A phone's processing (RandomViewEffects with phone = true):
-  double chromatic_aberration_px = 0.0;    // Lateral: red and blue scaled about the centre, shifted
-                                           // this far at the image corner (sub-pixel colour fringes,
-                                           // geometry of green, hence labels, unchanged).
-  double sharpen = 0.0;                    // Unsharp-mask amount (σ 1 px).
-  double saturation = 1.0;                 // Colour saturation multiplier.
+  double chromatic_aberration_px = 0.0;  // Lateral: red and blue scaled about the centre, shifted
+                                         // this far at the image corner (sub-pixel colour fringes,
+                                         // geometry of green, hence labels, unchanged).
+  double sharpen = 0.0;                  // Unsharp-mask amount (σ 1 px).
+  double saturation = 1.0;               // Colour saturation multiplier.
 
   std::string ToString() const;
 };

@@ -19,10 +19,9 @@ void CaptureRenderOptions::Check() const {
                 fmt::format("CaptureRenderOptions.views = {}, must be in [0, 3600]", views));
   CheckArgument(std::isfinite(step_deg) && step_deg >= 0 && step_deg <= 360,
                 fmt::format("CaptureRenderOptions.step_deg = {}, must be in [0, 360]", step_deg));
-  CheckArgument(width_px >= 0 && width_px <= 16384 && height_px >= 0 && height_px <= 16384 &&
-                    (width_px == 0) == (height_px == 0),
-                fmt::format("CaptureRenderOptions size = {}x{}, must be both 0 or both in [1, 16384]",
-                            width_px, height_px));
+  CheckArgument(
+      width_px >= 0 && width_px <= 16384 && height_px >= 0 && height_px <= 16384 && (width_px == 0) == (height_px == 0),
+      fmt::format("CaptureRenderOptions size = {}x{}, must be both 0 or both in [1, 16384]", width_px, height_px));
   CheckArgument(std::isfinite(fov_deg) && fov_deg >= 0 && fov_deg < 179,
                 fmt::format("CaptureRenderOptions.fov_deg = {}, must be 0 or in (0, 179)", fov_deg));
   CheckArgument(std::isfinite(baseline_m) && baseline_m >= 0 && baseline_m <= 10,
@@ -30,8 +29,8 @@ void CaptureRenderOptions::Check() const {
 }
 
 std::string CaptureRenderSummary::BriefReport() const {
-  return fmt::format("rendered {} of {} views ({} already done) in {:.1f} s → {}", rendered, views, skipped,
-                     seconds, out_dir);
+  return fmt::format("rendered {} of {} views ({} already done) in {:.1f} s → {}", rendered, views, skipped, seconds,
+                     out_dir);
 }
 
 CaptureViews ResolveCaptureViews(const Scene& scene, const CaptureRenderOptions& options) {
@@ -82,8 +81,8 @@ CaptureViews ResolveCaptureViews(const Scene& scene, const CaptureRenderOptions&
   return v;
 }
 
-CaptureRenderSummary RenderCapture(const Scene& scene, const fs::path& out_dir,
-                                   const CaptureRenderOptions& options, const ProgressCallback& progress) {
+CaptureRenderSummary RenderCapture(const Scene& scene, const fs::path& out_dir, const CaptureRenderOptions& options,
+                                   const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   CaptureViews views = ResolveCaptureViews(scene, options);
   if (views.viewpoints.empty()) {
@@ -137,8 +136,8 @@ CaptureRenderSummary RenderCapture(const Scene& scene, const fs::path& out_dir,
       if (options.render.instance_ids) WriteImageAtomic(out_dir / "instances" / name, view.instance_ids);
       ++summary.rendered;
     }
-    ReportProgress(progress, {"render", static_cast<std::int64_t>(i + 1),
-                              static_cast<std::int64_t>(views.viewpoints.size()), ""});
+    ReportProgress(
+        progress, {"render", static_cast<std::int64_t>(i + 1), static_cast<std::int64_t>(views.viewpoints.size()), ""});
   }
   WritePlan(SceneTruth(scene), out_dir / "truth.json");
   WriteCapture(capture, out_dir / "capture.json");

@@ -25,9 +25,9 @@ namespace asbuilt {
 
 struct CaptureRenderOptions {
   RenderOptions render = {.camera_effects = 0.5};  // Survey-like: mild camera effects.
-  int views = 0;            // > 0: a turn-in-place of this many views replaces the scene's views.
-  double step_deg = 0.0;    // > 0: turn step (default with `views`: 360 / views).
-  int width_px = 0;         // 0: the scene rig's size.
+  int views = 0;          // > 0: a turn-in-place of this many views replaces the scene's views.
+  double step_deg = 0.0;  // > 0: turn step (default with `views`: 360 / views).
+  int width_px = 0;       // 0: the scene rig's size.
   int height_px = 0;
   double fov_deg = 0.0;     // 0: the scene rig's intrinsics; else horizontal FOV, centred.
   double baseline_m = 0.0;  // 0: the scene rig's baseline.
@@ -63,8 +63,7 @@ CaptureViews ResolveCaptureViews(const Scene& scene, const CaptureRenderOptions&
 // InputError for scene problems (pitched views cannot go in a capture), Error
 // on write failures.
 CaptureRenderSummary RenderCapture(const Scene& scene, const std::filesystem::path& out_dir,
-                                   const CaptureRenderOptions& options = {},
-                                   const ProgressCallback& progress = {});
+                                   const CaptureRenderOptions& options = {}, const ProgressCallback& progress = {});
 
 }  // namespace asbuilt
 

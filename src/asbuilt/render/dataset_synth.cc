@@ -191,14 +191,21 @@ const T& PickOne(SceneRng& rng, const std::vector<T>& items) {
 
 // The levers as (name, member) pairs, in declaration order.
 std::vector<std::pair<std::string, bool SynthLevers::*>> LeverFields() {
-  return {{"photo_textures", &SynthLevers::photo_textures}, {"outside_photos", &SynthLevers::outside_photos},
-          {"next_rooms", &SynthLevers::next_rooms},         {"door_leaves", &SynthLevers::door_leaves},
-          {"home_palette", &SynthLevers::home_palette},     {"sunlight", &SynthLevers::sunlight},
+  return {{"photo_textures", &SynthLevers::photo_textures},
+          {"outside_photos", &SynthLevers::outside_photos},
+          {"next_rooms", &SynthLevers::next_rooms},
+          {"door_leaves", &SynthLevers::door_leaves},
+          {"home_palette", &SynthLevers::home_palette},
+          {"sunlight", &SynthLevers::sunlight},
           {"kitchens", &SynthLevers::kitchens},
-          {"wall_details", &SynthLevers::wall_details},     {"window_dressing", &SynthLevers::window_dressing},
-          {"phone_camera", &SynthLevers::phone_camera},     {"glass_doors", &SynthLevers::glass_doors},
-          {"close_views", &SynthLevers::close_views},       {"ceiling_like_walls", &SynthLevers::ceiling_like_walls},
-          {"wall_art", &SynthLevers::wall_art},             {"close_doors", &SynthLevers::close_doors}};
+          {"wall_details", &SynthLevers::wall_details},
+          {"window_dressing", &SynthLevers::window_dressing},
+          {"phone_camera", &SynthLevers::phone_camera},
+          {"glass_doors", &SynthLevers::glass_doors},
+          {"close_views", &SynthLevers::close_views},
+          {"ceiling_like_walls", &SynthLevers::ceiling_like_walls},
+          {"wall_art", &SynthLevers::wall_art},
+          {"close_doors", &SynthLevers::close_doors}};
 }
 
 }  // namespace
@@ -294,8 +301,8 @@ SceneLook MakeSceneLook(const SynthLevers& levers, const PhotoLibrary& photos, S
                       bool keep_procedural = false) {
       if (choices.empty() || FindMaterial(scene, material) == nullptr || !rng.Chance(chance)) return;
       // One draw per statement: argument evaluation order is unspecified.
-      PhotoAlbedo pa{.photo = PickOne(rng, choices), .colour = colour, .detail = detail,
-                     .keep_procedural = keep_procedural};
+      PhotoAlbedo pa{
+          .photo = PickOne(rng, choices), .colour = colour, .detail = detail, .keep_procedural = keep_procedural};
       pa.size_m = rng.Uniform(min_size_m, max_size_m);
       pa.swap_uv = rng.Chance(0.5);
       pa.offset_m.x() = rng.Uniform(0, 5);
@@ -307,10 +314,18 @@ SceneLook MakeSceneLook(const SynthLevers& levers, const PhotoLibrary& photos, S
     assign("ceiling", paper, 0.5, 0.4, 1.5, 0.0, rng.Uniform(0.05, 0.25));
     if (const Material* floor = FindMaterial(scene, "floor")) {
       switch (floor->texture) {
-        case TextureKind::kWood: assign("floor", wood, 0.9, 0.6, 2.0, rng.Uniform(0.6, 1.0), 1.0); break;
-        case TextureKind::kTiles: assign("floor", stone, 0.8, 0.3, 1.0, rng.Uniform(0.5, 1.0), 1.0, true); break;
-        case TextureKind::kCarpet: assign("floor", fabric, 0.8, 0.2, 0.6, 0.2, rng.Uniform(0.3, 0.6)); break;
-        default: assign("floor", stone, 0.6, 0.5, 1.5, 0.4, 0.8); break;
+        case TextureKind::kWood:
+          assign("floor", wood, 0.9, 0.6, 2.0, rng.Uniform(0.6, 1.0), 1.0);
+          break;
+        case TextureKind::kTiles:
+          assign("floor", stone, 0.8, 0.3, 1.0, rng.Uniform(0.5, 1.0), 1.0, true);
+          break;
+        case TextureKind::kCarpet:
+          assign("floor", fabric, 0.8, 0.2, 0.6, 0.2, rng.Uniform(0.3, 0.6));
+          break;
+        default:
+          assign("floor", stone, 0.6, 0.5, 1.5, 0.4, 0.8);
+          break;
       }
     }
     assign("door_wood", grain, 0.9, 0.5, 1.2, rng.Uniform(0.6, 1.0), 1.0);
@@ -339,8 +354,11 @@ SceneLook MakeSceneLook(const SynthLevers& levers, const PhotoLibrary& photos, S
   if (levers.next_rooms) {
     const std::vector<Vec3> walls = {Vec3(0.9, 0.9, 0.88), Vec3(0.86, 0.82, 0.72), Vec3(0.8, 0.8, 0.78),
                                      Vec3(0.75, 0.8, 0.85), Vec3(0.92, 0.85, 0.7)};
-    Material next_wall{.name = "next_wall", .base_color = PickOne(rng, walls), .roughness = 0.9,
-                       .texture = TextureKind::kPlaster, .texture_scale_m = 0.4};
+    Material next_wall{.name = "next_wall",
+                       .base_color = PickOne(rng, walls),
+                       .roughness = 0.9,
+                       .texture = TextureKind::kPlaster,
+                       .texture_scale_m = 0.4};
     next_wall.secondary_color = 0.9 * next_wall.base_color;
     const Material* floor = FindMaterial(scene, "floor");
     Material next_floor = floor ? *floor : Material{};
@@ -495,8 +513,9 @@ DatasetSynthSummary SynthesizeDataset(const fs::path& dir, const DatasetSynthOpt
   if (options.levers.photo_textures || options.levers.outside_photos) {
     photos = LoadPhotoLibrary({.dirs = options.photo_dirs});
     if (photos.empty()) {
-      spdlog::warn("dataset synth: no photos found in the photo folders (--photo-dir; Debian: gimp-data, "
-                   "blender); procedural textures and the sky gradient only");
+      spdlog::warn(
+          "dataset synth: no photos found in the photo folders (--photo-dir; Debian: gimp-data, "
+          "blender); procedural textures and the sky gradient only");
     } else {
       spdlog::info("dataset synth: {}", photos.ToString());
     }
@@ -543,8 +562,8 @@ DatasetSynthSummary SynthesizeDataset(const fs::path& dir, const DatasetSynthOpt
           {"scene_seed", item.scene_seed},
           {"kind", item.kind},
           {"target", item.target},
-          {"camera", {{"width", k.width_px}, {"height", k.height_px}, {"fx", k.fx}, {"fy", k.fy},
-                      {"cx", k.cx}, {"cy", k.cy}}},
+          {"camera",
+           {{"width", k.width_px}, {"height", k.height_px}, {"fx", k.fx}, {"fy", k.fy}, {"cx", k.cx}, {"cy", k.cy}}},
           {"position_m", Vec3Json(item.camera.viewpoint.position_m)},
           {"yaw_deg", item.camera.viewpoint.yaw_deg},
           {"pitch_deg", item.camera.viewpoint.pitch_deg},

@@ -38,28 +38,28 @@ namespace asbuilt {
 // model's data, MODEL_CARD.md, stays reproducible). Each lever changes what
 // the scene holds or how it looks, never a label convention.
 struct SynthLevers {
-  bool photo_textures = false;   // Photos (photo_textures.h) as albedo of walls, ceilings, floors, doors,
-                                 // cabinets, worktops, furniture, curtains.
-  bool outside_photos = false;   // An outdoor HDR panorama seen through windows instead of the sky
-                                 // gradient and boxes; often brighter than the room (blown out).
-  bool next_rooms = false;       // Doors open onto a lit room (2.5–5 m deep) instead of a dark 1.2 m
-                                 // closet, and 45 % of closed doors swing open. Door label over the opening.
-  bool door_leaves = false;      // 80 % of doors white-painted or wooden (leaf, lining, casing).
-  bool home_palette = false;     // 65 % of rooms: white or off-white walls and ceiling, as most homes.
-  bool sunlight = false;         // Half the rooms: a low strong sun in through a window (sunlit patches).
-  bool kitchens = false;         // 35 % of rooms: kitchen units, worktops, wall units, white appliances (label 0).
-  bool wall_details = false;     // 70 % of rooms: radiators, sockets, switches (label 0).
-  bool window_dressing = false;  // Half the windows: curtains (label 0) or a roller blind in the opening (window).
-  bool phone_camera = false;     // RenderOptions::phone_camera: wider exposure/noise/JPEG, chromatic
-                                 // aberration, sharpening, saturation.
-  bool glass_doors = false;      // 30 % of doors glazed to the floor (patio / French doors), the outside
-                                 // seen through them; label door over the whole opening.
-  bool close_views = false;      // 30 % of views 0.4–1.5 m from a plain wall or into a corner, level or
-                                 // pitched up to the wall–ceiling edge: the wall fills the frame.
+  bool photo_textures = false;      // Photos (photo_textures.h) as albedo of walls, ceilings, floors, doors,
+                                    // cabinets, worktops, furniture, curtains.
+  bool outside_photos = false;      // An outdoor HDR panorama seen through windows instead of the sky
+                                    // gradient and boxes; often brighter than the room (blown out).
+  bool next_rooms = false;          // Doors open onto a lit room (2.5–5 m deep) instead of a dark 1.2 m
+                                    // closet, and 45 % of closed doors swing open. Door label over the opening.
+  bool door_leaves = false;         // 80 % of doors white-painted or wooden (leaf, lining, casing).
+  bool home_palette = false;        // 65 % of rooms: white or off-white walls and ceiling, as most homes.
+  bool sunlight = false;            // Half the rooms: a low strong sun in through a window (sunlit patches).
+  bool kitchens = false;            // 35 % of rooms: kitchen units, worktops, wall units, white appliances (label 0).
+  bool wall_details = false;        // 70 % of rooms: radiators, sockets, switches (label 0).
+  bool window_dressing = false;     // Half the windows: curtains (label 0) or a roller blind in the opening (window).
+  bool phone_camera = false;        // RenderOptions::phone_camera: wider exposure/noise/JPEG, chromatic
+                                    // aberration, sharpening, saturation.
+  bool glass_doors = false;         // 30 % of doors glazed to the floor (patio / French doors), the outside
+                                    // seen through them; label door over the whole opening.
+  bool close_views = false;         // 30 % of views 0.4–1.5 m from a plain wall or into a corner, level or
+                                    // pitched up to the wall–ceiling edge: the wall fills the frame.
   bool ceiling_like_walls = false;  // Half the rooms: the ceiling in the walls' paint, soft fill light.
-  bool wall_art = false;         // 60 % of rooms: framed pictures, mirrors, a TV on the walls (label 0).
-  bool close_doors = false;      // 20 % of views 0.5–1.6 m from a door, ±40° off its normal: the door (an
-                                 // open leaf, the room beyond) fills much of the frame, as in hallways.
+  bool wall_art = false;            // 60 % of rooms: framed pictures, mirrors, a TV on the walls (label 0).
+  bool close_doors = false;         // 20 % of views 0.5–1.6 m from a door, ±40° off its normal: the door (an
+                                    // open leaf, the room beyond) fills much of the frame, as in hallways.
 
   bool Any() const;
   // Comma-separated names of the levers that are on, or "none".
@@ -73,33 +73,34 @@ const std::vector<std::string>& SynthLeverNames();
 SynthLevers ParseSynthLevers(std::string_view list);
 
 struct DatasetSynthOptions {
-  int count = 100;                 // Items in the whole dataset (all shards).
-  std::uint64_t seed = 0;          // Scenes, views and rendering.
-  int shard_index = 0;             // This run renders shard shard_index of shard_count.
+  int count = 100;         // Items in the whole dataset (all shards).
+  std::uint64_t seed = 0;  // Scenes, views and rendering.
+  int shard_index = 0;     // This run renders shard shard_index of shard_count.
   int shard_count = 1;
-  int width_px = 320;              // Image size of every item.
+  int width_px = 320;  // Image size of every item.
   int height_px = 240;
-  double min_hfov_deg = 60.0;      // Horizontal field of view, drawn per item.
+  double min_hfov_deg = 60.0;  // Horizontal field of view, drawn per item.
   double max_hfov_deg = 80.0;
-  double rig_view_share = 0.25;    // Share of level rig views (the rest: photo-like views).
-  int items_per_scene = 8;         // Consecutive items share a room (amortises scene building).
+  double rig_view_share = 0.25;  // Share of level rig views (the rest: photo-like views).
+  int items_per_scene = 8;       // Consecutive items share a room (amortises scene building).
   RenderOptions render = {.samples_per_pixel = 2, .camera_effects = 1.0};
-  RandomSceneOptions scene;        // The random rooms.
-  bool resume = true;              // Skip items already written.
-  SynthLevers levers;              // Realism levers (all off: the scene as modelled).
-  std::vector<std::filesystem::path> photo_dirs = DefaultPhotoDirs();  // Where photo_textures and
-                                   // outside_photos look (absent folders skipped; none found:
-                                   // procedural textures and the sky gradient, with a warning).
+  RandomSceneOptions scene;  // The random rooms.
+  bool resume = true;        // Skip items already written.
+  SynthLevers levers;        // Realism levers (all off: the scene as modelled).
+  std::vector<std::filesystem::path> photo_dirs =
+      DefaultPhotoDirs();  // Where photo_textures and
+                           // outside_photos look (absent folders skipped; none found:
+                           // procedural textures and the sky gradient, with a warning).
 
   void Check() const;
 };
 
 struct DatasetSynthSummary {
-  int items = 0;        // In this shard.
+  int items = 0;  // In this shard.
   int rendered = 0;
-  int skipped = 0;      // Already complete (resume).
-  int scenes = 0;       // Rooms built in this run.
-  double seconds = -1;  // Wall time; −1 if not run.
+  int skipped = 0;                             // Already complete (resume).
+  int scenes = 0;                              // Rooms built in this run.
+  double seconds = -1;                         // Wall time; −1 if not run.
   std::array<std::int64_t, 4> class_pixels{};  // Over the rendered items.
   std::string dir;
 
@@ -113,7 +114,7 @@ std::pair<int, int> ShardRange(int count, int shard_index, int shard_count);
 struct SynthItem {
   int index = 0;
   std::uint64_t scene_seed = 0;
-  std::string kind;  // "photo" or "rig".
+  std::string kind;    // "photo" or "rig".
   std::string target;  // "wall", "door", "window", "close_wall", "corner" (photo views) or "turn".
   StereoCamera camera;
 };

@@ -105,8 +105,8 @@ TEST(PlanSynthItem, CloseViewsFillTheFrameWithWallAndLeaveOtherItemsAlone) {
   EXPECT_GT(corners, 3);
   EXPECT_GT(wall_fraction / close, 0.6) << "mean wall share of a close view";
   EXPECT_GT(ceiling_on_top, pitched * 3 / 4);
-  std::printf("close views: %d (%d corners, %d pitched up, %d with the ceiling on top), mean wall share %.3f\n",
-              close, corners, pitched, ceiling_on_top, wall_fraction / close);
+  std::printf("close views: %d (%d corners, %d pitched up, %d with the ceiling on top), mean wall share %.3f\n", close,
+              corners, pitched, ceiling_on_top, wall_fraction / close);
 }
 
 // close_doors: a fifth of the views stand close to a door and see much of

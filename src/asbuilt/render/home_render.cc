@@ -30,7 +30,8 @@ std::string FolderName(const Room& room, std::size_t index) {
 // Moves a capture's frames into another frame: positions and yaws.
 void MoveCapture(const fs::path& capture_json, const Eigen::Isometry2d& room_from_scene) {
   Capture capture = ReadCapture(capture_json);
-  const double turn_deg = std::atan2(room_from_scene.linear()(1, 0), room_from_scene.linear()(0, 0)) * 180 / std::numbers::pi;
+  const double turn_deg =
+      std::atan2(room_from_scene.linear()(1, 0), room_from_scene.linear()(0, 0)) * 180 / std::numbers::pi;
   for (CaptureFrame& f : capture.frames) {
     const Vec2 xy = room_from_scene * Vec2(f.position_m.x(), f.position_m.y());
     f.position_m = Vec3(xy.x(), xy.y(), f.position_m.z());
@@ -69,13 +70,16 @@ HomeRenderSummary RenderHome(const Scene& home, const fs::path& out_dir, const H
                              .step_deg = 360.0 / options.capture.views,
                              .count = options.capture.views};
     const std::string name = FolderName(room, r);
-    ReportProgress(progress, {.stage = "render home", .done = static_cast<std::int64_t>(r),
-                              .total = static_cast<std::int64_t>(home.rooms.size()), .detail = name});
+    ReportProgress(progress, {.stage = "render home",
+                              .done = static_cast<std::int64_t>(r),
+                              .total = static_cast<std::int64_t>(home.rooms.size()),
+                              .detail = name});
     RenderCapture(scene, out_dir / name, options.capture);
     fs::remove(out_dir / name / "truth.json");  // The whole home's, in the scene's frame: OUT/truth.json instead.
     Eigen::Isometry2d floor_from_room = Eigen::Isometry2d::Identity();
     if (options.own_frames) {
-      floor_from_room.linear() = Eigen::Rotation2Dd(rng.Uniform(-std::numbers::pi, std::numbers::pi)).toRotationMatrix();
+      floor_from_room.linear() =
+          Eigen::Rotation2Dd(rng.Uniform(-std::numbers::pi, std::numbers::pi)).toRotationMatrix();
       floor_from_room.translation() = Vec2(rng.Uniform(-5, 5), rng.Uniform(-5, 5));
       MoveCapture(out_dir / name / "capture.json", floor_from_room.inverse());
     }

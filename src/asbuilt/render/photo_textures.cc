@@ -92,12 +92,18 @@ std::optional<Photo> LoadPhoto(const fs::path& path, PhotoKind kind, int max_sid
 
 const char* PhotoKindName(PhotoKind kind) {
   switch (kind) {
-    case PhotoKind::kWood: return "wood";
-    case PhotoKind::kStone: return "stone";
-    case PhotoKind::kFabric: return "fabric";
-    case PhotoKind::kPaper: return "paper";
-    case PhotoKind::kEnvironment: return "environment";
-    case PhotoKind::kView: return "view";
+    case PhotoKind::kWood:
+      return "wood";
+    case PhotoKind::kStone:
+      return "stone";
+    case PhotoKind::kFabric:
+      return "fabric";
+    case PhotoKind::kPaper:
+      return "paper";
+    case PhotoKind::kEnvironment:
+      return "environment";
+    case PhotoKind::kView:
+      return "view";
   }
   return "?";
 }
@@ -132,7 +138,8 @@ Vec3f Photo::Outside(const Vec3f& dir, float yaw_rad) const {
   float s = azimuth / kSpanRad;
   float f = s - 2.0f * std::floor(0.5f * s);  // [0, 2)
   float u = f < 1.0f ? f : 2.0f - f;
-  constexpr float kLow = -25.0f * std::numbers::pi_v<float> / 180.0f, kHigh = 45.0f * std::numbers::pi_v<float> / 180.0f;
+  constexpr float kLow = -25.0f * std::numbers::pi_v<float> / 180.0f,
+                  kHigh = 45.0f * std::numbers::pi_v<float> / 180.0f;
   float v = (kHigh - elevation) / (kHigh - kLow);
   return Sample(std::clamp(u, 0.0f, 0.999f), v, true);
 }

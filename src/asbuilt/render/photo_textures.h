@@ -33,9 +33,9 @@ enum class PhotoKind {
 const char* PhotoKindName(PhotoKind kind);  // "wood", "stone", …
 
 struct Photo {
-  std::string path;       // The file it came from (provenance; written to item meta).
+  std::string path;  // The file it came from (provenance; written to item meta).
   PhotoKind kind = PhotoKind::kWood;
-  Image linear_rgb;       // 3 × 32-bit float, channels R, G, B, linear (sRGB decoded; HDR as stored).
+  Image linear_rgb;            // 3 × 32-bit float, channels R, G, B, linear (sRGB decoded; HDR as stored).
   Vec3f mean = Vec3f::Zero();  // Mean linear RGB.
   float mean_luminance = 0.0f;
 

@@ -29,17 +29,15 @@ namespace {
 
 void AttachMesh(RTCDevice device, RTCScene scene, const MeshObject& o) {
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                        RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                        o.vertices.size()));
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                        3 * sizeof(float), o.vertices.size()));
   for (std::size_t i = 0; i < o.vertices.size(); ++i) {
     v[3 * i] = o.vertices[i].x();
     v[3 * i + 1] = o.vertices[i].y();
     v[3 * i + 2] = o.vertices[i].z();
   }
-  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
-                                                             RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-                                                             o.triangles.size()));
+  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                             3 * sizeof(unsigned), o.triangles.size()));
   for (std::size_t i = 0; i < o.triangles.size(); ++i) {
     for (int k = 0; k < 3; ++k) idx[3 * i + k] = static_cast<unsigned>(o.triangles[i][k]);
   }
@@ -63,8 +61,7 @@ void InitRay(RTCRay& ray, const Vec3f& origin, const Vec3f& dir, float t_near, f
   ray.flags = 0;
 }
 
-bool Query(RTCScene scene, const Vec3f& origin, const Vec3f& dir, float t_near, float t_far,
-           RTCRayHit* rh) {
+bool Query(RTCScene scene, const Vec3f& origin, const Vec3f& dir, float t_near, float t_far, RTCRayHit* rh) {
   InitRay(rh->ray, origin, dir, t_near, t_far);
   rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -79,8 +76,7 @@ bool Query(RTCScene scene, const Vec3f& origin, const Vec3f& dir, float t_near, 
 RayTracer::RayTracer(const SceneMesh& mesh) : mesh_(mesh), impl_(std::make_unique<Impl>()) {
   impl_->device = rtcNewDevice(nullptr);
   if (impl_->device == nullptr) {
-    throw Error(fmt::format("Embree: cannot create a device (error {})",
-                            static_cast<int>(rtcGetDeviceError(nullptr))));
+    throw Error(fmt::format("Embree: cannot create a device (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
   }
   impl_->opaque = rtcNewScene(impl_->device);
   impl_->glass = rtcNewScene(impl_->device);
@@ -98,8 +94,8 @@ RayTracer::RayTracer(const SceneMesh& mesh) : mesh_(mesh), impl_(std::make_uniqu
 
 RayTracer::~RayTracer() = default;
 
-bool RayTracer::Intersect(const Vec3f& origin, const Vec3f& dir, float t_near, float t_far,
-                          bool with_glass, RayHit* hit) const {
+bool RayTracer::Intersect(const Vec3f& origin, const Vec3f& dir, float t_near, float t_far, bool with_glass,
+                          RayHit* hit) const {
   RTCRayHit rh;
   bool found = false;
   if (Query(impl_->opaque, origin, dir, t_near, t_far, &rh)) {
@@ -110,8 +106,7 @@ bool RayTracer::Intersect(const Vec3f& origin, const Vec3f& dir, float t_near, f
     hit->geometric_normal = Vec3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z).normalized();
     t_far = rh.ray.tfar;
   }
-  if (with_glass && !impl_->glass_objects.empty() &&
-      Query(impl_->glass, origin, dir, t_near, t_far, &rh)) {
+  if (with_glass && !impl_->glass_objects.empty() && Query(impl_->glass, origin, dir, t_near, t_far, &rh)) {
     found = true;
     hit->t = rh.ray.tfar;
     hit->object = impl_->glass_objects[rh.hit.geomID];

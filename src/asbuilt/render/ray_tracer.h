@@ -13,8 +13,8 @@
 namespace asbuilt {
 
 struct RayHit {
-  float t = 0.0f;              // Distance along the (unit) ray direction.
-  int object = -1;             // Index into SceneMesh::objects.
+  float t = 0.0f;   // Distance along the (unit) ray direction.
+  int object = -1;  // Index into SceneMesh::objects.
   int triangle = -1;
   Vec3f geometric_normal = Vec3f::UnitZ();  // Unit, not yet facing the ray.
 };
@@ -29,8 +29,7 @@ class RayTracer {
   RayTracer& operator=(const RayTracer&) = delete;
 
   // Nearest hit in (t_near, t_far); glass included when `with_glass`.
-  bool Intersect(const Vec3f& origin, const Vec3f& dir, float t_near, float t_far, bool with_glass,
-                 RayHit* hit) const;
+  bool Intersect(const Vec3f& origin, const Vec3f& dir, float t_near, float t_far, bool with_glass, RayHit* hit) const;
   // True if anything opaque (not glass) lies in (t_near, t_far).
   bool Occluded(const Vec3f& origin, const Vec3f& dir, float t_near, float t_far) const;
 

@@ -20,7 +20,7 @@ namespace asbuilt {
 namespace {
 
 constexpr float kPiF = 3.14159265f;
-constexpr float kEpsilon = 2e-4f;   // Ray offset from surfaces (metres).
+constexpr float kEpsilon = 2e-4f;  // Ray offset from surfaces (metres).
 constexpr float kFar = 1e5f;
 constexpr float kGlassTransmission = 0.85f;
 constexpr float kGlassReflection = 0.06f;
@@ -54,8 +54,7 @@ inline Vec3f CosineSample(const Vec3f& n, Rng& rng) {
   float r = std::sqrt(r1), phi = 2.0f * kPiF * r2;
   Vec3f t, b;
   Basis(n, &t, &b);
-  return (t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0f, 1.0f - r1)))
-      .normalized();
+  return (t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0f, 1.0f - r1))).normalized();
 }
 
 // Per-pixel results of the RGB pass, demodulated: colour = albedo·E/π + extra.
@@ -119,7 +118,7 @@ struct SceneRenderer::Impl {
   std::uint32_t texture_seed = 0;
   SceneLook look;
   std::vector<const PhotoAlbedo*> photo_of_material;  // Per mesh material; null: procedural.
-  float outside_scale = 1.0f;                          // Photo radiance → scene radiance.
+  float outside_scale = 1.0f;                         // Photo radiance → scene radiance.
 
   // What a ray that leaves the building sees: the sky gradient, or the photo.
   Vec3f Outside(const Vec3f& d) const {
@@ -152,8 +151,8 @@ struct SceneRenderer::Impl {
   // ray each; adds a Blinn–Phong highlight towards `to_eye` into *specular.
   // With `one_light`, a single light drawn at random stands for all of them
   // (weighted by their count): cheaper, noisier — for bounce points.
-  Vec3f Direct(const Vec3f& p, const Vec3f& n, const Vec3f* to_eye, float roughness, Rng& rng,
-               Vec3f* specular, bool one_light = false) const {
+  Vec3f Direct(const Vec3f& p, const Vec3f& n, const Vec3f* to_eye, float roughness, Rng& rng, Vec3f* specular,
+               bool one_light = false) const {
     Vec3f e = Vec3f::Zero();
     const int lights = static_cast<int>(mesh.area_lights.size() + mesh.suns.size());
     int only = -1;
@@ -172,8 +171,7 @@ struct SceneRenderer::Impl {
     }
     for (const AreaLight& light : mesh.area_lights) {
       if (only >= 0 && ++light_index != only) continue;
-      Vec3f q = (light.centre + (2.0 * rng.Next() - 1.0) * light.half_u +
-                 (2.0 * rng.Next() - 1.0) * light.half_v)
+      Vec3f q = (light.centre + (2.0 * rng.Next() - 1.0) * light.half_u + (2.0 * rng.Next() - 1.0) * light.half_v)
                     .cast<float>();
       Vec3f l = q - origin;
       float d2 = l.squaredNorm();
@@ -184,13 +182,13 @@ struct SceneRenderer::Impl {
       if (cos_s <= 0 || cos_l <= 0) continue;
       ++rng.rays;
       if (tracer->Occluded(origin, l, 0.0f, d - 1e-3f)) continue;
-      Vec3f contrib = light.radiance.cast<float>() *
-                      (static_cast<float>(light.area_m2) * cos_s * cos_l / std::max(d2, 1e-4f));
+      Vec3f contrib =
+          light.radiance.cast<float>() * (static_cast<float>(light.area_m2) * cos_s * cos_l / std::max(d2, 1e-4f));
       e += contrib;
       if (to_eye != nullptr) {
         Vec3f h = (l + *to_eye).normalized();
-        *specular += contrib * (ks * (shininess + 8.0f) / (8.0f * kPiF) *
-                                std::pow(std::max(n.dot(h), 0.0f), shininess));
+        *specular +=
+            contrib * (ks * (shininess + 8.0f) / (8.0f * kPiF) * std::pow(std::max(n.dot(h), 0.0f), shininess));
       }
     }
     for (const SunLight& sun : mesh.suns) {
@@ -208,8 +206,8 @@ struct SceneRenderer::Impl {
       e += contrib;
       if (to_eye != nullptr) {
         Vec3f h = (s + *to_eye).normalized();
-        *specular += contrib * (ks * (shininess + 8.0f) / (8.0f * kPiF) *
-                                std::pow(std::max(n.dot(h), 0.0f), shininess));
+        *specular +=
+            contrib * (ks * (shininess + 8.0f) / (8.0f * kPiF) * std::pow(std::max(n.dot(h), 0.0f), shininess));
       }
     }
     return weight * e + Vec3f::Constant(static_cast<float>(0.5 * mesh.environment.ambient) * kAmbientScale);
@@ -233,10 +231,11 @@ struct SceneRenderer::Impl {
 };
 
 std::string StereoCamera::ToString() const {
-  return fmt::format("StereoCamera({} position_m=[{:.3f}, {:.3f}, {:.3f}] yaw_deg={:.2f} pitch_deg={:.2f} "
-                     "baseline_m={:.3f})",
-                     camera.ToString(), viewpoint.position_m.x(), viewpoint.position_m.y(),
-                     viewpoint.position_m.z(), viewpoint.yaw_deg, viewpoint.pitch_deg, baseline_m);
+  return fmt::format(
+      "StereoCamera({} position_m=[{:.3f}, {:.3f}, {:.3f}] yaw_deg={:.2f} pitch_deg={:.2f} "
+      "baseline_m={:.3f})",
+      camera.ToString(), viewpoint.position_m.x(), viewpoint.position_m.y(), viewpoint.position_m.z(),
+      viewpoint.yaw_deg, viewpoint.pitch_deg, baseline_m);
 }
 
 void RenderOptions::Check() const {
@@ -334,8 +333,8 @@ void DenoiseIrradiance(PixelBuffers& b, int passes) {
 
 }  // namespace
 
-RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions& options,
-                                   std::uint64_t view_key, bool right_eye) const {
+RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions& options, std::uint64_t view_key,
+                                   bool right_eye) const {
   options.Check();
   cam.camera.Check();
   const Impl& im = *impl_;
@@ -414,10 +413,10 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
                   if (!aux.normals.empty()) {
                     Vec3f n = hit.geometric_normal.dot(dir) > 0 ? Vec3f(-hit.geometric_normal) : hit.geometric_normal;
                     Vec3f nc = rot.transpose() * n;
-                    aux.normals.at<cv::Vec3b>(y, x) = cv::Vec3b(
-                        static_cast<std::uint8_t>(std::lround(127.5f * (nc.z() + 1))),
-                        static_cast<std::uint8_t>(std::lround(127.5f * (nc.y() + 1))),
-                        static_cast<std::uint8_t>(std::lround(127.5f * (nc.x() + 1))));
+                    aux.normals.at<cv::Vec3b>(y, x) =
+                        cv::Vec3b(static_cast<std::uint8_t>(std::lround(127.5f * (nc.z() + 1))),
+                                  static_cast<std::uint8_t>(std::lround(127.5f * (nc.y() + 1))),
+                                  static_cast<std::uint8_t>(std::lround(127.5f * (nc.x() + 1))));
                   }
                 }
               }
@@ -437,7 +436,8 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
               if (o.role == SurfaceRole::kGlass || o.role == SurfaceRole::kMirror) {
                 // Pane: a faint sky reflection, then on through it. Mirror: on along the reflection.
                 const bool mirror = o.role == SurfaceRole::kMirror;
-                const Vec3f refl = dir - 2.0f * dir.dot(n) * n, tint = im.mesh.materials[o.material].base_color.cast<float>();
+                const Vec3f refl = dir - 2.0f * dir.dot(n) * n,
+                            tint = im.mesh.materials[o.material].base_color.cast<float>();
                 if (!mirror) extra_sum += throughput.cwiseProduct(kGlassReflection * im.Sky(refl));
                 throughput = throughput.cwiseProduct((mirror ? kMirrorReflection : kGlassTransmission) * tint);
                 dir = mirror ? refl : dir;

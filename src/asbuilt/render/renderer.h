@@ -42,18 +42,18 @@ inline constexpr std::array<std::array<std::uint8_t, 3>, 4> kIdMapColors = {{
 }};
 
 struct RenderOptions {
-  int samples_per_pixel = 4;      // RGB samples per pixel (jittered: antialiasing, soft light).
-                                  // More = less noise before denoising, linear cost.
-  bool indirect_light = true;     // One diffuse bounce (off: direct light + ambient only, ~2× faster).
-  int denoise_passes = 3;         // Edge-aware à-trous passes over the lighting; 0 = raw.
-  double id_drift = 0.15;         // [0, 1]: how much ID-map colours follow the light (0 = flat colours).
-  double camera_effects = 1.0;    // [0, 1]: strength of the randomised camera effects (0 = clean).
-  bool phone_camera = false;      // Also a phone's processing (camera_effects.h RandomViewEffects):
-                                  // wider exposure, noise and JPEG ranges, chromatic aberration,
-                                  // sharpening, saturation. Off: the plain camera's effects.
-  bool normals = false;           // Also produce camera-frame normals.
-  bool instance_ids = false;      // Also produce per-object instance ids.
-  std::uint64_t seed = 0;         // Sampling and effects; same seed → identical images.
+  int samples_per_pixel = 4;    // RGB samples per pixel (jittered: antialiasing, soft light).
+                                // More = less noise before denoising, linear cost.
+  bool indirect_light = true;   // One diffuse bounce (off: direct light + ambient only, ~2× faster).
+  int denoise_passes = 3;       // Edge-aware à-trous passes over the lighting; 0 = raw.
+  double id_drift = 0.15;       // [0, 1]: how much ID-map colours follow the light (0 = flat colours).
+  double camera_effects = 1.0;  // [0, 1]: strength of the randomised camera effects (0 = clean).
+  bool phone_camera = false;    // Also a phone's processing (camera_effects.h RandomViewEffects):
+                                // wider exposure, noise and JPEG ranges, chromatic aberration,
+                                // sharpening, saturation. Off: the plain camera's effects.
+  bool normals = false;         // Also produce camera-frame normals.
+  bool instance_ids = false;    // Also produce per-object instance ids.
+  std::uint64_t seed = 0;       // Sampling and effects; same seed → identical images.
 
   void Check() const;
 };
@@ -61,7 +61,7 @@ struct RenderOptions {
 // Where the rig is and what it sees.
 struct StereoCamera {
   PinholeCamera camera;
-  Viewpoint viewpoint;      // Rig centre, yaw, pitch.
+  Viewpoint viewpoint;  // Rig centre, yaw, pitch.
   double baseline_m = 0.12;
 
   std::string ToString() const;
@@ -69,14 +69,14 @@ struct StereoCamera {
 
 struct RenderedView {
   // Images of the camera's size (imageio/image_cv.h views them as cv::Mat).
-  Image left;          // 3 × 8-bit BGR.
-  Image right;         // 3 × 8-bit BGR; empty when the right eye was not asked for.
-  Image idmap;         // 3 × 8-bit BGR, left view.
-  Image labels;        // 8-bit label ids, left view.
-  Image depth_mm;      // 16-bit millimetres along the optical axis; 0 = nothing within 65.535 m.
-  Image normals;       // 3 × 8-bit BGR encoding (n + 1) / 2 of camera-frame normals; empty unless asked.
-  Image instance_ids;  // 16-bit: SceneMesh object index + 1, 0 = sky; empty unless asked.
-  ViewEffects effects;   // The camera effects applied.
+  Image left;                    // 3 × 8-bit BGR.
+  Image right;                   // 3 × 8-bit BGR; empty when the right eye was not asked for.
+  Image idmap;                   // 3 × 8-bit BGR, left view.
+  Image labels;                  // 8-bit label ids, left view.
+  Image depth_mm;                // 16-bit millimetres along the optical axis; 0 = nothing within 65.535 m.
+  Image normals;                 // 3 × 8-bit BGR encoding (n + 1) / 2 of camera-frame normals; empty unless asked.
+  Image instance_ids;            // 16-bit: SceneMesh object index + 1, 0 = sky; empty unless asked.
+  ViewEffects effects;           // The camera effects applied.
   std::int64_t rays_traced = 0;  // Every ray cast (primary, shadow, bounce), both eyes.
 };
 
@@ -85,11 +85,11 @@ struct RenderedView {
 // surface) and tiles every size_m metres.
 struct PhotoAlbedo {
   std::shared_ptr<const Photo> photo;
-  double size_m = 0.5;     // Real-world width of one tile of the photo (its height keeps the aspect).
-  double colour = 1.0;     // [0, 1]: 1 = the photo's colours, brightness matched to the material's
-                           // base colour; 0 = only its light/dark detail on the base colour.
-  double detail = 1.0;     // [0, 2]: strength of the photo's light/dark detail (colour < 1).
-  bool swap_uv = false;    // Turn the photo 90° (grain direction).
+  double size_m = 0.5;           // Real-world width of one tile of the photo (its height keeps the aspect).
+  double colour = 1.0;           // [0, 1]: 1 = the photo's colours, brightness matched to the material's
+                                 // base colour; 0 = only its light/dark detail on the base colour.
+  double detail = 1.0;           // [0, 2]: strength of the photo's light/dark detail (colour < 1).
+  bool swap_uv = false;          // Turn the photo 90° (grain direction).
   bool keep_procedural = false;  // Also keep the material's procedural pattern's light/dark (panel gaps, joints).
   Vec2 offset_m = Vec2::Zero();  // Shift of the tiling.
 };
@@ -103,9 +103,9 @@ struct SceneLook {
   // the sky gradient and the ground and exterior boxes; lighting still comes
   // from the scene's sky and sun. Null: the sky gradient.
   std::shared_ptr<const Photo> outside;
-  double outside_yaw_deg = 0.0;   // Turns the panorama about +Z.
-  double outside_gain = 1.0;      // Radiance scale of the photo relative to the sky gradient's mean.
-  SceneMeshOptions mesh;          // Rooms behind doors.
+  double outside_yaw_deg = 0.0;  // Turns the panorama about +Z.
+  double outside_gain = 1.0;     // Radiance scale of the photo relative to the sky gradient's mean.
+  SceneMeshOptions mesh;         // Rooms behind doors.
 
   // "SceneLook(albedo wall=paper.pat floor=parque1.pat, outside=city.exr, next_room_depth_m=3.2)".
   std::string ToString() const;
@@ -122,8 +122,8 @@ class SceneRenderer {
 
   // Renders one view. `view_key` tells views apart for sampling and effects
   // (use the view or item index). Thread-safe; uses all cores itself.
-  RenderedView Render(const StereoCamera& camera, const RenderOptions& options,
-                      std::uint64_t view_key, bool right_eye = true) const;
+  RenderedView Render(const StereoCamera& camera, const RenderOptions& options, std::uint64_t view_key,
+                      bool right_eye = true) const;
 
   const SceneMesh& mesh() const;
 

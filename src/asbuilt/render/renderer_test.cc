@@ -31,8 +31,8 @@ Scene TestRoom() {
   r.wall_thickness_m = 0.2;
   // Wall 2 runs from (4, 3) to (0, 3): offset 1.2 puts the door at x ∈ [1.9, 2.8].
   r.openings.push_back({.kind = OpeningKind::kDoor, .wall = 2, .offset_m = 1.2, .width_m = 0.9, .height_m = 2.0});
-  r.openings.push_back({.kind = OpeningKind::kWindow, .wall = 1, .offset_m = 0.8, .width_m = 1.2,
-                        .height_m = 1.0, .sill_m = 0.9});
+  r.openings.push_back(
+      {.kind = OpeningKind::kWindow, .wall = 1, .offset_m = 0.8, .width_m = 1.2, .height_m = 1.0, .sill_m = 0.9});
   s.rooms.push_back(r);
   s.lights.push_back({.kind = LightKind::kArea, .position_m = Vec3(2, 1.5, 2.5)});
   s.lights.push_back({.kind = LightKind::kSun});
@@ -44,9 +44,7 @@ StereoCamera SmallCamera(const Viewpoint& vp, double fx = 100.0) {
   return {k, vp, 0.12};
 }
 
-RenderOptions FastOptions() {
-  return {.samples_per_pixel = 2, .camera_effects = 0.0};
-}
+RenderOptions FastOptions() { return {.samples_per_pixel = 2, .camera_effects = 0.0}; }
 
 // Left-eye pixel of a world point (nullopt behind the camera).
 std::optional<Vec2> ProjectLeft(const StereoCamera& cam, const Vec3& world) {
@@ -106,8 +104,11 @@ TEST(Render, PitchedCameraSeesTheCeilingAtTheRightDepth) {
 TEST(Render, RightImageIsTheLeftShiftedByTheDisparity) {
   Scene s = TestRoom();
   s.rooms[0].openings.clear();
-  s.materials.push_back({.name = "wall", .base_color = Vec3(0.7, 0.6, 0.5), .texture = TextureKind::kWallpaper,
-                         .texture_scale_m = 0.2, .secondary_color = Vec3(0.2, 0.3, 0.5)});
+  s.materials.push_back({.name = "wall",
+                         .base_color = Vec3(0.7, 0.6, 0.5),
+                         .texture = TextureKind::kWallpaper,
+                         .texture_scale_m = 0.2,
+                         .secondary_color = Vec3(0.2, 0.3, 0.5)});
   SceneRenderer renderer(s);
   // fx = 100, B = 0.12, Z = 1.5 → d = 8 px exactly.
   StereoCamera cam = SmallCamera({Vec3(2.0, 1.5, 1.25), 0.0, 0.0});
@@ -138,7 +139,11 @@ TEST(Render, ProjectedDoorAndWindowCornersLandOnTheirLabels) {
   const std::vector<Vec3> door = {{1.93, 3, 0.03}, {2.77, 3, 0.03}, {2.77, 3, 1.97}, {1.93, 3, 1.97}};
   // Window on x = 4 (wall 1 from (4, 0) to (4, 3)): y ∈ [0.8, 2.0], z ∈ [0.9, 1.9].
   const std::vector<Vec3> window = {{4, 0.83, 0.93}, {4, 1.97, 0.93}, {4, 1.97, 1.87}, {4, 0.83, 1.87}};
-  struct Case { std::vector<Vec3> corners; double yaw_deg; std::uint8_t label; };
+  struct Case {
+    std::vector<Vec3> corners;
+    double yaw_deg;
+    std::uint8_t label;
+  };
   for (const Case& c : {Case{door, 0.0, kLabelDoor}, Case{window, -90.0, kLabelWindow}}) {
     StereoCamera cam = SmallCamera({Vec3(2.0, 1.5, 1.3), c.yaw_deg, 0.0}, 70.0);
     RenderedView v = renderer.Render(cam, FastOptions(), 0, false);
@@ -252,7 +257,8 @@ std::shared_ptr<const Photo> CheckerPhoto(PhotoKind kind) {
   cv::Mat linear_rgb(16, 16, CV_32FC3);
   for (int y = 0; y < 16; ++y) {
     for (int x = 0; x < 16; ++x) {
-      linear_rgb.at<cv::Vec3f>(y, x) = ((x / 4 + y / 4) % 2) ? cv::Vec3f(0.6f, 0.3f, 0.1f) : cv::Vec3f(0.2f, 0.1f, 0.05f);
+      linear_rgb.at<cv::Vec3f>(y, x) =
+          ((x / 4 + y / 4) % 2) ? cv::Vec3f(0.6f, 0.3f, 0.1f) : cv::Vec3f(0.2f, 0.1f, 0.05f);
     }
   }
   p->linear_rgb = AsImage(linear_rgb);
@@ -330,8 +336,11 @@ TEST(Render, AMirrorReflectsTheRoomAndIsBackground) {
   Scene plain = TestRoom();
   plain.materials.push_back({.name = "mirror", .base_color = Vec3(0.9, 0.9, 0.9), .roughness = 0.02});
   // Hung on wall 2 left of the door (x ∈ [0.4, 1.4], z ∈ [1.0, 1.8]).
-  plain.furniture.push_back({.name = "mirror", .centre_m = Vec2(0.9, 3.0 - 0.0225), .size_m = Vec3(1.0, 0.025, 0.8),
-                             .elevation_m = 1.0, .material = "furniture"});
+  plain.furniture.push_back({.name = "mirror",
+                             .centre_m = Vec2(0.9, 3.0 - 0.0225),
+                             .size_m = Vec3(1.0, 0.025, 0.8),
+                             .elevation_m = 1.0,
+                             .material = "furniture"});
   Scene mirrored = plain;
   mirrored.furniture.back().material = "mirror";
   StereoCamera cam = SmallCamera({Vec3(1.5, 1.0, 1.4), 0.0, 0.0}, 70.0);
@@ -384,7 +393,7 @@ TEST(DevelopImage, ChromaticAberrationKeepsGreenInPlace) {
   std::vector<cv::Mat> ca, cb;
   cv::split(a, ca);
   cv::split(b, cb);
-  EXPECT_EQ(cv::norm(ca[1], cb[1], cv::NORM_INF), 0.0);  // Green (BGR index 1).
+  EXPECT_EQ(cv::norm(ca[1], cb[1], cv::NORM_INF), 0.0);   // Green (BGR index 1).
   EXPECT_GT(cv::norm(ca[2], cb[2], cv::NORM_INF), 20.0);  // Red moved.
 }
 

@@ -15,20 +15,20 @@ namespace asbuilt {
 namespace {
 
 // Fixed architectural detail sizes (metres), as in blender-rooms-public.
-constexpr double kLiningM = 0.02;          // Jamb lining board thickness.
-constexpr double kDoorCasingM = 0.07;      // Casing (architrave) width around doors.
-constexpr double kWindowCasingM = 0.05;    // …around windows.
-constexpr double kCasingDepthM = 0.015;    // Casing protrusion from the wall.
+constexpr double kLiningM = 0.02;        // Jamb lining board thickness.
+constexpr double kDoorCasingM = 0.07;    // Casing (architrave) width around doors.
+constexpr double kWindowCasingM = 0.05;  // …around windows.
+constexpr double kCasingDepthM = 0.015;  // Casing protrusion from the wall.
 constexpr double kLeafThicknessM = 0.04;
-constexpr double kLeafRecessM = 0.03;      // A closed leaf sits this far into the opening.
-constexpr double kSillBoardM = 0.03;       // Inner window sill board thickness…
-constexpr double kSillOverhangM = 0.04;    // …and how far it protrudes into the room.
-constexpr double kFrameDepthM = 0.06;      // Window frame depth (across the wall).
+constexpr double kLeafRecessM = 0.03;    // A closed leaf sits this far into the opening.
+constexpr double kSillBoardM = 0.03;     // Inner window sill board thickness…
+constexpr double kSillOverhangM = 0.04;  // …and how far it protrudes into the room.
+constexpr double kFrameDepthM = 0.06;    // Window frame depth (across the wall).
 constexpr double kSkirtingHeightM = 0.08;
 constexpr double kSkirtingDepthM = 0.012;
-constexpr double kClosetDepthM = 1.2;      // The closed space behind exterior doors.
-constexpr double kGlazedStileM = 0.07;     // Glazed door leaf: side stiles…
-constexpr double kGlazedTopRailM = 0.09;   // …top rail…
+constexpr double kClosetDepthM = 1.2;        // The closed space behind exterior doors.
+constexpr double kGlazedStileM = 0.07;       // Glazed door leaf: side stiles…
+constexpr double kGlazedTopRailM = 0.09;     // …top rail…
 constexpr double kGlazedBottomRailM = 0.14;  // …and bottom rail around the pane.
 
 Vec3f F(const Vec3& v) { return v.cast<float>(); }
@@ -37,12 +37,10 @@ Vec3f F(const Vec3& v) { return v.cast<float>(); }
 void AddBox(MeshObject& o, const Vec3& origin, const Vec3& ea, const Vec3& eb, const Vec3& ec) {
   int base = static_cast<int>(o.vertices.size());
   for (int i = 0; i < 8; ++i) {
-    Vec3 p = origin + ((i & 1) ? ea : Vec3::Zero()) + ((i & 2) ? eb : Vec3::Zero()) +
-             ((i & 4) ? ec : Vec3::Zero());
+    Vec3 p = origin + ((i & 1) ? ea : Vec3::Zero()) + ((i & 2) ? eb : Vec3::Zero()) + ((i & 4) ? ec : Vec3::Zero());
     o.vertices.push_back(F(p));
   }
-  static const int kQuads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                                   {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  static const int kQuads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   for (const auto& q : kQuads) {
     o.triangles.emplace_back(base + q[0], base + q[1], base + q[2]);
     o.triangles.emplace_back(base + q[0], base + q[2], base + q[3]);
@@ -76,7 +74,6 @@ void AddPrism(MeshObject& o, const std::vector<Vec2>& poly, double z0, double z1
     o.triangles.emplace_back(base + i, base + n + j, base + n + i);
   }
 }
-
 
 class MeshBuilder {
  public:
@@ -135,14 +132,12 @@ class MeshBuilder {
 
     // Slabs over the outer outline, so nothing is open at the edges.
     std::vector<Vec2> outer = OffsetPolygonOutwards(room.polygon, t);
-    AddPrism(NewObject(room.name + "/floor", SurfaceRole::kFloor, kLabelBackground, floor_mat),
-             outer, -0.25, 0.0);
-    AddPrism(NewObject(room.name + "/ceiling", SurfaceRole::kCeiling, kLabelBackground, ceiling_mat),
-             outer, h, h + 0.25);
+    AddPrism(NewObject(room.name + "/floor", SurfaceRole::kFloor, kLabelBackground, floor_mat), outer, -0.25, 0.0);
+    AddPrism(NewObject(room.name + "/ceiling", SurfaceRole::kCeiling, kLabelBackground, ceiling_mat), outer, h,
+             h + 0.25);
 
     MeshObject& walls = NewObject(room.name + "/walls", SurfaceRole::kWall, kLabelWall, wall_mat);
-    MeshObject& skirting =
-        NewObject(room.name + "/skirting", SurfaceRole::kSkirting, kLabelWall, skirting_mat);
+    MeshObject& skirting = NewObject(room.name + "/skirting", SurfaceRole::kSkirting, kLabelWall, skirting_mat);
     for (int i = 0; i < n; ++i) {
       const Vec2 p0 = room.polygon[i];
       const Vec2 p1 = room.polygon[(i + 1) % n];
@@ -161,7 +156,11 @@ class MeshBuilder {
 
       // Cut intervals along the wall: [s0, s1] × [z0, z1] per opening, with
       // room for linings (and the window sill board).
-      struct Cut { double s0, s1, z0, z1; const Opening* op; int index; };
+      struct Cut {
+        double s0, s1, z0, z1;
+        const Opening* op;
+        int index;
+      };
       std::vector<Cut> cuts;
       for (std::size_t k = 0; k < room.openings.size(); ++k) {
         const Opening& op = room.openings[k];
@@ -230,8 +229,8 @@ class MeshBuilder {
     return false;
   }
 
-  void BuildDoor(const WallFrame& w, const Opening& op, const std::string& name,
-                 const std::string& field, const Room& room) {
+  void BuildDoor(const WallFrame& w, const Opening& op, const std::string& name, const std::string& field,
+                 const Room& room) {
     int mat = MaterialIndex(op.material.empty() ? "door" : op.material, field + ".material");
     const double a = op.offset_m;
     const double b = op.offset_m + op.width_m;
@@ -253,9 +252,9 @@ class MeshBuilder {
     // the viewer's left), swinging into the room (−out). A wide glazed door
     // has two leaves, one hinged at each jamb (French doors).
     MeshObject& leaf = NewObject(name + "/leaf", SurfaceRole::kDoorLeaf, kLabelDoor, mat);
-    MeshObject* glass = op.glazed ? &NewObject(name + "/glass", SurfaceRole::kGlass, kLabelDoor,
-                                                MaterialIndex("glass", field))
-                                  : nullptr;
+    MeshObject* glass =
+        op.glazed ? &NewObject(name + "/glass", SurfaceRole::kGlass, kLabelDoor, MaterialIndex("glass", field))
+                  : nullptr;
     const double height = op.height_m - 0.006;
     const double angle = DegToRad(std::clamp(op.open_deg, 0.0, 180.0));
     const bool pair = op.glazed && op.width_m > 1.3;
@@ -268,8 +267,7 @@ class MeshBuilder {
       const Vec3 thick = std::cos(angle) * w.out + std::sin(angle) * e_closed;
       const Vec3 o = angle < 1e-6 ? Vec3(hinge + kLeafRecessM * w.out) : hinge;
       AddLeaf(leaf, glass, o, e, thick, width, height);
-      AddBox(leaf, o + (width - 0.1) * e + Vec3(0, 0, 1.0) - 0.06 * thick, 0.12 * e, 0.06 * thick,
-             Vec3(0, 0, 0.025));
+      AddBox(leaf, o + (width - 0.1) * e + Vec3(0, 0, 1.0) - 0.06 * thick, 0.12 * e, 0.06 * thick, Vec3(0, 0, 0.025));
     }
 
     // A small closed space behind a door that leads outside.
@@ -284,7 +282,7 @@ class MeshBuilder {
       MeshObject& closet = NewObject(name + "/closet", SurfaceRole::kCloset, kLabelBackground, wall_mat);
       const double s0 = a - 0.5, s1 = b + 0.5, n0 = t, n1 = t + kClosetDepthM, z1 = top + 0.4;
       AddQuad(closet, w.At(s0, n1, 0), (s1 - s0) * w.along, Vec3(0, 0, z1));  // Back.
-      AddQuad(closet, w.At(s0, n0, 0), (n1 - n0) * w.out, Vec3(0, 0, z1));   // Sides.
+      AddQuad(closet, w.At(s0, n0, 0), (n1 - n0) * w.out, Vec3(0, 0, z1));    // Sides.
       AddQuad(closet, w.At(s1, n0, 0), (n1 - n0) * w.out, Vec3(0, 0, z1));
       AddQuad(closet, w.At(s0, n0, z1), (s1 - s0) * w.along, (n1 - n0) * w.out);  // Ceiling.
       MeshObject& cfloor = NewObject(name + "/closet_floor", SurfaceRole::kCloset, kLabelBackground, floor_mat);
@@ -334,7 +332,7 @@ class MeshBuilder {
     const double n0 = t, n1 = t + options_.next_room_depth_m, z1 = std::max(room.height_m, top + 0.3);
     MeshObject& walls = NewObject("next_room/walls", SurfaceRole::kCloset, kLabelBackground, wall_mat);
     AddQuad(walls, w.At(s0, n1, 0), (s1 - s0) * w.along, Vec3(0, 0, z1));  // Far wall.
-    AddQuad(walls, w.At(s0, n0, 0), (n1 - n0) * w.out, Vec3(0, 0, z1));   // Sides.
+    AddQuad(walls, w.At(s0, n0, 0), (n1 - n0) * w.out, Vec3(0, 0, z1));    // Sides.
     AddQuad(walls, w.At(s1, n0, 0), (n1 - n0) * w.out, Vec3(0, 0, z1));
     AddQuad(walls, w.At(s0, n0 + 1e-3, top + kLiningM), (s1 - s0) * w.along, Vec3(0, 0, z1 - top));
     AddQuad(walls, w.At(s0, n0 + 1e-3, 0), (a - kLiningM - s0) * w.along, Vec3(0, 0, z1));
@@ -344,8 +342,8 @@ class MeshBuilder {
     MeshObject& ceiling = NewObject("next_room/ceiling", SurfaceRole::kCloset, kLabelBackground, ceiling_mat);
     AddQuad(ceiling, w.At(s0, n0, z1), (s1 - s0) * w.along, (n1 - n0) * w.out);
     // A door-sized darker rectangle on the far wall: another doorway.
-    MeshObject& far_door = NewObject("next_room/far_door", SurfaceRole::kCloset, kLabelBackground,
-                                     MaterialIndex("door", field));
+    MeshObject& far_door =
+        NewObject("next_room/far_door", SurfaceRole::kCloset, kLabelBackground, MaterialIndex("door", field));
     const double c = 0.5 * (s0 + s1) + 0.25 * (s1 - s0) * std::sin(7.0 * a + 3.0 * n1);
     AddQuad(far_door, w.At(c - 0.42, n1 - 2e-3, 0), 0.84 * w.along, Vec3(0, 0, std::min(2.05, z1 - 0.1)));
     if (options_.next_room_light > 0) {
@@ -363,8 +361,7 @@ class MeshBuilder {
     }
   }
 
-  void BuildWindow(const WallFrame& w, const Opening& op, const std::string& name,
-                   const std::string& field) {
+  void BuildWindow(const WallFrame& w, const Opening& op, const std::string& name, const std::string& field) {
     int frame_mat = MaterialIndex(op.material.empty() ? "window_frame" : op.material, field + ".material");
     int glass_mat = MaterialIndex("glass", field);
     const double a = op.offset_m;
@@ -388,8 +385,8 @@ class MeshBuilder {
           top + kLiningM + kWindowCasingM);
     w.Box(casing, a - kLiningM, b + kLiningM, -kCasingDepthM, 0, top + kLiningM, top + kLiningM + kWindowCasingM);
     if (sill - kSillBoardM > 0) {
-      w.Box(casing, a - kLiningM, b + kLiningM, -kCasingDepthM, 0,
-            std::max(0.0, sill - kSillBoardM - kWindowCasingM), sill - kSillBoardM);
+      w.Box(casing, a - kLiningM, b + kLiningM, -kCasingDepthM, 0, std::max(0.0, sill - kSillBoardM - kWindowCasingM),
+            sill - kSillBoardM);
     }
     AddPortal(w, op, a - kLiningM, b + kLiningM, std::max(0.0, sill - kSillBoardM), top + kLiningM);
 
@@ -407,22 +404,21 @@ class MeshBuilder {
     }
     if (op.glass) {
       MeshObject& glass = NewObject(name + "/glass", SurfaceRole::kGlass, kLabelWindow, glass_mat);
-      AddQuad(glass, w.At(a + fw, mid, sill + fw), (b - a - 2 * fw) * w.along,
-              Vec3(0, 0, op.height_m - 2 * fw));
+      AddQuad(glass, w.At(a + fw, mid, sill + fw), (b - a - 2 * fw) * w.along, Vec3(0, 0, op.height_m - 2 * fw));
     }
   }
 
   void BuildFurniture(int f) {
     const Furniture& fu = scene_.furniture[f];
     int mat = MaterialIndex(fu.material, fmt::format("furniture[{}].material", f));
-    MeshObject& o = NewObject(fu.name.empty() ? fmt::format("furniture{}", f) : fu.name,
-                              fu.material == "mirror" ? SurfaceRole::kMirror : SurfaceRole::kFurniture,
-                              kLabelBackground, mat);
+    MeshObject& o =
+        NewObject(fu.name.empty() ? fmt::format("furniture{}", f) : fu.name,
+                  fu.material == "mirror" ? SurfaceRole::kMirror : SurfaceRole::kFurniture, kLabelBackground, mat);
     double y = DegToRad(fu.yaw_deg);
     Vec3 ex(std::cos(y), std::sin(y), 0), ey(-std::sin(y), std::cos(y), 0);
     Vec3 c(fu.centre_m.x(), fu.centre_m.y(), fu.elevation_m);
-    AddBox(o, c - 0.5 * fu.size_m.x() * ex - 0.5 * fu.size_m.y() * ey, fu.size_m.x() * ex,
-           fu.size_m.y() * ey, Vec3(0, 0, fu.size_m.z()));
+    AddBox(o, c - 0.5 * fu.size_m.x() * ex - 0.5 * fu.size_m.y() * ey, fu.size_m.x() * ex, fu.size_m.y() * ey,
+           Vec3(0, 0, fu.size_m.z()));
   }
 
   void BuildLight(int l) {
@@ -430,8 +426,8 @@ class MeshBuilder {
     Vec3 radiance = light.color * light.intensity;
     if (light.kind == LightKind::kSun) {
       double az = DegToRad(light.azimuth_deg), el = DegToRad(light.elevation_deg);
-      mesh_.suns.push_back({Vec3(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)),
-                            3.0 * radiance, 0.01});
+      mesh_.suns.push_back(
+          {Vec3(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)), 3.0 * radiance, 0.01});
       return;
     }
     Vec2 size = light.kind == LightKind::kPoint ? Vec2(0.12, 0.12) : light.size_m;
@@ -444,11 +440,10 @@ class MeshBuilder {
     // Same power for any panel size: radiance ∝ 1 / area (a 1.2 × 0.3 m panel has 8).
     a.radiance = radiance * (8.0 * 0.36 / std::max(a.area_m2, 1e-3));
     mesh_.area_lights.push_back(a);
-    MeshObject& o = NewObject(fmt::format("light{}", l), SurfaceRole::kLight, kLabelBackground,
-                              MaterialIndex("ceiling", "lights"));
+    MeshObject& o =
+        NewObject(fmt::format("light{}", l), SurfaceRole::kLight, kLabelBackground, MaterialIndex("ceiling", "lights"));
     o.emission = F(a.radiance);
-    AddBox(o, a.centre - a.half_u - a.half_v + Vec3(0, 0, 0.001), 2 * a.half_u, 2 * a.half_v,
-           Vec3(0, 0, 0.03));
+    AddBox(o, a.centre - a.half_u - a.half_v + Vec3(0, 0, 0.001), 2 * a.half_u, 2 * a.half_v, Vec3(0, 0, 0.03));
   }
 
   void BuildExterior() {
@@ -462,16 +457,16 @@ class MeshBuilder {
     }
     Vec2 centre = 0.5 * (lo + hi);
     double radius = 0.5 * (hi - lo).norm() + 1.0;
-    MeshObject& ground = NewObject("ground", SurfaceRole::kGround, kLabelBackground,
-                                   MaterialIndex("ground", "environment"));
+    MeshObject& ground =
+        NewObject("ground", SurfaceRole::kGround, kLabelBackground, MaterialIndex("ground", "environment"));
     const double g = 400.0;
     AddQuad(ground, Vec3(centre.x() - g, centre.y() - g, -0.3), Vec3(2 * g, 0, 0), Vec3(0, 2 * g, 0));
     if (!scene_.environment.exterior_objects) return;
 
     std::mt19937_64 rng(scene_.seed * 0x9E3779B97F4A7C15ULL + 17);
     std::uniform_real_distribution<double> u01(0.0, 1.0);
-    MeshObject& buildings = NewObject("buildings", SurfaceRole::kExterior, kLabelBackground,
-                                      MaterialIndex("exterior", "environment"));
+    MeshObject& buildings =
+        NewObject("buildings", SurfaceRole::kExterior, kLabelBackground, MaterialIndex("exterior", "environment"));
     int nb = 10 + static_cast<int>(u01(rng) * 8);
     for (int i = 0; i < nb; ++i) {
       double ang = 2 * kPi * (i + u01(rng)) / nb;
@@ -482,10 +477,10 @@ class MeshBuilder {
       Vec3 ex(std::cos(yaw), std::sin(yaw), 0), ey(-std::sin(yaw), std::cos(yaw), 0);
       AddBox(buildings, c - 0.5 * w * ex - 0.5 * dpt * ey, w * ex, dpt * ey, Vec3(0, 0, h));
     }
-    MeshObject& trunks = NewObject("tree_trunks", SurfaceRole::kExterior, kLabelBackground,
-                                   MaterialIndex("exterior", "environment"));
-    MeshObject& crowns = NewObject("tree_crowns", SurfaceRole::kGround, kLabelBackground,
-                                   MaterialIndex("ground", "environment"));
+    MeshObject& trunks =
+        NewObject("tree_trunks", SurfaceRole::kExterior, kLabelBackground, MaterialIndex("exterior", "environment"));
+    MeshObject& crowns =
+        NewObject("tree_crowns", SurfaceRole::kGround, kLabelBackground, MaterialIndex("ground", "environment"));
     int nt = 8 + static_cast<int>(u01(rng) * 10);
     for (int i = 0; i < nt; ++i) {
       double ang = 2 * kPi * u01(rng);
@@ -497,7 +492,7 @@ class MeshBuilder {
       Vec3 c = base + Vec3(0, 0, th + cr);
       int b0 = static_cast<int>(crowns.vertices.size());
       double rz = cr * (1.0 + 0.4 * u01(rng));
-      const Vec3 pts[6] = {c + Vec3(cr, 0, 0), c + Vec3(0, cr, 0), c + Vec3(-cr, 0, 0),
+      const Vec3 pts[6] = {c + Vec3(cr, 0, 0),  c + Vec3(0, cr, 0), c + Vec3(-cr, 0, 0),
                            c + Vec3(0, -cr, 0), c + Vec3(0, 0, rz), c + Vec3(0, 0, -0.8 * rz)};
       for (const Vec3& p : pts) crowns.vertices.push_back(F(p));
       for (int k = 0; k < 4; ++k) {
@@ -519,22 +514,38 @@ class MeshBuilder {
 
 const char* SurfaceRoleName(SurfaceRole role) {
   switch (role) {
-    case SurfaceRole::kFloor: return "floor";
-    case SurfaceRole::kCeiling: return "ceiling";
-    case SurfaceRole::kWall: return "wall";
-    case SurfaceRole::kSkirting: return "skirting";
-    case SurfaceRole::kDoorLeaf: return "door_leaf";
-    case SurfaceRole::kDoorLining: return "lining";
-    case SurfaceRole::kCasing: return "casing";
-    case SurfaceRole::kWindowFrame: return "window_frame";
-    case SurfaceRole::kGlass: return "glass";
-    case SurfaceRole::kWindowSill: return "window_sill";
-    case SurfaceRole::kFurniture: return "furniture";
-    case SurfaceRole::kLight: return "light";
-    case SurfaceRole::kGround: return "ground";
-    case SurfaceRole::kExterior: return "exterior";
-    case SurfaceRole::kCloset: return "closet";
-    case SurfaceRole::kMirror: return "mirror";
+    case SurfaceRole::kFloor:
+      return "floor";
+    case SurfaceRole::kCeiling:
+      return "ceiling";
+    case SurfaceRole::kWall:
+      return "wall";
+    case SurfaceRole::kSkirting:
+      return "skirting";
+    case SurfaceRole::kDoorLeaf:
+      return "door_leaf";
+    case SurfaceRole::kDoorLining:
+      return "lining";
+    case SurfaceRole::kCasing:
+      return "casing";
+    case SurfaceRole::kWindowFrame:
+      return "window_frame";
+    case SurfaceRole::kGlass:
+      return "glass";
+    case SurfaceRole::kWindowSill:
+      return "window_sill";
+    case SurfaceRole::kFurniture:
+      return "furniture";
+    case SurfaceRole::kLight:
+      return "light";
+    case SurfaceRole::kGround:
+      return "ground";
+    case SurfaceRole::kExterior:
+      return "exterior";
+    case SurfaceRole::kCloset:
+      return "closet";
+    case SurfaceRole::kMirror:
+      return "mirror";
   }
   return "?";
 }
@@ -546,8 +557,8 @@ std::size_t SceneMesh::TriangleCount() const {
 }
 
 std::string SceneMesh::ToString() const {
-  return fmt::format("SceneMesh({} objects, {} triangles, {} portals, {} area lights, {} suns)",
-                     objects.size(), TriangleCount(), portals.size(), area_lights.size(), suns.size());
+  return fmt::format("SceneMesh({} objects, {} triangles, {} portals, {} area lights, {} suns)", objects.size(),
+                     TriangleCount(), portals.size(), area_lights.size(), suns.size());
 }
 
 const std::vector<Material>& RenderDefaultMaterials() {
@@ -600,7 +611,10 @@ std::vector<Eigen::Vector3i> TriangulatePolygon(const std::vector<Vec2>& polygon
       bool ear = true;
       for (int k : idx) {
         if (k == ia || k == ib || k == ic) continue;
-        if (inside_tri(polygon[k], a, b, c)) { ear = false; break; }
+        if (inside_tri(polygon[k], a, b, c)) {
+          ear = false;
+          break;
+        }
       }
       if (!ear) continue;
       out.emplace_back(ia, ib, ic);

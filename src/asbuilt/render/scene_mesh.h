@@ -42,8 +42,21 @@ inline constexpr std::uint8_t kLabelIgnore = 255;
 
 // What an object is, for shading and statistics.
 enum class SurfaceRole : std::uint8_t {
-  kFloor, kCeiling, kWall, kSkirting, kDoorLeaf, kDoorLining, kCasing, kWindowFrame,
-  kGlass, kWindowSill, kFurniture, kLight, kGround, kExterior, kCloset,
+  kFloor,
+  kCeiling,
+  kWall,
+  kSkirting,
+  kDoorLeaf,
+  kDoorLining,
+  kCasing,
+  kWindowFrame,
+  kGlass,
+  kWindowSill,
+  kFurniture,
+  kLight,
+  kGround,
+  kExterior,
+  kCloset,
   kMirror,  // A furniture box of material "mirror": reflects like a mirror (label 0, as furniture).
 };
 const char* SurfaceRoleName(SurfaceRole role);
@@ -53,8 +66,8 @@ struct MeshObject {
   std::string name;
   SurfaceRole role = SurfaceRole::kWall;
   std::uint8_t label = kLabelBackground;
-  int material = 0;                  // Index into SceneMesh::materials.
-  Vec3f emission = Vec3f::Zero();    // Radiance of emitters (lights), linear RGB.
+  int material = 0;                // Index into SceneMesh::materials.
+  Vec3f emission = Vec3f::Zero();  // Radiance of emitters (lights), linear RGB.
   std::vector<Vec3f> vertices;
   std::vector<Eigen::Vector3i> triangles;
 };
@@ -70,17 +83,17 @@ struct LabelPortal {
 // A rectangular emitter facing −Z (ceiling panel): sampled for direct light.
 struct AreaLight {
   Vec3 centre = Vec3::Zero();
-  Vec3 half_u = Vec3(0.5, 0, 0);   // Half edges in the world.
+  Vec3 half_u = Vec3(0.5, 0, 0);  // Half edges in the world.
   Vec3 half_v = Vec3(0, 0.5, 0);
-  Vec3 normal = Vec3(0, 0, -1);    // Emitting side.
-  Vec3 radiance = Vec3::Ones();    // Linear RGB.
+  Vec3 normal = Vec3(0, 0, -1);  // Emitting side.
+  Vec3 radiance = Vec3::Ones();  // Linear RGB.
   double area_m2 = 1.0;
 };
 
 struct SunLight {
   Vec3 direction_to_sun = Vec3(0, 0, 1);  // Unit.
-  Vec3 irradiance = Vec3::Zero();          // On a surface facing the sun.
-  double angular_radius_rad = 0.01;        // Soft shadow size.
+  Vec3 irradiance = Vec3::Zero();         // On a surface facing the sun.
+  double angular_radius_rad = 0.01;       // Soft shadow size.
 };
 
 struct SceneMesh {
@@ -110,9 +123,9 @@ struct SceneMeshOptions {
   // doorway, so it is labelled door there (label portal), background nowhere.
   double next_room_depth_m = 0.0;
   double next_room_side_m = 1.5;
-  double next_room_light = 1.0;           // Intensity of its ceiling panel (as Light::intensity).
-  std::string next_room_wall_material;    // Empty: the room's wall material.
-  std::string next_room_floor_material;   // Empty: the room's floor material.
+  double next_room_light = 1.0;          // Intensity of its ceiling panel (as Light::intensity).
+  std::string next_room_wall_material;   // Empty: the room's wall material.
+  std::string next_room_floor_material;  // Empty: the room's floor material.
 
   void Check() const;
 };

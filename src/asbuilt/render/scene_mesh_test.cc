@@ -40,10 +40,9 @@ Scene BoxRoom() {
   r.name = "r";
   r.polygon = {{0, 0}, {4, 0}, {4, 3}, {0, 3}};
   r.height_m = 2.5;
-  r.openings.push_back({.kind = OpeningKind::kDoor, .wall = 0, .offset_m = 1.0, .width_m = 0.9,
-                        .height_m = 2.0});
-  r.openings.push_back({.kind = OpeningKind::kWindow, .wall = 2, .offset_m = 1.0, .width_m = 1.5,
-                        .height_m = 1.2, .sill_m = 0.9});
+  r.openings.push_back({.kind = OpeningKind::kDoor, .wall = 0, .offset_m = 1.0, .width_m = 0.9, .height_m = 2.0});
+  r.openings.push_back(
+      {.kind = OpeningKind::kWindow, .wall = 2, .offset_m = 1.0, .width_m = 1.5, .height_m = 1.2, .sill_m = 0.9});
   s.rooms.push_back(r);
   s.lights.push_back({});
   return s;

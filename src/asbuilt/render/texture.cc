@@ -16,9 +16,9 @@ inline std::uint32_t Hash(std::uint32_t x) {
 }
 
 inline float Lattice(int x, int y, int z, std::uint32_t seed) {
-  std::uint32_t h = Hash(static_cast<std::uint32_t>(x) * 0x8da6b343U ^
-                         Hash(static_cast<std::uint32_t>(y) * 0xd8163841U ^
-                              Hash(static_cast<std::uint32_t>(z) * 0xcb1ab31fU ^ seed)));
+  std::uint32_t h = Hash(
+      static_cast<std::uint32_t>(x) * 0x8da6b343U ^
+      Hash(static_cast<std::uint32_t>(y) * 0xd8163841U ^ Hash(static_cast<std::uint32_t>(z) * 0xcb1ab31fU ^ seed)));
   return static_cast<float>(h >> 8) * (1.0f / 16777216.0f);
 }
 
@@ -63,8 +63,7 @@ void PlaneCoordinates(const Vec3f& point, const Vec3f& normal, float* u, float* 
   }
 }
 
-Vec3f TextureAlbedo(const Material& material, const Vec3f& point, const Vec3f& normal,
-                    std::uint32_t seed) {
+Vec3f TextureAlbedo(const Material& material, const Vec3f& point, const Vec3f& normal, std::uint32_t seed) {
   const Vec3f base = material.base_color.cast<float>();
   const Vec3f second = material.secondary_color.cast<float>();
   const float scale = static_cast<float>(std::max(material.texture_scale_m, 1e-3));

@@ -23,8 +23,7 @@ float FractalNoise(const Vec3f& p, int octaves, std::uint32_t seed);
 // a surface of unit `normal` (x–y for floors, y–z or x–z for walls), metres.
 void PlaneCoordinates(const Vec3f& point, const Vec3f& normal, float* u, float* v);
 
-Vec3f TextureAlbedo(const Material& material, const Vec3f& point, const Vec3f& normal,
-                    std::uint32_t seed);
+Vec3f TextureAlbedo(const Material& material, const Vec3f& point, const Vec3f& normal, std::uint32_t seed);
 
 }  // namespace asbuilt
 

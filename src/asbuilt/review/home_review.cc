@@ -32,8 +32,8 @@ double Number(const nlohmann::json& edit, const char* key, bool required = true)
   }
   const nlohmann::json& v = edit[key];
   if (!v.is_number() || !std::isfinite(v.get<double>())) {
-    throw EditError(fmt::format("{}: \"{}\" must be a finite number, got {}", edit.value("op", ""), key,
-                                DescribeJsonValue(v)));
+    throw EditError(
+        fmt::format("{}: \"{}\" must be a finite number, got {}", edit.value("op", ""), key, DescribeJsonValue(v)));
   }
   return v.get<double>();
 }
@@ -54,7 +54,8 @@ Vec2 Middle(const Plan& plan) {
 
 template <typename T>
 void Erase(std::vector<std::pair<T, T>>& list, const T& a, const T& b) {
-  std::erase_if(list, [&](const auto& p) { return (p.first == a && p.second == b) || (p.first == b && p.second == a); });
+  std::erase_if(list,
+                [&](const auto& p) { return (p.first == a && p.second == b) || (p.first == b && p.second == a); });
 }
 
 }  // namespace
@@ -132,7 +133,8 @@ nlohmann::json HomeReviewSession::Absolute(const nlohmann::json& edit) const {
     throw EditError("an edit is a JSON object with an \"op\"");
   }
   if (edit["op"] != "move_room") return edit;
-  if (!edit.contains("room") || !edit["room"].is_number_integer()) throw EditError("move_room: \"room\" must be a whole number");
+  if (!edit.contains("room") || !edit["room"].is_number_integer())
+    throw EditError("move_room: \"room\" must be a whole number");
   const int room = edit["room"].get<int>();
   if (room < 0 || room >= static_cast<int>(rooms_.size())) {
     throw EditError(fmt::format("move_room: no room {} (the home has {})", room, rooms_.size()));
@@ -173,15 +175,17 @@ void HomeReviewSession::Apply(const nlohmann::json& edit, PlacementConstraints& 
     Erase(c.different, a, b);
     if (op == "link_openings") {
       // A door is one door: its other links go.
-      std::erase_if(c.same, [&](const auto& p) { return p.first == a || p.second == a || p.first == b || p.second == b; });
+      std::erase_if(c.same,
+                    [&](const auto& p) { return p.first == a || p.second == a || p.first == b || p.second == b; });
       c.same.push_back({a, b});
     } else {
       c.different.push_back({a, b});
     }
   } else {
-    throw EditError(fmt::format("unknown op \"{}\" (move_room, release_room, link_openings, unlink_openings, undo, "
-                                "redo)",
-                                op));
+    throw EditError(
+        fmt::format("unknown op \"{}\" (move_room, release_room, link_openings, unlink_openings, undo, "
+                    "redo)",
+                    op));
   }
 }
 
@@ -262,8 +266,12 @@ nlohmann::json HomeReviewSession::State() const {
   }
   nlohmann::json links = nlohmann::json::array();
   for (const RoomLink& l : best.links) {
-    links.push_back({{"a", RefJson(l.a)}, {"b", RefJson(l.b)}, {"wall_a", l.wall_a}, {"wall_b", l.wall_b},
-                     {"loop", l.loop}, {"by_user", l.by_user}});
+    links.push_back({{"a", RefJson(l.a)},
+                     {"b", RefJson(l.b)},
+                     {"wall_a", l.wall_a},
+                     {"wall_b", l.wall_b},
+                     {"loop", l.loop},
+                     {"by_user", l.by_user}});
   }
   auto pairs = [](const std::vector<std::pair<OpeningRef, OpeningRef>>& list) {
     nlohmann::json out = nlohmann::json::array();

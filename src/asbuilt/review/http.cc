@@ -16,7 +16,6 @@
 
 namespace asbuilt {
 
-
 namespace {
 
 HttpResponse JsonError(int status, const std::string& message) {

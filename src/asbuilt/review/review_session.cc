@@ -262,7 +262,8 @@ struct ReviewSession::Impl {
                 .bottom_m = Number(edit, "bottom_m"),
                 .top_m = Number(edit, "top_m"),
                 .user = true};
-      if (!((o.end_m - o.start_m).norm() >= 0.05)) throw EditError(fmt::format("{}: start_m and end_m must be 5 cm or more apart", op));
+      if (!((o.end_m - o.start_m).norm() >= 0.05))
+        throw EditError(fmt::format("{}: start_m and end_m must be 5 cm or more apart", op));
       if (!(o.bottom_m >= 0 && o.top_m > o.bottom_m + 0.05 && o.top_m < kMaxCeilingM)) {
         throw EditError(fmt::format("{}: bottom_m ({}) and top_m ({}) leave no opening", op, o.bottom_m, o.top_m));
       }
@@ -359,9 +360,11 @@ struct ReviewSession::Impl {
       l.corners.clear();
       for (std::size_t k = 0; k < edit["corners_m"].size(); ++k) {
         const nlohmann::json point = {{"xy", edit["corners_m"][k]}};
-        l.corners.push_back(Corner{.id = l.next_id++, .xy_m = PlanPoint(point, "xy", fmt::format("set_corners: corner {}", k)), .user = true});
+        l.corners.push_back(Corner{
+            .id = l.next_id++, .xy_m = PlanPoint(point, "xy", fmt::format("set_corners: corner {}", k)), .user = true});
       }
-      if (PolygonCrossings(CornerPoints(l)) > 0) throw EditError("set_corners: the corners cross each other: give them in the room's order");
+      if (PolygonCrossings(CornerPoints(l)) > 0)
+        throw EditError("set_corners: the corners cross each other: give them in the room's order");
       l.corners_edited = true;
     } else if (op == "delete_corner") {
       const int i = CornerIndex(l, Integer(edit, "id"), op);
@@ -608,9 +611,8 @@ struct ReviewSession::Impl {
       js["images"].push_back(image);
     }
     js["lines"] = LinesInImages();
-    js["verdict"] = {{"verdict", VerdictName(verdict.verdict)},
-                     {"confidence", verdict.confidence},
-                     {"reasons", verdict.reasons}};
+    js["verdict"] = {
+        {"verdict", VerdictName(verdict.verdict)}, {"confidence", verdict.confidence}, {"reasons", verdict.reasons}};
     js["walls"] = nlohmann::json::array();
     for (std::size_t w = 0; w < marked.walls.size(); ++w) {
       const PlanWall& wall = marked.walls[w];

@@ -351,8 +351,12 @@ TEST(ReviewSession, AScriptSetsTheWholeLayoutInMetres) {
   const nlohmann::json corners = {{kX0, kY0}, {kX1 - 0.2, kY0}, {kX1 - 0.2, kY1}, {kX0, kY1}};
   nlohmann::json state = session.Edit({{"op", "set_corners"}, {"corners_m", corners}});
   state = session.Edit({{"op", "ceiling"}, {"height_m", 2.4}});
-  state = session.Edit({{"op", "add_opening"}, {"kind", "window"}, {"start_m", {-1.0, kY0}}, {"end_m", {0.2, kY0}},
-                        {"bottom_m", 0.9}, {"top_m", 2.1}});
+  state = session.Edit({{"op", "add_opening"},
+                        {"kind", "window"},
+                        {"start_m", {-1.0, kY0}},
+                        {"end_m", {0.2, kY0}},
+                        {"bottom_m", 0.9},
+                        {"top_m", 2.1}});
   const Plan plan = PlanFromJson(state["plan"], "state");
   ASSERT_EQ(plan.rooms.size(), 1u);
   EXPECT_NEAR(plan.rooms[0].area_m2, (kX1 - 0.2 - kX0) * (kY1 - kY0), 0.01);

@@ -59,12 +59,14 @@ cv::Mat FrameImage(const ReviewInput& input, const ReviewImage& frame, const std
 cv::Mat PlanLabels(const ReviewImage& image, const Plan& plan, double ceiling_m) {
   cv::Mat labels(image.height_px, image.width_px, CV_8U);
   for (int v = 0; v < labels.rows; ++v) {
-    for (int u = 0; u < labels.cols; ++u) labels.at<std::uint8_t>(v, u) = LabelOfPixel(image, plan, ceiling_m, Vec2(u, v));
+    for (int u = 0; u < labels.cols; ++u)
+      labels.at<std::uint8_t>(v, u) = LabelOfPixel(image, plan, ceiling_m, Vec2(u, v));
   }
   return labels;
 }
 
-TrainingExample WriteTrainingExample(const ReviewInput& input, const Plan& plan, double ceiling_m, const fs::path& dir) {
+TrainingExample WriteTrainingExample(const ReviewInput& input, const Plan& plan, double ceiling_m,
+                                     const fs::path& dir) {
   CheckArgument(!plan.walls.empty(), "a training example needs a plan with walls");
   CheckArgument(std::isfinite(ceiling_m) && ceiling_m > 0,
                 fmt::format("a training example needs the ceiling's height, got {}", ceiling_m));

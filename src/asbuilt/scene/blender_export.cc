@@ -437,12 +437,12 @@ std::string BlenderScript(const Scene& scene, const BlenderExportOptions& option
     if (!materials.contains(m.name)) {
       const Material* found = FindMaterial(scene, m.name);
       const Material& use = found ? *found : m;
-      materials[m.name] = {{"base_color", {use.base_color.x(), use.base_color.y(), use.base_color.z()}},
-                           {"secondary_color",
-                            {use.secondary_color.x(), use.secondary_color.y(), use.secondary_color.z()}},
-                           {"roughness", use.roughness},
-                           {"texture", TextureKindName(use.texture)},
-                           {"texture_scale_m", use.texture_scale_m}};
+      materials[m.name] = {
+          {"base_color", {use.base_color.x(), use.base_color.y(), use.base_color.z()}},
+          {"secondary_color", {use.secondary_color.x(), use.secondary_color.y(), use.secondary_color.z()}},
+          {"roughness", use.roughness},
+          {"texture", TextureKindName(use.texture)},
+          {"texture_scale_m", use.texture_scale_m}};
     }
   }
   for (const Material& m : scene.materials) {
@@ -459,8 +459,12 @@ std::string BlenderScript(const Scene& scene, const BlenderExportOptions& option
                      {"pitch_deg", v.pitch_deg}});
   }
   PinholeCamera cam = scene.rig.Camera();
-  nlohmann::json rig = {{"width_px", cam.width_px}, {"height_px", cam.height_px}, {"fx", cam.fx},
-                        {"fy", cam.fy},             {"cx", cam.cx},             {"cy", cam.cy},
+  nlohmann::json rig = {{"width_px", cam.width_px},
+                        {"height_px", cam.height_px},
+                        {"fx", cam.fx},
+                        {"fy", cam.fy},
+                        {"cx", cam.cx},
+                        {"cy", cam.cy},
                         {"baseline_m", scene.rig.baseline_m}};
   nlohmann::json settings = {{"samples", options.samples},
                              {"denoise", options.denoise},
@@ -477,13 +481,11 @@ std::string BlenderScript(const Scene& scene, const BlenderExportOptions& option
   }
 
   std::string out;
-  out += "# Blender 3.x/4.x script written by `asbuilt scene export-blender` for scene \"" +
-         [&] {
-           std::string n;
-           for (char c : scene.name) n += (c == '\n' || c == '\r') ? ' ' : c;
-           return n;
-         }() +
-         "\".\n";
+  out += "# Blender 3.x/4.x script written by `asbuilt scene export-blender` for scene \"" + [&] {
+    std::string n;
+    for (char c : scene.name) n += (c == '\n' || c == '\r') ? ' ' : c;
+    return n;
+  }() + "\".\n";
   out += "# Render every view's stereo pair:  blender -b -P build.py -o OUT/ -a\n";
   out += "# One view (frame N = view N-1):    blender -b -P build.py -o OUT/ -f N\n";
   out += "# Object and material pass index = label id (0 other, 1 wall, 2 door, 3 window).\n";

@@ -24,12 +24,12 @@
 namespace asbuilt {
 
 struct BlenderExportOptions {
-  int samples = 64;            // Cycles samples per pixel; more = less noise, slower.
+  int samples = 64;  // Cycles samples per pixel; more = less noise, slower.
   // Cycles denoiser (OpenImageDenoise on CPU). The script checks at run time
   // whether the Blender build has it and, when not, renders without and
   // prints a note (Debian's Blender 3.4 has none).
   bool denoise = true;
-  bool index_pass = true;      // Write the object-index (label id) pass as EXR.
+  bool index_pass = true;         // Write the object-index (label id) pass as EXR.
   double sensor_width_mm = 36.0;  // Blender sensor width; focal length follows from fx.
 
   void Check() const;
@@ -38,7 +38,7 @@ struct BlenderExportOptions {
 struct BlenderExportSummary {
   int objects = 0;  // Meshes the script creates (walls, openings, floor/ceiling, furniture, outside).
   int lights = 0;
-  int frames = 0;   // One per viewpoint.
+  int frames = 0;  // One per viewpoint.
 
   // "14 objects, 5 lights, 12 frames (stereo pairs)".
   std::string BriefReport() const;

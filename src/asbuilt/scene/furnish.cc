@@ -33,8 +33,7 @@ const Catalogue& TheCatalogue() {
         {{"wardrobe", "wardrobes", "closet"}, {"wardrobe", Vec3(1.2, 0.6, 2.0), true}},
         {{"bookshelf", "bookshelves", "bookcase", "bookcases", "shelf", "shelves", "shelving"},
          {"bookshelf", Vec3(0.9, 0.35, 1.9), true}},
-        {{"cabinet", "cabinets", "cupboard", "cupboards", "locker", "lockers"},
-         {"cabinet", Vec3(1.0, 0.5, 1.8), true}},
+        {{"cabinet", "cabinets", "cupboard", "cupboards", "locker", "lockers"}, {"cabinet", Vec3(1.0, 0.5, 1.8), true}},
         {{"counter", "counters", "worktop", "worktops", "kitchen counter"}, {"counter", Vec3(2.4, 0.6, 0.9), true}},
         {{"fridge", "fridges", "refrigerator"}, {"fridge", Vec3(0.6, 0.65, 1.8), true}},
         {{"stove", "oven", "cooker"}, {"stove", Vec3(0.6, 0.6, 0.9), true}},
@@ -101,9 +100,7 @@ bool Overlap(const Box2& a, const Box2& b, double gap) {
   return true;
 }
 
-Box2 FootprintOf(const Furniture& f) {
-  return {f.centre_m, 0.5 * f.size_m.head<2>(), DegToRad(f.yaw_deg)};
-}
+Box2 FootprintOf(const Furniture& f) { return {f.centre_m, 0.5 * f.size_m.head<2>(), DegToRad(f.yaw_deg)}; }
 
 bool InsideRoom(const Room& room, const Box2& box) {
   for (const Vec2& c : box.Corners()) {
@@ -340,9 +337,8 @@ void AddCeilingLights(Scene& scene, int room_index, int count, double intensity)
   }
   if (added == 0) {
     Vec2 c = PolygonCentroid(room.polygon);
-    scene.lights.push_back({.kind = LightKind::kPoint,
-                            .position_m = Vec3(c.x(), c.y(), room.height_m - 0.3),
-                            .intensity = intensity});
+    scene.lights.push_back(
+        {.kind = LightKind::kPoint, .position_m = Vec3(c.x(), c.y(), room.height_m - 0.3), .intensity = intensity});
   }
 }
 

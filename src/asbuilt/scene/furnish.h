@@ -44,11 +44,11 @@ class SceneRng {
 };
 
 struct PlaceFurnitureOptions {
-  double wall_gap_m = 0.02;         // Gap between a piece's back and the wall.
-  double door_clearance_m = 1.0;    // Depth kept free in front of every door.
-  double rig_clearance_m = 0.6;     // Radius kept free around every rig position.
-  double piece_gap_m = 0.1;         // Minimum gap between pieces.
-  int attempts_per_piece = 300;     // Random tries before a piece is given up.
+  double wall_gap_m = 0.02;       // Gap between a piece's back and the wall.
+  double door_clearance_m = 1.0;  // Depth kept free in front of every door.
+  double rig_clearance_m = 0.6;   // Radius kept free around every rig position.
+  double piece_gap_m = 0.1;       // Minimum gap between pieces.
+  int attempts_per_piece = 300;   // Random tries before a piece is given up.
 
   void Check() const;
 };

@@ -57,7 +57,8 @@ std::string ProblemsText(const std::vector<Problem>& problems) {
 }  // namespace
 
 void LlmOptions::Check() const {
-  CheckArgument(!base_url.empty(), "LlmOptions.base_url is empty, give the endpoint URL (e.g. http://localhost:8080/v1)");
+  CheckArgument(!base_url.empty(),
+                "LlmOptions.base_url is empty, give the endpoint URL (e.g. http://localhost:8080/v1)");
   ParseUrl(base_url);
   CheckArgument(!model.empty(), "LlmOptions.model is empty");
   CheckArgument(max_repair_rounds >= 0 && max_repair_rounds <= 20,
@@ -186,10 +187,11 @@ Scene SceneFromLlm(std::string_view description, const LlmOptions& options, LlmS
     summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     *summary_out = summary;
   }
-  last_problems.insert(last_problems.begin(), Problem{"llm", "", fmt::format("no valid scene after {} answer{} ({} repair round{} allowed)",
-                                                   summary.requests, summary.requests == 1 ? "" : "s",
-                                                   options.max_repair_rounds,
-                                                   options.max_repair_rounds == 1 ? "" : "s")});
+  last_problems.insert(last_problems.begin(),
+                       Problem{"llm", "",
+                               fmt::format("no valid scene after {} answer{} ({} repair round{} allowed)",
+                                           summary.requests, summary.requests == 1 ? "" : "s",
+                                           options.max_repair_rounds, options.max_repair_rounds == 1 ? "" : "s")});
   throw InputError(std::move(last_problems));
 }
 

@@ -16,12 +16,12 @@
 namespace asbuilt {
 
 struct LlmOptions {
-  std::string base_url;            // "http://host:port/v1": POSTs to base_url + "/chat/completions"
-                                   // (a URL already ending in /chat/completions is used as is).
-  std::string model = "gpt-4o-mini";  // Sent as "model".
-  int max_repair_rounds = 2;       // Extra answers asked for after an invalid one; 0 = one try.
-  double timeout_s = 60.0;         // Connect / read / write timeout per request, seconds.
-  double temperature = 0.0;        // Sent as "temperature"; 0 = most repeatable.
+  std::string base_url;                             // "http://host:port/v1": POSTs to base_url + "/chat/completions"
+                                                    // (a URL already ending in /chat/completions is used as is).
+  std::string model = "gpt-4o-mini";                // Sent as "model".
+  int max_repair_rounds = 2;                        // Extra answers asked for after an invalid one; 0 = one try.
+  double timeout_s = 60.0;                          // Connect / read / write timeout per request, seconds.
+  double temperature = 0.0;                         // Sent as "temperature"; 0 = most repeatable.
   std::string api_key_env = "ASBUILT_LLM_API_KEY";  // Environment variable with the bearer key
                                                     // (unset: no Authorization header, for local servers).
 
@@ -29,9 +29,9 @@ struct LlmOptions {
 };
 
 struct LlmSceneSummary {
-  int requests = 0;                    // Chat requests sent.
-  int repair_rounds = 0;               // Of which repairs.
-  std::vector<std::string> problems;   // Problems of each rejected answer, in order.
+  int requests = 0;                   // Chat requests sent.
+  int repair_rounds = 0;              // Of which repairs.
+  std::vector<std::string> problems;  // Problems of each rejected answer, in order.
   double seconds = 0.0;
 
   // "scene from LLM after 2 requests (1 repair round), 3.1 s".

@@ -21,8 +21,8 @@
 
 namespace asbuilt {
 namespace {
-using ::testing::HasSubstr;
 using nlohmann::json;
+using ::testing::HasSubstr;
 
 // A valid answer: a 4 × 5 m room with one door.
 std::string GoodScene() {
@@ -200,8 +200,9 @@ TEST(SceneFromLlm, ReportsAnEndpointThatIsNotThere) {
   ASSERT_EQ(::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len), 0);
   int port = ntohs(addr.sin_port);
   ::close(fd);
-  EXPECT_THAT([&] { SceneFromLlm("an office", {.base_url = fmt::format("http://127.0.0.1:{}/v1", port), .timeout_s = 2}); },
-              ::testing::ThrowsMessage<Error>(HasSubstr("could not connect")));
+  EXPECT_THAT(
+      [&] { SceneFromLlm("an office", {.base_url = fmt::format("http://127.0.0.1:{}/v1", port), .timeout_s = 2}); },
+      ::testing::ThrowsMessage<Error>(HasSubstr("could not connect")));
 }
 
 }  // namespace

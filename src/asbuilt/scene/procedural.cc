@@ -38,10 +38,14 @@ std::vector<Vec2> RandomPolygon(SceneRng& rng, const RandomSceneOptions& o, bool
   double cw = std::clamp(rng.Uniform(0.3, 0.6) * w, 1.0, w - 1.5);
   double cd = std::clamp(rng.Uniform(0.3, 0.6) * d, 1.0, d - 1.5);
   switch (rng.UniformInt(0, 3)) {
-    case 0: return {{0, 0}, {w, 0}, {w, d - cd}, {w - cw, d - cd}, {w - cw, d}, {0, d}};
-    case 1: return {{0, 0}, {w, 0}, {w, d}, {cw, d}, {cw, d - cd}, {0, d - cd}};
-    case 2: return {{0, 0}, {w - cw, 0}, {w - cw, cd}, {w, cd}, {w, d}, {0, d}};
-    default: return {{cw, 0}, {w, 0}, {w, d}, {0, d}, {0, cd}, {cw, cd}};
+    case 0:
+      return {{0, 0}, {w, 0}, {w, d - cd}, {w - cw, d - cd}, {w - cw, d}, {0, d}};
+    case 1:
+      return {{0, 0}, {w, 0}, {w, d}, {cw, d}, {cw, d - cd}, {0, d - cd}};
+    case 2:
+      return {{0, 0}, {w - cw, 0}, {w - cw, cd}, {w, cd}, {w, d}, {0, d}};
+    default:
+      return {{cw, 0}, {w, 0}, {w, d}, {0, d}, {0, cd}, {cw, cd}};
   }
 }
 
@@ -96,15 +100,16 @@ bool AddOpening(SceneRng& rng, const RandomSceneOptions& o, Room& room, OpeningK
 }
 
 void RandomMaterials(SceneRng& rng, Scene& scene) {
-  const std::vector<Vec3> wall_colours = {Vec3(0.9, 0.9, 0.88), Vec3(0.86, 0.82, 0.72), Vec3(0.75, 0.8, 0.85),
-                                          Vec3(0.7, 0.78, 0.68), Vec3(0.92, 0.85, 0.7), Vec3(0.6, 0.6, 0.62),
+  const std::vector<Vec3> wall_colours = {Vec3(0.9, 0.9, 0.88),  Vec3(0.86, 0.82, 0.72), Vec3(0.75, 0.8, 0.85),
+                                          Vec3(0.7, 0.78, 0.68), Vec3(0.92, 0.85, 0.7),  Vec3(0.6, 0.6, 0.62),
                                           Vec3(0.85, 0.7, 0.65)};
   const std::vector<TextureKind> wall_textures = {TextureKind::kPlaster, TextureKind::kPaint, TextureKind::kWallpaper,
                                                   TextureKind::kConcrete, TextureKind::kNone};
-  const std::vector<std::pair<TextureKind, Vec3>> floors = {
-      {TextureKind::kWood, Vec3(0.5, 0.35, 0.2)},    {TextureKind::kWood, Vec3(0.7, 0.55, 0.35)},
-      {TextureKind::kTiles, Vec3(0.75, 0.75, 0.72)}, {TextureKind::kCarpet, Vec3(0.35, 0.38, 0.45)},
-      {TextureKind::kConcrete, Vec3(0.55, 0.55, 0.55)}};
+  const std::vector<std::pair<TextureKind, Vec3>> floors = {{TextureKind::kWood, Vec3(0.5, 0.35, 0.2)},
+                                                            {TextureKind::kWood, Vec3(0.7, 0.55, 0.35)},
+                                                            {TextureKind::kTiles, Vec3(0.75, 0.75, 0.72)},
+                                                            {TextureKind::kCarpet, Vec3(0.35, 0.38, 0.45)},
+                                                            {TextureKind::kConcrete, Vec3(0.55, 0.55, 0.55)}};
   Material wall = *FindMaterial(scene, "wall");
   wall.base_color = Jitter(rng, Pick(rng, wall_colours), 0.05);
   wall.secondary_color = Jitter(rng, 0.9 * wall.base_color, 0.03);
@@ -121,8 +126,9 @@ void RandomMaterials(SceneRng& rng, Scene& scene) {
   Material ceiling = *FindMaterial(scene, "ceiling");
   ceiling.base_color = Jitter(rng, Vec3(0.92, 0.92, 0.9), 0.04);
   Material furniture = *FindMaterial(scene, "furniture");
-  furniture.base_color = Jitter(rng, Pick(rng, std::vector<Vec3>{Vec3(0.6, 0.5, 0.4), Vec3(0.3, 0.3, 0.32),
-                                                                  Vec3(0.85, 0.85, 0.82), Vec3(0.45, 0.3, 0.2)}),
+  furniture.base_color = Jitter(rng,
+                                Pick(rng, std::vector<Vec3>{Vec3(0.6, 0.5, 0.4), Vec3(0.3, 0.3, 0.32),
+                                                            Vec3(0.85, 0.85, 0.82), Vec3(0.45, 0.3, 0.2)}),
                                 0.05);
   furniture.texture = rng.Chance(0.5) ? TextureKind::kWood : TextureKind::kNone;
   scene.materials = {wall, floor, ceiling, furniture};
@@ -151,7 +157,6 @@ bool IsRotated(const Room& room) {
   Vec2 d = WallEnd(room, 0) - WallStart(room, 0);
   return std::abs(d.x()) > 1e-9 && std::abs(d.y()) > 1e-9;
 }
-
 
 // --- Realism levers (RandomSceneOptions, issue 21) ---------------------------
 
@@ -191,11 +196,16 @@ void AddMaterialOnce(Scene& scene, const Material& m) {
 void StyleDoors(SceneRng& rng, const RandomSceneOptions& o, Scene& scene) {
   const std::vector<Vec3> woods = {Vec3(0.55, 0.3, 0.13), Vec3(0.62, 0.4, 0.2), Vec3(0.42, 0.24, 0.12),
                                    Vec3(0.3, 0.17, 0.09), Vec3(0.7, 0.5, 0.3)};
-  Material white{.name = "door_white", .base_color = Jitter(rng, Vec3(0.88, 0.87, 0.84), 0.03), .roughness = 0.35,
-                 .texture = TextureKind::kPaint, .texture_scale_m = 0.3};
+  Material white{.name = "door_white",
+                 .base_color = Jitter(rng, Vec3(0.88, 0.87, 0.84), 0.03),
+                 .roughness = 0.35,
+                 .texture = TextureKind::kPaint,
+                 .texture_scale_m = 0.3};
   white.secondary_color = 0.95 * white.base_color;
-  Material wood{.name = "door_wood", .base_color = Jitter(rng, Pick(rng, woods), 0.04),
-                .roughness = rng.Uniform(0.35, 0.7), .texture = TextureKind::kWood,
+  Material wood{.name = "door_wood",
+                .base_color = Jitter(rng, Pick(rng, woods), 0.04),
+                .roughness = rng.Uniform(0.35, 0.7),
+                .texture = TextureKind::kWood,
                 .texture_scale_m = rng.Uniform(0.6, 1.0)};
   wood.secondary_color = 0.75 * wood.base_color;
   bool used_white = false, used_wood = false;
@@ -249,14 +259,20 @@ void AddKitchen(SceneRng& rng, Scene& scene) {
   const Room& room = scene.rooms[0];
   const bool white_units = rng.Chance(0.45);
   const std::vector<Vec3> woods = {Vec3(0.6, 0.36, 0.16), Vec3(0.5, 0.3, 0.15), Vec3(0.7, 0.52, 0.32)};
-  Material cabinet{.name = "cabinet",
-                   .base_color = white_units ? Jitter(rng, Vec3(0.86, 0.86, 0.83), 0.03) : Jitter(rng, Pick(rng, woods), 0.04),
-                   .roughness = rng.Uniform(0.3, 0.6),
-                   .texture = TextureKind::kTiles,  // Tiles of door size: the gaps between fronts.
-                   .texture_scale_m = rng.Uniform(0.4, 0.6)};
+  Material cabinet{
+      .name = "cabinet",
+      .base_color = white_units ? Jitter(rng, Vec3(0.86, 0.86, 0.83), 0.03) : Jitter(rng, Pick(rng, woods), 0.04),
+      .roughness = rng.Uniform(0.3, 0.6),
+      .texture = TextureKind::kTiles,  // Tiles of door size: the gaps between fronts.
+      .texture_scale_m = rng.Uniform(0.4, 0.6)};
   cabinet.secondary_color = 0.45 * cabinet.base_color;
-  Material worktop{.name = "worktop", .base_color = Jitter(rng, Pick(rng, std::vector<Vec3>{Vec3(0.8, 0.78, 0.72), Vec3(0.2, 0.2, 0.2), Vec3(0.55, 0.5, 0.45)}), 0.04),
-                   .roughness = 0.3, .texture = TextureKind::kConcrete, .texture_scale_m = 0.3};
+  Material worktop{
+      .name = "worktop",
+      .base_color = Jitter(
+          rng, Pick(rng, std::vector<Vec3>{Vec3(0.8, 0.78, 0.72), Vec3(0.2, 0.2, 0.2), Vec3(0.55, 0.5, 0.45)}), 0.04),
+      .roughness = 0.3,
+      .texture = TextureKind::kConcrete,
+      .texture_scale_m = 0.3};
   worktop.secondary_color = 0.8 * worktop.base_color;
   Material appliance{.name = "appliance", .base_color = Jitter(rng, Vec3(0.9, 0.9, 0.88), 0.02), .roughness = 0.2};
   AddMaterialOnce(scene, cabinet);
@@ -266,10 +282,9 @@ void AddKitchen(SceneRng& rng, Scene& scene) {
   const std::size_t first = scene.furniture.size();
   const double fridge_width = rng.Uniform(0.6, 0.9);
   const double fridge_height = rng.Uniform(1.65, 1.85);
-  std::vector<FurnitureSpec> pieces = {
-      {"kitchen units", Vec3(rng.Uniform(1.2, 3.2), 0.6, 0.88), true, "cabinet"},
-      {"fridge", Vec3(fridge_width, 0.7, fridge_height), true, "appliance"},
-      {"range", Vec3(0.76, 0.65, 0.92), true, "appliance"}};
+  std::vector<FurnitureSpec> pieces = {{"kitchen units", Vec3(rng.Uniform(1.2, 3.2), 0.6, 0.88), true, "cabinet"},
+                                       {"fridge", Vec3(fridge_width, 0.7, fridge_height), true, "appliance"},
+                                       {"range", Vec3(0.76, 0.65, 0.92), true, "appliance"}};
   if (rng.Chance(0.5)) pieces.push_back({"dishwasher", Vec3(0.6, 0.6, 0.85), true, "appliance"});
   if (rng.Chance(0.5)) pieces.push_back({"kitchen units", Vec3(rng.Uniform(0.8, 2.0), 0.6, 0.88), true, "cabinet"});
   PlaceFurnitureOptions placing;
@@ -282,8 +297,11 @@ void AddKitchen(SceneRng& rng, Scene& scene) {
     if (base.name != "kitchen units") continue;
     const double yaw = DegToRad(base.yaw_deg);
     const Vec2 ex(std::cos(yaw), std::sin(yaw)), ey(-std::sin(yaw), std::cos(yaw));
-    scene.furniture.push_back({.name = "worktop", .centre_m = base.centre_m - 0.015 * ey, .yaw_deg = base.yaw_deg,
-                               .size_m = Vec3(base.size_m.x() + 0.02, 0.63, 0.04), .elevation_m = base.size_m.z(),
+    scene.furniture.push_back({.name = "worktop",
+                               .centre_m = base.centre_m - 0.015 * ey,
+                               .yaw_deg = base.yaw_deg,
+                               .size_m = Vec3(base.size_m.x() + 0.02, 0.63, 0.04),
+                               .elevation_m = base.size_m.z(),
                                .material = "worktop"});
     const double bottom = rng.Uniform(1.4, 1.55);
     const double height = std::min(rng.Uniform(0.6, 0.8), room.height_m - bottom - 0.05);
@@ -298,9 +316,12 @@ void AddKitchen(SceneRng& rng, Scene& scene) {
       }
     }
     if (clear) {
-      scene.furniture.push_back({.name = "wall units", .centre_m = base.centre_m - (0.3 - 0.18) * ey,
-                                 .yaw_deg = base.yaw_deg, .size_m = Vec3(base.size_m.x(), 0.34, height),
-                                 .elevation_m = bottom, .material = "cabinet"});
+      scene.furniture.push_back({.name = "wall units",
+                                 .centre_m = base.centre_m - (0.3 - 0.18) * ey,
+                                 .yaw_deg = base.yaw_deg,
+                                 .size_m = Vec3(base.size_m.x(), 0.34, height),
+                                 .elevation_m = bottom,
+                                 .material = "cabinet"});
     }
   }
 }
@@ -314,8 +335,8 @@ void AddWallDetails(SceneRng& rng, Scene& scene) {
     if (op.kind != OpeningKind::kWindow || op.sill_m < 0.65 || !rng.Chance(0.6)) continue;
     double width = std::clamp(op.width_m * rng.Uniform(0.6, 1.0), 0.4, 1.8);
     double height = std::min(rng.Uniform(0.4, 0.65), op.sill_m - 0.25);
-    scene.furniture.push_back(WallBox(room, op.wall, op.offset_m + 0.5 * op.width_m, 0.04,
-                                      Vec3(width, 0.09, height), 0.12, "radiator", "fitting"));
+    scene.furniture.push_back(WallBox(room, op.wall, op.offset_m + 0.5 * op.width_m, 0.04, Vec3(width, 0.09, height),
+                                      0.12, "radiator", "fitting"));
   }
   // Sockets near the floor (or above a worktop's height), switches by doors.
   const int walls = WallCount(room);
@@ -334,22 +355,29 @@ void AddWallDetails(SceneRng& rng, Scene& scene) {
     if (op.kind != OpeningKind::kDoor || !rng.Chance(0.8)) continue;
     double len = WallLength(room, op.wall);
     bool before = rng.Chance(0.5);
-    double s = before ? op.offset_m - 0.1 - rng.Uniform(0.1, 0.25) : op.offset_m + op.width_m + 0.1 + rng.Uniform(0.1, 0.25);
+    double s =
+        before ? op.offset_m - 0.1 - rng.Uniform(0.1, 0.25) : op.offset_m + op.width_m + 0.1 + rng.Uniform(0.1, 0.25);
     if (s < 0.08 || s > len - 0.08 || !ClearOfOpenings(room, op.wall, s - 0.04, s + 0.04, -0.09)) continue;
-    scene.furniture.push_back(WallBox(room, op.wall, s, 0.0, Vec3(0.08, 0.012, 0.12), rng.Uniform(1.0, 1.2),
-                                      "switch", "fitting"));
+    scene.furniture.push_back(
+        WallBox(room, op.wall, s, 0.0, Vec3(0.08, 0.012, 0.12), rng.Uniform(1.0, 1.2), "switch", "fitting"));
   }
 }
 
 void DressWindows(SceneRng& rng, const RandomSceneOptions& o, Scene& scene) {
   const Room& room = scene.rooms[0];
   const std::vector<Vec3> fabrics = {Vec3(0.85, 0.82, 0.75), Vec3(0.6, 0.55, 0.45), Vec3(0.4, 0.45, 0.55),
-                                     Vec3(0.7, 0.6, 0.5), Vec3(0.3, 0.3, 0.3), Vec3(0.75, 0.7, 0.72)};
-  Material curtain{.name = "curtain", .base_color = Jitter(rng, Pick(rng, fabrics), 0.05), .roughness = 1.0,
-                   .texture = TextureKind::kCarpet, .texture_scale_m = 0.15};
+                                     Vec3(0.7, 0.6, 0.5),    Vec3(0.3, 0.3, 0.3),   Vec3(0.75, 0.7, 0.72)};
+  Material curtain{.name = "curtain",
+                   .base_color = Jitter(rng, Pick(rng, fabrics), 0.05),
+                   .roughness = 1.0,
+                   .texture = TextureKind::kCarpet,
+                   .texture_scale_m = 0.15};
   curtain.secondary_color = 0.7 * curtain.base_color;
-  Material blind{.name = "blind", .base_color = Jitter(rng, Vec3(0.85, 0.84, 0.8), 0.05), .roughness = 0.8,
-                 .texture = TextureKind::kPaint, .texture_scale_m = 0.2};
+  Material blind{.name = "blind",
+                 .base_color = Jitter(rng, Vec3(0.85, 0.84, 0.8), 0.05),
+                 .roughness = 0.8,
+                 .texture = TextureKind::kPaint,
+                 .texture_scale_m = 0.2};
   bool used_curtain = false, used_blind = false;
   for (const Opening& op : room.openings) {
     if (op.kind != OpeningKind::kWindow || !rng.Chance(o.window_dressing_probability)) continue;
@@ -378,7 +406,6 @@ void DressWindows(SceneRng& rng, const RandomSceneOptions& o, Scene& scene) {
   if (used_blind) AddMaterialOnce(scene, blind);
 }
 
-
 // True when no furniture stands within `depth_m` in front of [s0, s1] on `wall`.
 bool ClearOfFurniture(const Scene& scene, const Room& room, int wall, double s0, double s1, double depth_m) {
   Vec2 a = WallStart(room, wall);
@@ -394,8 +421,11 @@ bool ClearOfFurniture(const Scene& scene, const Room& room, int wall, double s0,
 
 void GlazeDoors(SceneRng& rng, const RandomSceneOptions& o, Scene& scene) {
   Room& room = scene.rooms[0];
-  Material dark{.name = "door_frame_dark", .base_color = Jitter(rng, Vec3(0.12, 0.12, 0.13), 0.03),
-                .roughness = 0.3, .texture = TextureKind::kPaint, .texture_scale_m = 0.3};
+  Material dark{.name = "door_frame_dark",
+                .base_color = Jitter(rng, Vec3(0.12, 0.12, 0.13), 0.03),
+                .roughness = 0.3,
+                .texture = TextureKind::kPaint,
+                .texture_scale_m = 0.3};
   dark.secondary_color = 0.9 * dark.base_color;
   bool used_dark = false;
   for (std::size_t k = 0; k < room.openings.size(); ++k) {
@@ -443,11 +473,11 @@ void AddWallArt(SceneRng& rng, Scene& scene) {
   const std::vector<Vec3> frames = {Vec3(0.08, 0.07, 0.06), Vec3(0.85, 0.84, 0.8), Vec3(0.55, 0.38, 0.2),
                                     Vec3(0.7, 0.6, 0.35)};
   Material frame{.name = "art_frame", .base_color = Jitter(rng, Pick(rng, frames), 0.03), .roughness = 0.4};
-  Material picture{.name = "art_picture", .base_color = Vec3(rng.Uniform(0.2, 0.9), rng.Uniform(0.2, 0.9),
-                                                             rng.Uniform(0.2, 0.9)),
-                   .roughness = 0.5, .texture = Pick(rng, std::vector<TextureKind>{TextureKind::kWallpaper,
-                                                                                    TextureKind::kConcrete,
-                                                                                    TextureKind::kTiles}),
+  Material picture{.name = "art_picture",
+                   .base_color = Vec3(rng.Uniform(0.2, 0.9), rng.Uniform(0.2, 0.9), rng.Uniform(0.2, 0.9)),
+                   .roughness = 0.5,
+                   .texture = Pick(rng, std::vector<TextureKind>{TextureKind::kWallpaper, TextureKind::kConcrete,
+                                                                 TextureKind::kTiles}),
                    .texture_scale_m = rng.Uniform(0.05, 0.3)};
   picture.secondary_color = Vec3(rng.Uniform(0.05, 0.9), rng.Uniform(0.05, 0.9), rng.Uniform(0.05, 0.9));
   Material mirror{.name = "mirror", .base_color = Vec3(0.9, 0.9, 0.9), .roughness = 0.02};
@@ -476,8 +506,8 @@ void AddWallArt(SceneRng& rng, Scene& scene) {
     const char* name = kind == 0 ? "picture" : (kind == 1 ? "mirror" : "tv");
     scene.furniture.push_back(WallBox(room, wall, s, 0.005, Vec3(w, kind == 2 ? 0.05 : 0.025, h), z,
                                       std::string(name) + " frame", kind == 2 ? "tv_screen" : "art_frame"));
-    scene.furniture.push_back(WallBox(room, wall, s, 0.01, Vec3(w - 2 * border, kind == 2 ? 0.05 : 0.025, h - 2 * border),
-                                      z + border, name, face));
+    scene.furniture.push_back(WallBox(
+        room, wall, s, 0.01, Vec3(w - 2 * border, kind == 2 ? 0.05 : 0.025, h - 2 * border), z + border, name, face));
     used[kind] = true;
     used[3] = used[3] || kind != 2;
   }
@@ -500,7 +530,8 @@ void BrightenKitchen(SceneRng& rng, Scene& scene) {
       m.secondary_color = 0.85 * m.base_color;
       m.roughness = 0.2;
     } else if (m.name == "appliance") {
-      m.base_color = rng.Chance(0.45) ? Jitter(rng, Vec3(0.62, 0.63, 0.64), 0.03) : Jitter(rng, Vec3(0.93, 0.93, 0.92), 0.02);
+      m.base_color =
+          rng.Chance(0.45) ? Jitter(rng, Vec3(0.62, 0.63, 0.64), 0.03) : Jitter(rng, Vec3(0.93, 0.93, 0.92), 0.02);
       m.roughness = rng.Uniform(0.08, 0.2);
     }
   }
@@ -514,10 +545,17 @@ void BrightenKitchen(SceneRng& rng, Scene& scene) {
     const double width = rng.Uniform(0.45, 0.8);
     const Vec2 c = top.centre_m + rng.Uniform(-0.5, 0.5) * (top.size_m.x() - width) * ex + 0.03 * ey;
     const double z = top.elevation_m + top.size_m.z();
-    scene.furniture.push_back({.name = "sink", .centre_m = c, .yaw_deg = top.yaw_deg,
-                               .size_m = Vec3(width, 0.42, 0.012), .elevation_m = z, .material = "steel"});
-    scene.furniture.push_back({.name = "tap", .centre_m = c - 0.24 * ey, .yaw_deg = top.yaw_deg,
-                               .size_m = Vec3(0.04, 0.04, rng.Uniform(0.2, 0.32)), .elevation_m = z,
+    scene.furniture.push_back({.name = "sink",
+                               .centre_m = c,
+                               .yaw_deg = top.yaw_deg,
+                               .size_m = Vec3(width, 0.42, 0.012),
+                               .elevation_m = z,
+                               .material = "steel"});
+    scene.furniture.push_back({.name = "tap",
+                               .centre_m = c - 0.24 * ey,
+                               .yaw_deg = top.yaw_deg,
+                               .size_m = Vec3(0.04, 0.04, rng.Uniform(0.2, 0.32)),
+                               .elevation_m = z,
                                .material = "steel"});
     sink = true;
   }
@@ -540,9 +578,9 @@ void RandomSceneOptions::Check() const {
   CheckArgument(max_side_m >= min_side_m,
                 fmt::format("RandomSceneOptions.max_side_m = {}, must be >= min_side_m ({})", max_side_m, min_side_m));
   CheckArgument(min_height_m >= 2.2, fmt::format("RandomSceneOptions.min_height_m = {}, must be >= 2.2", min_height_m));
-  CheckArgument(max_height_m >= min_height_m,
-                fmt::format("RandomSceneOptions.max_height_m = {}, must be >= min_height_m ({})", max_height_m,
-                            min_height_m));
+  CheckArgument(
+      max_height_m >= min_height_m,
+      fmt::format("RandomSceneOptions.max_height_m = {}, must be >= min_height_m ({})", max_height_m, min_height_m));
   CheckArgument(l_shape_probability >= 0 && l_shape_probability <= 1,
                 fmt::format("RandomSceneOptions.l_shape_probability = {}, must be in [0, 1]", l_shape_probability));
   CheckArgument(rotated_probability >= 0 && rotated_probability <= 1,
@@ -552,9 +590,9 @@ void RandomSceneOptions::Check() const {
                 fmt::format("RandomSceneOptions.max_openings = {}, must be in [min_openings, 12]", max_openings));
   CheckArgument(same_wall_probability >= 0 && same_wall_probability <= 1,
                 fmt::format("RandomSceneOptions.same_wall_probability = {}, must be in [0, 1]", same_wall_probability));
-  CheckArgument(corner_door_probability >= 0 && corner_door_probability <= 1,
-                fmt::format("RandomSceneOptions.corner_door_probability = {}, must be in [0, 1]",
-                            corner_door_probability));
+  CheckArgument(
+      corner_door_probability >= 0 && corner_door_probability <= 1,
+      fmt::format("RandomSceneOptions.corner_door_probability = {}, must be in [0, 1]", corner_door_probability));
   CheckArgument(min_furniture >= 0 && max_furniture >= min_furniture,
                 fmt::format("RandomSceneOptions.min_furniture/max_furniture = {}/{}, need 0 <= min <= max",
                             min_furniture, max_furniture));
@@ -616,20 +654,22 @@ Scene RandomScene(const RandomSceneOptions& options, std::uint64_t seed) {
     // lights and sky stay the same (placed clear of this spot instead).
     if (std::optional<Vec2> survey = SurveySpot(room.polygon)) spot = survey;
   }
-  scene.turn = TurnInPlace{.position_m = Vec3(spot->x(), spot->y(), std::min(rng.Uniform(1.2, 1.7), room.height_m - 0.3)),
-                           .start_deg = rng.Uniform(0.0, options.turn_step_deg),
-                           .step_deg = options.turn_step_deg,
-                           .count = 0};
+  scene.turn =
+      TurnInPlace{.position_m = Vec3(spot->x(), spot->y(), std::min(rng.Uniform(1.2, 1.7), room.height_m - 0.3)),
+                  .start_deg = rng.Uniform(0.0, options.turn_step_deg),
+                  .step_deg = options.turn_step_deg,
+                  .count = 0};
 
   // Furniture from the whole catalogue, against walls mostly.
-  static const std::vector<std::string> kPieces = {"desk", "table", "chair", "bed", "sofa", "armchair",
-                                                   "wardrobe", "bookshelf", "cabinet", "counter", "fridge",
-                                                   "dresser", "plant", "box", "tv", "piano"};
+  static const std::vector<std::string> kPieces = {"desk",     "table",     "chair",   "bed",     "sofa",   "armchair",
+                                                   "wardrobe", "bookshelf", "cabinet", "counter", "fridge", "dresser",
+                                                   "plant",    "box",       "tv",      "piano"};
   std::vector<FurnitureSpec> pieces;
   int n_pieces = rng.UniformInt(options.min_furniture, options.max_furniture);
   for (int i = 0; i < n_pieces; ++i) {
     FurnitureSpec spec = *FurnitureByName(Pick(rng, kPieces));
-    spec.size_m = spec.size_m.cwiseProduct(Vec3(rng.Uniform(0.85, 1.15), rng.Uniform(0.85, 1.15), rng.Uniform(0.9, 1.1)));
+    spec.size_m =
+        spec.size_m.cwiseProduct(Vec3(rng.Uniform(0.85, 1.15), rng.Uniform(0.85, 1.15), rng.Uniform(0.9, 1.1)));
     pieces.push_back(spec);
   }
   PlaceFurniture(scene, 0, pieces, rng.Next());

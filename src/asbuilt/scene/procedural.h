@@ -30,36 +30,36 @@ const char* RigSpotName(RigSpot spot);  // "random" / "survey"
 RigSpot ParseRigSpot(std::string_view name);
 
 struct RandomSceneOptions {
-  double min_side_m = 2.5;            // Bounding-box sides of the room, metres.
+  double min_side_m = 2.5;  // Bounding-box sides of the room, metres.
   double max_side_m = 9.0;
-  double min_height_m = 2.4;          // Floor to ceiling, metres.
+  double min_height_m = 2.4;  // Floor to ceiling, metres.
   double max_height_m = 3.5;
-  double l_shape_probability = 0.3;   // Share of L-shaped rooms.
-  double rotated_probability = 0.3;   // Share of rooms turned by a random angle (not axis-aligned).
-  int min_openings = 1;               // Doors + windows per room; the first is always a door.
+  double l_shape_probability = 0.3;  // Share of L-shaped rooms.
+  double rotated_probability = 0.3;  // Share of rooms turned by a random angle (not axis-aligned).
+  int min_openings = 1;              // Doors + windows per room; the first is always a door.
   int max_openings = 4;
-  double same_wall_probability = 0.35;  // Chance an opening joins a wall that already has one.
-  double corner_door_probability = 0.4; // Chance a door sits tight in a corner.
-  int min_furniture = 2;              // Pieces tried per room (some may not fit).
+  double same_wall_probability = 0.35;   // Chance an opening joins a wall that already has one.
+  double corner_door_probability = 0.4;  // Chance a door sits tight in a corner.
+  int min_furniture = 2;                 // Pieces tried per room (some may not fit).
   int max_furniture = 8;
-  double turn_step_deg = 30.0;        // Rig yaw step; 360 / step views.
+  double turn_step_deg = 30.0;          // Rig yaw step; 360 / step views.
   RigSpot rig_spot = RigSpot::kRandom;  // The same seed gives the same room either way.
-  StereoRigSpec rig;                  // Image size, FOV, baseline of every scene.
+  StereoRigSpec rig;                    // Image size, FOV, baseline of every scene.
 
   // Realism levers (issue 21; docs/render.md "Realism levers"). All 0 by
   // default: the scene of a seed is then exactly what it always was. They
   // draw from their own random stream after the room is complete, so turning
   // one on adds to the same room rather than making another one.
-  double styled_door_probability = 0.0;  // Per door: a white-painted or a wooden (oak, pine, walnut) leaf and casing.
-  double open_door_probability = 0.0;    // Per closed door: swung wide open (60–110°).
-  double neutral_wall_probability = 0.0; // White or off-white walls and ceiling (most homes).
-  double window_sun_probability = 0.0;   // A low, strong sun shining in through a window (sunlit patches).
-  double kitchen_probability = 0.0;      // Kitchen units with worktop and wall units, white appliances (label 0).
-  double wall_details_probability = 0.0; // Radiators under windows, sockets, light switches by doors (label 0).
+  double styled_door_probability = 0.0;   // Per door: a white-painted or a wooden (oak, pine, walnut) leaf and casing.
+  double open_door_probability = 0.0;     // Per closed door: swung wide open (60–110°).
+  double neutral_wall_probability = 0.0;  // White or off-white walls and ceiling (most homes).
+  double window_sun_probability = 0.0;    // A low, strong sun shining in through a window (sunlit patches).
+  double kitchen_probability = 0.0;       // Kitchen units with worktop and wall units, white appliances (label 0).
+  double wall_details_probability = 0.0;  // Radiators under windows, sockets, light switches by doors (label 0).
   double window_dressing_probability = 0.0;  // Per window: curtains (label 0) or a blind in the opening (window).
-  double glazed_door_probability = 0.0;  // Per door: glazed (patio / French door, Opening::glazed), often widened.
+  double glazed_door_probability = 0.0;      // Per door: glazed (patio / French door, Opening::glazed), often widened.
   double ceiling_like_walls_probability = 0.0;  // Ceiling painted with the walls' paint, soft ambient light.
-  double wall_art_probability = 0.0;     // Framed pictures, mirrors, a TV on the walls (label 0).
+  double wall_art_probability = 0.0;            // Framed pictures, mirrors, a TV on the walls (label 0).
 
   void Check() const;
 };

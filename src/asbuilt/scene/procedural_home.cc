@@ -20,7 +20,8 @@ struct Rect {
 };
 
 std::vector<Rect> CutFloor(SceneRng& rng, const HomeLayoutOptions& o, int rooms) {
-  std::vector<Rect> rects = {{0, 0, rng.Uniform(o.min_width_m, o.max_width_m), rng.Uniform(o.min_depth_m, o.max_depth_m)}};
+  std::vector<Rect> rects = {
+      {0, 0, rng.Uniform(o.min_width_m, o.max_width_m), rng.Uniform(o.min_depth_m, o.max_depth_m)}};
   const double t = o.wall_thickness_m, m = o.min_room_m;
   while (static_cast<int>(rects.size()) < rooms) {
     // Cut the largest room that can be cut, across its longer side.

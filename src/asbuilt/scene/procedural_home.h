@@ -20,10 +20,10 @@ struct HomeLayoutOptions {
   int min_rooms = 5, max_rooms = 10;
   double min_width_m = 9.0, max_width_m = 14.0;  // The floor's sides.
   double min_depth_m = 7.0, max_depth_m = 11.0;
-  double min_room_m = 1.8;        // Smallest room side.
+  double min_room_m = 1.8;         // Smallest room side.
   double wall_thickness_m = 0.10;  // Partitions.
-  double extra_door = 0.3;        // Chance of a door where two rooms already connect another way.
-  double window = 0.7;            // Chance of a window per exterior wall of 2 m or more.
+  double extra_door = 0.3;         // Chance of a door where two rooms already connect another way.
+  double window = 0.7;             // Chance of a window per exterior wall of 2 m or more.
   void Check() const;
 };
 

@@ -226,7 +226,8 @@ TEST(RandomScene, LeversOffLeaveTheSceneAsItWas) {
   for (const Furniture& f : scene.furniture) {
     EXPECT_THAT(f.name, testing::Not(testing::AnyOf("kitchen units", "socket", "curtain", "radiator")));
   }
-  for (const Material& m : scene.materials) EXPECT_THAT(m.name, testing::AnyOf("wall", "floor", "ceiling", "furniture"));
+  for (const Material& m : scene.materials)
+    EXPECT_THAT(m.name, testing::AnyOf("wall", "floor", "ceiling", "furniture"));
   RandomSceneOptions bad;
   bad.kitchen_probability = 1.5;
   EXPECT_THROW(bad.Check(), InvalidArgument);

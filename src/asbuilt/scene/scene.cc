@@ -12,9 +12,8 @@
 namespace asbuilt {
 namespace {
 
-constexpr double kEps = 1e-9;       // Metres: length comparisons.
-constexpr double kSameM = 1e-6;     // Metres: two points are the same.
-
+constexpr double kEps = 1e-9;    // Metres: length comparisons.
+constexpr double kSameM = 1e-6;  // Metres: two points are the same.
 
 // Closed segments [p1, p2] and [q1, q2] share at least one point.
 bool SegmentsIntersect(const Vec2& p1, const Vec2& p2, const Vec2& q1, const Vec2& q2) {
@@ -49,9 +48,7 @@ std::string Vec3Text(const Vec3& v) { return fmt::format("[{}, {}, {}]", v.x(), 
 class Problems {
  public:
   explicit Problems(std::string file) : file_(std::move(file)) {}
-  void Add(std::string path, std::string message) {
-    list_.push_back({file_, std::move(path), std::move(message)});
-  }
+  void Add(std::string path, std::string message) { list_.push_back({file_, std::move(path), std::move(message)}); }
   // Adds "must be > 0, got v" unless v > 0.
   void Positive(const std::string& path, double v) {
     if (!(std::isfinite(v) && v > 0)) Add(path, fmt::format("must be > 0, got {}", v));
@@ -77,8 +74,7 @@ class Problems {
   std::vector<Problem> list_;
 };
 
-void CheckMaterialName(const Scene& scene, Problems& p, const std::string& path,
-                       const std::string& name) {
+void CheckMaterialName(const Scene& scene, Problems& p, const std::string& path, const std::string& name) {
   if (FindMaterial(scene, name) == nullptr) {
     p.Add(path, fmt::format("unknown material \"{}\" (define it in materials, or use a built-in: "
                             "wall, floor, ceiling, door, window_frame, glass, furniture, skirting)",
@@ -180,12 +176,12 @@ void CheckRoom(const Scene& scene, int r, Problems& p) {
     if (p.list().size() != before || !poly_ok) continue;
     double length = WallLength(room, o.wall);
     if (o.offset_m + o.width_m > length + kEps) {
-      p.Add(op, fmt::format("outside its wall: offset {} + width {} = {} > wall {} length {:.3f}",
-                            o.offset_m, o.width_m, o.offset_m + o.width_m, o.wall, length));
+      p.Add(op, fmt::format("outside its wall: offset {} + width {} = {} > wall {} length {:.3f}", o.offset_m,
+                            o.width_m, o.offset_m + o.width_m, o.wall, length));
     }
     if (std::isfinite(room.height_m) && o.sill_m + o.height_m > room.height_m + kEps) {
-      p.Add(op, fmt::format("above the wall: sill {} + height {} = {} > room height {}", o.sill_m,
-                            o.height_m, o.sill_m + o.height_m, room.height_m));
+      p.Add(op, fmt::format("above the wall: sill {} + height {} = {} > room height {}", o.sill_m, o.height_m,
+                            o.sill_m + o.height_m, room.height_m));
     }
     for (std::size_t m = 0; m < k; ++m) {
       const Opening& q = room.openings[m];
@@ -204,8 +200,8 @@ void CheckRoom(const Scene& scene, int r, Problems& p) {
 int RoomContaining(const Scene& scene, const Vec3& point) {
   for (std::size_t r = 0; r < scene.rooms.size(); ++r) {
     const Room& room = scene.rooms[r];
-    if (room.polygon.size() >= 3 && PointInPolygon(room.polygon, point.head<2>()) &&
-        point.z() > 0 && point.z() < room.height_m) {
+    if (room.polygon.size() >= 3 && PointInPolygon(room.polygon, point.head<2>()) && point.z() > 0 &&
+        point.z() < room.height_m) {
       return static_cast<int>(r);
     }
   }
@@ -218,8 +214,7 @@ void CheckViewPosition(const Scene& scene, Problems& p, const std::string& path,
     return;
   }
   if (RoomContaining(scene, pos) < 0) {
-    p.Add(path, fmt::format("rig at {} is outside every room (or not between floor and ceiling)",
-                            Vec3Text(pos)));
+    p.Add(path, fmt::format("rig at {} is outside every room (or not between floor and ceiling)", Vec3Text(pos)));
   }
 }
 
@@ -243,23 +238,34 @@ bool IsRectangle(const Room& room) {
 
 const char* TextureKindName(TextureKind kind) {
   switch (kind) {
-    case TextureKind::kNone: return "none";
-    case TextureKind::kPlaster: return "plaster";
-    case TextureKind::kPaint: return "paint";
-    case TextureKind::kWallpaper: return "wallpaper";
-    case TextureKind::kWood: return "wood";
-    case TextureKind::kTiles: return "tiles";
-    case TextureKind::kCarpet: return "carpet";
-    case TextureKind::kConcrete: return "concrete";
+    case TextureKind::kNone:
+      return "none";
+    case TextureKind::kPlaster:
+      return "plaster";
+    case TextureKind::kPaint:
+      return "paint";
+    case TextureKind::kWallpaper:
+      return "wallpaper";
+    case TextureKind::kWood:
+      return "wood";
+    case TextureKind::kTiles:
+      return "tiles";
+    case TextureKind::kCarpet:
+      return "carpet";
+    case TextureKind::kConcrete:
+      return "concrete";
   }
   return "none";
 }
 
 const char* LightKindName(LightKind kind) {
   switch (kind) {
-    case LightKind::kArea: return "area";
-    case LightKind::kPoint: return "point";
-    case LightKind::kSun: return "sun";
+    case LightKind::kArea:
+      return "area";
+    case LightKind::kPoint:
+      return "point";
+    case LightKind::kSun:
+      return "sun";
   }
   return "area";
 }
@@ -267,9 +273,8 @@ const char* LightKindName(LightKind kind) {
 const char* HingeSideName(HingeSide side) { return side == HingeSide::kLeft ? "left" : "right"; }
 
 std::optional<TextureKind> TextureKindFromName(const std::string& name) {
-  for (TextureKind k : {TextureKind::kNone, TextureKind::kPlaster, TextureKind::kPaint,
-                        TextureKind::kWallpaper, TextureKind::kWood, TextureKind::kTiles,
-                        TextureKind::kCarpet, TextureKind::kConcrete}) {
+  for (TextureKind k : {TextureKind::kNone, TextureKind::kPlaster, TextureKind::kPaint, TextureKind::kWallpaper,
+                        TextureKind::kWood, TextureKind::kTiles, TextureKind::kCarpet, TextureKind::kConcrete}) {
     if (name == TextureKindName(k)) return k;
   }
   return std::nullopt;
@@ -294,9 +299,7 @@ int WallCount(const Room& room) { return static_cast<int>(room.polygon.size()); 
 
 Vec2 WallStart(const Room& room, int wall) { return room.polygon.at(wall); }
 
-Vec2 WallEnd(const Room& room, int wall) {
-  return room.polygon.at((wall + 1) % room.polygon.size());
-}
+Vec2 WallEnd(const Room& room, int wall) { return room.polygon.at((wall + 1) % room.polygon.size()); }
 
 double WallLength(const Room& room, int wall) { return (WallEnd(room, wall) - WallStart(room, wall)).norm(); }
 
@@ -338,22 +341,54 @@ Vec2 PolygonCentroid(const std::vector<Vec2>& polygon) {
 
 const std::vector<Material>& BuiltinMaterials() {
   static const std::vector<Material> kBuiltins = {
-      {.name = "wall", .base_color = Vec3(0.85, 0.83, 0.78), .roughness = 0.9,
-       .texture = TextureKind::kPlaster, .texture_scale_m = 0.3, .secondary_color = Vec3(0.78, 0.76, 0.72)},
-      {.name = "floor", .base_color = Vec3(0.45, 0.32, 0.2), .roughness = 0.6,
-       .texture = TextureKind::kWood, .texture_scale_m = 0.15, .secondary_color = Vec3(0.35, 0.24, 0.15)},
-      {.name = "ceiling", .base_color = Vec3(0.92, 0.92, 0.9), .roughness = 0.95,
-       .texture = TextureKind::kPaint, .texture_scale_m = 0.5, .secondary_color = Vec3(0.88, 0.88, 0.86)},
-      {.name = "door", .base_color = Vec3(0.55, 0.38, 0.22), .roughness = 0.5,
-       .texture = TextureKind::kWood, .texture_scale_m = 0.1, .secondary_color = Vec3(0.45, 0.3, 0.17)},
-      {.name = "window_frame", .base_color = Vec3(0.95, 0.95, 0.95), .roughness = 0.4,
-       .texture = TextureKind::kNone, .texture_scale_m = 0.5, .secondary_color = Vec3(0.9, 0.9, 0.9)},
-      {.name = "glass", .base_color = Vec3(0.85, 0.92, 0.95), .roughness = 0.05,
-       .texture = TextureKind::kNone, .texture_scale_m = 0.5, .secondary_color = Vec3(0.8, 0.9, 0.95)},
-      {.name = "furniture", .base_color = Vec3(0.6, 0.5, 0.4), .roughness = 0.6,
-       .texture = TextureKind::kWood, .texture_scale_m = 0.2, .secondary_color = Vec3(0.5, 0.4, 0.3)},
-      {.name = "skirting", .base_color = Vec3(0.95, 0.95, 0.93), .roughness = 0.5,
-       .texture = TextureKind::kNone, .texture_scale_m = 0.5, .secondary_color = Vec3(0.9, 0.9, 0.88)},
+      {.name = "wall",
+       .base_color = Vec3(0.85, 0.83, 0.78),
+       .roughness = 0.9,
+       .texture = TextureKind::kPlaster,
+       .texture_scale_m = 0.3,
+       .secondary_color = Vec3(0.78, 0.76, 0.72)},
+      {.name = "floor",
+       .base_color = Vec3(0.45, 0.32, 0.2),
+       .roughness = 0.6,
+       .texture = TextureKind::kWood,
+       .texture_scale_m = 0.15,
+       .secondary_color = Vec3(0.35, 0.24, 0.15)},
+      {.name = "ceiling",
+       .base_color = Vec3(0.92, 0.92, 0.9),
+       .roughness = 0.95,
+       .texture = TextureKind::kPaint,
+       .texture_scale_m = 0.5,
+       .secondary_color = Vec3(0.88, 0.88, 0.86)},
+      {.name = "door",
+       .base_color = Vec3(0.55, 0.38, 0.22),
+       .roughness = 0.5,
+       .texture = TextureKind::kWood,
+       .texture_scale_m = 0.1,
+       .secondary_color = Vec3(0.45, 0.3, 0.17)},
+      {.name = "window_frame",
+       .base_color = Vec3(0.95, 0.95, 0.95),
+       .roughness = 0.4,
+       .texture = TextureKind::kNone,
+       .texture_scale_m = 0.5,
+       .secondary_color = Vec3(0.9, 0.9, 0.9)},
+      {.name = "glass",
+       .base_color = Vec3(0.85, 0.92, 0.95),
+       .roughness = 0.05,
+       .texture = TextureKind::kNone,
+       .texture_scale_m = 0.5,
+       .secondary_color = Vec3(0.8, 0.9, 0.95)},
+      {.name = "furniture",
+       .base_color = Vec3(0.6, 0.5, 0.4),
+       .roughness = 0.6,
+       .texture = TextureKind::kWood,
+       .texture_scale_m = 0.2,
+       .secondary_color = Vec3(0.5, 0.4, 0.3)},
+      {.name = "skirting",
+       .base_color = Vec3(0.95, 0.95, 0.93),
+       .roughness = 0.5,
+       .texture = TextureKind::kNone,
+       .texture_scale_m = 0.5,
+       .secondary_color = Vec3(0.9, 0.9, 0.88)},
   };
   return kBuiltins;
 }
@@ -384,8 +419,7 @@ std::vector<Viewpoint> ResolveViewpoints(const Scene& scene) {
   std::vector<Viewpoint> views = scene.viewpoints;
   if (scene.turn && scene.turn->step_deg > 0) {
     const TurnInPlace& t = *scene.turn;
-    int count = t.count > 0 ? t.count
-                            : std::max(1, static_cast<int>(std::floor(360.0 / t.step_deg + 1e-9)));
+    int count = t.count > 0 ? t.count : std::max(1, static_cast<int>(std::floor(360.0 / t.step_deg + 1e-9)));
     for (int i = 0; i < count; ++i) {
       views.push_back({.position_m = t.position_m, .yaw_deg = t.start_deg + i * t.step_deg, .pitch_deg = 0.0});
     }
@@ -438,8 +472,10 @@ std::vector<Problem> ValidateScene(const Scene& scene, const std::string& file) 
       p.Add(lp + ".color", fmt::format("components must be >= 0, got {}", Vec3Text(l.color)));
     }
     if (l.kind == LightKind::kArea) {
-      if (!(std::isfinite(l.size_m.x()) && l.size_m.x() > 0)) p.Add(lp + ".size_m[0]", fmt::format("must be > 0, got {}", l.size_m.x()));
-      if (!(std::isfinite(l.size_m.y()) && l.size_m.y() > 0)) p.Add(lp + ".size_m[1]", fmt::format("must be > 0, got {}", l.size_m.y()));
+      if (!(std::isfinite(l.size_m.x()) && l.size_m.x() > 0))
+        p.Add(lp + ".size_m[0]", fmt::format("must be > 0, got {}", l.size_m.x()));
+      if (!(std::isfinite(l.size_m.y()) && l.size_m.y() > 0))
+        p.Add(lp + ".size_m[1]", fmt::format("must be > 0, got {}", l.size_m.y()));
     }
     if (l.kind == LightKind::kSun) {
       p.Range(lp + ".elevation_deg", l.elevation_deg, 0, 90);
@@ -539,17 +575,16 @@ std::string DescribeScene(const Scene& scene) {
     } else {
       shape = fmt::format("{}-sided room", room.polygon.size());
     }
-    out += fmt::format(" {}{} ({:.2f} m²), {:.2f} m high", room.name.empty() ? "" : room.name + ": ",
-                       shape, room.polygon.size() >= 3 ? PolygonArea(room.polygon) : 0.0, room.height_m);
+    out += fmt::format(" {}{} ({:.2f} m²), {:.2f} m high", room.name.empty() ? "" : room.name + ": ", shape,
+                       room.polygon.size() >= 3 ? PolygonArea(room.polygon) : 0.0, room.height_m);
     std::size_t doors = 0, windows = 0;
     for (const Opening& o : room.openings) (o.kind == OpeningKind::kDoor ? doors : windows)++;
     out += fmt::format(", {}, {}", Count(doors, "door", "doors"), Count(windows, "window", "windows"));
     std::vector<std::string> details;
     for (const Opening& o : room.openings) {
       if (o.wall < 0 || o.wall >= WallCount(room)) continue;
-      details.push_back(fmt::format("{} {:.2f} × {:.2f} m on the {} wall (wall {})",
-                                    OpeningKindName(o.kind), o.width_m, o.height_m,
-                                    WallCompassName(room, o.wall), o.wall));
+      details.push_back(fmt::format("{} {:.2f} × {:.2f} m on the {} wall (wall {})", OpeningKindName(o.kind), o.width_m,
+                                    o.height_m, WallCompassName(room, o.wall), o.wall));
     }
     if (!details.empty()) {
       out += " (";
@@ -574,9 +609,8 @@ std::string DescribeScene(const Scene& scene) {
 std::string Scene::ToString() const {
   std::size_t openings = 0;
   for (const Room& r : rooms) openings += r.openings.size();
-  return fmt::format("Scene({}: {} rooms, {} openings, {} furniture, {} lights, {} views)", name,
-                     rooms.size(), openings, furniture.size(), lights.size(),
-                     ResolveViewpoints(*this).size());
+  return fmt::format("Scene({}: {} rooms, {} openings, {} furniture, {} lights, {} views)", name, rooms.size(),
+                     openings, furniture.size(), lights.size(), ResolveViewpoints(*this).size());
 }
 
 std::optional<Vec2> SurveySpot(const std::vector<Vec2>& polygon) {

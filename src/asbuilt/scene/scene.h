@@ -27,7 +27,7 @@ struct Material {
   Vec3 base_color = Vec3(0.8, 0.8, 0.8);  // Linear RGB in [0, 1].
   double roughness = 0.8;                 // [0, 1]; low = glossy highlights.
   TextureKind texture = TextureKind::kNone;
-  double texture_scale_m = 0.5;           // Feature size of the texture, > 0.
+  double texture_scale_m = 0.5;                // Feature size of the texture, > 0.
   Vec3 secondary_color = Vec3(0.6, 0.6, 0.6);  // Second colour (tiles' grout, wood grain…).
 };
 
@@ -68,7 +68,7 @@ struct Room {
   std::string wall_material = "wall";
   std::string floor_material = "floor";
   std::string ceiling_material = "ceiling";
-  bool skirting = true;           // Skirting boards (labelled wall).
+  bool skirting = true;  // Skirting boards (labelled wall).
 };
 
 // A furniture box standing in the room (occludes walls; label background).
@@ -90,8 +90,8 @@ struct Light {
   Vec3 color = Vec3(1.0, 0.95, 0.9);  // Linear RGB.
   double intensity = 1.0;             // Relative radiance / power scale, > 0.
   // Sun only: direction the light comes from.
-  double azimuth_deg = 135.0;         // From +X towards +Y.
-  double elevation_deg = 35.0;        // Above the horizon.
+  double azimuth_deg = 135.0;   // From +X towards +Y.
+  double elevation_deg = 35.0;  // Above the horizon.
 };
 
 // What is seen through windows and lights the room from outside.
@@ -107,7 +107,7 @@ struct Environment {
 struct StereoRigSpec {
   int width_px = 640;
   int height_px = 480;
-  double hfov_deg = 80.0;            // Used when fx is not given.
+  double hfov_deg = 80.0;                // Used when fx is not given.
   std::optional<double> fx, fy, cx, cy;  // Explicit intrinsics override the FOV.
   double baseline_m = 0.12;
 

@@ -68,9 +68,10 @@ Material ParseMaterial(const JsonField& f) {
     if (auto k = TextureKindFromName(*s)) {
       m.texture = *k;
     } else {
-      t.AddError(fmt::format("unknown texture \"{}\" (none, plaster, paint, wallpaper, wood, tiles, "
-                             "carpet, concrete)",
-                             *s));
+      t.AddError(
+          fmt::format("unknown texture \"{}\" (none, plaster, paint, wallpaper, wood, tiles, "
+                      "carpet, concrete)",
+                      *s));
     }
   }
   ReadNumber(f, "texture_scale_m", m.texture_scale_m);
@@ -80,8 +81,8 @@ Material ParseMaterial(const JsonField& f) {
 
 Opening ParseOpening(const JsonField& f) {
   Opening o;
-  if (!f.Object({"kind", "wall", "offset_m", "width_m", "height_m", "sill_m", "open_deg", "hinge",
-                 "frame_width_m", "glass", "glazed", "material"})) {
+  if (!f.Object({"kind", "wall", "offset_m", "width_m", "height_m", "sill_m", "open_deg", "hinge", "frame_width_m",
+                 "glass", "glazed", "material"})) {
     return o;
   }
   JsonField kind = f.Required("kind");
@@ -121,8 +122,8 @@ Opening ParseOpening(const JsonField& f) {
 
 Room ParseRoom(const JsonField& f) {
   Room room;
-  if (!f.Object({"name", "polygon", "height_m", "wall_thickness_m", "openings", "wall_material",
-                 "floor_material", "ceiling_material", "skirting"})) {
+  if (!f.Object({"name", "polygon", "height_m", "wall_thickness_m", "openings", "wall_material", "floor_material",
+                 "ceiling_material", "skirting"})) {
     return room;
   }
   ReadString(f, "name", room.name);
@@ -192,8 +193,8 @@ void ParseArray(const JsonField& parent, const char* key, std::vector<T>& out, F
 Scene ParseScene(const json& root, JsonDiagnostics& diag) {
   Scene scene;
   JsonField doc(root, diag);
-  if (!doc.Object({"version", "name", "seed", "materials", "rooms", "furniture", "lights",
-                   "environment", "rig", "viewpoints", "turn", "$schema", "description"})) {
+  if (!doc.Object({"version", "name", "seed", "materials", "rooms", "furniture", "lights", "environment", "rig",
+                   "viewpoints", "turn", "$schema", "description"})) {
     return scene;
   }
   JsonField version = doc.Required("version");
@@ -224,8 +225,7 @@ Scene ParseScene(const json& root, JsonDiagnostics& diag) {
   ParseArray(doc, "lights", scene.lights, ParseLight);
 
   JsonField env = doc.Optional("environment");
-  if (env.present() &&
-      env.Object({"sky", "sky_color", "ground_color", "exterior_objects", "ambient"})) {
+  if (env.present() && env.Object({"sky", "sky_color", "ground_color", "exterior_objects", "ambient"})) {
     Environment& e = scene.environment;
     ReadBool(env, "sky", e.sky);
     ReadVec3(env.Optional("sky_color"), e.sky_color);
@@ -235,8 +235,7 @@ Scene ParseScene(const json& root, JsonDiagnostics& diag) {
   }
 
   JsonField rig = doc.Optional("rig");
-  if (rig.present() &&
-      rig.Object({"width_px", "height_px", "hfov_deg", "fx", "fy", "cx", "cy", "baseline_m"})) {
+  if (rig.present() && rig.Object({"width_px", "height_px", "hfov_deg", "fx", "fy", "cx", "cy", "baseline_m"})) {
     StereoRigSpec& s = scene.rig;
     ReadInt(rig, "width_px", s.width_px);
     ReadInt(rig, "height_px", s.height_px);
@@ -405,38 +404,37 @@ json SceneToJson(const Scene& scene) {
   j["viewpoints"] = std::move(views);
   if (scene.turn) {
     const TurnInPlace& t = *scene.turn;
-    j["turn"] = {{"position_m", J3(t.position_m)},
-                 {"start_deg", t.start_deg},
-                 {"step_deg", t.step_deg},
-                 {"count", t.count}};
+    j["turn"] = {
+        {"position_m", J3(t.position_m)}, {"start_deg", t.start_deg}, {"step_deg", t.step_deg}, {"count", t.count}};
   }
   return j;
 }
 
-void WriteScene(const Scene& scene, const fs::path& path) {
-  WriteFileAtomic(path, SceneToJson(scene).dump(2) + "\n");
-}
+void WriteScene(const Scene& scene, const fs::path& path) { WriteFileAtomic(path, SceneToJson(scene).dump(2) + "\n"); }
 
 const json& SceneJsonSchema() {
   static const json kSchema = [] {
     auto num = [](const char* d) { return json{{"type", "number"}, {"description", d}}; };
-    auto pos = [](const char* d) {
-      return json{{"type", "number"}, {"exclusiveMinimum", 0}, {"description", d}};
-    };
+    auto pos = [](const char* d) { return json{{"type", "number"}, {"exclusiveMinimum", 0}, {"description", d}}; };
     auto nonneg = [](const char* d) { return json{{"type", "number"}, {"minimum", 0}, {"description", d}}; };
     auto str = [](const char* d) { return json{{"type", "string"}, {"description", d}}; };
     auto boolean = [](const char* d) { return json{{"type", "boolean"}, {"description", d}}; };
     auto vec = [](int n, const char* d) {
-      return json{{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", n},
-                  {"maxItems", n}, {"description", d}};
+      return json{
+          {"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", n}, {"maxItems", n}, {"description", d}};
     };
     auto colour = [](const char* d) {
-      return json{{"type", "array"}, {"items", {{"type", "number"}, {"minimum", 0}, {"maximum", 1}}},
-                  {"minItems", 3}, {"maxItems", 3}, {"description", d}};
+      return json{{"type", "array"},
+                  {"items", {{"type", "number"}, {"minimum", 0}, {"maximum", 1}}},
+                  {"minItems", 3},
+                  {"maxItems", 3},
+                  {"description", d}};
     };
     auto object = [](json props, json required, const char* d) {
-      return json{{"type", "object"}, {"properties", std::move(props)},
-                  {"required", std::move(required)}, {"additionalProperties", false},
+      return json{{"type", "object"},
+                  {"properties", std::move(props)},
+                  {"required", std::move(required)},
+                  {"additionalProperties", false},
                   {"description", d}};
     };
     json material = object(
@@ -449,93 +447,89 @@ const json& SceneJsonSchema() {
         {"name"}, "a surface material");
     json opening = object(
         {{"kind", json{{"enum", {"door", "window"}}}},
-         {"wall", json{{"type", "integer"}, {"minimum", 0},
+         {"wall", json{{"type", "integer"},
+                       {"minimum", 0},
                        {"description", "wall index: wall i runs from polygon[i] to polygon[i+1]"}}},
          {"offset_m", nonneg("distance along the wall from its start to the opening's near edge")},
          {"width_m", pos("clear width")},
          {"height_m", pos("clear height")},
          {"sill_m", nonneg("bottom of the opening above the floor (0 for doors); sill + height <= room height")},
-         {"open_deg", json{{"type", "number"}, {"minimum", 0}, {"maximum", 180},
-                           {"description", "door leaf angle, 0 = closed"}}},
+         {"open_deg",
+          json{{"type", "number"}, {"minimum", 0}, {"maximum", 180}, {"description", "door leaf angle, 0 = closed"}}},
          {"hinge", json{{"enum", {"left", "right"}}}},
          {"frame_width_m", nonneg("window frame width")},
          {"glass", boolean("window has glass")},
          {"glazed", boolean("door leaf glazed to the floor (patio or French door); default false")},
          {"material", str("material name; empty = built-in door/window material")}},
         {"kind", "wall"}, "a door or window in one wall of its room");
-    json room = object(
-        {{"name", str("room name")},
-         {"polygon", json{{"type", "array"}, {"minItems", 3}, {"items", vec(2, "[x, y] metres")},
-                          {"description", "inner wall faces, counter-clockwise seen from above "
+    json room = object({{"name", str("room name")},
+                        {"polygon", json{{"type", "array"},
+                                         {"minItems", 3},
+                                         {"items", vec(2, "[x, y] metres")},
+                                         {"description",
+                                          "inner wall faces, counter-clockwise seen from above "
                                           "(north = +y, east = +x), first point not repeated"}}},
-         {"height_m", pos("floor to ceiling")},
-         {"wall_thickness_m", pos("wall thickness outwards from the inner face")},
-         {"openings", json{{"type", "array"}, {"items", opening}}},
-         {"wall_material", str("material name")},
-         {"floor_material", str("material name")},
-         {"ceiling_material", str("material name")},
-         {"skirting", boolean("skirting boards along the walls")}},
-        {"polygon"}, "a room");
-    json furniture = object(
-        {{"name", str("what it is")},
-         {"centre_m", vec(2, "footprint centre [x, y]")},
-         {"yaw_deg", num("rotation about +z, degrees")},
-         {"size_m", vec(3, "[width, depth, height] metres, each > 0")},
-         {"elevation_m", nonneg("bottom above the floor")},
-         {"material", str("material name")}},
-        {"centre_m"}, "a furniture box");
-    json light = object(
-        {{"kind", json{{"enum", {"area", "point", "sun"}}}},
-         {"position_m", vec(3, "area: centre facing down; point: position")},
-         {"size_m", vec(2, "area light size")},
-         {"color", vec(3, "linear RGB")},
-         {"intensity", pos("relative power")},
-         {"azimuth_deg", num("sun: direction light comes from, from +x towards +y")},
-         {"elevation_deg", num("sun: degrees above the horizon")}},
-        json::array(), "a light");
-    json environment = object(
-        {{"sky", boolean("sky visible through windows")},
-         {"sky_color", colour("linear RGB")},
-         {"ground_color", colour("linear RGB")},
-         {"exterior_objects", boolean("trees and buildings outside")},
-         {"ambient", json{{"type", "number"}, {"minimum", 0}, {"maximum", 1}}}},
-        json::array(), "outside the room");
-    json rig = object(
-        {{"width_px", json{{"type", "integer"}, {"minimum", 1}}},
-         {"height_px", json{{"type", "integer"}, {"minimum", 1}}},
-         {"hfov_deg", json{{"type", "number"}, {"exclusiveMinimum", 0}, {"exclusiveMaximum", 180}}},
-         {"fx", pos("focal length, px (overrides hfov_deg)")},
-         {"fy", pos("px")},
-         {"cx", num("px")},
-         {"cy", num("px")},
-         {"baseline_m", pos("distance between the two cameras")}},
-        json::array(), "the stereo rig");
-    json viewpoint = object(
-        {{"position_m", vec(3, "rig centre [x, y, z], inside a room")},
-         {"yaw_deg", num("0 looks along +y (north), counter-clockwise positive")},
-         {"pitch_deg", num("positive looks up")}},
-        {"position_m"}, "one rig pose");
-    json turn = object(
-        {{"position_m", vec(3, "rig centre [x, y, z], inside a room")},
-         {"start_deg", num("first yaw")},
-         {"step_deg", pos("yaw step")},
-         {"count", json{{"type", "integer"}, {"minimum", 0}, {"description", "0 = a full turn"}}}},
-        {"position_m"}, "turn-in-place views");
-    json schema = object(
-        {{"version", json{{"const", 1}}},
-         {"name", str("scene name")},
-         {"seed", json{{"type", "integer"}, {"minimum", 0}}},
-         {"materials", json{{"type", "array"}, {"items", material}}},
-         {"rooms", json{{"type", "array"}, {"minItems", 1}, {"items", room}}},
-         {"furniture", json{{"type", "array"}, {"items", furniture}}},
-         {"lights", json{{"type", "array"}, {"items", light}}},
-         {"environment", environment},
-         {"rig", rig},
-         {"viewpoints", json{{"type", "array"}, {"items", viewpoint}}},
-         {"turn", turn}},
-        {"version", "rooms"},
-        "asbuilt scene: metres and degrees; world +z up, floor z = 0, north = +y, east = +x. "
-        "Built-in materials: wall, floor, ceiling, door, window_frame, glass, furniture, skirting.");
+                        {"height_m", pos("floor to ceiling")},
+                        {"wall_thickness_m", pos("wall thickness outwards from the inner face")},
+                        {"openings", json{{"type", "array"}, {"items", opening}}},
+                        {"wall_material", str("material name")},
+                        {"floor_material", str("material name")},
+                        {"ceiling_material", str("material name")},
+                        {"skirting", boolean("skirting boards along the walls")}},
+                       {"polygon"}, "a room");
+    json furniture = object({{"name", str("what it is")},
+                             {"centre_m", vec(2, "footprint centre [x, y]")},
+                             {"yaw_deg", num("rotation about +z, degrees")},
+                             {"size_m", vec(3, "[width, depth, height] metres, each > 0")},
+                             {"elevation_m", nonneg("bottom above the floor")},
+                             {"material", str("material name")}},
+                            {"centre_m"}, "a furniture box");
+    json light = object({{"kind", json{{"enum", {"area", "point", "sun"}}}},
+                         {"position_m", vec(3, "area: centre facing down; point: position")},
+                         {"size_m", vec(2, "area light size")},
+                         {"color", vec(3, "linear RGB")},
+                         {"intensity", pos("relative power")},
+                         {"azimuth_deg", num("sun: direction light comes from, from +x towards +y")},
+                         {"elevation_deg", num("sun: degrees above the horizon")}},
+                        json::array(), "a light");
+    json environment = object({{"sky", boolean("sky visible through windows")},
+                               {"sky_color", colour("linear RGB")},
+                               {"ground_color", colour("linear RGB")},
+                               {"exterior_objects", boolean("trees and buildings outside")},
+                               {"ambient", json{{"type", "number"}, {"minimum", 0}, {"maximum", 1}}}},
+                              json::array(), "outside the room");
+    json rig = object({{"width_px", json{{"type", "integer"}, {"minimum", 1}}},
+                       {"height_px", json{{"type", "integer"}, {"minimum", 1}}},
+                       {"hfov_deg", json{{"type", "number"}, {"exclusiveMinimum", 0}, {"exclusiveMaximum", 180}}},
+                       {"fx", pos("focal length, px (overrides hfov_deg)")},
+                       {"fy", pos("px")},
+                       {"cx", num("px")},
+                       {"cy", num("px")},
+                       {"baseline_m", pos("distance between the two cameras")}},
+                      json::array(), "the stereo rig");
+    json viewpoint = object({{"position_m", vec(3, "rig centre [x, y, z], inside a room")},
+                             {"yaw_deg", num("0 looks along +y (north), counter-clockwise positive")},
+                             {"pitch_deg", num("positive looks up")}},
+                            {"position_m"}, "one rig pose");
+    json turn = object({{"position_m", vec(3, "rig centre [x, y, z], inside a room")},
+                        {"start_deg", num("first yaw")},
+                        {"step_deg", pos("yaw step")},
+                        {"count", json{{"type", "integer"}, {"minimum", 0}, {"description", "0 = a full turn"}}}},
+                       {"position_m"}, "turn-in-place views");
+    json schema = object({{"version", json{{"const", 1}}},
+                          {"name", str("scene name")},
+                          {"seed", json{{"type", "integer"}, {"minimum", 0}}},
+                          {"materials", json{{"type", "array"}, {"items", material}}},
+                          {"rooms", json{{"type", "array"}, {"minItems", 1}, {"items", room}}},
+                          {"furniture", json{{"type", "array"}, {"items", furniture}}},
+                          {"lights", json{{"type", "array"}, {"items", light}}},
+                          {"environment", environment},
+                          {"rig", rig},
+                          {"viewpoints", json{{"type", "array"}, {"items", viewpoint}}},
+                          {"turn", turn}},
+                         {"version", "rooms"},
+                         "asbuilt scene: metres and degrees; world +z up, floor z = 0, north = +y, east = +x. "
+                         "Built-in materials: wall, floor, ceiling, door, window_frame, glass, furniture, skirting.");
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema";
     schema["title"] = "asbuilt scene";
     schema["properties"]["$schema"] = {{"type", "string"}};

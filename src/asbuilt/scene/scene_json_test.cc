@@ -27,32 +27,65 @@ Scene EverythingSet() {
   Scene s;
   s.name = "all";
   s.seed = 18446744073709551615ull;
-  s.materials.push_back({.name = "brick", .base_color = Vec3(0.1, 0.2, 0.3), .roughness = 0.123456789,
-                         .texture = TextureKind::kTiles, .texture_scale_m = 0.07,
+  s.materials.push_back({.name = "brick",
+                         .base_color = Vec3(0.1, 0.2, 0.3),
+                         .roughness = 0.123456789,
+                         .texture = TextureKind::kTiles,
+                         .texture_scale_m = 0.07,
                          .secondary_color = Vec3(0.9, 0.8, 0.7)});
   Room r;
   r.name = "hall";
   r.polygon = {{0.1, 0.2}, {5.3, 0.2}, {5.3, 4.7}, {0.1, 4.7}};
   r.height_m = 2.65;
   r.wall_thickness_m = 0.31;
-  r.openings.push_back({.kind = OpeningKind::kDoor, .wall = 1, .offset_m = 0.3, .width_m = 0.85,
-                        .height_m = 2.05, .sill_m = 0.0, .open_deg = 75.5, .hinge = HingeSide::kRight,
-                        .frame_width_m = 0.04, .glass = false, .material = "brick"});
-  r.openings.push_back({.kind = OpeningKind::kWindow, .wall = 2, .offset_m = 1.0 / 3.0, .width_m = 1.1,
-                        .height_m = 1.3, .sill_m = 0.95});
+  r.openings.push_back({.kind = OpeningKind::kDoor,
+                        .wall = 1,
+                        .offset_m = 0.3,
+                        .width_m = 0.85,
+                        .height_m = 2.05,
+                        .sill_m = 0.0,
+                        .open_deg = 75.5,
+                        .hinge = HingeSide::kRight,
+                        .frame_width_m = 0.04,
+                        .glass = false,
+                        .material = "brick"});
+  r.openings.push_back({.kind = OpeningKind::kWindow,
+                        .wall = 2,
+                        .offset_m = 1.0 / 3.0,
+                        .width_m = 1.1,
+                        .height_m = 1.3,
+                        .sill_m = 0.95});
   r.wall_material = "brick";
   r.floor_material = "floor";
   r.ceiling_material = "wall";
   r.skirting = false;
   s.rooms.push_back(r);
-  s.furniture.push_back({.name = "sofa", .centre_m = {2, 2}, .yaw_deg = 12.5, .size_m = Vec3(2, 0.9, 0.8),
-                         .elevation_m = 0.01, .material = "brick"});
-  s.lights.push_back({.kind = LightKind::kSun, .position_m = Vec3(1, 2, 3), .size_m = Vec2(0.5, 0.25),
-                      .color = Vec3(1, 1, 1), .intensity = 3.5, .azimuth_deg = 10, .elevation_deg = 20});
-  s.environment = {.sky = false, .sky_color = Vec3(0.1, 0.1, 0.1), .ground_color = Vec3(0.2, 0.2, 0.2),
-                   .exterior_objects = false, .ambient = 0.3};
-  s.rig = {.width_px = 320, .height_px = 240, .hfov_deg = 70, .fx = 250.5, .fy = 251.5, .cx = 160.1,
-           .cy = 119.9, .baseline_m = 0.065};
+  s.furniture.push_back({.name = "sofa",
+                         .centre_m = {2, 2},
+                         .yaw_deg = 12.5,
+                         .size_m = Vec3(2, 0.9, 0.8),
+                         .elevation_m = 0.01,
+                         .material = "brick"});
+  s.lights.push_back({.kind = LightKind::kSun,
+                      .position_m = Vec3(1, 2, 3),
+                      .size_m = Vec2(0.5, 0.25),
+                      .color = Vec3(1, 1, 1),
+                      .intensity = 3.5,
+                      .azimuth_deg = 10,
+                      .elevation_deg = 20});
+  s.environment = {.sky = false,
+                   .sky_color = Vec3(0.1, 0.1, 0.1),
+                   .ground_color = Vec3(0.2, 0.2, 0.2),
+                   .exterior_objects = false,
+                   .ambient = 0.3};
+  s.rig = {.width_px = 320,
+           .height_px = 240,
+           .hfov_deg = 70,
+           .fx = 250.5,
+           .fy = 251.5,
+           .cx = 160.1,
+           .cy = 119.9,
+           .baseline_m = 0.065};
   s.viewpoints.push_back({.position_m = {1, 1, 1.4}, .yaw_deg = -20, .pitch_deg = 5});
   s.turn = TurnInPlace{.position_m = {2.5, 2.5, 1.5}, .start_deg = 15, .step_deg = 45, .count = 4};
   return s;
@@ -87,9 +120,9 @@ TEST(SceneJson, ReadsTheClassroomExample) {
 }
 
 TEST(SceneJson, WindowsDefaultToAWindowSizeAndSill) {
-  nlohmann::json j = {{"version", 1},
-                      {"rooms", {{{"polygon", {{0, 0}, {4, 0}, {4, 4}, {0, 4}}},
-                                  {"openings", {{{"kind", "window"}, {"wall", 0}}}}}}}};
+  nlohmann::json j = {
+      {"version", 1},
+      {"rooms", {{{"polygon", {{0, 0}, {4, 0}, {4, 4}, {0, 4}}}, {"openings", {{{"kind", "window"}, {"wall", 0}}}}}}}};
   Scene s = SceneFromJson(j, "mini");
   EXPECT_EQ(s.rooms[0].openings[0].sill_m, 0.9);
   EXPECT_EQ(s.rooms[0].openings[0].height_m, 1.2);
@@ -110,8 +143,7 @@ TEST(SceneJson, TypeErrorsNameTheFieldPath) {
   } catch (const InputError& e) {
     auto m = Messages(e);
     EXPECT_THAT(m, ::testing::Contains("scene.json: version: missing required field"));
-    EXPECT_THAT(m, ::testing::Contains(
-                       "scene.json: rooms[0].openings[1].width_m: expected a number, got \"wide\""));
+    EXPECT_THAT(m, ::testing::Contains("scene.json: rooms[0].openings[1].width_m: expected a number, got \"wide\""));
     EXPECT_THAT(m, ::testing::Contains(
                        "scene.json: rooms[0].openings[0].kind: expected \"door\" or \"window\", got \"hatch\""));
     EXPECT_THAT(m, ::testing::Contains("scene.json: rooms[0].polygon[2]: expected 2 elements, got 1"));
@@ -127,8 +159,7 @@ TEST(SceneJson, SemanticErrorsComeAfterTypesAreRight) {
     SceneFromJson(j, "scene.json");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_THAT(Messages(e), ::testing::ElementsAre(
-                                 "scene.json: rooms[0].openings[1].width_m: must be > 0, got -1"));
+    EXPECT_THAT(Messages(e), ::testing::ElementsAre("scene.json: rooms[0].openings[1].width_m: must be > 0, got -1"));
   }
 }
 

@@ -18,10 +18,10 @@ Scene SmallClassroom() {
   room.polygon = {{0, 0}, {6, 0}, {6, 8}, {0, 8}};
   room.height_m = 3.0;
   room.openings.push_back({.kind = OpeningKind::kDoor, .wall = 1, .offset_m = 0.5, .width_m = 1.0});
-  room.openings.push_back({.kind = OpeningKind::kWindow, .wall = 2, .offset_m = 1.0, .width_m = 1.5,
-                           .height_m = 1.4, .sill_m = 0.9});
-  room.openings.push_back({.kind = OpeningKind::kWindow, .wall = 2, .offset_m = 3.5, .width_m = 1.5,
-                           .height_m = 1.4, .sill_m = 0.9});
+  room.openings.push_back(
+      {.kind = OpeningKind::kWindow, .wall = 2, .offset_m = 1.0, .width_m = 1.5, .height_m = 1.4, .sill_m = 0.9});
+  room.openings.push_back(
+      {.kind = OpeningKind::kWindow, .wall = 2, .offset_m = 3.5, .width_m = 1.5, .height_m = 1.4, .sill_m = 0.9});
   s.rooms.push_back(room);
   s.furniture.push_back({.name = "desk", .centre_m = {3, 3}});
   s.lights.push_back({});
@@ -41,8 +41,7 @@ TEST(Scene, SmallClassroomIsValid) {
 }
 
 TEST(Scene, PrintsItself) {
-  EXPECT_EQ(SmallClassroom().ToString(),
-            "Scene(classroom: 1 rooms, 3 openings, 1 furniture, 1 lights, 12 views)");
+  EXPECT_EQ(SmallClassroom().ToString(), "Scene(classroom: 1 rooms, 3 openings, 1 furniture, 1 lights, 12 views)");
 }
 
 TEST(Materials, BuiltinsResolveAndSceneMaterialsOverrideThem) {
@@ -160,7 +159,8 @@ TEST(SurveySpot, StandsWhereEveryWallIsInView) {
   // Turned and moved, the spot turns and moves with it.
   const Eigen::Rotation2Dd rot(0.4);
   std::vector<Vec2> turned;
-  for (const Vec2& p : std::vector<Vec2>{{0, 0}, {8, 0}, {8, 4}, {4, 4}, {4, 8}, {0, 8}}) turned.push_back(rot * p + Vec2(3, -1));
+  for (const Vec2& p : std::vector<Vec2>{{0, 0}, {8, 0}, {8, 4}, {4, 4}, {4, 8}, {0, 8}})
+    turned.push_back(rot * p + Vec2(3, -1));
   std::optional<Vec2> t = SurveySpot(turned);
   ASSERT_TRUE(t);
   EXPECT_LT((*t - (rot * Vec2(2, 2) + Vec2(3, -1))).norm(), 0.08);
@@ -185,8 +185,7 @@ TEST(ValidateScene, RejectsOpenAndSelfIntersectingPolygons) {
 TEST(ValidateScene, RejectsClockwisePolygons) {
   Scene s = SmallClassroom();
   s.rooms[0].polygon = {{0, 0}, {0, 8}, {6, 8}, {6, 0}};
-  EXPECT_THAT(Messages(ValidateScene(s)),
-              ::testing::Contains(HasSubstr("rooms[0].polygon: points are clockwise")));
+  EXPECT_THAT(Messages(ValidateScene(s)), ::testing::Contains(HasSubstr("rooms[0].polygon: points are clockwise")));
 }
 
 TEST(ValidateScene, RejectsOpeningsOutsideTheirWallOrOverlapping) {
@@ -194,11 +193,9 @@ TEST(ValidateScene, RejectsOpeningsOutsideTheirWallOrOverlapping) {
   s.rooms[0].openings[0].offset_m = 7.5;  // East wall is 8 m long.
   s.rooms[0].openings[2].offset_m = 2.0;  // Overlaps window 1 (1.0 … 2.5) by 0.5 m.
   auto m = Messages(ValidateScene(s));
-  EXPECT_THAT(m, ::testing::Contains(
-                     "scene: rooms[0].openings[0]: outside its wall: offset 7.5 + width 1 = 8.5 > "
-                     "wall 1 length 8.000"));
-  EXPECT_THAT(m, ::testing::Contains(
-                     "scene: rooms[0].openings[2]: overlaps openings[1] on wall 2 (by 0.500 m)"));
+  EXPECT_THAT(m, ::testing::Contains("scene: rooms[0].openings[0]: outside its wall: offset 7.5 + width 1 = 8.5 > "
+                                     "wall 1 length 8.000"));
+  EXPECT_THAT(m, ::testing::Contains("scene: rooms[0].openings[2]: overlaps openings[1] on wall 2 (by 0.500 m)"));
 }
 
 TEST(ValidateScene, RejectsOpeningsAboveTheWallAndNonPositiveSizes) {
@@ -210,8 +207,7 @@ TEST(ValidateScene, RejectsOpeningsAboveTheWallAndNonPositiveSizes) {
   auto m = Messages(ValidateScene(s));
   EXPECT_THAT(m, ::testing::Contains("scene: rooms[0].openings[2].width_m: must be > 0, got 0"));
   EXPECT_THAT(m, ::testing::Contains("scene: rooms[0].height_m: must be > 0, got -3"));
-  EXPECT_THAT(m, ::testing::Contains(
-                     "scene: rooms[0].openings[0].wall: wall index 4 out of range (room has 4 walls)"));
+  EXPECT_THAT(m, ::testing::Contains("scene: rooms[0].openings[0].wall: wall index 4 out of range (room has 4 walls)"));
   s.rooms[0].height_m = 3;
   EXPECT_THAT(Messages(ValidateScene(s)),
               ::testing::Contains("scene: rooms[0].openings[1]: above the wall: sill 2 + height 1.4 = "
@@ -260,8 +256,8 @@ TEST(ValidateScene, AcceptsRotatedAndLShapedRooms) {
   for (Vec2 p : {Vec2(0, 0), Vec2(3, 0), Vec2(3, 2), Vec2(0, 2)}) {
     rotated.polygon.push_back(Vec2(10 + c * p.x() - sn * p.y(), sn * p.x() + c * p.y()));
   }
-  rotated.openings.push_back({.kind = OpeningKind::kWindow, .wall = 0, .offset_m = 1, .width_m = 1.0,
-                              .height_m = 1.0, .sill_m = 1.0});
+  rotated.openings.push_back(
+      {.kind = OpeningKind::kWindow, .wall = 0, .offset_m = 1, .width_m = 1.0, .height_m = 1.0, .sill_m = 1.0});
   s.rooms.push_back(rotated);
   s.turn = TurnInPlace{.position_m = {1, 1, 1.5}};
   EXPECT_THAT(Messages(ValidateScene(s)), ::testing::IsEmpty());

@@ -20,23 +20,36 @@ namespace {
 
 const std::map<std::string, double>& NumberWords() {
   static const std::map<std::string, double> kWords = {
-      {"zero", 0},     {"one", 1},        {"two", 2},       {"three", 3},    {"four", 4},
-      {"five", 5},     {"six", 6},        {"seven", 7},     {"eight", 8},    {"nine", 9},
-      {"ten", 10},     {"eleven", 11},    {"twelve", 12},   {"thirteen", 13}, {"fourteen", 14},
-      {"fifteen", 15}, {"sixteen", 16},   {"seventeen", 17}, {"eighteen", 18}, {"nineteen", 19},
-      {"twenty", 20},  {"thirty", 30},    {"forty", 40},    {"fifty", 50}};
+      {"zero", 0},      {"one", 1},       {"two", 2},       {"three", 3},    {"four", 4},     {"five", 5},
+      {"six", 6},       {"seven", 7},     {"eight", 8},     {"nine", 9},     {"ten", 10},     {"eleven", 11},
+      {"twelve", 12},   {"thirteen", 13}, {"fourteen", 14}, {"fifteen", 15}, {"sixteen", 16}, {"seventeen", 17},
+      {"eighteen", 18}, {"nineteen", 19}, {"twenty", 20},   {"thirty", 30},  {"forty", 40},   {"fifty", 50}};
   return kWords;
 }
 
 // Metres per unit word.
 std::optional<double> UnitFactor(const std::string& w) {
-  static const std::map<std::string, double> kUnits = {
-      {"m", 1.0},          {"metre", 1.0},        {"metres", 1.0},       {"meter", 1.0},
-      {"meters", 1.0},     {"mtr", 1.0},          {"cm", 0.01},          {"centimetre", 0.01},
-      {"centimetres", 0.01}, {"centimeter", 0.01}, {"centimeters", 0.01}, {"mm", 0.001},
-      {"millimetre", 0.001}, {"millimetres", 0.001}, {"millimeter", 0.001}, {"millimeters", 0.001},
-      {"ft", 0.3048},      {"foot", 0.3048},      {"feet", 0.3048},      {"inch", 0.0254},
-      {"inches", 0.0254}};
+  static const std::map<std::string, double> kUnits = {{"m", 1.0},
+                                                       {"metre", 1.0},
+                                                       {"metres", 1.0},
+                                                       {"meter", 1.0},
+                                                       {"meters", 1.0},
+                                                       {"mtr", 1.0},
+                                                       {"cm", 0.01},
+                                                       {"centimetre", 0.01},
+                                                       {"centimetres", 0.01},
+                                                       {"centimeter", 0.01},
+                                                       {"centimeters", 0.01},
+                                                       {"mm", 0.001},
+                                                       {"millimetre", 0.001},
+                                                       {"millimetres", 0.001},
+                                                       {"millimeter", 0.001},
+                                                       {"millimeters", 0.001},
+                                                       {"ft", 0.3048},
+                                                       {"foot", 0.3048},
+                                                       {"feet", 0.3048},
+                                                       {"inch", 0.0254},
+                                                       {"inches", 0.0254}};
   auto it = kUnits.find(w);
   if (it == kUnits.end()) return std::nullopt;
   return it->second;
@@ -45,35 +58,49 @@ std::optional<double> UnitFactor(const std::string& w) {
 // Words that carry no information here; never reported as unused.
 bool IsStopWord(const std::string& w) {
   static const std::set<std::string> kStop = {
-      "a",       "an",       "the",      "of",      "is",      "are",     "has",    "have",
-      "there",   "its",      "it",       "which",   "that",    "to",      "for",    "on",
-      "in",      "at",       "by",       "this",    "these",   "those",   "we",     "i",
-      "want",    "need",     "please",   "make",    "create",  "build",   "generate", "give",
-      "me",      "us",       "about",    "approximately", "around", "roughly", "approx",
-      "measuring", "sized",  "size",     "each",    "be",      "should",  "would",  "like",
-      "some",    "one",      "side",     "sides",   "wall",    "walls",   "from",   "into",
-      "room",    "scene",    "model",    "so",      "also",    "just",    "very",   "quite"};
+      "a",      "an",      "the",    "of",        "is",    "are",   "has",  "have",  "there",
+      "its",    "it",      "which",  "that",      "to",    "for",   "on",   "in",    "at",
+      "by",     "this",    "these",  "those",     "we",    "i",     "want", "need",  "please",
+      "make",   "create",  "build",  "generate",  "give",  "me",    "us",   "about", "approximately",
+      "around", "roughly", "approx", "measuring", "sized", "size",  "each", "be",    "should",
+      "would",  "like",    "some",   "one",       "side",  "sides", "wall", "walls", "from",
+      "into",   "room",    "scene",  "model",     "so",    "also",  "just", "very",  "quite"};
   return kStop.count(w) > 0;
 }
 
 bool IsBreakWord(const std::string& w) {
-  static const std::set<std::string> kBreak = {",", ";", ".", ":", "!", "?", "(", ")",
-                                               "with", "and", "plus", "but", "having", "featuring",
-                                               "including", "containing", "while", "where", "then"};
+  static const std::set<std::string> kBreak = {
+      ",",    ";",   ".",      ":",         "!",         "?",          "(",     ")",     "with", "and",
+      "plus", "but", "having", "featuring", "including", "containing", "while", "where", "then"};
   return kBreak.count(w) > 0;
 }
 
 // Canonical compass name for a word, or nullopt.
 std::optional<std::string> CompassWord(const std::string& w) {
-  static const std::map<std::string, std::string> kCompass = {
-      {"north", "north"}, {"northern", "north"}, {"northerly", "north"},
-      {"south", "south"}, {"southern", "south"}, {"southerly", "south"},
-      {"east", "east"},   {"eastern", "east"},   {"easterly", "east"},
-      {"west", "west"},   {"western", "west"},   {"westerly", "west"},
-      {"north-east", "north-east"}, {"northeast", "north-east"}, {"north-eastern", "north-east"},
-      {"north-west", "north-west"}, {"northwest", "north-west"}, {"north-western", "north-west"},
-      {"south-east", "south-east"}, {"southeast", "south-east"}, {"south-eastern", "south-east"},
-      {"south-west", "south-west"}, {"southwest", "south-west"}, {"south-western", "south-west"}};
+  static const std::map<std::string, std::string> kCompass = {{"north", "north"},
+                                                              {"northern", "north"},
+                                                              {"northerly", "north"},
+                                                              {"south", "south"},
+                                                              {"southern", "south"},
+                                                              {"southerly", "south"},
+                                                              {"east", "east"},
+                                                              {"eastern", "east"},
+                                                              {"easterly", "east"},
+                                                              {"west", "west"},
+                                                              {"western", "west"},
+                                                              {"westerly", "west"},
+                                                              {"north-east", "north-east"},
+                                                              {"northeast", "north-east"},
+                                                              {"north-eastern", "north-east"},
+                                                              {"north-west", "north-west"},
+                                                              {"northwest", "north-west"},
+                                                              {"north-western", "north-west"},
+                                                              {"south-east", "south-east"},
+                                                              {"southeast", "south-east"},
+                                                              {"south-eastern", "south-east"},
+                                                              {"south-west", "south-west"},
+                                                              {"southwest", "south-west"},
+                                                              {"south-western", "south-west"}};
   auto it = kCompass.find(w);
   if (it == kCompass.end()) return std::nullopt;
   return it->second;
@@ -104,7 +131,11 @@ const std::vector<RoomKind>& RoomKinds() {
       {{"kitchen"}, "kitchen", 3.5, 4.5, 2.6, {{"counter", 2}, {"fridge", 1}, {"stove", 1}, {"table", 1}}},
       {{"office"}, "office", 4.0, 5.0, 2.7, {{"desk", 2}, {"cabinet", 1}, {"bookshelf", 1}, {"chair", 2}}},
       {{"study"}, "study", 3.0, 3.5, 2.6, {{"desk", 1}, {"bookshelf", 2}, {"chair", 1}}},
-      {{"living", "room"}, "living room", 5.0, 6.0, 2.7,
+      {{"living", "room"},
+       "living room",
+       5.0,
+       6.0,
+       2.7,
        {{"sofa", 1}, {"armchair", 1}, {"table", 1}, {"tv", 1}, {"bookshelf", 1}}},
       {{"sitting", "room"}, "living room", 5.0, 6.0, 2.7, {{"sofa", 1}, {"armchair", 2}, {"tv", 1}}},
       {{"lounge"}, "living room", 5.0, 6.0, 2.7, {{"sofa", 1}, {"armchair", 1}, {"tv", 1}}},
@@ -146,10 +177,26 @@ std::vector<Token> Tokenize(std::string_view raw) {
   std::string text;
   for (std::size_t i = 0; i < raw.size(); ++i) {
     auto starts = [&](std::string_view s) { return raw.substr(i, s.size()) == s; };
-    if (starts("×")) { text += " x "; i += std::string_view("×").size() - 1; continue; }
-    if (starts("°")) { text += " deg "; i += std::string_view("°").size() - 1; continue; }
-    if (starts("²")) { text += "2"; i += std::string_view("²").size() - 1; continue; }
-    if (starts("’") || starts("‘")) { text += "'"; i += std::string_view("’").size() - 1; continue; }
+    if (starts("×")) {
+      text += " x ";
+      i += std::string_view("×").size() - 1;
+      continue;
+    }
+    if (starts("°")) {
+      text += " deg ";
+      i += std::string_view("°").size() - 1;
+      continue;
+    }
+    if (starts("²")) {
+      text += "2";
+      i += std::string_view("²").size() - 1;
+      continue;
+    }
+    if (starts("’") || starts("‘")) {
+      text += "'";
+      i += std::string_view("’").size() - 1;
+      continue;
+    }
     text += static_cast<char>(std::tolower(static_cast<unsigned char>(raw[i])));
   }
   std::vector<Token> tokens;
@@ -158,7 +205,8 @@ std::vector<Token> Tokenize(std::string_view raw) {
     unsigned char c = text[i];
     if (std::isspace(c)) {
       ++i;
-    } else if (std::isdigit(c) || (c == '.' && i + 1 < text.size() && std::isdigit(static_cast<unsigned char>(text[i + 1])))) {
+    } else if (std::isdigit(c) ||
+               (c == '.' && i + 1 < text.size() && std::isdigit(static_cast<unsigned char>(text[i + 1])))) {
       std::size_t j = i;
       bool dot = false;
       while (j < text.size() && (std::isdigit(static_cast<unsigned char>(text[j])) ||
@@ -215,10 +263,10 @@ struct OpeningRequest {
   std::optional<bool> glass;
   std::vector<std::string> walls;  // Compass names.
   Placement placement = Placement::kAuto;
-  std::string placement_compass;   // For corner / end / from-end.
+  std::string placement_compass;  // For corner / end / from-end.
   double from_end_m = 0.0;
   bool joined_to_next_by_and = false;
-  std::string text;                // The clause, for messages.
+  std::string text;  // The clause, for messages.
 };
 
 struct SurfaceStyle {
@@ -255,7 +303,7 @@ struct Length {
   double metres = 0;
   double factor = 1;  // Unit factor used (1 when no unit).
   bool has_unit = false;
-  int next = 0;       // Index after the length.
+  int next = 0;  // Index after the length.
 };
 
 class Parser {
@@ -298,10 +346,10 @@ class Parser {
   // they read as used, so later steps see only what is left.
   OpeningRequest ParseOpening(const Clause& c, int noun);
   void ParseOpeningModifiers(const Clause& c, int noun, OpeningRequest& o);  // "french", "double", "large".
-  void ParseOpeningPlacement(const Clause& c, OpeningRequest& o);  // "1 m from the west end", "in the corner".
-  void ParseOpeningLeaf(const Clause& c, OpeningRequest& o);       // "half-open", "left-hinged", "no glass".
+  void ParseOpeningPlacement(const Clause& c, OpeningRequest& o);        // "1 m from the west end", "in the corner".
+  void ParseOpeningLeaf(const Clause& c, OpeningRequest& o);             // "half-open", "left-hinged", "no glass".
   void ParseOpeningSizes(const Clause& c, int noun, OpeningRequest& o);  // "sill 0.9 m", "1.2 by 1.5 m".
-  void ParseOpeningWalls(const Clause& c, OpeningRequest& o);      // "on the north wall", "each wall".
+  void ParseOpeningWalls(const Clause& c, OpeningRequest& o);            // "on the north wall", "each wall".
   void ParseRoomClause(const Clause& c, Request& r);
   void ParseRig(const Clause& c, Request& r);
   void ParseMaterials(const Clause& c, Request& r);
@@ -390,8 +438,8 @@ std::vector<Clause> Parser::SplitClauses() {
       bool attribute = false;
       for (int k = i + 1; k < n && k <= i + 3; ++k) {
         const std::string& a = t_[k].text;
-        attribute = attribute || a == "sill" || a == "sills" || a == "hinged" || a == "hinge" ||
-                    a == "hinges" || a == "glass" || a == "glazing";
+        attribute = attribute || a == "sill" || a == "sills" || a == "hinged" || a == "hinge" || a == "hinges" ||
+                    a == "glass" || a == "glazing";
       }
       if (attribute) {
         t_[i].used = true;
@@ -420,8 +468,8 @@ std::vector<Clause> Parser::SplitClauses() {
 int Parser::FindOpeningNoun(const Clause& c) const {
   for (int i = c.begin; i < c.end; ++i) {
     const std::string& w = t_[i].text;
-    if (w == "door" || w == "doors" || w == "doorway" || w == "doorways" || w == "window" ||
-        w == "windows" || w == "entrance" || w == "entrances" || w == "doorways") {
+    if (w == "door" || w == "doors" || w == "doorway" || w == "doorways" || w == "window" || w == "windows" ||
+        w == "entrance" || w == "entrances" || w == "doorways") {
       // "entrance door": the noun is "door".
       if ((w == "entrance" || w == "entrances") && In(i + 1, c) &&
           (t_[i + 1].text == "door" || t_[i + 1].text == "doors")) {
@@ -447,8 +495,7 @@ std::optional<int> Parser::CountBefore(int i, const Clause& c) {
     // A count is a whole number in [0, kMaxCount], so the cast to int below
     // is defined for any number the text holds (5.6e45 is not a count).
     if (t_[k].number && *t_[k].number >= 0 && *t_[k].number <= kMaxCount &&
-        *t_[k].number == std::floor(*t_[k].number) &&
-        !(Free(k + 1, c) && UnitFactor(t_[k + 1].text))) {
+        *t_[k].number == std::floor(*t_[k].number) && !(Free(k + 1, c) && UnitFactor(t_[k + 1].text))) {
       t_[k].used = true;
       return static_cast<int>(*t_[k].number);
     }
@@ -504,8 +551,8 @@ void Parser::ParseOpeningModifiers(const Clause& c, int noun, OpeningRequest& o)
     } else if (w == "double" && o.kind == OpeningKind::kDoor) {
       o.width = o.width.value_or(1.6);
       t_[k].used = true;
-    } else if (w == "front" || w == "main" || w == "entrance" || w == "back" || w == "rear" ||
-               w == "internal" || w == "interior" || w == "exterior" || w == "standard") {
+    } else if (w == "front" || w == "main" || w == "entrance" || w == "back" || w == "rear" || w == "internal" ||
+               w == "interior" || w == "exterior" || w == "standard") {
       t_[k].used = true;
     } else if (w == "large" || w == "big" || w == "wide") {
       o.width_scale = 1.4;
@@ -571,8 +618,8 @@ void Parser::ParseOpeningPlacement(const Clause& c, OpeningRequest& o) {
         o.placement = t_[k].text == "left" ? Placement::kLeft : Placement::kRight;
         Use(k, i + 1);
       }
-    } else if (w == "centred" || w == "centered" || w == "central" || w == "centrally" ||
-               w == "middle" || w == "centre" || w == "center") {
+    } else if (w == "centred" || w == "centered" || w == "central" || w == "centrally" || w == "middle" ||
+               w == "centre" || w == "center") {
       o.placement = Placement::kCentre;
       t_[i].used = true;
     } else if ((w == "left" || w == "right") && !Is(i - 1, c, {"hinged", "hinge"}) &&
@@ -681,8 +728,8 @@ void Parser::ParseOpeningSizes(const Clause& c, int noun, OpeningRequest& o) {
       } else if (Is(j, c, {"high", "tall"})) {
         o.height = len->metres;
         Use(i, j + 1);
-      } else if (Is(j, c, {"above", "off"}) || (Is(j, c, {"from"}) && (Is(j + 1, c, {"floor"}) ||
-                                                                       Is(j + 2, c, {"floor"})))) {
+      } else if (Is(j, c, {"above", "off"}) ||
+                 (Is(j, c, {"from"}) && (Is(j + 1, c, {"floor"}) || Is(j + 2, c, {"floor"})))) {
         o.sill = len->metres;
         int e = Skip(j + 1, c, {"the"});
         e = Skip(e, c, {"floor", "ground"});
@@ -694,8 +741,7 @@ void Parser::ParseOpeningSizes(const Clause& c, int noun, OpeningRequest& o) {
   // before the noun ("3 windows", "2 1.5 m windows") is a count, not a size.
   for (int i = c.begin; i < c.end; ++i) {
     if (auto len = LengthAt(i, c)) {
-      if (!len->has_unit && i < noun && *t_[i].number == std::floor(*t_[i].number) &&
-          !Is(i - 1, c, {"a", "an"})) {
+      if (!len->has_unit && i < noun && *t_[i].number == std::floor(*t_[i].number) && !Is(i - 1, c, {"a", "an"})) {
         continue;
       }
       if (!o.width) {
@@ -762,8 +808,9 @@ void Parser::ParseRig(const Clause& c, Request& r) {
       }
       continue;
     }
-    if (t_[i].number && Is(i + 1, c, {"views", "photos", "photographs", "pictures", "shots", "images",
-                                      "frames", "positions", "stops"})) {
+    if (t_[i].number &&
+        Is(i + 1, c,
+           {"views", "photos", "photographs", "pictures", "shots", "images", "frames", "positions", "stops"})) {
       if (*t_[i].number >= 1) {
         r.rig_step = 360.0 / *t_[i].number;
         Use(i, i + 2);
@@ -974,21 +1021,29 @@ void Parser::ParseRoomClause(const Clause& c, Request& r) {
 
 void Parser::ParseMaterials(const Clause& c, Request& r) {
   static const std::map<std::string, Vec3> kColours = {
-      {"white", Vec3(0.9, 0.9, 0.88)},  {"grey", Vec3(0.5, 0.5, 0.5)},    {"gray", Vec3(0.5, 0.5, 0.5)},
+      {"white", Vec3(0.9, 0.9, 0.88)},  {"grey", Vec3(0.5, 0.5, 0.5)},     {"gray", Vec3(0.5, 0.5, 0.5)},
       {"beige", Vec3(0.82, 0.74, 0.6)}, {"cream", Vec3(0.93, 0.88, 0.75)}, {"blue", Vec3(0.3, 0.45, 0.75)},
-      {"green", Vec3(0.35, 0.6, 0.35)}, {"yellow", Vec3(0.9, 0.8, 0.3)},  {"red", Vec3(0.7, 0.2, 0.18)},
+      {"green", Vec3(0.35, 0.6, 0.35)}, {"yellow", Vec3(0.9, 0.8, 0.3)},   {"red", Vec3(0.7, 0.2, 0.18)},
       {"pink", Vec3(0.9, 0.6, 0.65)},   {"black", Vec3(0.08, 0.08, 0.08)}, {"brown", Vec3(0.45, 0.3, 0.18)},
-      {"orange", Vec3(0.9, 0.5, 0.2)},  {"purple", Vec3(0.5, 0.3, 0.6)},  {"teal", Vec3(0.2, 0.5, 0.5)}};
+      {"orange", Vec3(0.9, 0.5, 0.2)},  {"purple", Vec3(0.5, 0.3, 0.6)},   {"teal", Vec3(0.2, 0.5, 0.5)}};
   static const std::map<std::string, std::pair<TextureKind, std::string>> kTextures = {
       // word → texture, implied surface ("" = none implied).
-      {"wooden", {TextureKind::kWood, "floor"}},     {"wood", {TextureKind::kWood, "floor"}},
-      {"parquet", {TextureKind::kWood, "floor"}},    {"hardwood", {TextureKind::kWood, "floor"}},
-      {"laminate", {TextureKind::kWood, "floor"}},   {"timber", {TextureKind::kWood, "floor"}},
-      {"carpet", {TextureKind::kCarpet, "floor"}},   {"carpeted", {TextureKind::kCarpet, "floor"}},
-      {"tiled", {TextureKind::kTiles, ""}},          {"tiles", {TextureKind::kTiles, ""}},
-      {"tile", {TextureKind::kTiles, ""}},           {"concrete", {TextureKind::kConcrete, ""}},
-      {"plaster", {TextureKind::kPlaster, "wall"}},  {"plastered", {TextureKind::kPlaster, "wall"}},
-      {"painted", {TextureKind::kPaint, "wall"}},    {"wallpaper", {TextureKind::kWallpaper, "wall"}},
+      {"wooden", {TextureKind::kWood, "floor"}},
+      {"wood", {TextureKind::kWood, "floor"}},
+      {"parquet", {TextureKind::kWood, "floor"}},
+      {"hardwood", {TextureKind::kWood, "floor"}},
+      {"laminate", {TextureKind::kWood, "floor"}},
+      {"timber", {TextureKind::kWood, "floor"}},
+      {"carpet", {TextureKind::kCarpet, "floor"}},
+      {"carpeted", {TextureKind::kCarpet, "floor"}},
+      {"tiled", {TextureKind::kTiles, ""}},
+      {"tiles", {TextureKind::kTiles, ""}},
+      {"tile", {TextureKind::kTiles, ""}},
+      {"concrete", {TextureKind::kConcrete, ""}},
+      {"plaster", {TextureKind::kPlaster, "wall"}},
+      {"plastered", {TextureKind::kPlaster, "wall"}},
+      {"painted", {TextureKind::kPaint, "wall"}},
+      {"wallpaper", {TextureKind::kWallpaper, "wall"}},
       {"wallpapered", {TextureKind::kWallpaper, "wall"}}};
   std::vector<std::string> surfaces;
   for (int i = c.begin; i < c.end; ++i) {
@@ -1087,8 +1142,8 @@ void Parser::ParseLights(const Clause& c, Request& r) {
   for (int i = c.begin; i < c.end; ++i) {
     if (!Free(i, c)) continue;
     const std::string& w = t_[i].text;
-    if (w == "light" || w == "lights" || w == "lamp" || w == "lamps" || w == "luminaire" ||
-        w == "luminaires" || w == "lighting" || w == "fixtures") {
+    if (w == "light" || w == "lights" || w == "lamp" || w == "lamps" || w == "luminaire" || w == "luminaires" ||
+        w == "lighting" || w == "fixtures") {
       t_[i].used = true;
       if (Is(i - 1, c, {"ceiling", "overhead", "fluorescent", "led", "pendant", "strip"})) t_[i - 1].used = true;
       if (auto n = CountBefore(i, c)) r.light_count = *n;
@@ -1104,8 +1159,8 @@ void Parser::ParseLights(const Clause& c, Request& r) {
       r.night = true;
       r.sun = false;
       t_[i].used = true;
-    } else if (w == "sunny" || w == "sunlight" || w == "sunshine" || w == "daylight" || w == "sun" ||
-               w == "daytime" || w == "day") {
+    } else if (w == "sunny" || w == "sunlight" || w == "sunshine" || w == "daylight" || w == "sun" || w == "daytime" ||
+               w == "day") {
       r.sun = true;
       t_[i].used = true;
     }
@@ -1148,11 +1203,13 @@ std::vector<Vec2> RoomPolygon(const Request& r, double w, double d, std::vector<
   if (!r.l_shape) return {{0, 0}, {w, 0}, {w, d}, {0, d}};
   double cw = r.cut_width.value_or(std::round(w * 5.0) / 10.0);
   double cd = r.cut_depth.value_or(std::round(d * 5.0) / 10.0);
-  if (!r.cut_width) assumptions.push_back(fmt::format("L-shape: {:.2f} × {:.2f} m cut out of the {} corner", cw, cd, r.cut_corner));
+  if (!r.cut_width)
+    assumptions.push_back(fmt::format("L-shape: {:.2f} × {:.2f} m cut out of the {} corner", cw, cd, r.cut_corner));
   if (cw <= 0 || cd <= 0 || cw >= w - 0.5 || cd >= d - 0.5) {
-    throw InputError("text", "", fmt::format("the {:.2f} × {:.2f} m cut-out does not fit in a {:.2f} × {:.2f} m "
-                                             "room (each side must leave at least 0.5 m)",
-                                             cw, cd, w, d));
+    throw InputError("text", "",
+                     fmt::format("the {:.2f} × {:.2f} m cut-out does not fit in a {:.2f} × {:.2f} m "
+                                 "room (each side must leave at least 0.5 m)",
+                                 cw, cd, w, d));
   }
   const std::string& k = r.cut_corner;
   if (k == "north-west") return {{0, 0}, {w, 0}, {w, d}, {cw, d}, {cw, d - cd}, {0, d - cd}};
@@ -1203,16 +1260,16 @@ struct PendingOpening {
 
 // Offsets along each wall: explicit placements first, the rest spread evenly
 // (or, when that collides, into the largest free gaps).
-void LayOutWall(const Room& room, int wall, std::vector<PendingOpening*>& ops,
-                std::vector<std::string>& assumptions) {
+void LayOutWall(const Room& room, int wall, std::vector<PendingOpening*>& ops, std::vector<std::string>& assumptions) {
   const double length = WallLength(room, wall);
   const std::string wall_name = fmt::format("{} wall ({:.2f} m)", WallCompassName(room, wall), length);
   const Vec2 dir = (WallEnd(room, wall) - WallStart(room, wall)).normalized();
   double total = 0;
   for (PendingOpening* p : ops) total += p->opening.width_m;
   if (total + 0.1 * (ops.size() + 1) > length + 1e-9) {
-    throw InputError("text", "", fmt::format("the {} cannot hold {} opening{} {:.2f} m wide in total",
-                                             wall_name, ops.size(), ops.size() == 1 ? "" : "s", total));
+    throw InputError("text", "",
+                     fmt::format("the {} cannot hold {} opening{} {:.2f} m wide in total", wall_name, ops.size(),
+                                 ops.size() == 1 ? "" : "s", total));
   }
   std::vector<std::pair<double, double>> taken;  // [lo, hi] along the wall.
   std::vector<PendingOpening*> automatic;
@@ -1227,14 +1284,23 @@ void LayOutWall(const Room& room, int wall, std::vector<PendingOpening*>& ops,
     };
     std::optional<double> offset;
     switch (p->placement) {
-      case Placement::kAuto: break;
-      case Placement::kCentre: offset = 0.5 * (length - w); break;
-      case Placement::kLeft: offset = length - w - 0.3; break;   // Facing the wall from inside, its end is on the left.
-      case Placement::kRight: offset = 0.3; break;
+      case Placement::kAuto:
+        break;
+      case Placement::kCentre:
+        offset = 0.5 * (length - w);
+        break;
+      case Placement::kLeft:
+        offset = length - w - 0.3;
+        break;  // Facing the wall from inside, its end is on the left.
+      case Placement::kRight:
+        offset = 0.3;
+        break;
       case Placement::kCorner:
         offset = p->compass.empty() ? std::optional<double>(0.1) : toward(p->compass, 0.1);
         break;
-      case Placement::kEnd: offset = toward(p->compass, 0.3); break;
+      case Placement::kEnd:
+        offset = toward(p->compass, 0.3);
+        break;
       case Placement::kFromEnd: {
         double t = dir.dot(CompassVector(p->compass));
         if (t > 0.3) offset = length - w - p->from_end_m;
@@ -1243,17 +1309,19 @@ void LayOutWall(const Room& room, int wall, std::vector<PendingOpening*>& ops,
       }
     }
     if (p->placement != Placement::kAuto && !offset) {
-      assumptions.push_back(fmt::format("\"{}\": the {} end of the {} is not one of its ends; placed "
-                                        "automatically",
-                                        p->text, p->compass, wall_name));
+      assumptions.push_back(
+          fmt::format("\"{}\": the {} end of the {} is not one of its ends; placed "
+                      "automatically",
+                      p->text, p->compass, wall_name));
     }
     if (!offset) {
       automatic.push_back(p);
       continue;
     }
     if (*offset < -1e-9 || *offset + w > length + 1e-9) {
-      throw InputError("text", "", fmt::format("\"{}\": a {:.2f} m {} at {:.2f} m along the {} does not fit",
-                                               p->text, w, OpeningKindName(o.kind), *offset, wall_name));
+      throw InputError("text", "",
+                       fmt::format("\"{}\": a {:.2f} m {} at {:.2f} m along the {} does not fit", p->text, w,
+                                   OpeningKindName(o.kind), *offset, wall_name));
     }
     // Several openings at one spot ("three windows near the north end"):
     // each next one moves away from the anchor until it is clear.
@@ -1267,8 +1335,9 @@ void LayOutWall(const Room& room, int wall, std::vector<PendingOpening*>& ops,
     const double step = at + 0.5 * w > 0.5 * length ? -0.05 : 0.05;
     while (clashes(at) && at >= 0 && at + w <= length) at += step;
     if (at < -1e-9 || at + w > length + 1e-9) {
-      throw InputError("text", "", fmt::format("\"{}\": no room left for a {:.2f} m {} there on the {}", p->text, w,
-                                               OpeningKindName(o.kind), wall_name));
+      throw InputError("text", "",
+                       fmt::format("\"{}\": no room left for a {:.2f} m {} there on the {}", p->text, w,
+                                   OpeningKindName(o.kind), wall_name));
     }
     o.offset_m = std::max(0.0, at);
     taken.push_back({o.offset_m, o.offset_m + w});
@@ -1317,8 +1386,9 @@ void LayOutWall(const Room& room, int wall, std::vector<PendingOpening*>& ops,
     }
     const double w = p->opening.width_m;
     if (best_len < w) {
-      throw InputError("text", "", fmt::format("\"{}\": no room left for a {:.2f} m {} on the {}", p->text, w,
-                                               OpeningKindName(p->opening.kind), wall_name));
+      throw InputError("text", "",
+                       fmt::format("\"{}\": no room left for a {:.2f} m {} on the {}", p->text, w,
+                                   OpeningKindName(p->opening.kind), wall_name));
     }
     p->opening.offset_m = best_lo + 0.5 * (best_len - w);
     taken.push_back({p->opening.offset_m, p->opening.offset_m + w});
@@ -1451,9 +1521,9 @@ std::string SceneTextResult::BriefReport() const {
   }
   std::size_t openings = 0;
   for (const Room& r : scene.rooms) openings += r.openings.size();
-  std::string out = fmt::format("{}: {}, {} opening{}, {} view{}", scene.name, shape, openings,
-                                openings == 1 ? "" : "s", ResolveViewpoints(scene).size(),
-                                ResolveViewpoints(scene).size() == 1 ? "" : "s");
+  std::string out =
+      fmt::format("{}: {}, {} opening{}, {} view{}", scene.name, shape, openings, openings == 1 ? "" : "s",
+                  ResolveViewpoints(scene).size(), ResolveViewpoints(scene).size() == 1 ? "" : "s");
   if (!unused_words.empty()) {
     out += fmt::format("; {} word{} not understood: {}", unused_words.size(), unused_words.size() == 1 ? "" : "s",
                        Join(unused_words));
@@ -1508,9 +1578,10 @@ SceneTextResult SceneFromText(std::string_view text, const SceneTextOptions& opt
     notes.push_back(fmt::format("no size given: {} default {:.2f} × {:.2f} m", kind->name, w, d));
   }
   if (!(w > 0.5 && d > 0.5 && w < 200 && d < 200)) {
-    throw InputError("text", "", fmt::format("room size {:.2f} × {:.2f} m is not a room (each side must be in "
-                                             "0.5 … 200 m)",
-                                             w, d));
+    throw InputError("text", "",
+                     fmt::format("room size {:.2f} × {:.2f} m is not a room (each side must be in "
+                                 "0.5 … 200 m)",
+                                 w, d));
   }
   double height = r.height.value_or(kind->height_m);
   if (!r.height) notes.push_back(fmt::format("no height given: {:.2f} m", height));

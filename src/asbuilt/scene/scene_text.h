@@ -39,9 +39,9 @@ struct SceneTextOptions {
 const FieldList<SceneTextOptions>& SceneTextOptionFields();
 
 struct SceneTextResult {
-  Scene scene;                             // Valid (CheckScene passed).
-  std::vector<std::string> unused_words;   // Words not understood, in text order.
-  std::vector<std::string> assumptions;    // Defaults chosen ("no size given: bedroom default 3.50 × 4.00 m").
+  Scene scene;                            // Valid (CheckScene passed).
+  std::vector<std::string> unused_words;  // Words not understood, in text order.
+  std::vector<std::string> assumptions;   // Defaults chosen ("no size given: bedroom default 3.50 × 4.00 m").
 
   // "classroom: 6.00 × 8.00 m, 3 openings, 12 views; 1 word not understood: \"giraffe\"".
   std::string BriefReport() const;

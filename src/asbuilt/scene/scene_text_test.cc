@@ -100,22 +100,18 @@ TEST_P(RoomSizes, ReadsWidthDepthAndHeight) {
 
 INSTANTIATE_TEST_SUITE_P(
     Phrasings, RoomSizes,
-    ::testing::Values(SizeCase{"6 x 8 metres room", 6, 8, 2.7},
-                      SizeCase{"a 6m by 8m office", 6, 8, 2.7},
+    ::testing::Values(SizeCase{"6 x 8 metres room", 6, 8, 2.7}, SizeCase{"a 6m by 8m office", 6, 8, 2.7},
                       SizeCase{"bedroom, ceiling 2.7 m", 3.5, 4, 2.7},
                       SizeCase{"a 5 by 4 m kitchen with a ceiling height of 2.4 m", 5, 4, 2.4},
                       SizeCase{"a 4.5 x 3.2 x 2.6 m study", 4.5, 3.2, 2.6},
                       SizeCase{"a 7 metre by 9 metre classroom, 3.2 metres tall", 7, 9, 3.2},
                       SizeCase{"a 600 by 450 cm office with a 2.8 m ceiling", 6, 4.5, 2.8},
                       SizeCase{"a twelve by ten foot bedroom", 12 * 0.3048, 10 * 0.3048, 2.6},
-                      SizeCase{"a 5 m square room", 5, 5, 2.7},
-                      SizeCase{"a square bedroom", 3.5, 3.5, 2.6},
-                      SizeCase{"a hallway 1.5 m wide and 6 m long", 1.5, 6, 2.6},
-                      SizeCase{"a bathroom", 2.5, 3, 2.5},
+                      SizeCase{"a 5 m square room", 5, 5, 2.7}, SizeCase{"a square bedroom", 3.5, 3.5, 2.6},
+                      SizeCase{"a hallway 1.5 m wide and 6 m long", 1.5, 6, 2.6}, SizeCase{"a bathroom", 2.5, 3, 2.5},
                       SizeCase{"a 6×8 m lecture hall, 4.5 m high", 6, 8, 4.5},
                       SizeCase{"a living room 6 m wide, 5 m deep, with high ceilings", 6, 5, 3.2},
-                      SizeCase{"garage 6 by 3 m", 6, 3, 2.5},
-                      SizeCase{"an 8 x 10 m gym 4 m high", 8, 10, 4}));
+                      SizeCase{"garage 6 by 3 m", 6, 3, 2.5}, SizeCase{"an 8 x 10 m gym 4 m high", 8, 10, 4}));
 
 TEST(SceneFromText, AreaGivesTheKindsProportions) {
   SceneTextResult r = Parse("a 20 square metre bedroom");
@@ -148,16 +144,17 @@ TEST(SceneFromText, RotatedRoomsKeepCompassWalls) {
 TEST(SceneFromText, CountsInWordsAndDigits) {
   EXPECT_THAT(OpeningSummary(Parse("classroom with three windows on the west wall").scene),
               ElementsAre("window west 1.20", "window west 1.20", "window west 1.20", "door south 0.90"));
-  EXPECT_THAT(OpeningSummary(Parse("a meeting room with 2 doors on the west wall and 3 windows on the east wall").scene),
-              ElementsAre("door west 0.90", "door west 0.90", "window east 1.20", "window east 1.20",
-                          "window east 1.20"));
+  EXPECT_THAT(
+      OpeningSummary(Parse("a meeting room with 2 doors on the west wall and 3 windows on the east wall").scene),
+      ElementsAre("door west 0.90", "door west 0.90", "window east 1.20", "window east 1.20", "window east 1.20"));
   EXPECT_THAT(OpeningSummary(Parse("a 6 by 5 m office with a pair of windows on the south wall").scene),
               ElementsAre("window south 1.20", "window south 1.20", "door south 0.90"));
 }
 
 TEST(SceneFromText, WallListsAndEachWall) {
-  EXPECT_THAT(OpeningSummary(Parse("a room with a door on the west wall and windows on the north and south walls").scene),
-              ElementsAre("door west 0.90", "window north 1.20", "window south 1.20"));
+  EXPECT_THAT(
+      OpeningSummary(Parse("a room with a door on the west wall and windows on the north and south walls").scene),
+      ElementsAre("door west 0.90", "window north 1.20", "window south 1.20"));
   Scene each = Parse("a 5 by 5 m room with a window on each wall").scene;
   EXPECT_EQ(each.rooms[0].openings.size(), 5u);  // Four windows + the default door.
   std::set<std::string> walls;
@@ -170,8 +167,8 @@ TEST(SceneFromText, WallListsAndEachWall) {
 }
 
 TEST(SceneFromText, OpeningSizes) {
-  Scene s = Parse("a 6 by 8 m room with two 1.2 by 1.5 m windows on the east wall and a double door on the west wall")
-                .scene;
+  Scene s =
+      Parse("a 6 by 8 m room with two 1.2 by 1.5 m windows on the east wall and a double door on the west wall").scene;
   EXPECT_EQ(s.rooms[0].openings[0].width_m, 1.2);
   EXPECT_EQ(s.rooms[0].openings[0].height_m, 1.5);
   EXPECT_EQ(s.rooms[0].openings[2].width_m, 1.6);
@@ -291,12 +288,14 @@ TEST(SceneFromText, IsDeterministicPerSeed) {
 // InputError — never a crash, another exception or an invalid scene.
 TEST(SceneFromText, SurvivesRandomJumblesOfItsVocabulary) {
   const std::vector<std::string> words = {
-      "a", "two", "3", "0.9", "1.5", "12", "-", "m", "cm", "ft", "by", "x", "×", "door", "doors", "window",
-      "windows", "french", "double", "north", "south-east", "east", "west", "wall", "walls", "each", "corner",
-      "end", "near", "the", "from", "centred", "left", "hinged", "open", "sill", "of", "high", "wide", "long",
-      "ceiling", "height", "l-shaped", "cut-out", "rotated", "degrees", "square", "metres", "classroom",
-      "bedroom", "living", "room", "with", "and", ",", ".", "desks", "bed", "lights", "camera", "every",
-      "views", "baseline", "white", "wooden", "floor", "empty", "night", "giraffe", "m²", "area"};
+      "a",       "two",    "3",          "0.9",       "1.5",     "12",      "-",        "m",       "cm",
+      "ft",      "by",     "x",          "×",         "door",    "doors",   "window",   "windows", "french",
+      "double",  "north",  "south-east", "east",      "west",    "wall",    "walls",    "each",    "corner",
+      "end",     "near",   "the",        "from",      "centred", "left",    "hinged",   "open",    "sill",
+      "of",      "high",   "wide",       "long",      "ceiling", "height",  "l-shaped", "cut-out", "rotated",
+      "degrees", "square", "metres",     "classroom", "bedroom", "living",  "room",     "with",    "and",
+      ",",       ".",      "desks",      "bed",       "lights",  "camera",  "every",    "views",   "baseline",
+      "white",   "wooden", "floor",      "empty",     "night",   "giraffe", "m²",       "area"};
   SceneRngForTest rng{12345};
   int valid = 0, rejected = 0;
   for (int i = 0; i < 400; ++i) {

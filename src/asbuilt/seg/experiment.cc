@@ -68,7 +68,8 @@ void RatioExperimentOptions::Check() const {
   for (const std::string& c : configs) {
     auto parsed = MixConfig::Parse(c);
     CheckArgument(parsed.has_value(), fmt::format("RatioExperimentOptions.configs: '{}' is not R100, S100 or RSxxyy "
-                                                  "(xx + yy = 100)", c));
+                                                  "(xx + yy = 100)",
+                                                  c));
     CheckArgument(parsed->real_percent == 0 || !real_dir.empty(),
                   fmt::format("config {} needs real pairs: give --real", c));
     CheckArgument(parsed->synthetic_percent == 0 || !synthetic_dir.empty(),
@@ -191,11 +192,11 @@ RatioExperimentSummary RunRatioExperiment(const RatioExperimentOptions& options,
       options.real_test_dir.empty()
           ? fmt::format("held-out pairs of `{}` (same for every config)", options.real_dir.string())
           : fmt::format("`{}`", options.real_test_dir.string());
-  WriteFileAtomic(options.out_dir / "results.md",
-                  fmt::format("# Ratio experiment\n\nTest set: {}. Real: `{}`; synthetic: `{}`; arch {}, {} epochs.\n\n",
-                              test_set, options.real_dir.string(), options.synthetic_dir.string(),
-                              options.train.arch, options.train.epochs) +
-                      summary.ToMarkdown());
+  WriteFileAtomic(
+      options.out_dir / "results.md",
+      fmt::format("# Ratio experiment\n\nTest set: {}. Real: `{}`; synthetic: `{}`; arch {}, {} epochs.\n\n", test_set,
+                  options.real_dir.string(), options.synthetic_dir.string(), options.train.arch, options.train.epochs) +
+          summary.ToMarkdown());
   WritePlot(options.out_dir / "plot.png", summary.rows);
   return summary;
 }

@@ -34,7 +34,7 @@ struct RatioExperimentOptions {
   // real photos there are when --real is a stand-in from another domain.
   std::vector<std::filesystem::path> extra_test_dirs;
   std::vector<std::string> configs = {"R100", "S100", "RS5050", "RS8020"};
-  std::int64_t total = 0;  // Train + val pairs per config; 0 = as many as the ratio allows.
+  std::int64_t total = 0;         // Train + val pairs per config; 0 = as many as the ratio allows.
   std::filesystem::path out_dir;  // Required.
   // Training settings shared by every config (data paths and out_dir are
   // filled per config).
@@ -47,10 +47,10 @@ struct RatioExperimentRow {
   std::string config;
   int train_pairs = 0, val_pairs = 0, test_pairs = 0;
   int real_train_val = 0, synthetic_train_val = 0;  // Pairs of each source in train + val.
-  SegmentationMetrics test;  // On the real test set, best checkpoint.
-  double best_val_miou = 0;  // NaN without a val set.
+  SegmentationMetrics test;                         // On the real test set, best checkpoint.
+  double best_val_miou = 0;                         // NaN without a val set.
   int best_epoch = 0;
-  double train_wall_s = 0;   // Training time of this config (across resumes).
+  double train_wall_s = 0;  // Training time of this config (across resumes).
   // One per RatioExperimentOptions::extra_test_dirs, same order.
   std::vector<SegmentationMetrics> extra;
 };

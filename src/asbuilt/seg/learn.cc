@@ -74,9 +74,9 @@ std::vector<fs::path> FindReviewExamples(const std::vector<fs::path>& paths) {
                                    p.string()));
     }
     if (fs::exists(p / "summary.json")) {
-      throw InputError(p.string(), "review/corrections.json",
-                       fmt::format("no saved review: correct the survey with `asbuilt review {}` and save",
-                                   p.string()));
+      throw InputError(
+          p.string(), "review/corrections.json",
+          fmt::format("no saved review: correct the survey with `asbuilt review {}` and save", p.string()));
     }
     // A folder of surveys.
     std::vector<fs::path> found;
@@ -94,9 +94,9 @@ std::vector<fs::path> FindReviewExamples(const std::vector<fs::path>& paths) {
 }
 
 std::string LearnSummary::ToMarkdown() const {
-  std::string s = fmt::format(
-      "Held-out rooms: {} views; trained on {} + {} (val) pairs from {} corrected rooms and renders.\n\n", test_pairs,
-      train_pairs, val_pairs, examples.size());
+  std::string s =
+      fmt::format("Held-out rooms: {} views; trained on {} + {} (val) pairs from {} corrected rooms and renders.\n\n",
+                  test_pairs, train_pairs, val_pairs, examples.size());
   s += "| class | IoU before | IoU after | change |\n|---|---|---|---|\n";
   for (std::size_t c = 0; c < before.classes.size() && c < after.classes.size(); ++c) {
     s += fmt::format("| {} | {} | {} | {} |\n", before.classes[c].name, Fmt(before.classes[c].iou),
@@ -164,18 +164,11 @@ LearnSummary LearnFromReviews(const LearnOptions& options, const ProgressCallbac
   }
   summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  nlohmann::json report = {{"model", options.model.string()},
-                           {"examples", nlohmann::json::array()},
-                           {"hold_out", held_out.string()},
-                           {"mix", mixed.BriefReport()},
-                           {"train_pairs", summary.train_pairs},
-                           {"val_pairs", summary.val_pairs},
-                           {"test_pairs", summary.test_pairs},
-                           {"before", summary.before.ToJson()},
-                           {"after", summary.after.ToJson()},
-                           {"improved", summary.improved},
-                           {"train_s", summary.train_s},
-                           {"wall_s", summary.wall_s}};
+  nlohmann::json report = {
+      {"model", options.model.string()},  {"examples", nlohmann::json::array()}, {"hold_out", held_out.string()},
+      {"mix", mixed.BriefReport()},       {"train_pairs", summary.train_pairs},  {"val_pairs", summary.val_pairs},
+      {"test_pairs", summary.test_pairs}, {"before", summary.before.ToJson()},   {"after", summary.after.ToJson()},
+      {"improved", summary.improved},     {"train_s", summary.train_s},          {"wall_s", summary.wall_s}};
   for (const fs::path& e : summary.examples) report["examples"].push_back(e.string());
   WriteFileAtomic(options.out_dir / "report.json", report.dump(2) + "\n");
   WriteFileAtomic(options.out_dir / "report.md",

@@ -39,11 +39,11 @@ struct LearnOptions {
   // A review (as in `reviews`) to judge on instead, kept out of training even
   // when `reviews` lists it: leave-one-room-out runs name each room in turn.
   std::filesystem::path hold_out;
-  std::uint64_t seed = 1;               // Which rooms are held out; the training order.
-  std::filesystem::path out_dir;        // Required.
-  int epochs = 0;                       // 0: FinetuneOptions' schedule.
+  std::uint64_t seed = 1;         // Which rooms are held out; the training order.
+  std::filesystem::path out_dir;  // Required.
+  int epochs = 0;                 // 0: FinetuneOptions' schedule.
   int steps_per_epoch = 0;
-  int threads = 0;                      // LibTorch threads; 0 = every core.
+  int threads = 0;  // LibTorch threads; 0 = every core.
   void Check() const;
 };
 
@@ -53,8 +53,8 @@ struct LearnSummary {
   SegmentationMetrics before, after;  // On the held-out rooms' views.
   bool improved = false;              // after.miou > before.miou: OUT/model.pt written.
   double train_s = 0, wall_s = 0;
-  std::string ToMarkdown() const;     // The per-class table and the decision.
-  std::string BriefReport() const;    // One line.
+  std::string ToMarkdown() const;   // The per-class table and the decision.
+  std::string BriefReport() const;  // One line.
 };
 
 // The review/training folders `paths` name (as LearnOptions::reviews), in

@@ -39,8 +39,11 @@ const LearnFixture& Fixture() {
     Segformer model(config);
     x.model = x.dir / "start.pt";
     SaveCheckpoint(x.model, *model, nullptr,
-                   {{"format", kCheckpointFormat}, {"config", ConfigToJson(config)}, {"scale", {64, 48}},
-                    {"crop", {64, 48}}, {"epoch", 1}});
+                   {{"format", kCheckpointFormat},
+                    {"config", ConfigToJson(config)},
+                    {"scale", {64, 48}},
+                    {"crop", {64, 48}},
+                    {"epoch", 1}});
     return x;
   }();
   return f;

@@ -47,9 +47,8 @@ void ConfusionMatrix::Add(int label, int pred, std::int64_t count) {
 void ConfusionMatrix::Add(const cv::Mat& label, const cv::Mat& pred, int ignore_label) {
   CheckArgument(label.type() == CV_8UC1 && pred.type() == CV_8UC1,
                 "ConfusionMatrix::Add: label and prediction must be single-channel 8-bit");
-  CheckArgument(label.size() == pred.size(),
-                fmt::format("ConfusionMatrix::Add: label is {}x{}, prediction {}x{}", label.cols, label.rows,
-                            pred.cols, pred.rows));
+  CheckArgument(label.size() == pred.size(), fmt::format("ConfusionMatrix::Add: label is {}x{}, prediction {}x{}",
+                                                         label.cols, label.rows, pred.cols, pred.rows));
   std::vector<std::int64_t> local(counts_.size(), 0);
   for (int r = 0; r < label.rows; ++r) {
     const std::uint8_t* l = label.ptr<std::uint8_t>(r);
@@ -60,7 +59,8 @@ void ConfusionMatrix::Add(const cv::Mat& label, const cv::Mat& pred, int ignore_
         continue;
       }
       CheckArgument(p[c] < num_classes_, fmt::format("ConfusionMatrix::Add: prediction {} at ({}, {}) out of "
-                                                     "range [0, {})", p[c], c, r, num_classes_));
+                                                     "range [0, {})",
+                                                     p[c], c, r, num_classes_));
       ++local[l[c] * num_classes_ + p[c]];
     }
   }
@@ -133,8 +133,8 @@ std::string SegmentationMetrics::ToMarkdown() const {
     s += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", c.name, Fmt(c.iou), Fmt(c.fscore), Fmt(c.precision),
                      Fmt(c.recall), c.label_pixels, c.pred_pixels);
   }
-  s += fmt::format("| **mean** | **{}** | **{}** | **{}** | **{}** | | |\n\n", Fmt(miou), Fmt(mfscore),
-                   Fmt(mprecision), Fmt(mrecall));
+  s += fmt::format("| **mean** | **{}** | **{}** | **{}** | **{}** | | |\n\n", Fmt(miou), Fmt(mfscore), Fmt(mprecision),
+                   Fmt(mrecall));
   s += fmt::format("aAcc {} over {} image{}.\n\nConfusion matrix (rows: label, columns: prediction):\n\n", Fmt(aacc),
                    images, images == 1 ? "" : "s");
   s += "| label \\ pred |";

@@ -51,7 +51,7 @@ struct ClassMetrics {
 struct SegmentationMetrics {
   std::vector<ClassMetrics> classes;
   double miou = 0, mfscore = 0, mprecision = 0, mrecall = 0;  // nanmean over classes.
-  double aacc = 0;                                          // Pixel accuracy.
+  double aacc = 0;                                            // Pixel accuracy.
   std::int64_t images = 0;
   ConfusionMatrix confusion{4};
 

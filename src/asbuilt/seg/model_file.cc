@@ -47,7 +47,8 @@ torch::Tensor FromSafeTensor(const SafeTensor& t, const std::string& file, const
   } else if (t.dtype == "I64") {
     type = torch::kInt64;
   } else {
-    throw InputError(file, name + ".dtype", fmt::format("{} cannot hold SegFormer weights (F32, F16, BF16, I64)", t.dtype));
+    throw InputError(file, name + ".dtype",
+                     fmt::format("{} cannot hold SegFormer weights (F32, F16, BF16, I64)", t.dtype));
   }
   torch::Tensor out = torch::empty(t.shape, torch::TensorOptions().dtype(type));
   if (!t.data.empty()) std::memcpy(out.data_ptr(), t.data.data(), t.data.size());
@@ -99,8 +100,9 @@ SegmenterInfo ImportModel(const fs::path& in, const fs::path& out_checkpoint) {
     if (it == st.tensors.end()) throw InputError(file, name, "missing: the model's config needs this tensor");
     torch::Tensor t = FromSafeTensor(it->second, file, name);
     if (t.sizes() != target.sizes()) {
-      throw InputError(file, name + ".shape", fmt::format("{} does not match the model's {}",
-                                                         fmt::join(t.sizes(), "x"), fmt::join(target.sizes(), "x")));
+      throw InputError(
+          file, name + ".shape",
+          fmt::format("{} does not match the model's {}", fmt::join(t.sizes(), "x"), fmt::join(target.sizes(), "x")));
     }
     if (target.is_floating_point() != t.is_floating_point()) {
       throw InputError(file, name + ".dtype", fmt::format("{} does not suit this tensor", it->second.dtype));

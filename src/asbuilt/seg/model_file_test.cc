@@ -85,8 +85,12 @@ TEST(ModelFile, ExportThenImportRoundTripsEveryTensorAndTheMetadata) {
   SegformerConfig config = SmallConfig();
   config.arch = "small-test";
   Segformer model(config);
-  nlohmann::json meta = {{"format", kCheckpointFormat}, {"config", ConfigToJson(config)}, {"scale", {64, 48}},
-                         {"crop", {32, 32}},           {"epoch", 4},                    {"note", "kept"}};
+  nlohmann::json meta = {{"format", kCheckpointFormat},
+                         {"config", ConfigToJson(config)},
+                         {"scale", {64, 48}},
+                         {"crop", {32, 32}},
+                         {"epoch", 4},
+                         {"note", "kept"}};
   SaveCheckpoint(dir / "a.pt", *model, nullptr, meta);
   SegmenterInfo exported = ExportModel(dir / "a.pt", dir / "a.safetensors");
   EXPECT_EQ(exported.epoch, 4);
@@ -135,12 +139,15 @@ TEST(ModelFile, ImportRejectsFilesThatDoNotFitNamingTheTensor) {
   EXPECT_FALSE(fs::exists(dir / "x.pt")) << "no checkpoint is written for a rejected file";
 }
 
-
 TEST(ModelFile, AverageIsTheWeightedMeanOfEveryTensor) {
   fs::path dir = TempDir("average");
   SegformerConfig config = SmallConfig();
-  nlohmann::json meta = {{"format", kCheckpointFormat}, {"config", ConfigToJson(config)}, {"scale", {64, 48}},
-                         {"crop", {32, 32}},           {"epoch", 4},                    {"best_miou", 0.5}};
+  nlohmann::json meta = {{"format", kCheckpointFormat},
+                         {"config", ConfigToJson(config)},
+                         {"scale", {64, 48}},
+                         {"crop", {32, 32}},
+                         {"epoch", 4},
+                         {"best_miou", 0.5}};
   torch::manual_seed(1);
   Segformer a(config), b(config);
   SaveCheckpoint(dir / "a.pt", *a, nullptr, meta);

@@ -12,11 +12,19 @@ namespace asbuilt {
 namespace fs = std::filesystem;
 
 nlohmann::json ConfigToJson(const SegformerConfig& c) {
-  return {{"arch", c.arch},           {"in_channels", c.in_channels}, {"embed_dims", c.embed_dims},
-          {"num_heads", c.num_heads}, {"depths", c.depths},           {"sr_ratios", c.sr_ratios},
-          {"patch_sizes", c.patch_sizes}, {"strides", c.strides},     {"mlp_ratio", c.mlp_ratio},
-          {"decoder_dim", c.decoder_dim}, {"num_classes", c.num_classes},
-          {"drop_path_rate", c.drop_path_rate}, {"decoder_dropout", c.decoder_dropout}};
+  return {{"arch", c.arch},
+          {"in_channels", c.in_channels},
+          {"embed_dims", c.embed_dims},
+          {"num_heads", c.num_heads},
+          {"depths", c.depths},
+          {"sr_ratios", c.sr_ratios},
+          {"patch_sizes", c.patch_sizes},
+          {"strides", c.strides},
+          {"mlp_ratio", c.mlp_ratio},
+          {"decoder_dim", c.decoder_dim},
+          {"num_classes", c.num_classes},
+          {"drop_path_rate", c.drop_path_rate},
+          {"decoder_dropout", c.decoder_dropout}};
 }
 
 SegformerConfig ConfigFromMeta(const nlohmann::json& meta, const std::string& file) {
@@ -93,9 +101,9 @@ nlohmann::json ReadCheckpointMeta(const fs::path& path) {
   if (meta.is_discarded() || !meta.is_object()) throw InputError(path.string(), "asbuilt_meta", "not valid JSON");
   const std::string format = meta.value("format", "nothing");
   if (format != kCheckpointFormat && format != kTfliteCheckpointFormat) {
-    throw InputError(path.string(), "asbuilt_meta.format",
-                     fmt::format("expected \"{}\" or \"{}\", got {}", kCheckpointFormat, kTfliteCheckpointFormat,
-                                 format));
+    throw InputError(
+        path.string(), "asbuilt_meta.format",
+        fmt::format("expected \"{}\" or \"{}\", got {}", kCheckpointFormat, kTfliteCheckpointFormat, format));
   }
   return meta;
 }
@@ -113,8 +121,8 @@ int LoadWeights(const fs::path& path, torch::nn::Module& model, torch::optim::Op
     } else {
       if (strict) {
         throw InputError(path.string(), "model/" + name,
-                         t.defined() ? fmt::format("shape {} does not match the model's {}",
-                                                   fmt::join(t.sizes(), "x"), fmt::join(target.sizes(), "x"))
+                         t.defined() ? fmt::format("shape {} does not match the model's {}", fmt::join(t.sizes(), "x"),
+                                                   fmt::join(target.sizes(), "x"))
                                      : "missing from the checkpoint");
       }
       ++missing;

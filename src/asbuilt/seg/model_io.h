@@ -41,8 +41,8 @@ nlohmann::json ConfigToJson(const SegformerConfig& config);
 // model tensor must be present with its shape (InputError otherwise); not
 // strict: tensors with a missing name or another shape are skipped and
 // counted (for --init from another head). Returns tensors loaded.
-int LoadWeights(const std::filesystem::path& path, torch::nn::Module& model, torch::optim::Optimizer* optimizer, bool strict,
-                int* skipped = nullptr);
+int LoadWeights(const std::filesystem::path& path, torch::nn::Module& model, torch::optim::Optimizer* optimizer,
+                bool strict, int* skipped = nullptr);
 
 // BGR 8-bit images of one size → normalised RGB float tensor (B, 3, H, W)
 // (ImageNet mean/std, as mmseg).

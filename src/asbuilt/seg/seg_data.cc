@@ -48,8 +48,8 @@ SegDataSplit SplitFromFolders(const fs::path& images_dir, const fs::path& labels
   split.val.assign(all.begin(), all.begin() + n_val);
   split.train.assign(all.begin() + n_val, all.end());
   split.source = labels_dir.empty() ? fmt::format("folder {} ({})", images_dir.string(), listing.ToString())
-                                    : fmt::format("folders {} + {} ({})", images_dir.string(),
-                                                  labels_dir.string(), listing.ToString());
+                                    : fmt::format("folders {} + {} ({})", images_dir.string(), labels_dir.string(),
+                                                  listing.ToString());
   return split;
 }
 
@@ -62,9 +62,9 @@ SegPair ReadSegPair(const SegSample& sample, int num_classes) {
     const std::uint8_t* l = p.label.ptr<std::uint8_t>(r);
     for (int c = 0; c < p.label.cols; ++c) {
       if (l[c] >= num_classes && l[c] != 255) {
-        throw InputError(sample.label.string(), "",
-                         fmt::format("label id {} at ({}, {}) is not a class (0..{}) or 255 (ignore)", l[c], c, r,
-                                     num_classes - 1));
+        throw InputError(
+            sample.label.string(), "",
+            fmt::format("label id {} at ({}, {}) is not a class (0..{}) or 255 (ignore)", l[c], c, r, num_classes - 1));
       }
     }
   }
@@ -102,8 +102,8 @@ void AddStrayLight(SegPair& pair, std::mt19937_64& rng) {
     if (u01(rng) < 0.6) {
       // A sun patch: a window's shape thrown obliquely, a parallelogram.
       const double skew = U(-0.8, 0.8), t = angle * CV_PI / 180;
-      const cv::Point2d ax(a * std::cos(t), a * std::sin(t)), ay(b * (-std::sin(t) + skew * std::cos(t)),
-                                                                  b * (std::cos(t) + skew * std::sin(t)));
+      const cv::Point2d ax(a * std::cos(t), a * std::sin(t)),
+          ay(b * (-std::sin(t) + skew * std::cos(t)), b * (std::cos(t) + skew * std::sin(t)));
       const std::vector<cv::Point> quad = {c - ax - ay, c + ax - ay, c + ax + ay, c - ax + ay};
       cv::fillConvexPoly(mask, quad, cv::Scalar(255), cv::LINE_AA);
     } else {

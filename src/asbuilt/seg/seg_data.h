@@ -53,8 +53,8 @@ struct AugmentOptions {
   int scale_height_px = 192;  // (aspect kept), then by a random ratio below.
   double ratio_min = 0.5;     // Random resize range (paper/mmseg: 0.5–2.0).
   double ratio_max = 2.0;
-  int crop_width_px = 192;    // Random crop; padded with label 255 when the
-  int crop_height_px = 192;   // resized image is smaller.
+  int crop_width_px = 192;      // Random crop; padded with label 255 when the
+  int crop_height_px = 192;     // resized image is smaller.
   double cat_max_ratio = 0.75;  // mmseg RandomCrop: retry crops dominated by one class.
   bool flip = true;             // Horizontal flip, p = 0.5.
   bool photometric = true;      // Brightness, contrast, saturation, hue (mmseg).

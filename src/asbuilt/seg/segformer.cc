@@ -122,8 +122,7 @@ MixTransformerImpl::MixTransformerImpl(const SegformerConfig& config) {
   for (int i = 0; i < 4; ++i) {
     const std::string s = std::to_string(i);
     patch_embeds_.push_back(register_module(
-        "patch_embed" + s,
-        OverlapPatchEmbed(in_ch, config.embed_dims[i], config.patch_sizes[i], config.strides[i])));
+        "patch_embed" + s, OverlapPatchEmbed(in_ch, config.embed_dims[i], config.patch_sizes[i], config.strides[i])));
     blocks_.emplace_back();
     for (int j = 0; j < config.depths[i]; ++j, ++block_index) {
       // Stochastic depth grows linearly with block index (as in mmseg).
@@ -152,10 +151,10 @@ std::vector<torch::Tensor> MixTransformerImpl::forward(torch::Tensor x) {
 SegformerHeadImpl::SegformerHeadImpl(const SegformerConfig& config) {
   const int c = config.decoder_dim;
   for (int i = 0; i < 4; ++i) {
-    linear_c_.push_back(register_module(
-        "linear_c" + std::to_string(i),
-        nn::Sequential(nn::Conv2d(nn::Conv2dOptions(config.embed_dims[i], c, 1).bias(false)),
-                       nn::BatchNorm2d(c), nn::ReLU(true))));
+    linear_c_.push_back(
+        register_module("linear_c" + std::to_string(i),
+                        nn::Sequential(nn::Conv2d(nn::Conv2dOptions(config.embed_dims[i], c, 1).bias(false)),
+                                       nn::BatchNorm2d(c), nn::ReLU(true))));
   }
   fuse = register_module("fuse", nn::Sequential(nn::Conv2d(nn::Conv2dOptions(4 * c, c, 1).bias(false)),
                                                 nn::BatchNorm2d(c), nn::ReLU(true)));

@@ -13,8 +13,8 @@ void SegformerConfig::Check() const {
   CheckArgument(mlp_ratio > 0, fmt::format("SegformerConfig.mlp_ratio = {}, must be > 0", mlp_ratio));
   for (int i = 0; i < 4; ++i) {
     CheckArgument(embed_dims[i] > 0 && num_heads[i] > 0 && embed_dims[i] % num_heads[i] == 0,
-                  fmt::format("SegformerConfig.num_heads[{}] = {} must divide embed_dims[{}] = {}", i,
-                              num_heads[i], i, embed_dims[i]));
+                  fmt::format("SegformerConfig.num_heads[{}] = {} must divide embed_dims[{}] = {}", i, num_heads[i], i,
+                              embed_dims[i]));
     CheckArgument(depths[i] > 0, fmt::format("SegformerConfig.depths[{}] = {}, must be > 0", i, depths[i]));
     CheckArgument(sr_ratios[i] > 0, fmt::format("SegformerConfig.sr_ratios[{}] = {}, must be > 0", i, sr_ratios[i]));
     CheckArgument(strides[i] > 0 && patch_sizes[i] > 0,

@@ -15,19 +15,19 @@ namespace asbuilt {
 
 // One Mix Transformer (MiT) encoder + all-MLP decoder configuration.
 struct SegformerConfig {
-  std::string arch = "b0";                          // Name: b0, b1, b2, tiny.
-  int in_channels = 3;                              // RGB.
+  std::string arch = "b0";                             // Name: b0, b1, b2, tiny.
+  int in_channels = 3;                                 // RGB.
   std::array<int, 4> embed_dims = {32, 64, 160, 256};  // Channels per stage.
   std::array<int, 4> num_heads = {1, 2, 5, 8};         // Attention heads per stage.
-  std::array<int, 4> depths = {2, 2, 2, 2};             // Transformer blocks per stage.
-  std::array<int, 4> sr_ratios = {8, 4, 2, 1};          // Spatial reduction of K, V.
-  std::array<int, 4> patch_sizes = {7, 3, 3, 3};        // Overlapping patch embedding kernel.
-  std::array<int, 4> strides = {4, 2, 2, 2};            // Patch embedding stride.
-  int mlp_ratio = 4;                                // Mix-FFN hidden = ratio × dim.
-  int decoder_dim = 256;                            // All-MLP decoder width C.
-  int num_classes = 4;                              // 0 bg, 1 wall, 2 door, 3 window.
-  double drop_path_rate = 0.1;                      // Stochastic depth (max, linear).
-  double decoder_dropout = 0.1;                     // Dropout before the classifier.
+  std::array<int, 4> depths = {2, 2, 2, 2};            // Transformer blocks per stage.
+  std::array<int, 4> sr_ratios = {8, 4, 2, 1};         // Spatial reduction of K, V.
+  std::array<int, 4> patch_sizes = {7, 3, 3, 3};       // Overlapping patch embedding kernel.
+  std::array<int, 4> strides = {4, 2, 2, 2};           // Patch embedding stride.
+  int mlp_ratio = 4;                                   // Mix-FFN hidden = ratio × dim.
+  int decoder_dim = 256;                               // All-MLP decoder width C.
+  int num_classes = 4;                                 // 0 bg, 1 wall, 2 door, 3 window.
+  double drop_path_rate = 0.1;                         // Stochastic depth (max, linear).
+  double decoder_dropout = 0.1;                        // Dropout before the classifier.
 
   // Throws InvalidArgument naming the field (e.g. num_heads not dividing dims).
   void Check() const;

@@ -15,11 +15,11 @@ std::int64_t ExpectedEncoderParameters(const SegformerConfig& c) {
   std::int64_t in = c.in_channels;
   for (int i = 0; i < 4; ++i) {
     const std::int64_t d = c.embed_dims[i], k = c.patch_sizes[i], r = c.sr_ratios[i], h = d * c.mlp_ratio;
-    n += k * k * in * d + d + 2 * d;  // Patch embedding conv + LayerNorm.
-    std::int64_t block = 2 * d;        // norm1
-    block += d * d + d;                // q
-    block += d * 2 * d + 2 * d;        // kv
-    block += d * d + d;                // proj
+    n += k * k * in * d + d + 2 * d;                // Patch embedding conv + LayerNorm.
+    std::int64_t block = 2 * d;                     // norm1
+    block += d * d + d;                             // q
+    block += d * 2 * d + 2 * d;                     // kv
+    block += d * d + d;                             // proj
     if (r > 1) block += r * r * d * d + d + 2 * d;  // Spatial reduction conv + LayerNorm.
     block += 2 * d;                                 // norm2
     block += d * h + h + 9 * h + h + h * d + d;     // Mix-FFN: fc1, 3×3 depthwise, fc2.
@@ -33,8 +33,8 @@ std::int64_t ExpectedDecoderParameters(const SegformerConfig& c) {
   const std::int64_t C = c.decoder_dim;
   std::int64_t n = 0;
   for (int d : c.embed_dims) n += d * C + 2 * C;  // 1×1 conv (no bias) + BN.
-  n += 4 * C * C + 2 * C;                          // Fusion.
-  n += C * c.num_classes + c.num_classes;          // Classifier.
+  n += 4 * C * C + 2 * C;                         // Fusion.
+  n += C * c.num_classes + c.num_classes;         // Classifier.
   return n;
 }
 
@@ -47,8 +47,8 @@ TEST(Segformer, ParameterCountsMatchPublishedConfigurations) {
     std::int64_t encoder, total;
     double paper_total_m;
   };
-  const Case cases[] = {{"b0", 3319392, 3753718, 3.8}, {"b1", 13151424, 13716822, 13.7},
-                        {"b2", 24196288, 27465046, 27.5}};
+  const Case cases[] = {
+      {"b0", 3319392, 3753718, 3.8}, {"b1", 13151424, 13716822, 13.7}, {"b2", 24196288, 27465046, 27.5}};
   for (const Case& c : cases) {
     SegformerConfig config = SegformerConfigFor(c.arch, 150);
     Segformer model(config);

@@ -16,10 +16,8 @@ namespace {
 namespace F = torch::nn::functional;
 
 torch::Tensor Resize(const torch::Tensor& logits, int64_t h, int64_t w) {
-  return F::interpolate(logits, F::InterpolateFuncOptions()
-                                    .size(std::vector<int64_t>{h, w})
-                                    .mode(torch::kBilinear)
-                                    .align_corners(false));
+  return F::interpolate(
+      logits, F::InterpolateFuncOptions().size(std::vector<int64_t>{h, w}).mode(torch::kBilinear).align_corners(false));
 }
 
 class TorchSegmenter : public Segmenter {
@@ -44,7 +42,8 @@ class TorchSegmenter : public Segmenter {
     for (const auto& [size, idx] : groups) {
       for (size_t start = 0; start < idx.size(); start += options_.batch_size) {
         std::vector<cv::Mat> batch;
-        for (size_t k = start; k < std::min(idx.size(), start + options_.batch_size); ++k) batch.push_back(images[idx[k]]);
+        for (size_t k = start; k < std::min(idx.size(), start + options_.batch_size); ++k)
+          batch.push_back(images[idx[k]]);
         torch::Tensor logits = Logits(batch);  // (B, C, H, W) at image size.
         torch::Tensor pred = logits.argmax(1).to(torch::kUInt8).contiguous();
         for (size_t k = 0; k < batch.size(); ++k) {
@@ -57,7 +56,9 @@ class TorchSegmenter : public Segmenter {
     return out;
   }
 
-  std::vector<cv::Mat> Probabilities(const cv::Mat& bgr) override { return ClassMaps(torch::softmax(Logits({bgr}), 1)[0]); }
+  std::vector<cv::Mat> Probabilities(const cv::Mat& bgr) override {
+    return ClassMaps(torch::softmax(Logits({bgr}), 1)[0]);
+  }
 
   const SegmenterInfo& info() const override { return info_; }
 
@@ -114,15 +115,16 @@ class TorchSegmenter : public Segmenter {
       size_t end = std::min(windows.size(), start + per_pass);
       for (size_t k = start; k < end; ++k) {
         const cv::Rect& r = windows[k];
-        crops.push_back(x.index({torch::indexing::Slice(), torch::indexing::Slice(),
-                                 torch::indexing::Slice(r.y, r.y + r.height),
-                                 torch::indexing::Slice(r.x, r.x + r.width)}));
+        crops.push_back(
+            x.index({torch::indexing::Slice(), torch::indexing::Slice(), torch::indexing::Slice(r.y, r.y + r.height),
+                     torch::indexing::Slice(r.x, r.x + r.width)}));
       }
       torch::Tensor out = Resize(model_->forward(torch::cat(crops, 0)), ch, cw);
       for (size_t k = start; k < end; ++k) {
         const cv::Rect& r = windows[k];
-        std::vector<torch::indexing::TensorIndex> idx = {torch::indexing::Slice(), torch::indexing::Slice(), torch::indexing::Slice(r.y, r.y + r.height),
-                    torch::indexing::Slice(r.x, r.x + r.width)};
+        std::vector<torch::indexing::TensorIndex> idx = {torch::indexing::Slice(), torch::indexing::Slice(),
+                                                         torch::indexing::Slice(r.y, r.y + r.height),
+                                                         torch::indexing::Slice(r.x, r.x + r.width)};
         sum.index(idx) += out.slice(0, static_cast<int64_t>(k - start) * B, static_cast<int64_t>(k - start + 1) * B);
         count.index(idx) += 1;
       }

@@ -10,9 +10,9 @@ namespace asbuilt {
 void SegmentOptions::Check() const {
   CheckArgument(mode == "whole" || mode == "slide",
                 fmt::format("SegmentOptions.mode = '{}', must be 'whole' or 'slide'", mode));
-  CheckArgument(scale_width_px >= 0 && scale_height_px >= 0 && (scale_width_px == 0) == (scale_height_px == 0),
-                fmt::format("SegmentOptions scale {}x{}: give both or neither (0 = model's)", scale_width_px,
-                            scale_height_px));
+  CheckArgument(
+      scale_width_px >= 0 && scale_height_px >= 0 && (scale_width_px == 0) == (scale_height_px == 0),
+      fmt::format("SegmentOptions scale {}x{}: give both or neither (0 = model's)", scale_width_px, scale_height_px));
   CheckArgument(batch_size > 0, fmt::format("SegmentOptions.batch_size = {}, must be > 0", batch_size));
 }
 
@@ -23,10 +23,11 @@ std::string SegmenterInfo::ToString() const {
                        config.num_classes, scale_width_px, scale_height_px);
   }
   if (metadata.is_object() && metadata.value("format", "") == "asbuilt-tflite-v1") {
-    return fmt::format("TFLite graph fine-tuned by asbuilt ({:.2f}M params, {} ADE20K classes mapped to {}), trained "
-                       "{} epoch{} at {}x{}",
-                       parameters / 1e6, metadata["config"].value("source_classes", 0), config.num_classes, epoch,
-                       epoch == 1 ? "" : "s", scale_width_px, scale_height_px);
+    return fmt::format(
+        "TFLite graph fine-tuned by asbuilt ({:.2f}M params, {} ADE20K classes mapped to {}), trained "
+        "{} epoch{} at {}x{}",
+        parameters / 1e6, metadata["config"].value("source_classes", 0), config.num_classes, epoch,
+        epoch == 1 ? "" : "s", scale_width_px, scale_height_px);
   }
   return fmt::format("SegFormer {} ({:.2f}M params, {} classes), trained {} epoch{} at {}x{}", config.arch,
                      parameters / 1e6, config.num_classes, epoch, epoch == 1 ? "" : "s", scale_width_px,

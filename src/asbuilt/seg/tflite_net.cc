@@ -20,10 +20,14 @@ torch::Tensor FromFloats(std::vector<float> values, const std::vector<int>& shap
 
 torch::Tensor Activate(const torch::Tensor& x, int activation) {
   switch (activation) {
-    case 1: return torch::relu(x);
-    case 2: return torch::clamp(x, -1.0, 1.0);
-    case 3: return torch::clamp(x, 0.0, 6.0);
-    default: return x;
+    case 1:
+      return torch::relu(x);
+    case 2:
+      return torch::clamp(x, -1.0, 1.0);
+    case 3:
+      return torch::clamp(x, 0.0, 6.0);
+    default:
+      return x;
   }
 }
 
@@ -66,7 +70,9 @@ torch::Tensor ResizeAxis(const torch::Tensor& x, int64_t dim, int64_t out, bool 
     i1[d] = std::min<int64_t>(lo + 1, in - 1);
     w[d] = static_cast<float>(src - lo);
   }
-  auto index = [](std::vector<int64_t>& v) { return torch::from_blob(v.data(), {static_cast<int64_t>(v.size())}, torch::kInt64).clone(); };
+  auto index = [](std::vector<int64_t>& v) {
+    return torch::from_blob(v.data(), {static_cast<int64_t>(v.size())}, torch::kInt64).clone();
+  };
   std::vector<int64_t> shape(x.dim(), 1);
   shape[dim] = out;
   torch::Tensor weight = torch::from_blob(w.data(), {out}, torch::kFloat32).clone().view(shape);
@@ -85,12 +91,12 @@ int64_t TorchAxis(int axis, std::size_t rank) {
 
 }  // namespace
 
-TfliteNetImpl::TfliteNetImpl(const TfliteModel& model, TfliteNetOptions options)
-    : graph_(model), options_(options) {
+TfliteNetImpl::TfliteNetImpl(const TfliteModel& model, TfliteNetOptions options) : graph_(model), options_(options) {
   auto fail = [&](const std::string& field, const std::string& message) {
     throw InputError(graph_.file, field, message);
   };
-  if (graph_.inputs.size() != 1) fail("subgraphs[0].inputs", fmt::format("{} inputs; a segmenter has one image", graph_.inputs.size()));
+  if (graph_.inputs.size() != 1)
+    fail("subgraphs[0].inputs", fmt::format("{} inputs; a segmenter has one image", graph_.inputs.size()));
   input_tensor_ = graph_.inputs[0];
   const auto& in_shape = graph_.tensors[input_tensor_].shape;
   if (in_shape.size() != 4 || in_shape[3] != 3) fail("subgraphs[0].inputs", "the input is not one NHWC RGB image");
@@ -147,15 +153,25 @@ TfliteNetImpl::TfliteNetImpl(const TfliteModel& model, TfliteNetOptions options)
         }
         break;
       }
-      case TfliteOp::kAdd: case TfliteOp::kMul: case TfliteOp::kAveragePool2d: case TfliteOp::kMaxPool2d:
-      case TfliteOp::kConcatenation: case TfliteOp::kResizeBilinear: case TfliteOp::kSplit:
-      case TfliteOp::kQuantize: case TfliteOp::kDequantize: case TfliteOp::kRelu: case TfliteOp::kRelu6:
+      case TfliteOp::kAdd:
+      case TfliteOp::kMul:
+      case TfliteOp::kAveragePool2d:
+      case TfliteOp::kMaxPool2d:
+      case TfliteOp::kConcatenation:
+      case TfliteOp::kResizeBilinear:
+      case TfliteOp::kSplit:
+      case TfliteOp::kQuantize:
+      case TfliteOp::kDequantize:
+      case TfliteOp::kRelu:
+      case TfliteOp::kRelu6:
         break;
       default:
         fail(field, "this operator is not supported by asbuilt's TFLite port");
     }
-    if ((op.builtin_code == static_cast<int>(TfliteOp::kSplit) || op.builtin_code == static_cast<int>(TfliteOp::kResizeBilinear)) &&
-        (op.inputs.size() < 2 || graph_.tensors[op.inputs[op.builtin_code == static_cast<int>(TfliteOp::kSplit) ? 0 : 1]].data.empty())) {
+    if ((op.builtin_code == static_cast<int>(TfliteOp::kSplit) ||
+         op.builtin_code == static_cast<int>(TfliteOp::kResizeBilinear)) &&
+        (op.inputs.size() < 2 ||
+         graph_.tensors[op.inputs[op.builtin_code == static_cast<int>(TfliteOp::kSplit) ? 0 : 1]].data.empty())) {
       fail(field, "needs a constant axis / size tensor");
     }
   }
@@ -212,13 +228,17 @@ torch::Tensor TfliteNetImpl::forward(const torch::Tensor& rgb) {
           if (top + bottom + left + right > 0) x = F::pad(x, F::PadFuncOptions({left, right, top, bottom}));
         }
         const std::vector<int64_t> stride = {o.stride_h, o.stride_w}, dilation = {o.dilation_h, o.dilation_w};
-        torch::Tensor y = torch::conv2d(x, w, biases_[k], stride, std::vector<int64_t>{0, 0}, dilation,
-                                        depthwise ? x.size(1) : 1);
+        torch::Tensor y =
+            torch::conv2d(x, w, biases_[k], stride, std::vector<int64_t>{0, 0}, dilation, depthwise ? x.size(1) : 1);
         out.push_back(Activate(y, o.activation));
         break;
       }
-      case TfliteOp::kAdd: out.push_back(Activate(input(0) + input(1), o.activation)); break;
-      case TfliteOp::kMul: out.push_back(Activate(input(0) * input(1), o.activation)); break;
+      case TfliteOp::kAdd:
+        out.push_back(Activate(input(0) + input(1), o.activation));
+        break;
+      case TfliteOp::kMul:
+        out.push_back(Activate(input(0) * input(1), o.activation));
+        break;
       case TfliteOp::kAveragePool2d:
       case TfliteOp::kMaxPool2d: {
         const torch::Tensor& x = input(0);
@@ -238,16 +258,21 @@ torch::Tensor TfliteNetImpl::forward(const torch::Tensor& rgb) {
               padded = F::pad(x, F::PadFuncOptions({left, right, top, bottom})
                                      .value(avg ? 0.0 : -std::numeric_limits<double>::infinity()));
               if (avg) {
-                torch::Tensor ones = F::pad(torch::ones({1, 1, x.size(2), x.size(3)}), F::PadFuncOptions({left, right, top, bottom}));
-                torch::Tensor sum = F::avg_pool2d(padded, F::AvgPool2dFuncOptions({o.filter_h, o.filter_w}).stride({o.stride_h, o.stride_w}));
-                torch::Tensor count = F::avg_pool2d(ones, F::AvgPool2dFuncOptions({o.filter_h, o.filter_w}).stride({o.stride_h, o.stride_w}));
+                torch::Tensor ones =
+                    F::pad(torch::ones({1, 1, x.size(2), x.size(3)}), F::PadFuncOptions({left, right, top, bottom}));
+                torch::Tensor sum = F::avg_pool2d(
+                    padded, F::AvgPool2dFuncOptions({o.filter_h, o.filter_w}).stride({o.stride_h, o.stride_w}));
+                torch::Tensor count = F::avg_pool2d(
+                    ones, F::AvgPool2dFuncOptions({o.filter_h, o.filter_w}).stride({o.stride_h, o.stride_w}));
                 out.push_back(Activate(sum / count, o.activation));
                 break;
               }
             }
           }
-          y = avg ? F::avg_pool2d(padded, F::AvgPool2dFuncOptions({o.filter_h, o.filter_w}).stride({o.stride_h, o.stride_w}))
-                  : F::max_pool2d(padded, F::MaxPool2dFuncOptions({o.filter_h, o.filter_w}).stride({o.stride_h, o.stride_w}));
+          y = avg ? F::avg_pool2d(padded,
+                                  F::AvgPool2dFuncOptions({o.filter_h, o.filter_w}).stride({o.stride_h, o.stride_w}))
+                  : F::max_pool2d(padded,
+                                  F::MaxPool2dFuncOptions({o.filter_h, o.filter_w}).stride({o.stride_h, o.stride_w}));
         }
         out.push_back(Activate(y, o.activation));
         break;
@@ -255,7 +280,8 @@ torch::Tensor TfliteNetImpl::forward(const torch::Tensor& rgb) {
       case TfliteOp::kConcatenation: {
         std::vector<torch::Tensor> parts;
         for (std::size_t i = 0; i < op.inputs.size(); ++i) parts.push_back(input(static_cast<int>(i)));
-        out.push_back(Activate(torch::cat(parts, TorchAxis(o.axis, graph_.tensors[op.outputs[0]].shape.size())), o.activation));
+        out.push_back(
+            Activate(torch::cat(parts, TorchAxis(o.axis, graph_.tensors[op.outputs[0]].shape.size())), o.activation));
         break;
       }
       case TfliteOp::kResizeBilinear: {
@@ -273,11 +299,16 @@ torch::Tensor TfliteNetImpl::forward(const torch::Tensor& rgb) {
         std::int32_t axis;
         std::memcpy(&axis, graph_.tensors[op.inputs[0]].data.data(), 4);
         const torch::Tensor& x = input(1);
-        out = x.chunk(static_cast<int64_t>(op.outputs.size()), TorchAxis(axis, graph_.tensors[op.inputs[1]].shape.size()));
+        out = x.chunk(static_cast<int64_t>(op.outputs.size()),
+                      TorchAxis(axis, graph_.tensors[op.inputs[1]].shape.size()));
         break;
       }
-      case TfliteOp::kRelu: out.push_back(torch::relu(input(0))); break;
-      case TfliteOp::kRelu6: out.push_back(torch::clamp(input(0), 0.0, 6.0)); break;
+      case TfliteOp::kRelu:
+        out.push_back(torch::relu(input(0)));
+        break;
+      case TfliteOp::kRelu6:
+        out.push_back(torch::clamp(input(0), 0.0, 6.0));
+        break;
       default:  // QUANTIZE, DEQUANTIZE: a change of grid only.
         out.push_back(input(0));
     }

@@ -43,7 +43,7 @@ class TfliteNetImpl : public torch::nn::Module {
   torch::Tensor forward(const torch::Tensor& rgb);
 
   int num_classes() const { return num_classes_; }
-  int input_width_px() const { return input_w_; }   // The file's declared input size.
+  int input_width_px() const { return input_w_; }  // The file's declared input size.
   int input_height_px() const { return input_h_; }
   const TfliteNetOptions& options() const { return options_; }
   void set_emulate_uint8(bool on) { options_.emulate_uint8 = on; }

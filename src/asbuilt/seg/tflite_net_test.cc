@@ -170,15 +170,14 @@ TEST(TfliteSegmenter, RefusesAFileThatIsNotAModel) {
   fs::remove(bad);
 }
 
-
 TEST(TfliteSegmenter, GroupsSumTheSoftmaxOfTheirMembers) {
   torch::manual_seed(5);
   torch::Tensor logits = torch::randn({2, 32, 3, 4});
   torch::Tensor grouped = torch::exp(GroupedLogProbabilities(logits));
   ASSERT_EQ(grouped.sizes(), (std::vector<int64_t>{2, 4, 3, 4}));
   torch::Tensor p = torch::softmax(logits, 1);
-  EXPECT_NEAR(grouped[0][1][2][3].item<double>(), p[0][1][2][3].item<double>(), 1e-5);    // wall: class 1 alone
-  EXPECT_NEAR(grouped[1][2][0][0].item<double>(), p[1][15][0][0].item<double>(), 1e-5);   // door: class 15
+  EXPECT_NEAR(grouped[0][1][2][3].item<double>(), p[0][1][2][3].item<double>(), 1e-5);   // wall: class 1 alone
+  EXPECT_NEAR(grouped[1][2][0][0].item<double>(), p[1][15][0][0].item<double>(), 1e-5);  // door: class 15
   EXPECT_NEAR(grouped.sum(1).min().item<double>(), 1.0, 1e-5);
   EXPECT_NEAR(grouped.sum(1).max().item<double>(), 1.0, 1e-5);
 }
@@ -193,9 +192,12 @@ TEST(TfliteSegmenter, ACheckpointRebuildsTheNetworkExactly) {
     for (auto& p : net->parameters()) p.add_(0.01);  // Not the file's weights any more.
   }
   const fs::path path = fs::temp_directory_path() / fmt::format("asbuilt_tflite_ckpt_{}.pt", ::getpid());
-  nlohmann::json meta = {{"format", kTfliteCheckpointFormat}, {"config", TfliteCheckpointConfig(net)},
-                         {"scale", {320, 240}},                {"crop", {256, 256}},
-                         {"epoch", 1},                         {"parameters", CountParameters(*net)}};
+  nlohmann::json meta = {{"format", kTfliteCheckpointFormat},
+                         {"config", TfliteCheckpointConfig(net)},
+                         {"scale", {320, 240}},
+                         {"crop", {256, 256}},
+                         {"epoch", 1},
+                         {"parameters", CountParameters(*net)}};
   SaveCheckpoint(path, *net, nullptr, meta);
   TfliteNet loaded = LoadTfliteNet(path);
   torch::NoGradGuard no_grad;
@@ -251,8 +253,9 @@ TEST(TfliteSegmenter, RefusesASegformerCheckpointAsATfliteNetwork) {
   const fs::path path = fs::temp_directory_path() / fmt::format("asbuilt_not_tflite_{}.pt", ::getpid());
   SegformerConfig config = SegformerConfigFor("tiny", 4);
   Segformer model(config);
-  SaveCheckpoint(path, *model, nullptr,
-                 {{"format", kCheckpointFormat}, {"config", ConfigToJson(config)}, {"scale", {64, 48}}, {"crop", {64, 48}}});
+  SaveCheckpoint(
+      path, *model, nullptr,
+      {{"format", kCheckpointFormat}, {"config", ConfigToJson(config)}, {"scale", {64, 48}}, {"crop", {64, 48}}});
   try {
     LoadTfliteNet(path);
     ADD_FAILURE() << "no error";

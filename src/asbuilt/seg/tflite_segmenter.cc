@@ -127,10 +127,14 @@ bool IsTfliteFile(const std::filesystem::path& path) { return path.extension() =
 
 int AsbuiltClassOfAde32(int ade_class) {
   switch (ade_class) {
-    case 1: return 1;   // wall
-    case 15: return 2;  // door; double door
-    case 9: return 3;   // windowpane
-    default: return 0;
+    case 1:
+      return 1;  // wall
+    case 15:
+      return 2;  // door; double door
+    case 9:
+      return 3;  // windowpane
+    default:
+      return 0;
   }
 }
 
@@ -140,9 +144,8 @@ torch::Tensor RgbTensor(const std::vector<cv::Mat>& images) {
     CheckArgument(bgr.type() == CV_8UC3, "RgbTensor: images must be 8-bit BGR (CV_8UC3)");
     cv::Mat rgb;
     cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
-    batch.push_back(torch::from_blob(rgb.data, {rgb.rows, rgb.cols, 3}, torch::kUInt8)
-                        .permute({2, 0, 1})
-                        .to(torch::kFloat32));
+    batch.push_back(
+        torch::from_blob(rgb.data, {rgb.rows, rgb.cols, 3}, torch::kUInt8).permute({2, 0, 1}).to(torch::kFloat32));
   }
   return torch::stack(batch);
 }
@@ -163,9 +166,9 @@ TfliteNet LoadTfliteNet(const std::filesystem::path& path) {
   if (IsTfliteFile(path)) return TfliteNet(ReadTflite(path), TfliteNetOptions{});
   const nlohmann::json meta = ReadCheckpointMeta(path);
   if (meta.value("format", "") != kTfliteCheckpointFormat) {
-    throw InputError(path.string(), "asbuilt_meta.format",
-                     fmt::format("a {} checkpoint, not a TFLite network fine-tuned by asbuilt",
-                                 meta.value("format", "")));
+    throw InputError(
+        path.string(), "asbuilt_meta.format",
+        fmt::format("a {} checkpoint, not a TFLite network fine-tuned by asbuilt", meta.value("format", "")));
   }
   if (!meta.contains("config") || !meta["config"].contains("graph")) {
     throw InputError(path.string(), "asbuilt_meta.config.graph", "missing: the network's graph");

@@ -39,11 +39,11 @@ fs::path PluginPath() {
 const TorchPluginApi* Load() {
   const fs::path path = PluginPath();
   auto fail = [&](const std::string& why) {
-    return Error(fmt::format(
-        "segmentation needs {} (asbuilt's LibTorch part) and {} could not be used: {}. Build it "
-        "(cmake --build BUILD --target asbuilt_torch; it goes beside the asbuilt binary) or set "
-        "ASBUILT_TORCH_PLUGIN to its path",
-        kPluginName, path.string(), why));
+    return Error(
+        fmt::format("segmentation needs {} (asbuilt's LibTorch part) and {} could not be used: {}. Build it "
+                    "(cmake --build BUILD --target asbuilt_torch; it goes beside the asbuilt binary) or set "
+                    "ASBUILT_TORCH_PLUGIN to its path",
+                    kPluginName, path.string(), why));
   };
   spdlog::debug("loading LibTorch plugin {}", path.string());
   void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
@@ -53,8 +53,8 @@ const TorchPluginApi* Load() {
   if (entry == nullptr) throw fail("no asbuilt_torch_plugin_api symbol");
   const TorchPluginApi* api = entry();
   if (api == nullptr || api->abi != kTorchPluginAbi || api->size != sizeof(TorchPluginApi)) {
-    throw fail(fmt::format("plugin ABI {} does not match this asbuilt's {} (rebuild both)",
-                           api ? api->abi : 0, kTorchPluginAbi));
+    throw fail(fmt::format("plugin ABI {} does not match this asbuilt's {} (rebuild both)", api ? api->abi : 0,
+                           kTorchPluginAbi));
   }
   return api;  // The handle stays open for the life of the process.
 }

@@ -29,7 +29,8 @@ using Rgb = std::array<double, 3>;
 
 // Hash-based value noise in [0, 1].
 double Hash(int x, int y, std::uint32_t seed) {
-  std::uint32_t h = static_cast<std::uint32_t>(x) * 374761393u + static_cast<std::uint32_t>(y) * 668265263u + seed * 2246822519u;
+  std::uint32_t h =
+      static_cast<std::uint32_t>(x) * 374761393u + static_cast<std::uint32_t>(y) * 668265263u + seed * 2246822519u;
   h = (h ^ (h >> 13)) * 1274126177u;
   return ((h ^ (h >> 16)) & 0xffffff) / double(0xffffff);
 }
@@ -133,7 +134,8 @@ Room MakeRoom(std::mt19937_64& rng) {
         o.z0 = U(0.3, 1.3);
         o.z1 = std::min(r.h - U(0.05, 0.5), o.z0 + U(0.5, 2.0));
       }
-      o.leaf = u01(rng) < 0.5 ? RandomColour(rng, 0.75, 0.98) : Mix(RandomColour(rng, 0.2, 0.7), Rgb{0.2, 0.35, 0.55}, 0.5);
+      o.leaf =
+          u01(rng) < 0.5 ? RandomColour(rng, 0.75, 0.98) : Mix(RandomColour(rng, 0.2, 0.7), Rgb{0.2, 0.35, 0.55}, 0.5);
       o.frame = u01(rng) < 0.6 ? RandomColour(rng, 0.8, 1.0) : RandomColour(rng, 0.1, 0.6);
       o.panes = 1 + static_cast<int>(U(0, 3));
       wall.openings.push_back(o);
@@ -325,9 +327,9 @@ ToyView RenderToyRoom(const ToyRoomOptions& options, std::uint64_t index) {
     for (const Box& b : room.boxes) inside |= InsideBox(cam, b, 0.3);
     if (!inside) break;
   }
-  room.boxes.erase(std::remove_if(room.boxes.begin(), room.boxes.end(),
-                                  [&](const Box& b) { return InsideBox(cam, b, 0.3); }),
-                   room.boxes.end());
+  room.boxes.erase(
+      std::remove_if(room.boxes.begin(), room.boxes.end(), [&](const Box& b) { return InsideBox(cam, b, 0.3); }),
+      room.boxes.end());
   const double yaw = U(0, 2 * M_PI), pitch = U(-12, 12) * M_PI / 180, roll = U(-2, 2) * M_PI / 180;
   const double hfov = U(55, 90) * M_PI / 180;
   V3 fwd{-std::sin(yaw) * std::cos(pitch), std::cos(yaw) * std::cos(pitch), std::sin(pitch)};
@@ -402,7 +404,8 @@ ToyView RenderToyRoom(const ToyRoomOptions& options, std::uint64_t index) {
       }
       colour.at<cv::Vec3b>(v, u) = ToPixel(c);
       // Labels at output pixel centres (sample (1,1) of each 2×2 block).
-      if (u % ss == 1 && v % ss == 1) view.label.at<std::uint8_t>(v / ss, u / ss) = static_cast<std::uint8_t>(shade.label);
+      if (u % ss == 1 && v % ss == 1)
+        view.label.at<std::uint8_t>(v / ss, u / ss) = static_cast<std::uint8_t>(shade.label);
     }
   }
   cv::resize(colour, view.bgr, cv::Size(options.width_px, options.height_px), 0, 0, cv::INTER_AREA);

@@ -19,8 +19,8 @@
 namespace asbuilt {
 
 struct ToyRoomOptions {
-  int width_px = 256;   // Output size; views are rendered at 2× and averaged
-  int height_px = 192;  // down (anti-aliased colour, centre-sampled labels).
+  int width_px = 256;      // Output size; views are rendered at 2× and averaged
+  int height_px = 192;     // down (anti-aliased colour, centre-sampled labels).
   std::uint64_t seed = 1;  // View i of seed s is always the same image.
   void Check() const;
 };

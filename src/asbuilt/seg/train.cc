@@ -44,7 +44,8 @@ EpochRecord RecordFromJson(const nlohmann::json& j) {
 
 // lr at `step` (0-based) of `total`: linear warm-up, then poly decay.
 double LearningRate(const TrainOptions& o, std::int64_t step, std::int64_t total) {
-  double poly = std::pow(std::max(0.0, 1.0 - static_cast<double>(step) / std::max<std::int64_t>(1, total)), o.poly_power);
+  double poly =
+      std::pow(std::max(0.0, 1.0 - static_cast<double>(step) / std::max<std::int64_t>(1, total)), o.poly_power);
   double lr = o.lr * poly;
   if (step < o.warmup_steps) {
     double k = (1.0 - static_cast<double>(step) / o.warmup_steps) * (1.0 - o.warmup_ratio);
@@ -71,9 +72,8 @@ std::string CsvOf(const std::vector<EpochRecord>& history) {
   std::string s = "epoch,step,lr,train_loss,val_mIoU,val_mFscore,val_mPrecision,val_mRecall,val_aAcc,wall_s\n";
   auto f = [](double x) { return std::isnan(x) ? std::string("nan") : fmt::format("{:.6g}", x); };
   for (const auto& r : history) {
-    s += fmt::format("{},{},{:.6g},{},{},{},{},{},{},{:.1f}\n", r.epoch, r.step, r.lr, f(r.train_loss),
-                     f(r.val_miou), f(r.val_mfscore), f(r.val_mprecision), f(r.val_mrecall), f(r.val_aacc),
-                     r.wall_s);
+    s += fmt::format("{},{},{:.6g},{},{},{},{},{},{},{:.1f}\n", r.epoch, r.step, r.lr, f(r.train_loss), f(r.val_miou),
+                     f(r.val_mfscore), f(r.val_mprecision), f(r.val_mrecall), f(r.val_aacc), r.wall_s);
   }
   return s;
 }
@@ -166,10 +166,8 @@ class TrainNet {
 };
 
 torch::Tensor Upsampled(const torch::Tensor& logits, int64_t h, int64_t w) {
-  return F::interpolate(logits, F::InterpolateFuncOptions()
-                                    .size(std::vector<int64_t>{h, w})
-                                    .mode(torch::kBilinear)
-                                    .align_corners(false));
+  return F::interpolate(
+      logits, F::InterpolateFuncOptions().size(std::vector<int64_t>{h, w}).mode(torch::kBilinear).align_corners(false));
 }
 
 class SegformerTrainNet : public TrainNet {
@@ -227,8 +225,9 @@ std::unique_ptr<TrainNet> MakeTrainNet(const TrainOptions& options) {
 std::vector<torch::Tensor> Without(const std::vector<torch::Tensor>& all, const std::vector<torch::Tensor>& head) {
   std::vector<torch::Tensor> out;
   for (const torch::Tensor& p : all) {
-    const bool in_head = std::any_of(head.begin(), head.end(),
-                                     [&](const torch::Tensor& h) { return h.unsafeGetTensorImpl() == p.unsafeGetTensorImpl(); });
+    const bool in_head = std::any_of(head.begin(), head.end(), [&](const torch::Tensor& h) {
+      return h.unsafeGetTensorImpl() == p.unsafeGetTensorImpl();
+    });
     if (!in_head) out.push_back(p);
   }
   return out;
@@ -276,9 +275,9 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
   SetTorchThreads(options.threads);
   torch::manual_seed(options.seed);
 
-  SegDataSplit split = options.manifest.empty()
-                           ? SplitFromFolders(options.images_dir, options.labels_dir, options.val_fraction, options.seed)
-                           : SplitFromManifest(options.manifest);
+  SegDataSplit split = options.manifest.empty() ? SplitFromFolders(options.images_dir, options.labels_dir,
+                                                                   options.val_fraction, options.seed)
+                                                : SplitFromManifest(options.manifest);
   if (options.val_max_images > 0 && static_cast<int>(split.val.size()) > options.val_max_images) {
     split.val.resize(options.val_max_images);
   }
@@ -293,9 +292,10 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
   std::vector<torch::optim::OptimizerParamGroup> groups;
   groups.emplace_back(body_params, std::make_unique<torch::optim::AdamWOptions>(
                                        torch::optim::AdamWOptions(options.lr).weight_decay(options.weight_decay)));
-  groups.emplace_back(head_params, std::make_unique<torch::optim::AdamWOptions>(
-                                       torch::optim::AdamWOptions(options.lr * options.head_lr_mult)
-                                           .weight_decay(options.weight_decay)));
+  groups.emplace_back(
+      head_params,
+      std::make_unique<torch::optim::AdamWOptions>(
+          torch::optim::AdamWOptions(options.lr * options.head_lr_mult).weight_decay(options.weight_decay)));
   torch::optim::AdamW optimizer(std::move(groups), torch::optim::AdamWOptions(options.lr));
 
   const fs::path out = options.out_dir;
@@ -320,10 +320,10 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
     const std::string saved_arch = meta.value("config", nlohmann::json::object()).value("arch", "?");
     const int saved_classes = meta.value("config", nlohmann::json::object()).value("num_classes", 0);
     if (saved_arch != options.arch || saved_classes != options.num_classes) {
-      throw InvalidArgument(fmt::format("{} holds a {} model with {} classes, but --arch {} with {} classes was "
-                                        "asked; use another -o or --no-resume",
-                                        last_path.string(), saved_arch, saved_classes, options.arch,
-                                        options.num_classes));
+      throw InvalidArgument(
+          fmt::format("{} holds a {} model with {} classes, but --arch {} with {} classes was "
+                      "asked; use another -o or --no-resume",
+                      last_path.string(), saved_arch, saved_classes, options.arch, options.num_classes));
     }
     LoadWeights(last_path, net->module(), &optimizer, /*strict=*/true);
     start_epoch = meta.value("epoch", 0);

@@ -32,7 +32,7 @@ struct TrainOptions {
   std::filesystem::path manifest;
   std::filesystem::path images_dir;
   std::filesystem::path labels_dir;
-  double val_fraction = 0.1;  // Folders only: share held out for validation.
+  double val_fraction = 0.1;      // Folders only: share held out for validation.
   std::filesystem::path out_dir;  // Required.
 
   std::string arch = "b0";  // b0, b1, b2 (published), tiny (b0, decoder 128), or
@@ -40,15 +40,15 @@ struct TrainOptions {
                             // or an asbuilt-tflite checkpoint), fine-tuned
                             // through asbuilt's class groups (tflite_segmenter.h).
   int num_classes = 4;
-  int epochs = 50;            // Paper: 50.
-  int steps_per_epoch = 0;    // 0 = ceil(train pairs / batch); else a fixed count.
-  int batch_size = 2;         // Paper: 2.
-  double lr = 1e-4;           // AdamW learning rate (paper: 1e-4).
-  double weight_decay = 1e-3; // AdamW weight decay (paper: 1e-3).
-  double head_lr_mult = 1.0;  // Decoder lr multiplier (mmseg SegFormer: 10).
-  int warmup_steps = 0;       // Linear warm-up from warmup_ratio·lr; 0 = none.
+  int epochs = 50;             // Paper: 50.
+  int steps_per_epoch = 0;     // 0 = ceil(train pairs / batch); else a fixed count.
+  int batch_size = 2;          // Paper: 2.
+  double lr = 1e-4;            // AdamW learning rate (paper: 1e-4).
+  double weight_decay = 1e-3;  // AdamW weight decay (paper: 1e-3).
+  double head_lr_mult = 1.0;   // Decoder lr multiplier (mmseg SegFormer: 10).
+  int warmup_steps = 0;        // Linear warm-up from warmup_ratio·lr; 0 = none.
   double warmup_ratio = 1e-6;
-  double poly_power = 1.0;    // lr = base · (1 − step/total)^power, min 0.
+  double poly_power = 1.0;      // lr = base · (1 − step/total)^power, min 0.
   double drop_path_rate = 0.1;  // Stochastic depth.
   AugmentOptions augment;       // Scale, crop, flip, photometric, blur/noise.
   int val_max_images = 0;       // Validate on at most this many (0 = all).
@@ -70,7 +70,7 @@ struct EpochRecord {
   double lr = 0;
   double train_loss = 0;  // Mean over the epoch's steps.
   double val_miou = 0, val_mfscore = 0, val_mprecision = 0, val_mrecall = 0, val_aacc = 0;  // NaN: no val set.
-  double wall_s = 0;      // Since the run started (across resumes).
+  double wall_s = 0;  // Since the run started (across resumes).
   nlohmann::json ToJson() const;
 };
 

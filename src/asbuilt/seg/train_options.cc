@@ -23,10 +23,12 @@ void TrainOptions::Check() const {
                 "TrainOptions: give a manifest (--manifest) or an image folder (--images [--labels])");
   CheckArgument(manifest.empty() || images_dir.empty(), "TrainOptions: give --manifest or --images, not both");
   if (arch == "tflite") {
-    CheckArgument(!init.empty(), "TrainOptions.arch = tflite fine-tunes a TFLite graph: give it with --init "
-                                 "(a .tflite file or an asbuilt-tflite checkpoint)");
+    CheckArgument(!init.empty(),
+                  "TrainOptions.arch = tflite fine-tunes a TFLite graph: give it with --init "
+                  "(a .tflite file or an asbuilt-tflite checkpoint)");
     CheckArgument(num_classes == 4, fmt::format("TrainOptions.num_classes = {}: a TFLite graph is trained on "
-                                                "asbuilt's 4 classes", num_classes));
+                                                "asbuilt's 4 classes",
+                                                num_classes));
   } else {
     SegformerConfigFor(arch, num_classes);  // Throws for an unknown arch.
   }
@@ -111,20 +113,26 @@ nlohmann::json TrainOptions::ToJson() const {
 }
 
 nlohmann::json EpochRecord::ToJson() const {
-  return {{"epoch", epoch},          {"step", step},
-          {"lr", lr},                {"train_loss", Num(train_loss)},
-          {"val_mIoU", Num(val_miou)}, {"val_mFscore", Num(val_mfscore)},
-          {"val_mPrecision", Num(val_mprecision)}, {"val_mRecall", Num(val_mrecall)},
-          {"val_aAcc", Num(val_aacc)}, {"wall_s", wall_s}};
+  return {{"epoch", epoch},
+          {"step", step},
+          {"lr", lr},
+          {"train_loss", Num(train_loss)},
+          {"val_mIoU", Num(val_miou)},
+          {"val_mFscore", Num(val_mfscore)},
+          {"val_mPrecision", Num(val_mprecision)},
+          {"val_mRecall", Num(val_mrecall)},
+          {"val_aAcc", Num(val_aacc)},
+          {"wall_s", wall_s}};
 }
 
 std::string TrainSummary::BriefReport() const {
-  return fmt::format("{} epoch{} ({} steps, {} train / {} val pairs{}), loss {:.4f} → {:.4f}, best val mIoU {} "
-                     "(epoch {}), {:.0f} s{} → {}",
-                     epochs_done, epochs_done == 1 ? "" : "s", steps, train_pairs, val_pairs,
-                     resumed_from_epoch > 0 ? fmt::format(", resumed after epoch {}", resumed_from_epoch) : "",
-                     first_loss, last_loss, std::isnan(best_miou) ? "n/a" : fmt::format("{:.4f}", best_miou),
-                     best_epoch, wall_s, stopped ? " (stopped)" : "", out_dir.string());
+  return fmt::format(
+      "{} epoch{} ({} steps, {} train / {} val pairs{}), loss {:.4f} → {:.4f}, best val mIoU {} "
+      "(epoch {}), {:.0f} s{} → {}",
+      epochs_done, epochs_done == 1 ? "" : "s", steps, train_pairs, val_pairs,
+      resumed_from_epoch > 0 ? fmt::format(", resumed after epoch {}", resumed_from_epoch) : "", first_loss, last_loss,
+      std::isnan(best_miou) ? "n/a" : fmt::format("{:.4f}", best_miou), best_epoch, wall_s, stopped ? " (stopped)" : "",
+      out_dir.string());
 }
 
 }  // namespace asbuilt

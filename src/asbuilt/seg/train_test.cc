@@ -41,8 +41,12 @@ TrainOptions TinyOptions(const fs::path& out) {
   o.lr = 2e-3;
   o.warmup_steps = 4;
   o.val_fraction = 0.25;
-  o.augment = {.scale_width_px = 64, .scale_height_px = 48, .ratio_min = 0.9, .ratio_max = 1.2,
-               .crop_width_px = 64, .crop_height_px = 48};
+  o.augment = {.scale_width_px = 64,
+               .scale_height_px = 48,
+               .ratio_min = 0.9,
+               .ratio_max = 1.2,
+               .crop_width_px = 64,
+               .crop_height_px = 48};
   o.augment.photometric = false;
   o.augment.blur_noise = false;
   o.seed = 3;

@@ -22,8 +22,7 @@ std::vector<cv::Point2f> FindBoard(const cv::Mat& gray, cv::Size board, int subp
   for (int scale = 1; scale <= max_scale; ++scale) {
     cv::Mat img = gray;
     if (scale > 1) cv::resize(gray, img, cv::Size(), scale, scale, cv::INTER_LINEAR);
-    if (cv::findChessboardCorners(img, board, corners,
-                                  cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE)) {
+    if (cv::findChessboardCorners(img, board, corners, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE)) {
       for (auto& c : corners) c *= 1.0f / scale;
       cv::cornerSubPix(gray, corners, cv::Size(subpix_radius, subpix_radius), cv::Size(-1, -1),
                        cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 30, 0.01));
@@ -59,8 +58,9 @@ double MeanEpipolarError(const std::vector<std::vector<cv::Point2f>>& pts1,
 }  // namespace
 
 void CalibrateOptions::Check() const {
-  CheckArgument(board_cols >= 2 && board_rows >= 2,
-                fmt::format("CalibrateOptions.board = {}x{}, needs at least 2x2 inner corners", board_cols, board_rows));
+  CheckArgument(
+      board_cols >= 2 && board_rows >= 2,
+      fmt::format("CalibrateOptions.board = {}x{}, needs at least 2x2 inner corners", board_cols, board_rows));
   CheckArgument(square_m > 0 && std::isfinite(square_m),
                 fmt::format("CalibrateOptions.square_m = {}, must be > 0", square_m));
   CheckArgument(subpix_radius_px >= 1,
@@ -78,14 +78,15 @@ std::string ViewReport::ToString() const {
 }
 
 std::string CalibrationSummary::BriefReport() const {
-  return fmt::format("{}/{} views, RMS {:.3f} px (mono {:.3f} / {:.3f}), mean epipolar error {:.3f} px, baseline {:.4f}",
-                     views_used, views.size(), calibration.rms_px, left_rms_px, right_rms_px,
-                     calibration.epipolar_error_px, calibration.T.empty() ? NAN : cv::norm(calibration.T));
+  return fmt::format(
+      "{}/{} views, RMS {:.3f} px (mono {:.3f} / {:.3f}), mean epipolar error {:.3f} px, baseline {:.4f}", views_used,
+      views.size(), calibration.rms_px, left_rms_px, right_rms_px, calibration.epipolar_error_px,
+      calibration.T.empty() ? NAN : cv::norm(calibration.T));
 }
 
 CalibrationSummary CalibrateStereo(const std::vector<std::filesystem::path>& left,
-                                   const std::vector<std::filesystem::path>& right,
-                                   const CalibrateOptions& options, const ProgressCallback& progress) {
+                                   const std::vector<std::filesystem::path>& right, const CalibrateOptions& options,
+                                   const ProgressCallback& progress) {
   options.Check();
   CheckArgument(left.size() == right.size(),
                 fmt::format("CalibrateStereo: {} left images but {} right images", left.size(), right.size()));
@@ -112,8 +113,8 @@ CalibrationSummary CalibrateStereo(const std::vector<std::filesystem::path>& lef
     } else if (l.size() != r.size()) {
       view.reason = fmt::format("left is {}x{}, right {}x{}", l.cols, l.rows, r.cols, r.rows);
     } else if (image_size.width > 0 && l.size() != image_size) {
-      view.reason = fmt::format("size {}x{} differs from the first view's {}x{}", l.cols, l.rows,
-                                image_size.width, image_size.height);
+      view.reason = fmt::format("size {}x{} differs from the first view's {}x{}", l.cols, l.rows, image_size.width,
+                                image_size.height);
     } else {
       auto c1 = FindBoard(l, board, options.subpix_radius_px);
       auto c2 = c1.empty() ? std::vector<cv::Point2f>() : FindBoard(r, board, options.subpix_radius_px);
@@ -136,9 +137,9 @@ CalibrationSummary CalibrateStereo(const std::vector<std::filesystem::path>& lef
     for (const ViewReport& v : summary.views) {
       if (!v.used) problems.push_back({v.left, "", v.reason});
     }
-    problems.insert(problems.begin(),
-                    {left.front().string(), "",
-                     fmt::format("only {} usable view pairs, need {}", pts1.size(), options.min_views)});
+    problems.insert(
+        problems.begin(),
+        {left.front().string(), "", fmt::format("only {} usable view pairs, need {}", pts1.size(), options.min_views)});
     return InputError(problems);
   };
 

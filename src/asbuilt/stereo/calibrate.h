@@ -38,8 +38,8 @@ struct CalibrateOptions {
 struct ViewReport {
   std::string left, right;  // File names as given.
   bool used = false;
-  std::string reason;       // Why it was rejected; empty when used.
-  double left_error_px = NAN;   // Per-view RMS reprojection error (stereo).
+  std::string reason;          // Why it was rejected; empty when used.
+  double left_error_px = NAN;  // Per-view RMS reprojection error (stereo).
   double right_error_px = NAN;
 
   std::string ToString() const;
@@ -49,7 +49,7 @@ struct CalibrationSummary {
   StereoCalibration calibration;  // rms_px and epipolar_error_px filled.
   std::vector<ViewReport> views;
   int views_used = 0;
-  double left_rms_px = NAN;   // Mono calibrations.
+  double left_rms_px = NAN;  // Mono calibrations.
   double right_rms_px = NAN;
 
   // "13/13 views, RMS 0.42 px, epipolar 0.38 px, baseline 0.0836 m".
@@ -60,8 +60,8 @@ struct CalibrationSummary {
 // options or unequal list lengths; InputError when fewer than min_views
 // pairs show the board (listing each view's reason).
 CalibrationSummary CalibrateStereo(const std::vector<std::filesystem::path>& left,
-                                   const std::vector<std::filesystem::path>& right,
-                                   const CalibrateOptions& options, const ProgressCallback& progress = {});
+                                   const std::vector<std::filesystem::path>& right, const CalibrateOptions& options,
+                                   const ProgressCallback& progress = {});
 
 }  // namespace asbuilt
 

@@ -47,8 +47,8 @@ TEST(CalibrateStereo, ReportsAViewWithoutABoardByName) {
 }
 
 TEST(CalibrateStereo, TooFewViewsIsAnInputError) {
-  std::vector<fs::path> none = {fs::path(ASBUILT_SHARED_DATA_DIR) / "blender-rooms-public" /
-                                "p01_rect_1door_2win" / "left" / "003.png"};
+  std::vector<fs::path> none = {fs::path(ASBUILT_SHARED_DATA_DIR) / "blender-rooms-public" / "p01_rect_1door_2win" /
+                                "left" / "003.png"};
   EXPECT_THROW(CalibrateStereo(none, none, {}), InputError);
 }
 

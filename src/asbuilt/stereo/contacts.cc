@@ -200,10 +200,10 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
   if (!(h > 0.05)) return;                            // No usable height: no contacts.
   const int rows = labels.rows, cols = labels.cols, run = options.contact_min_run_px;
   const double fxb = cam.fx * frame.baseline_m;
-  const cv::Mat steps = options.contact_snap_px.value_or(0) > 0 || options.floor_snap_px.value_or(0) > 0 ||
-                                options.skirting_depth_m > 0
-                            ? VerticalSteps(frame.left)
-                            : cv::Mat();
+  const cv::Mat steps =
+      options.contact_snap_px.value_or(0) > 0 || options.floor_snap_px.value_or(0) > 0 || options.skirting_depth_m > 0
+          ? VerticalSteps(frame.left)
+          : cv::Mat();
   const std::size_t first_point = result->points.size(), first_paired = result->pending.paired_floor.size(),
                     first_topped = result->pending.topped_floor.size();
   std::vector<double> skirting_heights;  // Per wall foot: the step above it, in
@@ -279,8 +279,8 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
         }
       }
       floor_edge = v + 0.5;
-      floor_row = SnapRowToImageEdge(steps, u, floor_edge, options.floor_snap_px.value_or(0),
-                                     options.contact_snap_min_step);
+      floor_row =
+          SnapRowToImageEdge(steps, u, floor_edge, options.floor_snap_px.value_or(0), options.contact_snap_min_step);
       if (floor_row <= cam.cy + 1.0) floor_row = floor_edge;
       floor_label = a;
       break;

@@ -14,8 +14,7 @@ namespace {
 // Sub-pixel disparity by Gauss–Newton on the zero-mean, unit-variance patch
 // difference (a 1-D Lucas–Kanade along the row); starts from the parabola
 // estimate and keeps it if the refinement wanders off by more than a pixel.
-double RefineDisparity(const cv::Mat& patch, const cv::Mat& right_gray, double u, double v, double d0,
-                       int iterations) {
+double RefineDisparity(const cv::Mat& patch, const cv::Mat& right_gray, double u, double v, double d0, int iterations) {
   const int side = patch.cols;
   cv::Scalar pm, ps;
   cv::meanStdDev(patch, pm, ps);
@@ -56,9 +55,9 @@ void CornerOptions::Check() const {
                 fmt::format("CornerOptions.min_region_area_px = {}, must be >= 1", min_region_area_px));
   CheckArgument(approx_epsilon_px > 0,
                 fmt::format("CornerOptions.approx_epsilon_px = {}, must be > 0", approx_epsilon_px));
-  CheckArgument(approx_epsilon_fraction >= 0 && approx_epsilon_fraction < 0.5,
-                fmt::format("CornerOptions.approx_epsilon_fraction = {}, must be in [0, 0.5)",
-                            approx_epsilon_fraction));
+  CheckArgument(
+      approx_epsilon_fraction >= 0 && approx_epsilon_fraction < 0.5,
+      fmt::format("CornerOptions.approx_epsilon_fraction = {}, must be in [0, 0.5)", approx_epsilon_fraction));
   CheckArgument(border_margin_px >= 0,
                 fmt::format("CornerOptions.border_margin_px = {}, must be >= 0", border_margin_px));
   CheckArgument(refine_radius_px >= 0,
@@ -78,26 +77,25 @@ void RowMatchOptions::Check() const {
                 fmt::format("RowMatchOptions.ambiguity_margin = {}, must be >= 0", ambiguity_margin));
   CheckArgument(min_patch_stddev >= 0,
                 fmt::format("RowMatchOptions.min_patch_stddev = {}, must be >= 0", min_patch_stddev));
-  CheckArgument(gauss_newton_iterations >= 0 && gauss_newton_iterations <= 100,
-                fmt::format("RowMatchOptions.gauss_newton_iterations = {}, must be in [0, 100]",
-                            gauss_newton_iterations));
-  CheckArgument(min_horizontal_structure >= 0 && min_horizontal_structure <= 1,
-                fmt::format("RowMatchOptions.min_horizontal_structure = {}, must be in [0, 1]",
-                            min_horizontal_structure));
+  CheckArgument(
+      gauss_newton_iterations >= 0 && gauss_newton_iterations <= 100,
+      fmt::format("RowMatchOptions.gauss_newton_iterations = {}, must be in [0, 100]", gauss_newton_iterations));
+  CheckArgument(
+      min_horizontal_structure >= 0 && min_horizontal_structure <= 1,
+      fmt::format("RowMatchOptions.min_horizontal_structure = {}, must be in [0, 1]", min_horizontal_structure));
 }
 
 std::string ClassCorner::ToString() const {
-  return fmt::format("{} corner at ({:.2f}, {:.2f}) region {}{}", LabelClassName(label), pixel.x(),
-                     pixel.y(), region, refined ? " refined" : "");
+  return fmt::format("{} corner at ({:.2f}, {:.2f}) region {}{}", LabelClassName(label), pixel.x(), pixel.y(), region,
+                     refined ? " refined" : "");
 }
 
 std::string RowMatch::ToString() const {
-  return fmt::format("disparity {:.3f} px (row {:+.0f}), score {:.3f}, second {:.3f}", disparity_px,
-                     row_offset_px, score, second_score);
+  return fmt::format("disparity {:.3f} px (row {:+.0f}), score {:.3f}, second {:.3f}", disparity_px, row_offset_px,
+                     score, second_score);
 }
 
-std::vector<ClassCorner> FindClassCorners(const cv::Mat& labels, const cv::Mat& gray,
-                                          const CornerOptions& options) {
+std::vector<ClassCorner> FindClassCorners(const cv::Mat& labels, const cv::Mat& gray, const CornerOptions& options) {
   options.Check();
   CheckArgument(labels.type() == CV_8UC1, "FindClassCorners: labels must be CV_8UC1");
   CheckArgument(gray.empty() || (gray.size() == labels.size() && gray.type() == CV_8UC1),
@@ -112,8 +110,8 @@ std::vector<ClassCorner> FindClassCorners(const cv::Mat& labels, const cv::Mat& 
     cv::findContours(mask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
     for (const auto& contour : contours) {
       if (cv::contourArea(contour) < options.min_region_area_px) continue;
-      const double eps = std::max(options.approx_epsilon_px,
-                                  options.approx_epsilon_fraction * cv::arcLength(contour, true));
+      const double eps =
+          std::max(options.approx_epsilon_px, options.approx_epsilon_fraction * cv::arcLength(contour, true));
       std::vector<cv::Point> polygon;
       cv::approxPolyDP(contour, polygon, eps, true);
       for (const cv::Point& p : polygon) {
@@ -129,8 +127,8 @@ std::vector<ClassCorner> FindClassCorners(const cv::Mat& labels, const cv::Mat& 
   if (!gray.empty() && options.refine_radius_px > 0 && !corners.empty()) {
     std::vector<cv::Point2f> pts;
     for (const auto& c : corners) pts.emplace_back(c.pixel.x(), c.pixel.y());
-    cv::cornerSubPix(gray, pts, cv::Size(options.refine_radius_px, options.refine_radius_px),
-                     cv::Size(-1, -1), cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 30, 0.01));
+    cv::cornerSubPix(gray, pts, cv::Size(options.refine_radius_px, options.refine_radius_px), cv::Size(-1, -1),
+                     cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 30, 0.01));
     for (std::size_t i = 0; i < pts.size(); ++i) {
       const Vec2 refined(pts[i].x, pts[i].y);
       if (std::isfinite(refined.x()) && std::isfinite(refined.y()) &&
@@ -143,11 +141,10 @@ std::vector<ClassCorner> FindClassCorners(const cv::Mat& labels, const cv::Mat& 
   return corners;
 }
 
-std::optional<RowMatch> MatchAlongRow(const cv::Mat& left_gray, const cv::Mat& right_gray,
-                                      const Vec2& left_px, double min_disparity_px,
-                                      double max_disparity_px, const RowMatchOptions& options) {
-  CheckArgument(left_gray.type() == CV_32FC1 && right_gray.type() == CV_32FC1 &&
-                    left_gray.size() == right_gray.size(),
+std::optional<RowMatch> MatchAlongRow(const cv::Mat& left_gray, const cv::Mat& right_gray, const Vec2& left_px,
+                                      double min_disparity_px, double max_disparity_px,
+                                      const RowMatchOptions& options) {
+  CheckArgument(left_gray.type() == CV_32FC1 && right_gray.type() == CV_32FC1 && left_gray.size() == right_gray.size(),
                 "MatchAlongRow: images must be CV_32FC1 of one size");
   const int h = options.patch_radius_px;
   const int side = 2 * h + 1;
@@ -187,8 +184,7 @@ std::optional<RowMatch> MatchAlongRow(const cv::Mat& left_gray, const cv::Mat& r
   std::vector<float> best_curve;
   for (int dy = -options.row_tolerance_px; dy <= options.row_tolerance_px; ++dy) {
     cv::Mat strip, scores;
-    cv::getRectSubPix(right_gray, cv::Size(width, side),
-                      cv::Point2f(u - 0.5 * (dmin + dmax), v + dy), strip, CV_32F);
+    cv::getRectSubPix(right_gray, cv::Size(width, side), cv::Point2f(u - 0.5 * (dmin + dmax), v + dy), strip, CV_32F);
     cv::matchTemplate(strip, patch, scores, cv::TM_CCOEFF_NORMED);
     // Column k ↔ disparity dmax − k.
     const float* s = scores.ptr<float>(0);
@@ -208,8 +204,8 @@ std::optional<RowMatch> MatchAlongRow(const cv::Mat& left_gray, const cv::Mat& r
   // Ambiguity: any other local peak farther than 2 px.
   for (int i = 0; i < n; ++i) {
     if (std::abs(i - k) <= 2) continue;
-    const bool peak = (i == 0 || best_curve[i] >= best_curve[i - 1]) &&
-                      (i == n - 1 || best_curve[i] >= best_curve[i + 1]);
+    const bool peak =
+        (i == 0 || best_curve[i] >= best_curve[i - 1]) && (i == n - 1 || best_curve[i] >= best_curve[i + 1]);
     if (peak) best.second_score = std::max<double>(best.second_score, best_curve[i]);
   }
   if (best.second_score > best.score - options.ambiguity_margin) return std::nullopt;

@@ -20,8 +20,7 @@ namespace {
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 // The one place the OpenCV matchers are configured (STYLE.md 5).
-cv::Ptr<cv::StereoMatcher> MakeLeftMatcher(const DisparityOptions& o, int min_disp, int num_disp,
-                                           int channels) {
+cv::Ptr<cv::StereoMatcher> MakeLeftMatcher(const DisparityOptions& o, int min_disp, int num_disp, int channels) {
   if (o.matcher == DisparityMatcher::kBm) {
     auto bm = cv::StereoBM::create(num_disp, o.block_size_px);
     bm->setMinDisparity(min_disp);
@@ -34,10 +33,9 @@ cv::Ptr<cv::StereoMatcher> MakeLeftMatcher(const DisparityOptions& o, int min_di
     return bm;
   }
   const int area = channels * o.block_size_px * o.block_size_px;
-  return cv::StereoSGBM::create(min_disp, num_disp, o.block_size_px, o.p1_per_block_px * area,
-                                o.p2_per_block_px * area, /*disp12MaxDiff=*/-1,
-                                /*preFilterCap=*/63, o.uniqueness_percent, o.speckle_window_px,
-                                o.speckle_range_px,
+  return cv::StereoSGBM::create(min_disp, num_disp, o.block_size_px, o.p1_per_block_px * area, o.p2_per_block_px * area,
+                                /*disp12MaxDiff=*/-1,
+                                /*preFilterCap=*/63, o.uniqueness_percent, o.speckle_window_px, o.speckle_range_px,
                                 o.full_dp ? cv::StereoSGBM::MODE_HH : cv::StereoSGBM::MODE_SGBM_3WAY);
 }
 
@@ -128,8 +126,8 @@ void FillHolesFromBackground(cv::Mat& disp) {
   }
 }
 
-RawPair MatchBoth(const cv::Mat& left, const cv::Mat& right, const DisparityOptions& o,
-                  int min_disp, int num_disp, bool need_right) {
+RawPair MatchBoth(const cv::Mat& left, const cv::Mat& right, const DisparityOptions& o, int min_disp, int num_disp,
+                  bool need_right) {
   cv::Mat l = left, r = right;
   if (o.matcher == DisparityMatcher::kBm && l.channels() == 3) {
     cv::cvtColor(left, l, cv::COLOR_BGR2GRAY);
@@ -149,9 +147,9 @@ RawPair MatchBoth(const cv::Mat& left, const cv::Mat& right, const DisparityOpti
 }  // namespace
 
 void DisparityOptions::Check() const {
-  CheckArgument(num_disparities_px > 0 && num_disparities_px % 16 == 0,
-                fmt::format("DisparityOptions.num_disparities_px = {}, must be a positive multiple of 16",
-                            num_disparities_px));
+  CheckArgument(
+      num_disparities_px > 0 && num_disparities_px % 16 == 0,
+      fmt::format("DisparityOptions.num_disparities_px = {}, must be a positive multiple of 16", num_disparities_px));
   CheckArgument(block_size_px >= 1 && block_size_px % 2 == 1 && block_size_px <= 255,
                 fmt::format("DisparityOptions.block_size_px = {}, must be odd in [1, 255]", block_size_px));
   CheckArgument(matcher != DisparityMatcher::kBm || block_size_px >= 5,
@@ -161,8 +159,8 @@ void DisparityOptions::Check() const {
                             p2_per_block_px, p1_per_block_px));
   CheckArgument(uniqueness_percent >= 0 && uniqueness_percent <= 100,
                 fmt::format("DisparityOptions.uniqueness_percent = {}, must be in [0, 100]", uniqueness_percent));
-  CheckArgument(speckle_window_px >= 0, fmt::format("DisparityOptions.speckle_window_px = {}, must be >= 0",
-                                                    speckle_window_px));
+  CheckArgument(speckle_window_px >= 0,
+                fmt::format("DisparityOptions.speckle_window_px = {}, must be >= 0", speckle_window_px));
   CheckArgument(speckle_range_px >= 0,
                 fmt::format("DisparityOptions.speckle_range_px = {}, must be >= 0", speckle_range_px));
   CheckArgument(max_left_right_diff_px >= 0,
@@ -183,18 +181,16 @@ std::string DisparityOptions::ToString() const {
 }
 
 std::string DisparityResult::ToString() const {
-  return fmt::format("disparity {}x{}, range [{}, {}), {:.1f}% valid, {:.0f} ms", disparity_px.cols,
-                     disparity_px.rows, min_disparity_px, min_disparity_px + num_disparities_px,
-                     100.0 * valid_fraction, 1000.0 * seconds);
+  return fmt::format("disparity {}x{}, range [{}, {}), {:.1f}% valid, {:.0f} ms", disparity_px.cols, disparity_px.rows,
+                     min_disparity_px, min_disparity_px + num_disparities_px, 100.0 * valid_fraction, 1000.0 * seconds);
 }
 
-DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right,
-                                 const DisparityOptions& options) {
+DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right, const DisparityOptions& options) {
   options.Check();
   CheckArgument(!left.empty() && !right.empty(), "ComputeDisparity: empty image");
   CheckArgument(left.size() == right.size() && left.type() == right.type(),
-                fmt::format("ComputeDisparity: left {}x{} and right {}x{} images differ in size or type",
-                            left.cols, left.rows, right.cols, right.rows));
+                fmt::format("ComputeDisparity: left {}x{} and right {}x{} images differ in size or type", left.cols,
+                            left.rows, right.cols, right.rows));
   CheckArgument(left.depth() == CV_8U && (left.channels() == 1 || left.channels() == 3),
                 "ComputeDisparity: images must be 8-bit gray or BGR");
   const auto start = std::chrono::steady_clock::now();
@@ -213,8 +209,7 @@ DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right,
     coarse.left_right_check = true;
     coarse.min_disparity_px = static_cast<int>(std::floor(min_disp / 2.0));
     coarse.num_disparities_px = std::max(16, (num_disp / 2 + 15) / 16 * 16);
-    coarse.block_size_px = std::max(options.matcher == DisparityMatcher::kBm ? 5 : 3,
-                                    (options.block_size_px / 2) | 1);
+    coarse.block_size_px = std::max(options.matcher == DisparityMatcher::kBm ? 5 : 3, (options.block_size_px / 2) | 1);
     DisparityResult c = ComputeDisparity(l2, r2, coarse);
     const double lo = Percentile(c.disparity_px, 0.01), hi = Percentile(c.disparity_px, 0.99);
     if (std::isfinite(lo) && std::isfinite(hi)) {
@@ -233,8 +228,8 @@ DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right,
   const bool need_right = options.left_right_check || options.wls_filter;
   // Left images for WLS guidance must match the matcher's input channels.
   RawPair raw = MatchBoth(left, right, options, min_disp, num_disp, need_right);
-  cv::Mat disp = ToFloatDisparity(raw.left16, min_disp,
-                                  options.unround_subpixel && options.matcher == DisparityMatcher::kSgbm);
+  cv::Mat disp =
+      ToFloatDisparity(raw.left16, min_disp, options.unround_subpixel && options.matcher == DisparityMatcher::kSgbm);
 
   // Left–right consistency: the right view's disparity (negated by the right
   // matcher) at x − d must agree.
@@ -373,9 +368,8 @@ std::optional<SubpixelDisparity> RefineDisparityAt(const cv::Mat& left_gray, con
     if (std::abs(whole + e - d0) > 1.0) return std::nullopt;
     if (std::abs(step) < 1e-3) break;
   }
-  return SubpixelDisparity{.disparity_px = whole + e,
-                           .left_u_px = u + 0.5 * e,
-                           .sigma_px = std::sqrt(residual / (l.size() - 1) / jj)};
+  return SubpixelDisparity{
+      .disparity_px = whole + e, .left_u_px = u + 0.5 * e, .sigma_px = std::sqrt(residual / (l.size() - 1) / jj)};
 }
 
 cv::Mat ColorizeDisparity(const cv::Mat& disparity_px, double lo, double hi) {
@@ -392,8 +386,7 @@ cv::Mat ColorizeDisparity(const cv::Mat& disparity_px, double lo, double hi) {
     for (int x = 0; x < gray.cols; ++x) {
       const bool ok = std::isfinite(d[x]);
       mask.at<unsigned char>(y, x) = ok ? 0 : 255;
-      gray.at<unsigned char>(y, x) =
-          ok ? cv::saturate_cast<unsigned char>(255.0 * (d[x] - lo) / (hi - lo)) : 0;
+      gray.at<unsigned char>(y, x) = ok ? cv::saturate_cast<unsigned char>(255.0 * (d[x] - lo) / (hi - lo)) : 0;
     }
   }
   cv::Mat color;
@@ -431,7 +424,8 @@ cv::Mat ReadPfm(const std::filesystem::path& path) {
     return data.substr(start, pos - start);
   };
   const std::string magic = token();
-  if (magic != "Pf") throw InputError(name, "header", fmt::format("expected \"Pf\" (one-channel PFM), got \"{}\"", magic));
+  if (magic != "Pf")
+    throw InputError(name, "header", fmt::format("expected \"Pf\" (one-channel PFM), got \"{}\"", magic));
   int width = 0, height = 0;
   double scale = 0;
   try {

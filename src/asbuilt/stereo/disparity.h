@@ -21,24 +21,25 @@ enum class DisparityMatcher { kSgbm, kBm };
 
 struct DisparityOptions {
   DisparityMatcher matcher = DisparityMatcher::kSgbm;  // SGBM (semi-global) or BM (block matching, faster).
-  int min_disparity_px = 0;         // Search range start, px.
-  int num_disparities_px = 64;      // Search range width (multiple of 16); larger sees nearer points, slower.
-  int block_size_px = 5;            // Matching window side (odd); larger: smoother, fewer holes, blurrier edges.
-  int p1_per_block_px = 8;          // SGBM smoothness penalty P1 = p1 · channels · block²…
-  int p2_per_block_px = 32;         // …and P2 likewise; P2 > P1.
-  bool full_dp = false;             // SGBM: eight paths (MODE_HH; slow, memory-hungry) instead of three.
-  int uniqueness_percent = 10;      // Reject a match unless its cost beats the second best by this %.
-  int speckle_window_px = 100;      // Speckle filter: invalidate blobs smaller than this (0: off)…
-  int speckle_range_px = 2;         // …whose disparity varies by more than this, px.
-  bool left_right_check = true;     // Keep a left pixel only when the right view's disparity agrees…
+  int min_disparity_px = 0;                            // Search range start, px.
+  int num_disparities_px = 64;          // Search range width (multiple of 16); larger sees nearer points, slower.
+  int block_size_px = 5;                // Matching window side (odd); larger: smoother, fewer holes, blurrier edges.
+  int p1_per_block_px = 8;              // SGBM smoothness penalty P1 = p1 · channels · block²…
+  int p2_per_block_px = 32;             // …and P2 likewise; P2 > P1.
+  bool full_dp = false;                 // SGBM: eight paths (MODE_HH; slow, memory-hungry) instead of three.
+  int uniqueness_percent = 10;          // Reject a match unless its cost beats the second best by this %.
+  int speckle_window_px = 100;          // Speckle filter: invalidate blobs smaller than this (0: off)…
+  int speckle_range_px = 2;             // …whose disparity varies by more than this, px.
+  bool left_right_check = true;         // Keep a left pixel only when the right view's disparity agrees…
   double max_left_right_diff_px = 1.0;  // …within this, px.
-  bool wls_filter = false;          // Edge-aware WLS filter (ximgproc): smooths, fills most holes.
-  double wls_lambda = 8000.0;       // WLS smoothness strength.
-  double wls_sigma = 1.5;           // WLS edge sensitivity (colour distance).
-  bool fill_holes = false;          // Fill holes along rows with the farther bounding disparity (background).
-  int median_px = 0;                // Median filter after filling (3 or 5; 0: off; only with fill_holes).
-  bool multi_scale = false;         // A half-size pass narrows the full-size range (coarse 1st–99th percentile).
-  bool unround_subpixel = true;     // SGBM: undo OpenCV's sub-pixel rounding (+1/16 px on half the pixels, ~+0.03 px mean).
+  bool wls_filter = false;              // Edge-aware WLS filter (ximgproc): smooths, fills most holes.
+  double wls_lambda = 8000.0;           // WLS smoothness strength.
+  double wls_sigma = 1.5;               // WLS edge sensitivity (colour distance).
+  bool fill_holes = false;              // Fill holes along rows with the farther bounding disparity (background).
+  int median_px = 0;                    // Median filter after filling (3 or 5; 0: off; only with fill_holes).
+  bool multi_scale = false;             // A half-size pass narrows the full-size range (coarse 1st–99th percentile).
+  bool unround_subpixel =
+      true;  // SGBM: undo OpenCV's sub-pixel rounding (+1/16 px on half the pixels, ~+0.03 px mean).
 
   // Throws InvalidArgument naming the field ("DisparityOptions.block_size_px = 4, must be odd").
   void Check() const;
@@ -69,8 +70,7 @@ struct DisparityResult {
 // Computes the left view's disparity. `left` and `right` are the rectified
 // images, same size and type (CV_8UC1 or CV_8UC3). Throws InvalidArgument on
 // mismatched or empty images or bad options.
-DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right,
-                                 const DisparityOptions& options);
+DisparityResult ComputeDisparity(const cv::Mat& left, const cv::Mat& right, const DisparityOptions& options);
 
 // A sub-pixel disparity refined from the images themselves.
 struct SubpixelDisparity {

@@ -100,8 +100,8 @@ void SinusoidPair(double d_px, cv::Mat& left, cv::Mat& right) {
   };
   std::vector<Wave> waves;
   for (int i = 0; i < 24; ++i) {
-    waves.push_back({rng.uniform(-0.15, 0.15) * 2 * M_PI, rng.uniform(-0.15, 0.15) * 2 * M_PI, rng.uniform(0.0, 2 * M_PI),
-                     rng.uniform(4.0, 10.0)});
+    waves.push_back({rng.uniform(-0.15, 0.15) * 2 * M_PI, rng.uniform(-0.15, 0.15) * 2 * M_PI,
+                     rng.uniform(0.0, 2 * M_PI), rng.uniform(4.0, 10.0)});
   }
   left.create(240, 320, CV_8UC1);
   right.create(240, 320, CV_8UC1);

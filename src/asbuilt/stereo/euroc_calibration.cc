@@ -15,7 +15,7 @@ namespace {
 
 struct EurocCamera {
   cv::Size resolution;
-  cv::Mat K, D;       // 3×3, 1×4 (CV_64F).
+  cv::Mat K, D;           // 3×3, 1×4 (CV_64F).
   cv::Mat body_from_cam;  // 4×4 (CV_64F).
 };
 
@@ -59,10 +59,10 @@ EurocCamera ReadEurocCamera(const std::filesystem::path& path) {
   const std::string distortion = ReadString(fs["distortion_model"]);
   if (distortion != "radial-tangential" && distortion != "radtan" && distortion != "plumb_bob") {
     throw InputError(file, "distortion_model",
-                     distortion.empty()
-                         ? std::string("missing (radial-tangential expected)")
-                         : fmt::format("'{}' is not supported (radial-tangential only; equidistant "
-                                       "needs OpenCV's fisheye model)", distortion));
+                     distortion.empty() ? std::string("missing (radial-tangential expected)")
+                                        : fmt::format("'{}' is not supported (radial-tangential only; equidistant "
+                                                      "needs OpenCV's fisheye model)",
+                                                      distortion));
   }
   EurocCamera cam;
   const std::vector<double> res = ReadNumbers(fs["resolution"], file, "resolution", 2);
@@ -95,8 +95,8 @@ StereoCalibration CalibrationFromEuroc(const std::filesystem::path& left_sensor_
   const EurocCamera right = ReadEurocCamera(right_sensor_yaml);
   if (left.resolution != right.resolution) {
     throw InputError(right_sensor_yaml.string(), "resolution",
-                     fmt::format("{}x{}, but the left camera is {}x{}", right.resolution.width,
-                                 right.resolution.height, left.resolution.width, left.resolution.height));
+                     fmt::format("{}x{}, but the left camera is {}x{}", right.resolution.width, right.resolution.height,
+                                 left.resolution.width, left.resolution.height));
   }
   StereoCalibration c;
   c.image_size = left.resolution;
@@ -115,8 +115,7 @@ StereoCalibration CalibrationFromEuroc(const std::filesystem::path& left_sensor_
     throw InputError(right_sensor_yaml.string(), "T_BS",
                      fmt::format("this camera is not to the right of {} (T = [{:.4f}, {:.4f}, {:.4f}] m): give "
                                  "the left camera (cam0) first",
-                                 left_sensor_yaml.string(), c.T.at<double>(0), c.T.at<double>(1),
-                                 c.T.at<double>(2)));
+                                 left_sensor_yaml.string(), c.T.at<double>(0), c.T.at<double>(1), c.T.at<double>(2)));
   }
   return c;
 }

@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 
 const fs::path kEuroc = fs::path(ASBUILT_SHARED_DATA_DIR) / "euroc_v1_01_vicon_room_stereo";
 
-#define SKIP_WITHOUT_EUROC()                                                       \
+#define SKIP_WITHOUT_EUROC() \
   if (!fs::exists(kEuroc / "cam0" / "sensor.yaml")) GTEST_SKIP() << kEuroc << " absent"
 
 double Median(std::vector<double> v) {
@@ -99,8 +99,8 @@ TEST(CalibrationFromEuroc, RoundTripsThroughTheCalibrationFile) {
 // pair: median |Δv| of SIFT matches < 1 px (raw images: ~13 px).
 TEST(CalibrationFromEuroc, RectifiedRealPairsHaveAlignedRows) {
   SKIP_WITHOUT_EUROC();
-  const StereoRectifier r = MakeStereoRectifier(
-      CalibrationFromEuroc(kEuroc / "cam0" / "sensor.yaml", kEuroc / "cam1" / "sensor.yaml"), {});
+  const StereoRectifier r =
+      MakeStereoRectifier(CalibrationFromEuroc(kEuroc / "cam0" / "sensor.yaml", kEuroc / "cam1" / "sensor.yaml"), {});
   for (const char* stamp : {"1403715273262142976", "1403715277962142976"}) {
     const std::string name = std::string(stamp) + ".png";
     const cv::Mat left = ReadGrayImage(kEuroc / "cam0" / name);
@@ -115,10 +115,10 @@ TEST(CalibrationFromEuroc, RectifiedRealPairsHaveAlignedRows) {
     const double median_abs_dv = Median(abs_dv), raw_median_abs_dv = Median(raw_abs_dv);
     std::sort(abs_dv.begin(), abs_dv.end());
     const double p90_abs_dv = abs_dv[abs_dv.size() * 9 / 10];
-    std::printf("%s: %zu rectified matches, |dv| median %.3f px, p90 %.3f px (raw pair: median %.3f px over %zu), "
-                "median disparity %.2f px\n",
-                stamp, rect.dv.size(), median_abs_dv, p90_abs_dv, raw_median_abs_dv, raw.dv.size(),
-                Median(rect.disparity));
+    std::printf(
+        "%s: %zu rectified matches, |dv| median %.3f px, p90 %.3f px (raw pair: median %.3f px over %zu), "
+        "median disparity %.2f px\n",
+        stamp, rect.dv.size(), median_abs_dv, p90_abs_dv, raw_median_abs_dv, raw.dv.size(), Median(rect.disparity));
     EXPECT_LT(median_abs_dv, 1.0) << name;
     EXPECT_LT(p90_abs_dv, 2.0) << name;
     EXPECT_LT(std::abs(Median(rect.dv)), 0.5) << name << ": rows are shifted, not just noisy";

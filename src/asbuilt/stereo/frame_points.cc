@@ -176,8 +176,7 @@ std::string FrameCues::BriefReport() const {
       "vertices {}, contacts floor {} (+{} occluded) ceiling {}{} — {}, {:.0f} "
       "ms",
       index, corners_matched, corners_found, edge_points, edge_candidates, dense_points, dense_refined,
-      100.0 * dense_valid_fraction,
-      boundary_points, vertex_points, floor_contacts, floor_rejected, ceiling_contacts,
+      100.0 * dense_valid_fraction, boundary_points, vertex_points, floor_contacts, floor_rejected, ceiling_contacts,
       stereo_checked == 0 ? ""
                           : fmt::format(", wall stereo consistent down its "
                                         "columns at {}/{} px ({:.0f} %)",
@@ -218,12 +217,12 @@ struct FramePass {
     const std::optional<double> z = DepthFromDisparity(fx, frame.baseline_m, d);
     if (!z || *z < options.min_depth_m || *z > options.max_depth_m) return std::nullopt;
     const Vec3 p = world_from_cam * UnprojectToCamera(frame.camera, px, *z);
-    const std::optional<double> z_sigma =
-        options.sigma_from_neighbours && std::isfinite(d_for_sigma) ? DepthFromDisparity(fx, frame.baseline_m, d_for_sigma)
-                                                                    : z;
+    const std::optional<double> z_sigma = options.sigma_from_neighbours && std::isfinite(d_for_sigma)
+                                              ? DepthFromDisparity(fx, frame.baseline_m, d_for_sigma)
+                                              : z;
     result->points.push_back({static_cast<LabelClass>(label), p,
-                              DepthSigmaFromDisparitySigma(fx, frame.baseline_m, z_sigma.value_or(*z), sigma_d),
-                              source, frame.index});
+                              DepthSigmaFromDisparitySigma(fx, frame.baseline_m, z_sigma.value_or(*z), sigma_d), source,
+                              frame.index});
     return p;
   }
 
@@ -466,8 +465,8 @@ constexpr int kNeighbourRadiusPx = 6;
 // dense point's σ is taken at, so that its weight in the plan's fit does not
 // rise with its own error (a point read too near would otherwise count more,
 // as σ ∝ Z², and pull its wall in).
-cv::Mat NeighbourDisparity(const cv::Mat& disparity, const cv::Mat& valid, const cv::Mat& labels,
-                           unsigned char label, int r) {
+cv::Mat NeighbourDisparity(const cv::Mat& disparity, const cv::Mat& valid, const cv::Mat& labels, unsigned char label,
+                           int r) {
   cv::Mat use = (labels == label) & valid, values = cv::Mat::zeros(disparity.size(), CV_32F), count;
   disparity.copyTo(values, use);
   use.convertTo(count, CV_32F, 1.0 / 255);

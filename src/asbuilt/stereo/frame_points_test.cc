@@ -20,9 +20,7 @@ namespace asbuilt {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path RoomDir(const std::string& room) {
-  return fs::path(ASBUILT_SHARED_DATA_DIR) / "blender-rooms-public" / room;
-}
+fs::path RoomDir(const std::string& room) { return fs::path(ASBUILT_SHARED_DATA_DIR) / "blender-rooms-public" / room; }
 
 double Percentile(std::vector<double> v, double q) {
   if (v.empty()) return NAN;
@@ -127,8 +125,7 @@ TEST(ComputeFramePoints, MatchesTruthCornersVisibleInBothViews) {
     for (std::size_t i = 0; i < r.frames.size(); ++i) {
       const StereoFrame& f = r.frames[i];
       const FramePointsResult result = ComputeFramePoints(f, {});
-      const Eigen::Isometry3d cam_from_world =
-          WorldFromCamera(f.pose, f.baseline_m, StereoEye::kLeft).inverse();
+      const Eigen::Isometry3d cam_from_world = WorldFromCamera(f.pose, f.baseline_m, StereoEye::kLeft).inverse();
       for (const TruthCorner& t : TruthCorners(truth)) {
         const Vec3 pc = cam_from_world * t.position;
         const auto px = ProjectFromCamera(f.camera, pc);
@@ -157,9 +154,8 @@ TEST(ComputeFramePoints, MatchesTruthCornersVisibleInBothViews) {
           }
         }
         const double distance = pc.norm();
-        std::printf("%s frame %d truth %s corner at (%.0f, %.0f) %.2f m: nearest match %.1f px, %.3f m\n",
-                    room.c_str(), f.index, t.opening ? "opening" : "room", px->x(), px->y(), distance, best_px,
-                    best_m);
+        std::printf("%s frame %d truth %s corner at (%.0f, %.0f) %.2f m: nearest match %.1f px, %.3f m\n", room.c_str(),
+                    f.index, t.opening ? "opening" : "room", px->x(), px->y(), distance, best_px, best_m);
         if (best_px <= 6.0) {
           ++matched;
           error_fraction.push_back(best_m / distance);
@@ -330,11 +326,12 @@ TEST(ComputeFramePoints, ContactPointsLieOnTruthWallsAndGiveTheCeilingHeight) {
     for (const ClassPoint& p : resolved.points) {
       (p.position_m.z() > 0 ? ceiling_off : paired_off).push_back(DistanceToWalls(truth, p.position_m));
     }
-    std::printf("%s: ceiling %.4f m (truth %.4f, %s); floor contacts %zu + %zu paired, off-wall median %.4f m; "
-                "ceiling contacts %zu, median %.4f p90 %.4f m; %d rejected\n",
-                room.c_str(), resolved.ceiling->height_m, truth_height, resolved.how.c_str(), floor_off.size(),
-                paired_off.size(), Percentile(paired_off, 0.5), ceiling_off.size(), Percentile(ceiling_off, 0.5),
-                Percentile(ceiling_off, 0.9), resolved.floor_rejected);
+    std::printf(
+        "%s: ceiling %.4f m (truth %.4f, %s); floor contacts %zu + %zu paired, off-wall median %.4f m; "
+        "ceiling contacts %zu, median %.4f p90 %.4f m; %d rejected\n",
+        room.c_str(), resolved.ceiling->height_m, truth_height, resolved.how.c_str(), floor_off.size(),
+        paired_off.size(), Percentile(paired_off, 0.5), ceiling_off.size(), Percentile(ceiling_off, 0.5),
+        Percentile(ceiling_off, 0.9), resolved.floor_rejected);
     EXPECT_NEAR(resolved.ceiling->height_m, truth_height, 0.01 * truth_height);
     ASSERT_GE(paired_off.size(), 200u);
     ASSERT_GE(ceiling_off.size(), 500u);
@@ -381,17 +378,19 @@ TEST(ComputeFramePoints, WallFeetOnSkirtingMoveBackToTheWallsFace) {
     }
     const ResolvedContacts resolved = pending.Resolve(options);
     for (const ClassPoint& p : resolved.points) {
-      if (p.position_m.z() == 0.0 && p.label == LabelClass::kWall) inside.push_back(InsideTheWalls(truth, p.position_m));
+      if (p.position_m.z() == 0.0 && p.label == LabelClass::kWall)
+        inside.push_back(InsideTheWalls(truth, p.position_m));
     }
     return std::pair{Percentile(inside, 0.5), resolved.ceiling->height_m};
   };
   std::vector<double> none, seen;
   const auto [before_m, before_height_m] = measure(0.0, &none);
   const auto [after_m, after_height_m] = measure(0.015, &seen);
-  std::printf("%s: wall feet %.4f → %.4f m inside the walls; ceiling %.4f → %.4f m (truth %.4f); skirting seen in "
-              "%zu of 12 frames, median top %.3f m\n",
-              room.c_str(), before_m, after_m, before_height_m, after_height_m, truth_height, seen.size(),
-              Percentile(seen, 0.5));
+  std::printf(
+      "%s: wall feet %.4f → %.4f m inside the walls; ceiling %.4f → %.4f m (truth %.4f); skirting seen in "
+      "%zu of 12 frames, median top %.3f m\n",
+      room.c_str(), before_m, after_m, before_height_m, after_height_m, truth_height, seen.size(),
+      Percentile(seen, 0.5));
   EXPECT_TRUE(none.empty());
   EXPECT_GE(seen.size(), 8u);
   EXPECT_NEAR(Percentile(seen, 0.5), 0.08, 0.015);
@@ -423,7 +422,8 @@ TEST(ComputeFramePoints, SnappedCeilingContactsUndoLabelEdgesThatWaveAwayFromThe
         for (int u = 0; u < shifted.cols; ++u) {
           const int s = static_cast<int>(std::lround(4.0 * std::sin(2.0 * std::numbers::pi * u / 50.0)));
           for (int v = 0; v < shifted.rows; ++v) {
-            shifted.at<unsigned char>(v, u) = f.labels_left.at<unsigned char>(std::clamp(v - s, 0, shifted.rows - 1), u);
+            shifted.at<unsigned char>(v, u) =
+                f.labels_left.at<unsigned char>(std::clamp(v - s, 0, shifted.rows - 1), u);
           }
         }
         f.labels_left = shifted;
@@ -439,14 +439,14 @@ TEST(ComputeFramePoints, SnappedCeilingContactsUndoLabelEdgesThatWaveAwayFromThe
   };
   const std::vector<double> exact = ceiling_offsets(false, 0), waved = ceiling_offsets(true, 0),
                             snapped = ceiling_offsets(true, FramePointsOptions::kDefaultContactSnapPx);
-  std::printf("ceiling contacts off the truth walls, median / p90: exact labels %.4f / %.4f m (%zu), waved %.4f / "
-              "%.4f m (%zu), waved + snapped %.4f / %.4f m (%zu)\n",
-              Percentile(exact, 0.5), Percentile(exact, 0.9), exact.size(), Percentile(waved, 0.5),
-              Percentile(waved, 0.9), waved.size(), Percentile(snapped, 0.5), Percentile(snapped, 0.9),
-              snapped.size());
+  std::printf(
+      "ceiling contacts off the truth walls, median / p90: exact labels %.4f / %.4f m (%zu), waved %.4f / "
+      "%.4f m (%zu), waved + snapped %.4f / %.4f m (%zu)\n",
+      Percentile(exact, 0.5), Percentile(exact, 0.9), exact.size(), Percentile(waved, 0.5), Percentile(waved, 0.9),
+      waved.size(), Percentile(snapped, 0.5), Percentile(snapped, 0.9), snapped.size());
   ASSERT_GE(exact.size(), 300u);
   ASSERT_GE(snapped.size(), 0.9 * exact.size());
-  EXPECT_GE(Percentile(waved, 0.5), 5.0 * Percentile(exact, 0.5));  // The wave does harm…
+  EXPECT_GE(Percentile(waved, 0.5), 5.0 * Percentile(exact, 0.5));    // The wave does harm…
   EXPECT_LE(Percentile(snapped, 0.5), 0.3 * Percentile(waved, 0.5));  // …which snapping mostly undoes.
   EXPECT_LE(Percentile(snapped, 0.9), 0.35 * Percentile(waved, 0.9));
   EXPECT_LE(Percentile(snapped, 0.5), 0.01);
@@ -484,28 +484,30 @@ TEST(ComputeFramePoints, SnappedFloorContactsUndoALabelEdgeARowOff) {
     }
     std::vector<double> inside;
     for (const ClassPoint& p : pending.Resolve(options).points) {
-      if (p.position_m.z() == 0.0 && p.label == LabelClass::kWall) inside.push_back(InsideTheWalls(truth, p.position_m));
+      if (p.position_m.z() == 0.0 && p.label == LabelClass::kWall)
+        inside.push_back(InsideTheWalls(truth, p.position_m));
     }
     return inside;
   };
   const std::vector<double> exact = feet_inside(0, 0), exact_snapped = feet_inside(0, 2), down = feet_inside(1, 0),
                             down_snapped = feet_inside(1, 2), up = feet_inside(-1, 0), up_snapped = feet_inside(-1, 2);
   const double e = Percentile(exact, 0.5);
-  std::printf("wall feet inside the walls, median: exact labels %.4f m (%zu), snapped %.4f m; a row down %.4f → "
-              "snapped %.4f m (%zu); a row up %.4f → snapped %.4f m (%zu)\n",
-              e, exact.size(), Percentile(exact_snapped, 0.5), Percentile(down, 0.5), Percentile(down_snapped, 0.5),
-              down_snapped.size(), Percentile(up, 0.5), Percentile(up_snapped, 0.5), up_snapped.size());
+  std::printf(
+      "wall feet inside the walls, median: exact labels %.4f m (%zu), snapped %.4f m; a row down %.4f → "
+      "snapped %.4f m (%zu); a row up %.4f → snapped %.4f m (%zu)\n",
+      e, exact.size(), Percentile(exact_snapped, 0.5), Percentile(down, 0.5), Percentile(down_snapped, 0.5),
+      down_snapped.size(), Percentile(up, 0.5), Percentile(up_snapped, 0.5), up_snapped.size());
   ASSERT_GE(exact.size(), 300u);
   EXPECT_LE(std::abs(Percentile(exact_snapped, 0.5) - e), 0.003);  // Exact edges stay (no skirting top).
-  EXPECT_GE(Percentile(down, 0.5) - e, 0.005);                       // A row down: feet in…
-  EXPECT_LE(Percentile(up, 0.5) - e, -0.005);                        // …a row up: feet out…
-  for (const auto* snapped : {&down_snapped, &up_snapped}) {         // …and snapping undoes most of either.
+  EXPECT_GE(Percentile(down, 0.5) - e, 0.005);                     // A row down: feet in…
+  EXPECT_LE(Percentile(up, 0.5) - e, -0.005);                      // …a row up: feet out…
+  for (const auto* snapped : {&down_snapped, &up_snapped}) {       // …and snapping undoes most of either.
     ASSERT_GE(snapped->size(), 0.9 * exact.size());
     EXPECT_LE(std::abs(Percentile(*snapped, 0.5) - e), 0.3 * std::abs(Percentile(down, 0.5) - e));
   }
   const std::vector<double> down_refined = feet_inside(1, FramePointsOptions::kDefaultFloorSnapPx);
-  std::printf("a row down, refined within its row (floor_snap_px %d): %.4f m\n", FramePointsOptions::kDefaultFloorSnapPx,
-              Percentile(down_refined, 0.5));
+  std::printf("a row down, refined within its row (floor_snap_px %d): %.4f m\n",
+              FramePointsOptions::kDefaultFloorSnapPx, Percentile(down_refined, 0.5));
   EXPECT_LE(std::abs(Percentile(down_refined, 0.5) - Percentile(down, 0.5)), 0.5 * (Percentile(down, 0.5) - e));
 }
 
@@ -515,7 +517,7 @@ TEST(ComputeFramePoints, SnappedFloorContactsUndoALabelEdgeARowOff) {
 TEST(CeilingHeightFromSamples, TakesTheDenseClusterNotTheSpreadAbove) {
   std::vector<double> samples;
   for (int i = 0; i < 100; ++i) samples.push_back(2.60 + 0.002 * ((i % 7) - 3));  // True: 2.60 ± 6 mm.
-  for (int i = 0; i < 60; ++i) samples.push_back(2.8 + 0.03 * i);                  // Cabinet tops: spread above.
+  for (int i = 0; i < 60; ++i) samples.push_back(2.8 + 0.03 * i);                 // Cabinet tops: spread above.
   auto h = CeilingHeightFromSamples(samples);
   ASSERT_TRUE(h.has_value());
   EXPECT_NEAR(h->height_m, 2.60, 0.003);
@@ -557,13 +559,11 @@ TEST(CeilingHeightFromSamples, TakesAClusterApartBelowAFlatTopsCluster) {
 // the ceiling allows it, or when there is no ceiling height to judge by.
 TEST(PendingContacts, RejectsToppedFloorContactsTallerThanTheCeiling) {
   PendingContacts pending;
-  auto contact = [](double x) {
-    return ClassPoint{LabelClass::kWall, Vec3(x, 0, 0), 0.01, PointSource::kContact, 0};
-  };
+  auto contact = [](double x) { return ClassPoint{LabelClass::kWall, Vec3(x, 0, 0), 0.01, PointSource::kContact, 0}; };
   for (int i = 0; i < 50; ++i) pending.paired_floor.push_back({contact(1.0), 2.60 + 0.001 * (i % 5 - 2), 0.005});
-  pending.topped_floor.push_back({contact(2.0), 2.40, 0.01});   // A wall seen up to 2.40 m: fine.
-  pending.topped_floor.push_back({contact(3.0), 2.63, 0.01});   // Within 5 cm: fine.
-  pending.topped_floor.push_back({contact(9.0), 8.20, 0.05});   // A bed's top, 8 m "tall".
+  pending.topped_floor.push_back({contact(2.0), 2.40, 0.01});  // A wall seen up to 2.40 m: fine.
+  pending.topped_floor.push_back({contact(3.0), 2.63, 0.01});  // Within 5 cm: fine.
+  pending.topped_floor.push_back({contact(9.0), 8.20, 0.05});  // A bed's top, 8 m "tall".
   const ResolvedContacts resolved = pending.Resolve({});
   ASSERT_TRUE(resolved.ceiling.has_value());
   EXPECT_NEAR(resolved.ceiling->height_m, 2.60, 0.002);
@@ -582,9 +582,7 @@ TEST(PendingContacts, RejectsToppedFloorContactsTallerThanTheCeiling) {
 // median is used (bench_rooms seed 22 with the shipped model); pairs inside
 // that range are used as they are.
 TEST(PendingContacts, ChecksTheCeilingHeightAgainstTheWallsStereo) {
-  auto contact = [](double x) {
-    return ClassPoint{LabelClass::kWall, Vec3(x, 0, 0), 0.01, PointSource::kContact, 0};
-  };
+  auto contact = [](double x) { return ClassPoint{LabelClass::kWall, Vec3(x, 0, 0), 0.01, PointSource::kContact, 0}; };
   PendingContacts pending;
   for (int i = 0; i < 78; ++i) pending.paired_floor.push_back({contact(1.0), 3.40 + 0.0002 * i, 0.005});
   for (int i = 0; i < 20; ++i) pending.paired_floor.push_back({contact(1.0), 2.78 + 0.007 * i, 0.005});  // Spread.
@@ -608,7 +606,8 @@ TEST(PendingContacts, ChecksTheCeilingHeightAgainstTheWallsStereo) {
 PendingContacts PairedAtCeiling(double height_m) {
   PendingContacts pending;
   for (int i = 0; i < 50; ++i) {
-    pending.paired_floor.push_back({{LabelClass::kWall, Vec3(0, 2, 0), 0.01, PointSource::kContact, 0}, height_m, 0.005});
+    pending.paired_floor.push_back(
+        {{LabelClass::kWall, Vec3(0, 2, 0), 0.01, PointSource::kContact, 0}, height_m, 0.005});
   }
   return pending;
 }
@@ -623,10 +622,10 @@ PinholeCamera TopEdgeCamera() {
 // Frame `index`'s top edge, seen from `at` turned `yaw_deg`: every column
 // wall from the top down to `wall_to_row` (−1: none).
 PendingContacts::TopEdge TopEdgeAt(int index, double yaw_deg, const Vec3& at, int wall_to_row) {
-  PendingContacts::TopEdge e{.frame = index,
-                             .world_from_camera = WorldFromCamera({.position_m = at, .yaw_rad = DegToRad(yaw_deg)},
-                                                                  0.12, StereoEye::kLeft),
-                             .camera = TopEdgeCamera()};
+  PendingContacts::TopEdge e{
+      .frame = index,
+      .world_from_camera = WorldFromCamera({.position_m = at, .yaw_rad = DegToRad(yaw_deg)}, 0.12, StereoEye::kLeft),
+      .camera = TopEdgeCamera()};
   e.wall_to_row.assign(e.camera.width_px, wall_to_row);
   return e;
 }
@@ -641,7 +640,8 @@ TEST(PendingContacts, ChecksToppedFloorContactsInEveryFrameFromTheSameSpot) {
   auto pending_with = [&](std::vector<PendingContacts::TopEdge> frames) {
     PendingContacts pending = PairedAtCeiling(3.46);
     // Seen by frame 0 at u ≈ 12, depth 3.1 m: "wall" up to 3.45 m there.
-    pending.topped_floor.push_back({{LabelClass::kWall, Vec3(-2.5, 3.1, 0), 0.01, PointSource::kContact, 0}, 3.45, 0.01});
+    pending.topped_floor.push_back(
+        {{LabelClass::kWall, Vec3(-2.5, 3.1, 0), 0.01, PointSource::kContact, 0}, 3.45, 0.01});
     pending.top_edges = std::move(frames);
     return pending;
   };
@@ -674,8 +674,8 @@ TEST(PendingContacts, DropsCeilingContactsThatAFrameBesideSeesWallAbove) {
     const Eigen::Isometry3d world_from_cam = frames.front().world_from_camera;
     const Vec3 target(-2.0, 6.0, 3.46);
     const double depth = (world_from_cam.inverse() * target).z();
-    pending.ceiling_rays.push_back({LabelClass::kWall, world_from_cam.translation(),
-                                    (target - world_from_cam.translation()) / depth, cam.fy, 0});
+    pending.ceiling_rays.push_back(
+        {LabelClass::kWall, world_from_cam.translation(), (target - world_from_cam.translation()) / depth, cam.fy, 0});
     pending.top_edges = std::move(frames);
     return pending;
   };

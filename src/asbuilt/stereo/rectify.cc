@@ -10,8 +10,8 @@
 namespace asbuilt {
 namespace {
 
-cv::Mat ReadMatrix(const cv::FileStorage& fs, const std::string& file, const std::string& key, int rows,
-                   int cols_min, int cols_max) {
+cv::Mat ReadMatrix(const cv::FileStorage& fs, const std::string& file, const std::string& key, int rows, int cols_min,
+                   int cols_max) {
   cv::FileNode node = fs[key];
   if (node.empty()) throw InputError(file, key, "missing");
   cv::Mat m;
@@ -45,9 +45,9 @@ cv::Mat ReadMatrix(const cv::FileStorage& fs, const std::string& file, const std
 
 std::string StereoCalibration::ToString() const {
   const double baseline = T.empty() ? NAN : cv::norm(T);
-  return fmt::format("stereo calibration {}x{}, fx {:.2f}/{:.2f}, baseline {:.4f}, rms {:.3f} px",
-                     image_size.width, image_size.height, K1.empty() ? NAN : K1.at<double>(0, 0),
-                     K2.empty() ? NAN : K2.at<double>(0, 0), baseline, rms_px);
+  return fmt::format("stereo calibration {}x{}, fx {:.2f}/{:.2f}, baseline {:.4f}, rms {:.3f} px", image_size.width,
+                     image_size.height, K1.empty() ? NAN : K1.at<double>(0, 0), K2.empty() ? NAN : K2.at<double>(0, 0),
+                     baseline, rms_px);
 }
 
 StereoCalibration LoadCalibration(const std::filesystem::path& path) {
@@ -88,7 +88,8 @@ StereoCalibration LoadCalibration(const std::filesystem::path& path) {
       h = static_cast<int>(s[1]);
     }
   }
-  if (w <= 0 || h <= 0) problems.push_back({file, "image_width", "missing or not positive (need image_width, image_height)"});
+  if (w <= 0 || h <= 0)
+    problems.push_back({file, "image_width", "missing or not positive (need image_width, image_height)"});
   c.image_size = cv::Size(w, h);
   if (!fs["rms"].empty()) c.rms_px = static_cast<double>(fs["rms"]);
   if (!fs["mean_epipolar_error_px"].empty()) c.epipolar_error_px = static_cast<double>(fs["mean_epipolar_error_px"]);
@@ -130,18 +131,18 @@ std::string StereoRectifier::ToString() const {
 
 StereoRectifier MakeStereoRectifier(const StereoCalibration& c, const RectifyOptions& options) {
   options.Check();
-  CheckArgument(c.image_size.width > 0 && c.image_size.height > 0 && !c.K1.empty() && !c.K2.empty() &&
-                    !c.R.empty() && !c.T.empty(),
+  CheckArgument(c.image_size.width > 0 && c.image_size.height > 0 && !c.K1.empty() && !c.K2.empty() && !c.R.empty() &&
+                    !c.T.empty(),
                 "MakeStereoRectifier: calibration lacks image size or matrices");
   cv::Mat R1, R2, P1, P2, Q;
   // One stereoRectify per rig (STYLE.md 5).
-  cv::stereoRectify(c.K1, c.D1, c.K2, c.D2, c.image_size, c.R, c.T, R1, R2, P1, P2, Q,
-                    cv::CALIB_ZERO_DISPARITY, options.alpha, c.image_size);
+  cv::stereoRectify(c.K1, c.D1, c.K2, c.D2, c.image_size, c.R, c.T, R1, R2, P1, P2, Q, cv::CALIB_ZERO_DISPARITY,
+                    options.alpha, c.image_size);
   StereoRectifier r;
   cv::initUndistortRectifyMap(c.K1, c.D1, R1, P1, c.image_size, CV_32FC1, r.left_map_x, r.left_map_y);
   cv::initUndistortRectifyMap(c.K2, c.D2, R2, P2, c.image_size, CV_32FC1, r.right_map_x, r.right_map_y);
-  r.camera = {c.image_size.width, c.image_size.height, P1.at<double>(0, 0), P1.at<double>(1, 1),
-              P1.at<double>(0, 2), P1.at<double>(1, 2)};
+  r.camera = {c.image_size.width,  c.image_size.height, P1.at<double>(0, 0),
+              P1.at<double>(1, 1), P1.at<double>(0, 2), P1.at<double>(1, 2)};
   r.baseline_m = std::abs(P2.at<double>(0, 3) / P2.at<double>(0, 0));
   r.R1 = R1;
   return r;
@@ -156,8 +157,8 @@ cv::Mat RectifyImage(const StereoRectifier& rectifier, StereoEye eye, const cv::
   const bool left = eye == StereoEye::kLeft;
   cv::remap(image, out, left ? rectifier.left_map_x : rectifier.right_map_x,
             left ? rectifier.left_map_y : rectifier.right_map_y,
-            interpolation == Interpolation::kNearest ? cv::INTER_NEAREST : cv::INTER_LINEAR,
-            cv::BORDER_CONSTANT, cv::Scalar::all(interpolation == Interpolation::kNearest ? 255 : 0));
+            interpolation == Interpolation::kNearest ? cv::INTER_NEAREST : cv::INTER_LINEAR, cv::BORDER_CONSTANT,
+            cv::Scalar::all(interpolation == Interpolation::kNearest ? 255 : 0));
   return out;
 }
 

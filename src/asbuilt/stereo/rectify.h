@@ -18,9 +18,9 @@ namespace asbuilt {
 
 struct StereoCalibration {
   cv::Size image_size;
-  cv::Mat K1, D1, K2, D2;  // 3×3 camera matrices, distortion vectors (CV_64F).
-  cv::Mat R, T;            // Right camera from left: x_R = R·x_L + T (T in metres).
-  double rms_px = NAN;     // Stereo reprojection RMS, NaN if unknown.
+  cv::Mat K1, D1, K2, D2;          // 3×3 camera matrices, distortion vectors (CV_64F).
+  cv::Mat R, T;                    // Right camera from left: x_R = R·x_L + T (T in metres).
+  double rms_px = NAN;             // Stereo reprojection RMS, NaN if unknown.
   double epipolar_error_px = NAN;  // Mean distance to the epipolar line, NaN if unknown.
 
   std::string ToString() const;
@@ -48,17 +48,16 @@ struct RectifyOptions {
 // that the disparity → depth conversion uses.
 struct StereoRectifier {
   cv::Mat left_map_x, left_map_y, right_map_x, right_map_y;  // CV_32F.
-  PinholeCamera camera;   // Rectified intrinsics (both views).
-  double baseline_m = 0;  // |T| along the rectified x axis.
-  cv::Mat R1;             // Rotation rectified-left ← original-left.
+  PinholeCamera camera;                                      // Rectified intrinsics (both views).
+  double baseline_m = 0;                                     // |T| along the rectified x axis.
+  cv::Mat R1;                                                // Rotation rectified-left ← original-left.
 
   std::string ToString() const;
 };
 
 // Computes the maps (cv::stereoRectify + initUndistortRectifyMap). Throws
 // InvalidArgument on a calibration without an image size or matrices.
-StereoRectifier MakeStereoRectifier(const StereoCalibration& calibration,
-                                    const RectifyOptions& options);
+StereoRectifier MakeStereoRectifier(const StereoCalibration& calibration, const RectifyOptions& options);
 
 enum class Interpolation { kLinear, kNearest };  // kNearest for label images.
 

@@ -46,8 +46,8 @@ void WallVertexOptions::Check() const {
 }
 
 std::vector<WallVertex> FindWallVertices(const cv::Mat& gray_left, const cv::Mat& gray_right,
-                                         const cv::Mat& labels_left, double min_disparity_px,
-                                         double max_disparity_px, const WallVertexOptions& options) {
+                                         const cv::Mat& labels_left, double min_disparity_px, double max_disparity_px,
+                                         const WallVertexOptions& options) {
   options.Check();
   CheckArgument(gray_left.type() == CV_32F && gray_right.type() == CV_32F && labels_left.type() == CV_8UC1 &&
                     gray_left.size() == gray_right.size() && gray_left.size() == labels_left.size(),
@@ -129,8 +129,8 @@ std::vector<WallVertex> FindWallVertices(const cv::Mat& gray_left, const cv::Mat
     double rival = -1;
     for (int i = 0; i < static_cast<int>(score.size()); ++i) {
       if (std::abs(i - best) < 2) continue;
-      const bool local = (i == 0 || score[i] >= score[i - 1]) &&
-                         (i + 1 == static_cast<int>(score.size()) || score[i] >= score[i + 1]);
+      const bool local =
+          (i == 0 || score[i] >= score[i - 1]) && (i + 1 == static_cast<int>(score.size()) || score[i] >= score[i + 1]);
       if (local) rival = std::max(rival, score[i]);
     }
     if (rival > score[best] - options.ambiguity_margin) continue;

@@ -25,14 +25,14 @@
 namespace asbuilt {
 
 struct WallVertexOptions {
-  int side_px = 3;                  // Wall labels on both sides for this many columns.
-  int min_rows = 40;                // Rows with wall on both sides a column needs.
-  double min_contrast = 0.8;        // |mean gradient| (gray levels per pixel) at the peak.
-  int block_rows = 16;              // Rows are averaged in blocks for the sign test…
+  int side_px = 3;                   // Wall labels on both sides for this many columns.
+  int min_rows = 40;                 // Rows with wall on both sides a column needs.
+  double min_contrast = 0.8;         // |mean gradient| (gray levels per pixel) at the peak.
+  int block_rows = 16;               // Rows are averaged in blocks for the sign test…
   double min_sign_agreement = 0.75;  // …and this fraction of blocks must share the peak's sign.
-  int profile_half_width_px = 10;   // Intensity profiles compared over ±this.
-  double min_ncc = 0.9;             // Weakest accepted profile match…
-  double ambiguity_margin = 0.05;   // …and a rival 2 px away or more must score this much less.
+  int profile_half_width_px = 10;    // Intensity profiles compared over ±this.
+  double min_ncc = 0.9;              // Weakest accepted profile match…
+  double ambiguity_margin = 0.05;    // …and a rival 2 px away or more must score this much less.
 
   void Check() const;
 };
@@ -44,10 +44,10 @@ struct WallVertex {
   double u_left_px = 0;   // Sub-pixel column in the left view (pixel centres).
   double u_right_px = 0;  // The same corner in the right view.
   double disparity_px = 0;
-  double v_mid_px = 0;    // Middle of the rows used.
-  int rows = 0;           // Rows with wall on both sides.
-  double contrast = 0;    // Mean gradient at the peak (signed).
-  double ncc = 0;         // Profile match score.
+  double v_mid_px = 0;  // Middle of the rows used.
+  int rows = 0;         // Rows with wall on both sides.
+  double contrast = 0;  // Mean gradient at the peak (signed).
+  double ncc = 0;       // Profile match score.
 };
 
 // Corners in the left view with their right-view matches, searching
@@ -55,8 +55,8 @@ struct WallVertex {
 // `gray_right` are CV_32F gray levels, `labels_left` CV_8U label ids, all of
 // one size. Throws InvalidArgument on mismatched inputs or bad options.
 std::vector<WallVertex> FindWallVertices(const cv::Mat& gray_left, const cv::Mat& gray_right,
-                                         const cv::Mat& labels_left, double min_disparity_px,
-                                         double max_disparity_px, const WallVertexOptions& options);
+                                         const cv::Mat& labels_left, double min_disparity_px, double max_disparity_px,
+                                         const WallVertexOptions& options);
 
 }  // namespace asbuilt
 

@@ -25,12 +25,9 @@ std::string Problem::ToString() const {
   return out;
 }
 
-InputError::InputError(std::vector<Problem> problems)
-    : Error(JoinProblems(problems)), problems_(std::move(problems)) {}
+InputError::InputError(std::vector<Problem> problems) : Error(JoinProblems(problems)), problems_(std::move(problems)) {}
 
-InputError::InputError(std::string file, std::string field_path,
-                       std::string message)
-    : InputError(std::vector<Problem>{
-          {std::move(file), std::move(field_path), std::move(message)}}) {}
+InputError::InputError(std::string file, std::string field_path, std::string message)
+    : InputError(std::vector<Problem>{{std::move(file), std::move(field_path), std::move(message)}}) {}
 
 }  // namespace asbuilt

@@ -40,13 +40,9 @@ bool InRange(const Field& f, double v) {
   return true;
 }
 
-bool HasBounds(const Field& f) {
-  return f.minimum || f.exclusive_minimum || f.maximum;
-}
+bool HasBounds(const Field& f) { return f.minimum || f.exclusive_minimum || f.maximum; }
 
-bool IsFiniteNumber(const nlohmann::json& v) {
-  return v.is_number() && std::isfinite(v.get<double>());
-}
+bool IsFiniteNumber(const nlohmann::json& v) { return v.is_number() && std::isfinite(v.get<double>()); }
 
 void AddBounds(const Field& f, nlohmann::json& s) {
   if (f.minimum) s["minimum"] = *f.minimum;
@@ -75,15 +71,21 @@ nlohmann::json FieldSchema(const Field& f) {
       s = {{"type", "string"}};
       if (f.max_length) s["maxLength"] = f.max_length;
       break;
-    case FieldKind::kBool: s = {{"type", "boolean"}}; break;
+    case FieldKind::kBool:
+      s = {{"type", "boolean"}};
+      break;
     case FieldKind::kEnum: {
       nlohmann::json values = nlohmann::json::array();
       for (auto c : f.choices) values.push_back(c);
       s = {{"type", "string"}, {"enum", values}};
       break;
     }
-    case FieldKind::kPoint2: s = FixedNumberArray(2, HasBounds(f) ? &f : nullptr); break;
-    case FieldKind::kPoint3: s = FixedNumberArray(3, HasBounds(f) ? &f : nullptr); break;
+    case FieldKind::kPoint2:
+      s = FixedNumberArray(2, HasBounds(f) ? &f : nullptr);
+      break;
+    case FieldKind::kPoint3:
+      s = FixedNumberArray(3, HasBounds(f) ? &f : nullptr);
+      break;
     case FieldKind::kColor: {
       Field unit{.minimum = 0.0, .maximum = 1.0};
       s = FixedNumberArray(3, &unit);
@@ -110,16 +112,26 @@ nlohmann::json FieldSchema(const Field& f) {
 
 const char* TypeWord(FieldKind t) {
   switch (t) {
-    case FieldKind::kNumber: return "number";
-    case FieldKind::kInteger: return "integer";
-    case FieldKind::kString: return "string";
-    case FieldKind::kBool: return "boolean";
-    case FieldKind::kEnum: return "string (enum)";
-    case FieldKind::kPoint2: return "[x, y]";
-    case FieldKind::kPoint3: return "[x, y, z]";
-    case FieldKind::kColor: return "[r, g, b] in 0..1";
-    case FieldKind::kPolygon: return "[[x, y], ...]";
-    case FieldKind::kNumberList: return "[number, ...]";
+    case FieldKind::kNumber:
+      return "number";
+    case FieldKind::kInteger:
+      return "integer";
+    case FieldKind::kString:
+      return "string";
+    case FieldKind::kBool:
+      return "boolean";
+    case FieldKind::kEnum:
+      return "string (enum)";
+    case FieldKind::kPoint2:
+      return "[x, y]";
+    case FieldKind::kPoint3:
+      return "[x, y, z]";
+    case FieldKind::kColor:
+      return "[r, g, b] in 0..1";
+    case FieldKind::kPolygon:
+      return "[[x, y], ...]";
+    case FieldKind::kNumberList:
+      return "[number, ...]";
   }
   return "?";
 }
@@ -166,13 +178,12 @@ void CheckField(const Field& f, const nlohmann::json& v, std::vector<std::string
       number_problem(v, path, f);
       break;
     case FieldKind::kInteger: {
-      bool whole = v.is_number_integer() ||
-                   (v.is_number_float() && std::isfinite(v.get<double>()) &&
-                    v.get<double>() == std::floor(v.get<double>()) &&
-                    std::abs(v.get<double>()) < 9e15);
+      bool whole =
+          v.is_number_integer() || (v.is_number_float() && std::isfinite(v.get<double>()) &&
+                                    v.get<double>() == std::floor(v.get<double>()) && std::abs(v.get<double>()) < 9e15);
       if (!whole) {
-        problem(fmt::format("must be a whole number{}, got {}",
-                            RangeText(f).empty() ? "" : " " + RangeText(f), Short(v)));
+        problem(
+            fmt::format("must be a whole number{}, got {}", RangeText(f).empty() ? "" : " " + RangeText(f), Short(v)));
       } else if (!InRange(f, v.get<double>())) {
         problem(fmt::format("must be an integer {}, got {}", RangeText(f), Short(v)));
       }
@@ -182,8 +193,8 @@ void CheckField(const Field& f, const nlohmann::json& v, std::vector<std::string
       if (!v.is_string()) {
         problem(fmt::format("must be a string, got {}", Short(v)));
       } else if (f.max_length && v.get_ref<const std::string&>().size() > f.max_length) {
-        problem(fmt::format("must be at most {} characters, got {}", f.max_length,
-                            v.get_ref<const std::string&>().size()));
+        problem(
+            fmt::format("must be at most {} characters, got {}", f.max_length, v.get_ref<const std::string&>().size()));
       }
       break;
     case FieldKind::kBool:
@@ -195,8 +206,8 @@ void CheckField(const Field& f, const nlohmann::json& v, std::vector<std::string
         for (auto c : f.choices) ok = ok || v.get_ref<const std::string&>() == c;
       }
       if (!ok) {
-        problem(fmt::format("must be one of {}, got {}",
-                            fmt::format("\"{}\"", fmt::join(f.choices, "\", \"")), Short(v)));
+        problem(
+            fmt::format("must be one of {}, got {}", fmt::format("\"{}\"", fmt::join(f.choices, "\", \"")), Short(v)));
       }
       break;
     }
@@ -221,8 +232,7 @@ void CheckField(const Field& f, const nlohmann::json& v, std::vector<std::string
         const auto& p = v[i];
         std::string where = fmt::format("{}[{}]", path, i);
         if (!p.is_array() || p.size() != 2 || !IsFiniteNumber(p[0]) || !IsFiniteNumber(p[1])) {
-          problems.push_back(fmt::format("{}: must be [x, y] (two numbers, metres), got {}",
-                                         where, Short(p)));
+          problems.push_back(fmt::format("{}: must be [x, y] (two numbers, metres), got {}", where, Short(p)));
         }
       }
       break;
@@ -244,8 +254,7 @@ void CheckField(const Field& f, const nlohmann::json& v, std::vector<std::string
 }  // namespace
 
 FieldArgsError::FieldArgsError(std::vector<std::string> problems)
-    : InvalidArgument(fmt::format("{}", fmt::join(problems, "\n"))),
-      problems_(std::move(problems)) {}
+    : InvalidArgument(fmt::format("{}", fmt::join(problems, "\n"))), problems_(std::move(problems)) {}
 
 nlohmann::json FieldsSchema(std::span<const Field> fields) {
   nlohmann::json properties = nlohmann::json::object();
@@ -254,9 +263,7 @@ nlohmann::json FieldsSchema(std::span<const Field> fields) {
     properties[std::string(f.name)] = FieldSchema(f);
     if (f.required) required.push_back(f.name);
   }
-  nlohmann::json schema = {{"type", "object"},
-                           {"properties", properties},
-                           {"additionalProperties", false}};
+  nlohmann::json schema = {{"type", "object"}, {"properties", properties}, {"additionalProperties", false}};
   if (!required.empty()) schema["required"] = required;
   return schema;
 }
@@ -276,18 +283,15 @@ FieldArgs ParseFieldArgs(std::span<const Field> fields, const nlohmann::json& ar
       std::vector<std::string_view> names;
       for (const Field& f : fields) names.push_back(f.name);
       problems.push_back(
-          names.empty()
-              ? fmt::format("{}: unknown argument; this tool takes no arguments", Path(it.key()))
-              : fmt::format("{}: unknown argument; allowed: {}", Path(it.key()),
-                            fmt::join(names, ", ")));
+          names.empty() ? fmt::format("{}: unknown argument; this tool takes no arguments", Path(it.key()))
+                        : fmt::format("{}: unknown argument; allowed: {}", Path(it.key()), fmt::join(names, ", ")));
     }
   }
   for (const Field& f : fields) {
     auto it = given.find(f.name);
     if (it == given.end() || it->is_null()) {
       if (f.required) {
-        problems.push_back(fmt::format("{}: required ({}: {})", Path(f.name), TypeWord(f.kind),
-                                       f.description));
+        problems.push_back(fmt::format("{}: required ({}: {})", Path(f.name), TypeWord(f.kind), f.description));
       } else if (!f.default_value.is_null()) {
         args.values_[std::string(f.name)] = f.default_value;
       }
@@ -318,8 +322,7 @@ std::optional<double> FieldArgs::OptNumber(std::string_view name) const {
 }
 std::int64_t FieldArgs::Integer(std::string_view name) const {
   const auto& v = Get(name);
-  return v.is_number_integer() ? v.get<std::int64_t>()
-                               : static_cast<std::int64_t>(v.get<double>());
+  return v.is_number_integer() ? v.get<std::int64_t>() : static_cast<std::int64_t>(v.get<double>());
 }
 std::optional<std::int64_t> FieldArgs::OptInteger(std::string_view name) const {
   if (!Has(name)) return std::nullopt;
@@ -331,9 +334,7 @@ std::optional<std::string> FieldArgs::OptString(std::string_view name) const {
   return String(name);
 }
 bool FieldArgs::Bool(std::string_view name) const { return Get(name).get<bool>(); }
-std::vector<double> FieldArgs::Numbers(std::string_view name) const {
-  return Get(name).get<std::vector<double>>();
-}
+std::vector<double> FieldArgs::Numbers(std::string_view name) const { return Get(name).get<std::vector<double>>(); }
 std::vector<std::vector<double>> FieldArgs::Points(std::string_view name) const {
   return Get(name).get<std::vector<std::vector<double>>>();
 }
@@ -348,10 +349,7 @@ std::string FieldsMarkdown(std::span<const Field> fields) {
     }
     std::string range = RangeText(f);
     if (!range.empty() && f.kind != FieldKind::kEnum) type += " " + range;
-    std::string def = f.required ? "required"
-                      : f.default_value.is_null()
-                          ? "—"
-                          : "`" + f.default_value.dump() + "`";
+    std::string def = f.required ? "required" : f.default_value.is_null() ? "—" : "`" + f.default_value.dump() + "`";
     out += fmt::format("| `{}` | {} | {} | {} |\n", f.name, type, def, f.description);
   }
   return out;

@@ -45,16 +45,16 @@
 namespace asbuilt {
 
 enum class FieldKind {
-  kNumber,       // Finite number.
-  kInteger,      // Whole number.
+  kNumber,   // Finite number.
+  kInteger,  // Whole number.
   kString,
   kBool,
-  kEnum,         // One of `choices` (a string).
-  kPoint2,       // [x, y], finite numbers.
-  kPoint3,       // [x, y, z].
-  kColor,        // [r, g, b], each in [0, 1].
-  kPolygon,      // [[x, y], ...], between min_items and max_items points.
-  kNumberList,   // [n, ...], between min_items and max_items finite numbers.
+  kEnum,        // One of `choices` (a string).
+  kPoint2,      // [x, y], finite numbers.
+  kPoint3,      // [x, y, z].
+  kColor,       // [r, g, b], each in [0, 1].
+  kPolygon,     // [[x, y], ...], between min_items and max_items points.
+  kNumberList,  // [n, ...], between min_items and max_items finite numbers.
 };
 
 struct Field {
@@ -108,7 +108,7 @@ class FieldArgs {
   std::string String(std::string_view name) const;  // Also kEnum.
   std::optional<std::string> OptString(std::string_view name) const;
   bool Bool(std::string_view name) const;
-  std::vector<double> Numbers(std::string_view name) const;  // Point, colour, list.
+  std::vector<double> Numbers(std::string_view name) const;              // Point, colour, list.
   std::vector<std::vector<double>> Points(std::string_view name) const;  // Polygon.
 
   // Given values + defaults, by field name.
@@ -150,8 +150,7 @@ struct FieldCodec<M, std::enable_if_t<std::is_integral_v<M> && !std::is_same_v<M
   static constexpr FieldKind kKind = FieldKind::kInteger;
   static nlohmann::json ToJson(M v) { return v; }
   static M FromJson(const nlohmann::json& v) {
-    return static_cast<M>(v.is_number_integer() ? v.get<std::int64_t>()
-                                                : static_cast<std::int64_t>(v.get<double>()));
+    return static_cast<M>(v.is_number_integer() ? v.get<std::int64_t>() : static_cast<std::int64_t>(v.get<double>()));
   }
 };
 
@@ -203,18 +202,14 @@ BoundField<T> Bind(M T::*member, Field field) {
 template <class T, class S, class M>
 BoundField<T> Bind(S T::*outer, M S::*member, Field field) {
   field.kind = FieldCodec<M>::kKind;
-  return {std::move(field),
-          [outer, member](const T& t) { return FieldCodec<M>::ToJson(t.*outer.*member); },
-          [outer, member](T& t, const nlohmann::json& v) {
-            t.*outer.*member = FieldCodec<M>::FromJson(v);
-          }};
+  return {std::move(field), [outer, member](const T& t) { return FieldCodec<M>::ToJson(t.*outer.*member); },
+          [outer, member](T& t, const nlohmann::json& v) { t.*outer.*member = FieldCodec<M>::FromJson(v); }};
 }
 
 // An enum member as a kEnum field; `names` lists every value with its name
 // (the field's choices, in this order).
 template <class T, class E>
-BoundField<T> BindEnum(E T::*member, Field field,
-                       std::vector<std::pair<std::string_view, E>> names) {
+BoundField<T> BindEnum(E T::*member, Field field, std::vector<std::pair<std::string_view, E>> names) {
   field.kind = FieldKind::kEnum;
   field.choices.clear();
   for (const auto& [name, value] : names) field.choices.push_back(name);

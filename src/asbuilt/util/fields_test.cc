@@ -10,16 +10,17 @@ using ::testing::HasSubstr;
 
 const std::vector<Field>& Fields() {
   static const std::vector<Field> kFields = {
-      {.name = "width_m", .kind = FieldKind::kNumber, .description = "Width.", .required = true,
-       .exclusive_minimum = 0.0, .maximum = 100.0},
+      {.name = "width_m",
+       .kind = FieldKind::kNumber,
+       .description = "Width.",
+       .required = true,
+       .exclusive_minimum = 0.0,
+       .maximum = 100.0},
       {.name = "wall", .kind = FieldKind::kInteger, .description = "Wall.", .minimum = 0.0},
-      {.name = "side", .kind = FieldKind::kEnum, .description = "Side.",
-       .choices = {"north", "south"}},
-      {.name = "polygon", .kind = FieldKind::kPolygon, .description = "Corners.", .min_items = 3,
-       .max_items = 4},
+      {.name = "side", .kind = FieldKind::kEnum, .description = "Side.", .choices = {"north", "south"}},
+      {.name = "polygon", .kind = FieldKind::kPolygon, .description = "Corners.", .min_items = 3, .max_items = 4},
       {.name = "colour", .kind = FieldKind::kColor, .description = "Colour."},
-      {.name = "height_m", .kind = FieldKind::kNumber, .description = "Height.",
-       .default_value = 2.7},
+      {.name = "height_m", .kind = FieldKind::kNumber, .description = "Height.", .default_value = 2.7},
       {.name = "name", .kind = FieldKind::kString, .description = "Name.", .max_length = 5},
   };
   return kFields;
@@ -52,9 +53,11 @@ TEST(FieldsSchema, ListsPropertiesBoundsAndRequired) {
 }
 
 TEST(ParseFieldArgs, ReadsValuesAndDefaults) {
-  FieldArgs a = ParseFieldArgs(Fields(), {{"width_m", 6}, {"wall", 2}, {"side", "north"},
-                                        {"polygon", {{0, 0}, {1, 0}, {1, 1}}},
-                                        {"colour", {0.1, 0.2, 0.3}}});
+  FieldArgs a = ParseFieldArgs(Fields(), {{"width_m", 6},
+                                          {"wall", 2},
+                                          {"side", "north"},
+                                          {"polygon", {{0, 0}, {1, 0}, {1, 1}}},
+                                          {"colour", {0.1, 0.2, 0.3}}});
   EXPECT_EQ(a.Number("width_m"), 6.0);
   EXPECT_EQ(a.Integer("wall"), 2);
   EXPECT_EQ(a.String("side"), "north");
@@ -68,8 +71,8 @@ TEST(ParseFieldArgs, ReadsValuesAndDefaults) {
 }
 
 TEST(ParseFieldArgs, NamesEveryBadArgumentAndWhatIsAllowed) {
-  std::string e = ErrorOf({{"width_m", -2}, {"wall", 1.5}, {"side", "up"}, {"colour", {2, 0, 0}},
-                           {"name", "toolong"}, {"widht_m", 3}});
+  std::string e = ErrorOf(
+      {{"width_m", -2}, {"wall", 1.5}, {"side", "up"}, {"colour", {2, 0, 0}}, {"name", "toolong"}, {"widht_m", 3}});
   EXPECT_THAT(e, HasSubstr("arguments.width_m: must be > 0 and <= 100, got -2"));
   EXPECT_THAT(e, HasSubstr("arguments.wall: must be a whole number"));
   EXPECT_THAT(e, HasSubstr("arguments.side: must be one of \"north\", \"south\", got \"up\""));
@@ -126,8 +129,7 @@ const FieldList<InnerOptions>& InnerFields() {
 const FieldList<OuterOptions>& OuterFields() {
   static const FieldList<OuterOptions> kList = [] {
     FieldList<OuterOptions> list = {
-        Bind(&OuterOptions::epsilon_m,
-             {.name = "epsilon_m", .description = "Tolerance.", .exclusive_minimum = 0.0}),
+        Bind(&OuterOptions::epsilon_m, {.name = "epsilon_m", .description = "Tolerance.", .exclusive_minimum = 0.0}),
         Bind(&OuterOptions::snap_px, {.name = "snap_px", .description = "Snap.", .minimum = 0.0}),
         BindEnum(&OuterOptions::shade, {.name = "shade", .description = "Shade."},
                  {{"light", Shade::kLight}, {"dark", Shade::kDark}}),
@@ -161,8 +163,8 @@ TEST(FieldList, KindsAndDefaultsComeFromTheStruct) {
 
 TEST(FieldList, ReadsValuesIntoTheStructIncludingNestedOnes) {
   const FieldList<OuterOptions>& list = OuterFields();
-  FieldArgs args = ParseFieldArgs(
-      list.Fields(), {{"epsilon_m", 0.02}, {"snap_px", 4}, {"shade", "light"}, {"inner.block_px", 9}});
+  FieldArgs args =
+      ParseFieldArgs(list.Fields(), {{"epsilon_m", 0.02}, {"snap_px", 4}, {"shade", "light"}, {"inner.block_px", 9}});
   OuterOptions o = list.FromArgs(args);
   EXPECT_EQ(o.epsilon_m, 0.02);
   EXPECT_EQ(o.snap_px, 4);

@@ -30,8 +30,7 @@ std::string ReadFile(const fs::path& path) {
   }
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (f == nullptr) {
-    throw InputError(path.string(), "",
-                     fmt::format("cannot read: {}", std::strerror(errno)));
+    throw InputError(path.string(), "", fmt::format("cannot read: {}", std::strerror(errno)));
   }
   std::string out;
   char buffer[1 << 16];
@@ -49,12 +48,10 @@ AtomicFile::AtomicFile(fs::path final_path) : final_path_(std::move(final_path))
     std::error_code ec;
     fs::create_directories(parent, ec);
     if (ec) {
-      throw Error(fmt::format("{}: cannot create folder: {}", parent.string(),
-                              ec.message()));
+      throw Error(fmt::format("{}: cannot create folder: {}", parent.string(), ec.message()));
     }
   }
-  std::string name = fmt::format(".{}.tmp-{}-{}{}", final_path_.stem().string(),
-                                 ::getpid(), temp_counter.fetch_add(1),
+  std::string name = fmt::format(".{}.tmp-{}-{}{}", final_path_.stem().string(), ::getpid(), temp_counter.fetch_add(1),
                                  final_path_.extension().string());
   temp_path_ = parent / name;
 }
@@ -69,13 +66,11 @@ AtomicFile::~AtomicFile() {
 void AtomicFile::Commit() {
   std::error_code ec;
   if (!fs::exists(temp_path_, ec)) {
-    throw Error(fmt::format("{}: writing failed (no data was written)",
-                            final_path_.string()));
+    throw Error(fmt::format("{}: writing failed (no data was written)", final_path_.string()));
   }
   fs::rename(temp_path_, final_path_, ec);
   if (ec) {
-    throw Error(fmt::format("{}: cannot write: {}", final_path_.string(),
-                            ec.message()));
+    throw Error(fmt::format("{}: cannot write: {}", final_path_.string(), ec.message()));
   }
   committed_ = true;
 }
@@ -108,16 +103,14 @@ void WriteFileAtomic(const fs::path& path, std::string_view contents) {
   {
     std::FILE* f = std::fopen(file.temp_path().c_str(), "wb");
     if (f == nullptr) {
-      throw Error(fmt::format("{}: cannot write: {}", path.string(),
-                              std::strerror(errno)));
+      throw Error(fmt::format("{}: cannot write: {}", path.string(), std::strerror(errno)));
     }
     bool ok = std::fwrite(contents.data(), 1, contents.size(), f) == contents.size();
     ok = (std::fflush(f) == 0) && ok;
     ok = (::fsync(::fileno(f)) == 0) && ok;
     ok = (std::fclose(f) == 0) && ok;
     if (!ok) {
-      throw Error(fmt::format("{}: cannot write: {}", path.string(),
-                              std::strerror(errno)));
+      throw Error(fmt::format("{}: cannot write: {}", path.string(), std::strerror(errno)));
     }
   }
   file.Commit();

@@ -39,7 +39,7 @@ TEST(AtomicFile, UncommittedLeavesNothingAndKeepsOldFile) {
     EXPECT_EQ(f.temp_path().extension(), ".json");
     EXPECT_TRUE(IsAtomicTempName(f.temp_path()));
     WriteFileAtomic(f.temp_path(), "half");  // Simulates a partial write.
-  }  // Destroyed without Commit().
+  }                                          // Destroyed without Commit().
   EXPECT_EQ(ReadFile(dir / "out.json"), "old");
   int entries = 0;
   for ([[maybe_unused]] auto& e : fs::directory_iterator(dir)) ++entries;
@@ -78,8 +78,7 @@ TEST(ReadFile, MissingFileNamesTheFile) {
     ReadFile("/nonexistent/asbuilt.json");
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              "/nonexistent/asbuilt.json: cannot read: No such file or directory");
+    EXPECT_EQ(std::string(e.what()), "/nonexistent/asbuilt.json: cannot read: No such file or directory");
   }
 }
 

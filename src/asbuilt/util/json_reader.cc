@@ -33,15 +33,23 @@ std::pair<int, int> LineColumn(std::string_view text, std::size_t offset) {
 
 const char* TypeName(const nlohmann::json& v) {
   switch (v.type()) {
-    case nlohmann::json::value_t::null: return "null";
-    case nlohmann::json::value_t::object: return "an object";
-    case nlohmann::json::value_t::array: return "an array";
-    case nlohmann::json::value_t::string: return "a string";
-    case nlohmann::json::value_t::boolean: return "a boolean";
+    case nlohmann::json::value_t::null:
+      return "null";
+    case nlohmann::json::value_t::object:
+      return "an object";
+    case nlohmann::json::value_t::array:
+      return "an array";
+    case nlohmann::json::value_t::string:
+      return "a string";
+    case nlohmann::json::value_t::boolean:
+      return "a boolean";
     case nlohmann::json::value_t::number_integer:
-    case nlohmann::json::value_t::number_unsigned: return "an integer";
-    case nlohmann::json::value_t::number_float: return "a number";
-    default: return "an unknown value";
+    case nlohmann::json::value_t::number_unsigned:
+      return "an integer";
+    case nlohmann::json::value_t::number_float:
+      return "a number";
+    default:
+      return "an unknown value";
   }
 }
 
@@ -73,8 +81,7 @@ nlohmann::json ParseJsonText(std::string_view text, JsonDiagnostics& diag) {
     // line 1, column 2: syntax error while parsing ..."; keep the tail.
     auto colon = what.find(": ");
     std::string detail = colon == std::string::npos ? what : what.substr(colon + 2);
-    diag.AddError("", fmt::format("invalid JSON at line {}, column {}: {}",
-                                  line, column, detail));
+    diag.AddError("", fmt::format("invalid JSON at line {}, column {}: {}", line, column, detail));
     return nullptr;
   } catch (const nlohmann::json::exception& e) {
     // E.g. out_of_range.406 "number overflow parsing '1e999'".
@@ -86,8 +93,7 @@ nlohmann::json ParseJsonText(std::string_view text, JsonDiagnostics& diag) {
   }
 }
 
-nlohmann::json ParseJsonFile(const std::filesystem::path& path,
-                             JsonDiagnostics& diag) {
+nlohmann::json ParseJsonFile(const std::filesystem::path& path, JsonDiagnostics& diag) {
   std::string text;
   try {
     text = ReadFile(path);
@@ -146,19 +152,14 @@ JsonField JsonField::At(std::size_t i) const {
   return JsonField(&(*value_)[i], child_path, diag_);
 }
 
-void JsonField::AddError(std::string message) const {
-  diag_->AddError(path_, std::move(message));
-}
+void JsonField::AddError(std::string message) const { diag_->AddError(path_, std::move(message)); }
 
-void JsonField::AddWarning(std::string message) const {
-  diag_->AddWarning(path_, std::move(message));
-}
+void JsonField::AddWarning(std::string message) const { diag_->AddWarning(path_, std::move(message)); }
 
 void JsonField::TypeError(std::string_view expected) const {
-  AddError(fmt::format("expected {}, got {}", expected,
-                       value_->is_object() || value_->is_array()
-                           ? std::string(TypeName(*value_))
-                           : DescribeJsonValue(*value_)));
+  AddError(fmt::format(
+      "expected {}, got {}", expected,
+      value_->is_object() || value_->is_array() ? std::string(TypeName(*value_)) : DescribeJsonValue(*value_)));
 }
 
 std::optional<double> JsonField::Number() const {
@@ -196,8 +197,7 @@ std::optional<double> JsonField::NonNegative() const {
 std::optional<std::int64_t> JsonField::Integer() const {
   if (value_ == nullptr) return std::nullopt;
   if (value_->is_number_integer() || value_->is_number_unsigned()) {
-    if (value_->is_number_unsigned() &&
-        value_->get<std::uint64_t>() > static_cast<std::uint64_t>(INT64_MAX)) {
+    if (value_->is_number_unsigned() && value_->get<std::uint64_t>() > static_cast<std::uint64_t>(INT64_MAX)) {
       AddError("integer out of range");
       return std::nullopt;
     }
@@ -231,8 +231,7 @@ std::optional<bool> JsonField::Bool() const {
   return value_->get<bool>();
 }
 
-std::optional<std::size_t> JsonField::ArraySize(std::size_t min_size,
-                                                std::size_t max_size) const {
+std::optional<std::size_t> JsonField::ArraySize(std::size_t min_size, std::size_t max_size) const {
   if (value_ == nullptr) return std::nullopt;
   if (!value_->is_array()) {
     TypeError("an array");

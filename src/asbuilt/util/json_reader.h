@@ -52,8 +52,7 @@ class JsonDiagnostics {
 
 // Reads and parses a JSON file. A missing/unreadable file or a syntax error is
 // recorded in `diag` (with line and column) and a null value returned.
-nlohmann::json ParseJsonFile(const std::filesystem::path& path,
-                             JsonDiagnostics& diag);
+nlohmann::json ParseJsonFile(const std::filesystem::path& path, JsonDiagnostics& diag);
 // Same for JSON text already in memory (e.g. an MCP message or LLM answer).
 nlohmann::json ParseJsonText(std::string_view text, JsonDiagnostics& diag);
 
@@ -62,8 +61,7 @@ nlohmann::json ParseJsonText(std::string_view text, JsonDiagnostics& diag);
 // adding more errors, so one mistake gives one message.
 class JsonField {
  public:
-  JsonField(const nlohmann::json& root, JsonDiagnostics& diag)
-      : value_(&root), diag_(&diag) {}
+  JsonField(const nlohmann::json& root, JsonDiagnostics& diag) : value_(&root), diag_(&diag) {}
 
   // A member that must exist; records "missing required field" otherwise.
   JsonField Required(std::string_view key) const;
@@ -87,8 +85,7 @@ class JsonField {
   std::optional<std::string> String() const;
   std::optional<bool> Bool() const;
   // An array; checks its length is within [min_size, max_size].
-  std::optional<std::size_t> ArraySize(
-      std::size_t min_size = 0, std::size_t max_size = SIZE_MAX) const;
+  std::optional<std::size_t> ArraySize(std::size_t min_size = 0, std::size_t max_size = SIZE_MAX) const;
   // An array of exactly n finite numbers.
   std::optional<std::vector<double>> NumberArray(std::size_t n) const;
   // Requires an object; warns about members not in `known` ("unknown key,

@@ -11,8 +11,7 @@ TEST(JsonField, WrongTypeNamesPathAndValue) {
   JsonField doc(root, diag);
   EXPECT_FALSE(doc.Required("frames").At(3).Required("yaw_deg").Number());
   ASSERT_EQ(diag.errors().size(), 1u);
-  EXPECT_EQ(diag.errors()[0].ToString(),
-            "capture.json: frames[3].yaw_deg: expected a number, got \"abc\"");
+  EXPECT_EQ(diag.errors()[0].ToString(), "capture.json: frames[3].yaw_deg: expected a number, got \"abc\"");
 }
 
 TEST(JsonField, MissingFieldReportedOnceAndChildrenSilent) {
@@ -58,8 +57,7 @@ TEST(ParseJsonText, SyntaxErrorGivesLineAndColumn) {
   JsonDiagnostics diag("bad.json");
   ParseJsonText("{\n  \"a\": 1,\n  oops\n}", diag);
   ASSERT_EQ(diag.errors().size(), 1u);
-  EXPECT_NE(diag.errors()[0].message.find("invalid JSON at line 3"), std::string::npos)
-      << diag.errors()[0].message;
+  EXPECT_NE(diag.errors()[0].message.find("invalid JSON at line 3"), std::string::npos) << diag.errors()[0].message;
 }
 
 TEST(JsonDiagnostics, ThrowIfErrorsCarriesEveryProblem) {

@@ -14,9 +14,15 @@ void ConfigureLogging(Verbosity verbosity) {
     configured = true;
   }
   switch (verbosity) {
-    case Verbosity::kQuiet: spdlog::set_level(spdlog::level::err); break;
-    case Verbosity::kNormal: spdlog::set_level(spdlog::level::info); break;
-    case Verbosity::kVerbose: spdlog::set_level(spdlog::level::debug); break;
+    case Verbosity::kQuiet:
+      spdlog::set_level(spdlog::level::err);
+      break;
+    case Verbosity::kNormal:
+      spdlog::set_level(spdlog::level::info);
+      break;
+    case Verbosity::kVerbose:
+      spdlog::set_level(spdlog::level::debug);
+      break;
   }
 }
 

@@ -9,16 +9,12 @@
 
 namespace asbuilt {
 
-bool StderrIsTerminal() {
-  return ::isatty(STDERR_FILENO) != 0 && std::getenv("ASBUILT_NO_PROGRESS") == nullptr;
-}
+bool StderrIsTerminal() { return ::isatty(STDERR_FILENO) != 0 && std::getenv("ASBUILT_NO_PROGRESS") == nullptr; }
 
 ProgressPrinter::ProgressPrinter(std::FILE* out)
-    : ProgressPrinter(out, out == stderr && StderrIsTerminal(),
-                      std::chrono::seconds(5)) {}
+    : ProgressPrinter(out, out == stderr && StderrIsTerminal(), std::chrono::seconds(5)) {}
 
-ProgressPrinter::ProgressPrinter(std::FILE* out, bool is_terminal,
-                                 std::chrono::milliseconds interval)
+ProgressPrinter::ProgressPrinter(std::FILE* out, bool is_terminal, std::chrono::milliseconds interval)
     : out_(out), is_terminal_(is_terminal), interval_(interval) {}
 
 ProgressPrinter::~ProgressPrinter() { Finish(); }
@@ -58,8 +54,8 @@ void ProgressPrinter::Update(const ProgressUpdate& update) {
       constexpr int kWidth = 28;
       double f = std::min(1.0, double(update.done) / double(update.total));
       int filled = static_cast<int>(f * kWidth);
-      bar = fmt::format("[{}{}] {}/{}", std::string(filled, '#'),
-                        std::string(kWidth - filled, '.'), update.done, update.total);
+      bar = fmt::format("[{}{}] {}/{}", std::string(filled, '#'), std::string(kWidth - filled, '.'), update.done,
+                        update.total);
     } else {
       bar = fmt::format("{}", update.done);
     }
@@ -69,8 +65,7 @@ void ProgressPrinter::Update(const ProgressUpdate& update) {
     std::fflush(out_);
     return;
   }
-  if (!finished && last_print_ != Clock::time_point{} &&
-      now - last_print_ < interval_) {
+  if (!finished && last_print_ != Clock::time_point{} && now - last_print_ < interval_) {
     return;
   }
   last_print_ = now;

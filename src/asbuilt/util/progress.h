@@ -23,8 +23,7 @@ struct ProgressUpdate {
 using ProgressCallback = std::function<void(const ProgressUpdate&)>;
 
 // Calls `callback` if set.
-inline void ReportProgress(const ProgressCallback& callback,
-                           const ProgressUpdate& update) {
+inline void ReportProgress(const ProgressCallback& callback, const ProgressUpdate& update) {
   if (callback) callback(update);
 }
 
@@ -34,8 +33,7 @@ inline void ReportProgress(const ProgressCallback& callback,
 class ProgressPrinter {
  public:
   explicit ProgressPrinter(std::FILE* out = stderr);
-  ProgressPrinter(std::FILE* out, bool is_terminal,
-                  std::chrono::milliseconds interval);
+  ProgressPrinter(std::FILE* out, bool is_terminal, std::chrono::milliseconds interval);
   ~ProgressPrinter();
 
   void Update(const ProgressUpdate& update);
