@@ -10,19 +10,25 @@
 // turned to face A's. Each link fixes B's pose from A's. A door one room's
 // survey missed links one-sided, at a cost: the door of the other room onto
 // this room's plain wall, slid to where the walls' ends line up, or centred.
-// A beam search grows the home one link at a time from the first room, scoring each room
-// it adds against every room already placed:
+// A beam search grows the home one link at a time from the first room
+// (door-to-door links first, then one-sided ones for the rooms left), and
+// again from the two rooms with most doors; each room added is scored
+// against every room already placed (weights: docs/home.md):
 //   + the partition faces the two rooms share (anti-parallel walls a
-//     plausible thickness apart, metres of overlap),
+//     plausible thickness apart, metres of overlap), and walls running on
+//     past a partition,
 //   + doors that meet a door of a room already placed (a loop closes),
-//   − the two doors' width difference,
+//   − the two doors' width difference, a one-sided link,
 //   − floor shared with a room already placed (refused past max_overlap),
-//   − a door or window that opens onto another room's plain wall.
+//   − a door or window that opens onto another room's plain wall,
+//   − bounding-box floor of the home no room covers.
 // The best few complete placements are kept (the first is the answer, the
 // others are what a person picks from when it is wrong). Each is then refined
-// by least squares over every link, loops included, with the partition
-// thickness one unknown of the whole home. A room no link reaches is placed
-// by its hint when it has one, else left unplaced, never guessed.
+// by least squares over every link, loops included, and the faces of every
+// partition, with the partition thickness one unknown of the whole home; a
+// loop or face that cannot close within 5 cm is dropped. A room no link
+// reaches is placed by its hint when it has one, else left unplaced, never
+// guessed.
 //
 // Poses are floor_from_room: a room's capture frame → the home frame, which
 // is the first room's frame (or its hint's pose).
