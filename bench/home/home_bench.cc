@@ -56,7 +56,8 @@ struct Run {
 
 // The review's scripted surveyor for a home: while a room is not within the
 // tolerances, it moves the first such room to its true place (move_room,
-// held there) and the home is placed again. Returns the edits it took
+// held there) and the home is placed again, the other rooms kept where they
+// were where they fit as well (as the review does). Returns the edits it took
 // (capped at twice the rooms), with the rooms misplaced at first.
 int ScriptedEdits(const std::vector<HomeRoomInput>& rooms, const std::vector<Eigen::Isometry2d>& truth,
                   const std::vector<std::vector<Vec2>>& outlines, int* misplaced_at_start) {
@@ -68,6 +69,10 @@ int ScriptedEdits(const std::vector<HomeRoomInput>& rooms, const std::vector<Eig
     if (edits == 0) *misplaced_at_start = n - s.within;
     if (s.within == n) return edits;
     const Eigen::Isometry2d home_from_truth = s.truth_from_home.inverse();
+    c.previous.clear();
+    for (const RoomPlacement& p : r.best.rooms) {
+      c.previous.push_back(p.placed ? std::optional<PlanPose>(TransformPose(p.floor_from_room)) : std::nullopt);
+    }
     for (int k = 0; k < n; ++k) {
       if (r.best.rooms[k].placed && s.centroid_error_m[k] <= 0.10 && s.yaw_error_deg[k] <= 1.0) continue;
       std::erase_if(c.fixed, [&](const auto& f) { return f.first == k; });

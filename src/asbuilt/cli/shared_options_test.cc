@@ -93,10 +93,11 @@ const Names kSubcommand = {"--help"};  // --quiet/--verbose belong to `asbuilt s
 TEST(SharedOptions, RenderAndRenderCaptureTakeTheSameFields) {
   auto fields = CaptureRenderOptionFields().Fields();
   EXPECT_EQ(ToolProperties("render_capture"), Union(NamesOf(fields), {"output", "overwrite"}));
-  // CLI-only: the output folder, --size WxH (short for --width-px/--height-px), --no-resume; and
-  // the older spellings kept as aliases.
-  EXPECT_EQ(HelpFlags("render"), Union(Union(FlagsOf(fields), kCommon), {"--out", "--size", "--no-resume", "--spp",
-                                                                         "--effects", "--no-indirect", "--instances"}));
+  // CLI-only: the output folder, --size WxH (short for --width-px/--height-px), --no-resume, --home
+  // (a capture per room of a home); and the older spellings kept as aliases.
+  EXPECT_EQ(HelpFlags("render"),
+            Union(Union(FlagsOf(fields), kCommon),
+                  {"--out", "--size", "--no-resume", "--home", "--spp", "--effects", "--no-indirect", "--instances"}));
 }
 
 TEST(SharedOptions, SceneTextAndSceneFromTextTakeTheSameFields) {

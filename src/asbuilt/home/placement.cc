@@ -540,6 +540,12 @@ class Placer {
   std::optional<double> Score(const State& s, int room, const Pose& pose) {
     const RoomGeom& g = PlacedGeom(room, pose);
     double score = 0.0;
+    if (room < static_cast<int>(c_.previous.size()) && c_.previous[room]) {
+      const Pose before = PoseTransform(*c_.previous[room]);
+      const bool kept = (before.translation() - pose.translation()).norm() < 0.05 &&
+                        std::abs(std::remainder(YawOf(before) - YawOf(pose), 2 * std::numbers::pi)) < 0.02;
+      if (kept) score += c_.kept_room;
+    }
     for (std::size_t c = 0; c < rooms_.size(); ++c) {
       if (!s.placed[c]) continue;
       const std::optional<double> term = PairScore(g, *placed_now_[c], o_);
@@ -604,8 +610,13 @@ const Hole* DoorOf(const RoomGeom& g, int opening) {
 // Doors of two placed rooms that meet across a partition but placed nothing:
 // the loops of the home.
 void FindLoops(const std::vector<RoomGeom>& geoms, const State& s, const PlacementOptions& o,
-               std::vector<RoomLink>& links) {
+               const PlacementConstraints& c, std::vector<RoomLink>& links) {
   const int n = static_cast<int>(geoms.size());
+  auto forbidden = [&](const OpeningRef& x, const OpeningRef& y) {
+    return std::any_of(c.different.begin(), c.different.end(), [&](const auto& p) {
+      return (p.first == x && p.second == y) || (p.first == y && p.second == x);
+    });
+  };
   auto linked = [&](const OpeningRef& r) {
     for (const RoomLink& l : links) {
       if (l.a == r || l.b == r) return true;
@@ -618,7 +629,8 @@ void FindLoops(const std::vector<RoomGeom>& geoms, const State& s, const Placeme
       const RoomGeom ga = Transformed(geoms[a], s.pose[a]), gb = Transformed(geoms[b], s.pose[b]);
       for (const Hole& da : ga.doors) {
         for (const Hole& db : gb.doors) {
-          if (linked({a, da.opening}) || linked({b, db.opening})) continue;
+          if (linked({a, da.opening}) || linked({b, db.opening}) || forbidden({a, da.opening}, {b, db.opening}))
+            continue;
           if (da.n.dot(db.n) > -kAntiParallel || !WidthsMatch(da.width, db.width, o)) continue;
           const double across = (db.c - da.c).dot(da.n);
           const double along = std::abs((db.c - da.c).dot(Perp(da.n)));
@@ -767,7 +779,7 @@ HomePlacement Finish(const std::vector<HomeRoomInput>& rooms, const std::vector<
   HomePlacement h;
   h.score = s.score;
   h.links = s.links;
-  FindLoops(geoms, s, o, h.links);
+  FindLoops(geoms, s, o, c, h.links);
   // Refined over every link; a loop that cannot close within 5 cm was two
   // doors that only looked like one: dropped, worst first, and refined again.
   // Partition faces and continuing walls too; any of these that cannot close
@@ -932,6 +944,10 @@ PlacementResult PlaceRooms(const std::vector<HomeRoomInput>& rooms, const Placem
       check_ref(q);
       if (p.room == q.room) throw InvalidArgument("PlaceRooms: two openings of one room cannot be one door");
     }
+  }
+  if (!constraints.previous.empty() && constraints.previous.size() != rooms.size()) {
+    throw InvalidArgument(
+        fmt::format("PlaceRooms: {} previous poses for {} rooms", constraints.previous.size(), rooms.size()));
   }
   std::vector<char> fixed(rooms.size(), 0);
   for (const auto& [room, pose] : constraints.fixed) {

@@ -75,6 +75,11 @@ struct PlacementConstraints {
   // Rooms a person put where they are (home frame): placed there first and
   // held; the others are placed around them.
   std::vector<std::pair<int, PlanPose>> fixed;
+  // Where the rooms were before the person's last edit (home frame; empty,
+  // or one per room, unset for a room that was not placed): a room placed
+  // there again scores kept_room, so an edit changes only what it must.
+  std::vector<std::optional<PlanPose>> previous;
+  double kept_room = 3.0;
 };
 
 struct PlacementOptions {

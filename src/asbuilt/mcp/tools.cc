@@ -20,6 +20,7 @@
 #include "asbuilt/render/capture_render.h"
 #include "asbuilt/render/renderer.h"
 #include "asbuilt/scene/procedural.h"
+#include "asbuilt/scene/procedural_home.h"
 #include "asbuilt/scene/scene_json.h"
 #include "asbuilt/scene/scene_text.h"
 #include "asbuilt/util/base64.h"
@@ -308,6 +309,7 @@ SceneTools::SceneTools(Workspace workspace, ToolLimits limits) : workspace_(std:
   // In tools/list order.
   RegisterBuildTools();
   RegisterStyleTools();
+  RegisterRigTools();
   RegisterWholeSceneTools();
   RegisterOutputTools();
 }
@@ -454,7 +456,7 @@ void SceneTools::RegisterBuildTools() {
   Register(s, &SceneTools::AddFurniture);
 }
 
-// set_material, set_lighting, place_rig, remove_item.
+// set_material, set_lighting.
 void SceneTools::RegisterStyleTools() {
   const ToolLimits& L = limits_;
   ToolSpec s;
@@ -565,7 +567,12 @@ void SceneTools::RegisterStyleTools() {
            {.name = "sky", .kind = FieldKind::kBool, .description = "Whether a sky is seen through windows."},
        }};
   Register(s, &SceneTools::SetLighting);
+}
 
+// place_rig, remove_item.
+void SceneTools::RegisterRigTools() {
+  const ToolLimits& L = limits_;
+  ToolSpec s;
   s = {.name = "place_rig",
        .title = "Place stereo rig",
        .description = fmt::format("Place the stereo camera rig and choose its views: either a turn in place (step_deg, "
@@ -700,6 +707,23 @@ void SceneTools::RegisterWholeSceneTools() {
        .fields = Concat({RandomSceneSeedField()}, RandomSceneOptionFields().Fields()),
        .destructive = true};
   Register(s, &SceneTools::RandomSceneTool);
+
+  s = {.name = "random_home",
+       .title = "Random home",
+       .description =
+           "Replace the current scene with a procedural home of several rooms (the generator of "
+           "`asbuilt scene home`): a floor cut into rectangular rooms, 0.10 m partitions, a door "
+           "between rooms that share a partition, windows on exterior walls. Render it room by room "
+           "with `asbuilt render SCENE --home` for a home.json. Deterministic per seed.",
+       .fields = {RandomSceneSeedField(),
+                  {.name = "rooms",
+                   .kind = FieldKind::kInteger,
+                   .description = "Number of rooms (0: 5 to 10).",
+                   .minimum = 0.0,
+                   .maximum = std::min(10.0, static_cast<double>(L.max_rooms)),
+                   .default_value = 0}},
+       .destructive = true};
+  Register(s, &SceneTools::RandomHomeTool);
 
   s = {.name = "describe_scene",
        .title = "Describe scene",
@@ -1336,6 +1360,21 @@ ToolResult SceneTools::RandomSceneTool(const FieldArgs& a, const ToolCallContext
   CheckSceneLimits(next);
   scene_ = std::move(next);
   std::string out = fmt::format("New random scene: {}", DescribeScene(scene_));
+  for (std::size_t r = 0; r < scene_.rooms.size(); ++r) {
+    out += fmt::format("\nRoom {} walls:\n{}", r, DescribeWalls(scene_.rooms[r]));
+  }
+  return ToolResult::Text(out);
+}
+
+ToolResult SceneTools::RandomHomeTool(const FieldArgs& a, const ToolCallContext&) {
+  HomeLayoutOptions layout;
+  if (const int rooms = static_cast<int>(a.Integer("rooms")); rooms > 0) layout.min_rooms = layout.max_rooms = rooms;
+  const auto seed = static_cast<std::uint64_t>(a.Integer("seed"));
+  SceneRng rng(seed);
+  Scene next = HomeScene(MakeHomeLayout(rng, layout), seed);
+  CheckSceneLimits(next);
+  scene_ = std::move(next);
+  std::string out = fmt::format("New random home: {}", DescribeScene(scene_));
   for (std::size_t r = 0; r < scene_.rooms.size(); ++r) {
     out += fmt::format("\nRoom {} walls:\n{}", r, DescribeWalls(scene_.rooms[r]));
   }

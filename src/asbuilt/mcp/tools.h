@@ -113,6 +113,7 @@ class SceneTools {
   // The table, registered by group (tools.cc).
   void RegisterBuildTools();
   void RegisterStyleTools();
+  void RegisterRigTools();
   void RegisterWholeSceneTools();
   void RegisterOutputTools();
   void Register(ToolSpec spec, Handler handler);
@@ -129,6 +130,7 @@ class SceneTools {
   ToolResult RemoveItem(const FieldArgs& a, const ToolCallContext&);
   ToolResult SceneFromText(const FieldArgs& a, const ToolCallContext&);
   ToolResult RandomSceneTool(const FieldArgs& a, const ToolCallContext&);
+  ToolResult RandomHomeTool(const FieldArgs& a, const ToolCallContext&);
   ToolResult Describe(const FieldArgs& a, const ToolCallContext&);
   ToolResult Validate(const FieldArgs& a, const ToolCallContext&);
   ToolResult GetScene(const FieldArgs& a, const ToolCallContext&);

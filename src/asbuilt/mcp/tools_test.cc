@@ -311,6 +311,21 @@ TEST_F(ToolsTest, RandomSceneIsDeterministicPerSeedAndChecksItsOptions) {
   EXPECT_THAT(Fails("random_scene", {{"min_side_m", 8.0}, {"max_side_m", 3.0}}), HasSubstr("max_side_m"));
 }
 
+TEST_F(ToolsTest, RandomHomeBuildsAValidHomeOfSeveralRooms) {
+  Ok("random_home", {{"seed", 3}, {"rooms", 4}});
+  EXPECT_EQ(tools_->scene().rooms.size(), 4u);
+  EXPECT_TRUE(ValidateScene(tools_->scene()).empty());
+  int doors = 0;
+  for (const Room& room : tools_->scene().rooms) {
+    for (const Opening& o : room.openings) doors += o.kind == OpeningKind::kDoor;
+  }
+  EXPECT_GE(doors, 6);  // A door joins each room to the others: both faces of three doors at least.
+  const std::string first = SceneToJson(tools_->scene()).dump();
+  Ok("random_home", {{"seed", 3}, {"rooms", 4}});
+  EXPECT_EQ(SceneToJson(tools_->scene()).dump(), first);
+  EXPECT_THAT(Fails("random_home", {{"rooms", 40}}), HasSubstr("arguments.rooms: must be"));
+}
+
 TEST_F(ToolsTest, RemoveItem) {
   Classroom();
   Ok("remove_item", {{"what", "opening"}, {"index", 0}});

@@ -331,6 +331,12 @@ void DenoiseIrradiance(PixelBuffers& b, int passes) {
   }
 }
 
+// A camera-frame normal as an 8-bit BGR pixel (each component −1..1 → 0..255).
+cv::Vec3b NormalPixel(const Vec3f& nc) {
+  auto byte = [](float v) { return static_cast<std::uint8_t>(std::lround(127.5f * (v + 1))); };
+  return {byte(nc.z()), byte(nc.y()), byte(nc.x())};
+}
+
 }  // namespace
 
 RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions& options, std::uint64_t view_key,
@@ -412,11 +418,7 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
                   }
                   if (!aux.normals.empty()) {
                     Vec3f n = hit.geometric_normal.dot(dir) > 0 ? Vec3f(-hit.geometric_normal) : hit.geometric_normal;
-                    Vec3f nc = rot.transpose() * n;
-                    aux.normals.at<cv::Vec3b>(y, x) =
-                        cv::Vec3b(static_cast<std::uint8_t>(std::lround(127.5f * (nc.z() + 1))),
-                                  static_cast<std::uint8_t>(std::lround(127.5f * (nc.y() + 1))),
-                                  static_cast<std::uint8_t>(std::lround(127.5f * (nc.x() + 1))));
+                    aux.normals.at<cv::Vec3b>(y, x) = NormalPixel(rot.transpose() * n);
                   }
                 }
               }

@@ -193,6 +193,19 @@ void HomeReviewSession::Replace() {
   const auto start = std::chrono::steady_clock::now();
   PlacementConstraints c;
   for (const nlohmann::json& e : edits_) Apply(e, c);
+  // Where the rooms were when the last edit was made: an edit moves only
+  // what it must (PlacementConstraints::previous).
+  if (!edits_.empty() && edits_.back().contains("previous") && edits_.back()["previous"].is_array() &&
+      edits_.back()["previous"].size() == rooms_.size()) {
+    for (const nlohmann::json& p : edits_.back()["previous"]) {
+      if (p.is_null()) {
+        c.previous.push_back(std::nullopt);
+      } else {
+        c.previous.push_back(PlanPose{Vec2(p["position_m"][0].get<double>(), p["position_m"][1].get<double>()),
+                                      p["yaw_deg"].get<double>()});
+      }
+    }
+  }
   constraints_ = c;
   placement_ = PlaceRooms(rooms_, {}, constraints_);
   drawn_ = DrawnRoomPoses(rooms_, placement_.best);
@@ -212,7 +225,12 @@ nlohmann::json HomeReviewSession::Edit(const nlohmann::json& edit) {
     edits_.push_back(undone_.back());
     undone_.pop_back();
   } else {
-    const nlohmann::json absolute = Absolute(edit);
+    nlohmann::json absolute = Absolute(edit);
+    nlohmann::json previous = nlohmann::json::array();
+    for (const RoomPlacement& p : placement_.best.rooms) {
+      previous.push_back(p.placed ? PoseJson(p.floor_from_room) : nlohmann::json(nullptr));
+    }
+    absolute["previous"] = std::move(previous);
     PlacementConstraints check = constraints_;
     Apply(absolute, check);  // Throws before anything changes.
     edits_.push_back(absolute);
