@@ -771,8 +771,10 @@ std::string OpeningName(const std::vector<HomeRoomInput>& rooms, const OpeningRe
   return fmt::format("{}#{}", rooms[r.room].name, r.opening);
 }
 
+// `refine`: false for the alternatives (offered to pick from; their poses
+// as the search left them, the partition at its prior).
 HomePlacement Finish(const std::vector<HomeRoomInput>& rooms, const std::vector<RoomGeom>& geoms, int seed,
-                     const PlacementOptions& o, const PlacementConstraints& c, State s) {
+                     const PlacementOptions& o, const PlacementConstraints& c, State s, bool refine) {
   std::vector<char> held(rooms.size(), 0);
   held[seed] = 1;
   for (const auto& f : c.fixed) held[f.first] = 1;
@@ -781,28 +783,33 @@ HomePlacement Finish(const std::vector<HomeRoomInput>& rooms, const std::vector<
   h.links = s.links;
   FindLoops(geoms, s, o, c, h.links);
   // Refined over every link; a loop that cannot close within 5 cm was two
-  // doors that only looked like one: dropped, worst first, and refined again.
+  // doors that only looked like one: dropped, and refined again.
   // Partition faces and continuing walls too; any of these that cannot close
   // likewise.
-  std::vector<FaceTie> ties = FindFaceTies(geoms, s, o);
-  for (;;) {
+  std::vector<FaceTie> ties = refine ? FindFaceTies(geoms, s, o) : std::vector<FaceTie>{};
+  h.wall_thickness_m = o.wall_thickness_m;
+  while (refine) {
     State trial = s;
     trial.links = h.links;
     const std::vector<double> left = Refine(geoms, held, o, ties, trial, h.wall_thickness_m);
-    int worst = -1;
+    // Every loop and tie left over 5 cm goes at once (a refinement per drop
+    // was most of the time on rooms of many short walls).
+    std::vector<RoomLink> links;
+    std::vector<FaceTie> kept;
     for (std::size_t k = 0; k < left.size(); ++k) {
-      const bool droppable = k >= h.links.size() || h.links[k].loop;
-      if (droppable && left[k] > 0.05 && (worst < 0 || left[k] > left[worst])) worst = static_cast<int>(k);
+      const bool loose = left[k] > 0.05;
+      if (k < h.links.size()) {
+        if (!(loose && h.links[k].loop)) links.push_back(h.links[k]);
+      } else if (!loose) {
+        kept.push_back(ties[k - h.links.size()]);
+      }
     }
-    if (worst < 0) {
+    if (links.size() == h.links.size() && kept.size() == ties.size()) {
       s = std::move(trial);
       break;
     }
-    if (worst < static_cast<int>(h.links.size())) {
-      h.links.erase(h.links.begin() + worst);
-    } else {
-      ties.erase(ties.begin() + (worst - static_cast<int>(h.links.size())));
-    }
+    h.links = std::move(links);
+    ties = std::move(kept);
   }
   for (const RoomLink& l : h.links) h.loops += l.loop;
   h.rooms.resize(rooms.size());
@@ -1000,7 +1007,7 @@ PlacementResult PlaceRooms(const std::vector<HomeRoomInput>& rooms, const Placem
     std::string sig = s.Signature();
     if (std::find(seen.begin(), seen.end(), sig) != seen.end()) continue;
     seen.push_back(std::move(sig));
-    HomePlacement h = Finish(rooms, placer.geoms(), seed, options, constraints, s);
+    HomePlacement h = Finish(rooms, placer.geoms(), seed, options, constraints, s, /*refine=*/seen.size() == 1);
     if (seen.size() == 1) {
       result.best = std::move(h);
     } else {
