@@ -216,10 +216,9 @@ TEST(RunHomeSurvey, ARenderedHomeIsPlacedWithItsPartitionsMeasured) {
   }
   EXPECT_EQ(score.within, score.rooms) << r.placement.best.ToString(r.inputs) << "\n" << errors;
   EXPECT_GT(score.floor_iou, 0.95);
-  // Each partition's thickness as the two rooms' surveys put its faces:
-  // 0.12–0.14 m for 0.10 m on seeds 1–7, because each survey places a face
-  // about a centimetre inside the room (the bias of issue 37), not because
-  // of the placement (0.10 ± 0.02 m from exact plans: home/placement_test).
+  // Each partition's thickness as the two rooms' surveys put its faces: each
+  // survey places a face a little inside its room (issue 37's bias), so more
+  // than the placement alone gives from exact plans (docs/home.md).
   int partitions = 0;
   for (const PlanWall& w : r.plan.walls) {
     if (!w.thickness) continue;
