@@ -607,11 +607,21 @@ const Hole* DoorOf(const RoomGeom& g, int opening) {
   return nullptr;
 }
 
+// Each placed room's geometry at its pose (empty for the others), once.
+std::vector<RoomGeom> PlacedRooms(const std::vector<RoomGeom>& geoms, const State& s) {
+  std::vector<RoomGeom> placed(geoms.size());
+  for (std::size_t r = 0; r < geoms.size(); ++r) {
+    if (s.placed[r]) placed[r] = Transformed(geoms[r], s.pose[r]);
+  }
+  return placed;
+}
+
 // Doors of two placed rooms that meet across a partition but placed nothing:
 // the loops of the home.
 void FindLoops(const std::vector<RoomGeom>& geoms, const State& s, const PlacementOptions& o,
                const PlacementConstraints& c, std::vector<RoomLink>& links) {
   const int n = static_cast<int>(geoms.size());
+  const std::vector<RoomGeom> placed = PlacedRooms(geoms, s);
   auto forbidden = [&](const OpeningRef& x, const OpeningRef& y) {
     return std::any_of(c.different.begin(), c.different.end(), [&](const auto& p) {
       return (p.first == x && p.second == y) || (p.first == y && p.second == x);
@@ -626,7 +636,7 @@ void FindLoops(const std::vector<RoomGeom>& geoms, const State& s, const Placeme
   for (int a = 0; a < n; ++a) {
     for (int b = a + 1; b < n; ++b) {
       if (!s.placed[a] || !s.placed[b]) continue;
-      const RoomGeom ga = Transformed(geoms[a], s.pose[a]), gb = Transformed(geoms[b], s.pose[b]);
+      const RoomGeom &ga = placed[a], &gb = placed[b];
       for (const Hole& da : ga.doors) {
         for (const Hole& db : gb.doors) {
           if (linked({a, da.opening}) || linked({b, db.opening}) || forbidden({a, da.opening}, {b, db.opening}))
@@ -657,10 +667,11 @@ struct FaceTie {
 std::vector<FaceTie> FindFaceTies(const std::vector<RoomGeom>& geoms, const State& s, const PlacementOptions& o) {
   std::vector<FaceTie> ties;
   const int n = static_cast<int>(geoms.size());
+  const std::vector<RoomGeom> placed = PlacedRooms(geoms, s);
   for (int a = 0; a < n; ++a) {
     for (int b = a + 1; b < n; ++b) {
       if (!s.placed[a] || !s.placed[b]) continue;
-      const RoomGeom ga = Transformed(geoms[a], s.pose[a]), gb = Transformed(geoms[b], s.pose[b]);
+      const RoomGeom &ga = placed[a], &gb = placed[b];
       if (!BoxesNear(ga, gb, o.max_wall_thickness_m + 0.05)) continue;
       for (int i = 0; i < static_cast<int>(ga.walls.size()); ++i) {
         for (int j = 0; j < static_cast<int>(gb.walls.size()); ++j) {
