@@ -3,12 +3,12 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build test demo bench fuzz asan clean format lint
+.PHONY: all deps build test test-cluster demo bench fuzz asan clean format lint
 
 all: build
 
 deps:
-	@bash scripts/install-deps.sh
+	@bash scripts/install-deps.sh --cluster
 	@bash tests/mcp_client/install.sh
 	@bash tests/review_browser/install.sh
 
@@ -24,6 +24,12 @@ build: deps $(BUILD)/build.ninja
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 	JOBS=$(JOBS) FUZZ_SECONDS=$(or $(FUZZ_SECONDS),10) bash scripts/sanitize.sh
+
+# The tests that need Slurm (tests/cluster/run.sh; also ctest cluster/slurm in
+# `make test`) on a one-node cluster on localhost (scripts/slurm/local-cluster.sh;
+# root), brought up for them and down after unless it was already up.
+test-cluster: build
+	bash tests/cluster/on-local-cluster.sh $(BUILD)
 
 # Formats every C++ file by .clang-format (ctest style/clang_format checks it).
 format:

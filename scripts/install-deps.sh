@@ -11,6 +11,10 @@
 #                                    the package's 14 MB download, 87 MB installed)
 #                                    `dataset synth --levers photo_textures` reads;
 #                                    blender (above) brings the HDR skies
+#   scripts/install-deps.sh --cluster also Slurm (slurm-wlm: slurmctld, slurmd,
+#                                    slurm-client) and munge, for the one-node
+#                                    test cluster (scripts/slurm/local-cluster.sh,
+#                                    `make test-cluster`)
 set -euo pipefail
 
 packages=(
@@ -31,6 +35,7 @@ for flag in "$@"; do
   case "$flag" in
     --bench) packages+=(python3-torch hyperfine) ;;
     --photos) packages+=(gimp-data) ;;
+    --cluster) packages+=(slurm-wlm slurmctld slurmd slurm-client munge) ;;
   esac
 done
 # Node.js (for the MCP SDK client test). Some images ship nodesource's nodejs,

@@ -22,7 +22,7 @@ cd "$(dirname "$0")/.."
 build=${SANITIZE_BUILD:-build-asan}
 jobs=${JOBS:-$(nproc)}
 seconds=${FUZZ_SECONDS:-10}
-modules=(util geometry formats scene stereo plan mcp)
+modules=(util geometry formats cluster scene stereo plan mcp)
 targets=()
 regex_extra=""
 if [[ -n ${SANITIZE_FULL:-} ]]; then
@@ -50,7 +50,7 @@ echo "sanitize: built in $((t1 - t0)) s" >&2
 export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:strict_string_checks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 regex="^($(IFS='|'; echo "${modules[*]}"))/${regex_extra}"
-ctest --test-dir "$build" --output-on-failure -j "$jobs" -R "$regex" -E 'sdk_client|chromium'
+ctest --test-dir "$build" --output-on-failure -j "$jobs" -R "$regex" -E 'sdk_client|chromium|cluster/slurm'
 t2=$(date +%s)
 echo "sanitize: tests in $((t2 - t1)) s" >&2
 

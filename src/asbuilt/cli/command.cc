@@ -44,8 +44,11 @@ std::span<const Command> Commands() {
       {"labels", "ID maps → label maps (calibrate, convert), real annotations in (ADE20K, NYUv2, LabelMe), compare",
        &RunLabelsCommand},
       {"dataset",
-       "training sets: synthetic items (synth), real/synthetic mixes → manifest.json (mix), pair checks (check)",
+       "training sets: synthetic items (synth, merge, verify), real/synthetic mixes → manifest.json (mix), pair "
+       "checks (check)",
        &RunDatasetCommand},
+      {"cluster", "sharded work on Slurm: a dataset rendered by an array job and merged (synth), shard states (status)",
+       &RunClusterCommand},
       {"train", "train the SegFormer segmenter (walls, doors, windows): checkpoints, resume, logs, plot",
        &RunTrainCommand},
       {"segment", "label images with a trained segmenter → label PNGs (+ colour overlays)", &RunSegmentCommand},

@@ -85,6 +85,7 @@ int RunMcpCommand(int argc, char** argv);
 int RunReviewCommand(int argc, char** argv);
 int RunLabelsCommand(int argc, char** argv);
 int RunDatasetCommand(int argc, char** argv);
+int RunClusterCommand(int argc, char** argv);
 int RunVersionCommand(int argc, char** argv);
 int RunPanoCommand(int argc, char** argv);
 

@@ -1,7 +1,8 @@
-// `asbuilt dataset <synth|mix|check>` — training sets: rendered synthetic
-// items (synth: dataset_synth_command.cc), real/synthetic mixes with a
+// `asbuilt dataset <synth|merge|verify|mix|check>` — training sets: rendered
+// synthetic items (synth: dataset_synth_command.cc) and their one manifest
+// once every shard is in (merge, verify), real/synthetic mixes with a
 // held-out real test list, and validation of (image, label) pairs
-// (dataset/, docs/dataset.md).
+// (dataset/, docs/dataset.md, docs/cluster.md).
 
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include "asbuilt/cli/command.h"
 #include "asbuilt/dataset/check.h"
 #include "asbuilt/dataset/mix.h"
+#include "asbuilt/dataset/synth_merge.h"
 #include "asbuilt/util/progress.h"
 
 namespace asbuilt::cli {
@@ -22,7 +24,9 @@ int RunDatasetCommand(int argc, char** argv) {
       "Training sets (docs/dataset.md).\n"
       "  mix    real + synthetic pairs at a ratio (R100, S100, RS5050, RS8020, RS2080, RSxxyy) → manifest.json\n"
       "  check  validate every (image, label) pair of a dataset folder or manifest; class histograms\n"
-      "  synth  random rooms rendered as labelled training items (images/ labels/ idmaps/ depth/ meta/)",
+      "  synth  random rooms rendered as labelled training items (images/ labels/ idmaps/ depth/ meta/)\n"
+      "  merge  a synth folder's shards → synth_manifest.json (every item's files and SHA-256)\n"
+      "  verify re-hash every file of a merged synth folder against its manifest",
       "asbuilt dataset");
   AddCommonFlags(app);
   app.require_subcommand(1);
@@ -59,6 +63,20 @@ int RunDatasetCommand(int argc, char** argv) {
   check->add_option("path", check_path, "dataset folder or manifest.json")->required();
   check->add_option("--threads", check_options.num_threads, "worker threads (0 = all cores)")->capture_default_str();
 
+  // merge, verify
+  CLI::App* merge = app.add_subcommand(
+      "merge", "every item of a synth folder there and whole → DIR/synth_manifest.json (files and SHA-256)");
+  std::string merge_dir;
+  SynthMergeOptions merge_options;
+  merge->add_option("dir", merge_dir, "folder written by dataset synth (all its shards)")->required();
+  merge->add_option("--shards", merge_options.shard_count, "the run's shard count, to name a shard's missing items");
+  merge->add_option("--threads", merge_options.num_threads, "hashing threads (0 = all cores)")->capture_default_str();
+  CLI::App* verify = app.add_subcommand("verify", "re-hash every file of a merged synth folder against its manifest");
+  std::string verify_dir;
+  int verify_threads = 0;
+  verify->add_option("dir", verify_dir, "folder with synth_manifest.json")->required();
+  verify->add_option("--threads", verify_threads, "hashing threads (0 = all cores)")->capture_default_str();
+
   // synth (render/): runs from its callback during Parse.
   CLI::App* synth = AddDatasetSynthSubcommand(app);
 
@@ -77,6 +95,21 @@ int RunDatasetCommand(int argc, char** argv) {
     printer.Finish();
     fmt::print("{}\nwrote {}\n", summary.BriefReport(), mix_out);
     return 0;
+  }
+  if (merge->parsed()) {
+    ProgressPrinter printer;
+    SynthMergeSummary summary = MergeSynthDataset(merge_dir, merge_options, printer.Callback());
+    printer.Finish();
+    fmt::print("{}\n", summary.BriefReport());
+    return 0;
+  }
+  if (verify->parsed()) {
+    ProgressPrinter printer;
+    SynthVerifySummary summary = VerifySynthDataset(verify_dir, verify_threads, printer.Callback());
+    printer.Finish();
+    for (const Problem& p : summary.problems) fmt::print(stderr, "{}\n", p.ToString());
+    fmt::print("{}\n", summary.BriefReport());
+    return summary.ok() ? 0 : 1;
   }
   if (check->parsed()) {
     check_options.Check();

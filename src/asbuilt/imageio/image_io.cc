@@ -128,9 +128,9 @@ void CheckImageSize(const cv::Mat& image, int width_px, int height_px, const fs:
                    fmt::format("image is {}x{}, {} is {}x{}", image.cols, image.rows, what, width_px, height_px));
 }
 
-void WriteImageAtomic(const std::filesystem::path& path, const cv::Mat& image) {
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-  AtomicFile file(path);
+void WriteImageToTemp(const AtomicFile& file, const cv::Mat& image) {
+  const fs::path& path = file.final_path();
+  if (path.has_parent_path()) fs::create_directories(path.parent_path());
   bool ok = false;
   try {
     ok = cv::imwrite(file.temp_path().string(), image, {cv::IMWRITE_PNG_COMPRESSION, 1});
@@ -138,6 +138,11 @@ void WriteImageAtomic(const std::filesystem::path& path, const cv::Mat& image) {
     throw Error(fmt::format("{}: cannot write image: {}", path.string(), e.what()));
   }
   if (!ok) throw Error(fmt::format("{}: cannot write image", path.string()));
+}
+
+void WriteImageAtomic(const std::filesystem::path& path, const cv::Mat& image) {
+  AtomicFile file(path);
+  WriteImageToTemp(file, image);
   file.Commit();
 }
 

@@ -12,6 +12,7 @@
 #include <opencv2/core.hpp>
 
 #include "asbuilt/imageio/image.h"
+#include "asbuilt/util/file.h"
 
 namespace asbuilt {
 
@@ -58,6 +59,9 @@ void CheckImageSize(const cv::Mat& image, int width_px, int height_px, const std
 // lossless). Creates missing folders. Throws Error on failure.
 void WriteImageAtomic(const std::filesystem::path& path, const cv::Mat& image);
 void WriteImageAtomic(const std::filesystem::path& path, const Image& image);
+// The same into `file`'s temp path, for writers that commit several files
+// together (util/file.h AtomicFile).
+void WriteImageToTemp(const AtomicFile& file, const cv::Mat& image);
 
 }  // namespace asbuilt
 

@@ -2,12 +2,17 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
+#include <memory>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
+#include "asbuilt/formats/synth_dataset.h"
 #include "asbuilt/geometry/polygon.h"
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/imageio/image_io.h"
 #include "asbuilt/scene/furnish.h"
 #include "asbuilt/util/error.h"
@@ -405,11 +410,6 @@ std::string DatasetSynthSummary::BriefReport() const {
       rendered, items, skipped, scenes, seconds, dir, pct(0), pct(1), pct(2), pct(3));
 }
 
-std::pair<int, int> ShardRange(int count, int shard_index, int shard_count) {
-  auto at = [&](int k) { return static_cast<int>(static_cast<std::int64_t>(count) * k / shard_count); };
-  return {at(shard_index), at(shard_index + 1)};
-}
-
 std::uint64_t SynthSceneSeed(const DatasetSynthOptions& options, int index) {
   return SplitMix64(options.seed ^ 0x5CE4E5EEDULL) + static_cast<std::uint64_t>(index / options.items_per_scene);
 }
@@ -492,6 +492,61 @@ SynthItem PlanSynthItem(const DatasetSynthOptions& options, const Scene& scene, 
   return item;
 }
 
+namespace {
+
+// Every file of an item to its temp name first, then the renames, meta last:
+// a kill leaves at most a few microseconds in which an item is part-renamed
+// (and then it is incomplete, so resume re-makes it).
+void WriteSynthItem(const std::array<fs::path, 5>& files, const RenderedView& view, const std::string& meta) {
+  std::vector<std::unique_ptr<AtomicFile>> temps;
+  for (const fs::path& file : files) temps.push_back(std::make_unique<AtomicFile>(file));
+  WriteImageToTemp(*temps[0], AsMat(view.left));
+  WriteImageToTemp(*temps[1], AsMat(view.labels));
+  WriteImageToTemp(*temps[2], AsMat(view.idmap));
+  WriteImageToTemp(*temps[3], AsMat(view.depth_mm));
+  std::ofstream out(temps[4]->temp_path(), std::ios::binary);
+  out << meta;
+  out.close();
+  if (!out) throw Error(fmt::format("{}: cannot write", files[4].string()));
+  for (auto& temp : temps) temp->Commit();
+}
+
+}  // namespace
+
+nlohmann::json SynthRecordOptions(const DatasetSynthOptions& o) {
+  const RandomSceneOptions& sc = o.scene;
+  const RenderOptions& r = o.render;
+  nlohmann::json j = {
+      {"count", o.count},
+      {"seed", o.seed},
+      {"size", fmt::format("{}x{}", o.width_px, o.height_px)},
+      {"hfov_deg", {o.min_hfov_deg, o.max_hfov_deg}},
+      {"rig_view_share", o.rig_view_share},
+      {"items_per_scene", o.items_per_scene},
+      {"levers", o.levers.ToString()},
+      {"render",
+       {{"samples_per_pixel", r.samples_per_pixel},
+        {"indirect_light", r.indirect_light},
+        {"denoise_passes", r.denoise_passes},
+        {"id_drift", r.id_drift},
+        {"camera_effects", r.camera_effects},
+        {"phone_camera", r.phone_camera}}},
+      {"scene",
+       {{"side_m", {sc.min_side_m, sc.max_side_m}},
+        {"height_m", {sc.min_height_m, sc.max_height_m}},
+        {"l_shape_probability", sc.l_shape_probability},
+        {"rotated_probability", sc.rotated_probability},
+        {"openings", {sc.min_openings, sc.max_openings}},
+        {"furniture", {sc.min_furniture, sc.max_furniture}}}},
+  };
+  if (o.levers.photo_textures || o.levers.outside_photos) {
+    nlohmann::json dirs = nlohmann::json::array();
+    for (const fs::path& d : o.photo_dirs) dirs.push_back(d.string());
+    j["photo_dirs"] = dirs;
+  }
+  return j;
+}
+
 DatasetSynthSummary SynthesizeDataset(const fs::path& dir, const DatasetSynthOptions& options,
                                       const ProgressCallback& progress) {
   options.Check();
@@ -500,7 +555,11 @@ DatasetSynthSummary SynthesizeDataset(const fs::path& dir, const DatasetSynthOpt
   DatasetSynthSummary summary;
   summary.items = end - begin;
   summary.dir = dir.string();
-  for (const char* sub : {"images", "labels", "idmaps", "depth", "meta"}) fs::create_directories(dir / sub);
+  ClaimSynthDir(dir, SynthRecordOptions(options));
+  for (const char* sub : kSynthItemFolders) {
+    fs::create_directories(dir / sub);
+    RemoveDeadAtomicTemps(dir / sub, std::chrono::minutes(10));  // A killed writer's; shards share DIR.
+  }
 
   std::uint64_t current_seed = 0;
   std::unique_ptr<Scene> scene;
@@ -521,13 +580,8 @@ DatasetSynthSummary SynthesizeDataset(const fs::path& dir, const DatasetSynthOpt
     }
   }
   for (int i = begin; i < end; ++i) {
-    const std::string stem = fmt::format("{:06d}", i);
-    const fs::path meta_path = dir / "meta" / (stem + ".json");
-    const fs::path files[4] = {dir / "images" / (stem + ".png"), dir / "labels" / (stem + ".png"),
-                               dir / "idmaps" / (stem + ".png"), dir / "depth" / (stem + ".png")};
-    bool done = options.resume && fs::exists(meta_path);
-    for (const fs::path& f : files) done = done && fs::exists(f);
-    if (done) {
+    const std::array<fs::path, 5> files = SynthItemFiles(dir, i);
+    if (options.resume && IsSynthItemComplete(dir, i)) {
       ++summary.skipped;
     } else {
       std::uint64_t scene_seed = SynthSceneSeed(options, i);
@@ -550,10 +604,6 @@ DatasetSynthSummary SynthesizeDataset(const fs::path& dir, const DatasetSynthOpt
         for (int x = 0; x < view.labels.width(); ++x) counts[std::min<int>(row[x], 3)]++;
       }
       for (int k = 0; k < 4; ++k) summary.class_pixels[k] += counts[k];
-      WriteImageAtomic(files[0], view.left);
-      WriteImageAtomic(files[1], view.labels);
-      WriteImageAtomic(files[2], view.idmap);
-      WriteImageAtomic(files[3], view.depth_mm);
       const PinholeCamera& k = item.camera.camera;
       const double total = static_cast<double>(k.width_px) * k.height_px;
       nlohmann::json meta = {
@@ -574,7 +624,7 @@ DatasetSynthSummary SynthesizeDataset(const fs::path& dir, const DatasetSynthOpt
         meta["levers"] = options.levers.ToString();
         meta["look"] = look.ToString();
       }
-      WriteFileAtomic(meta_path, meta.dump(1) + "\n");  // Last: marks the item complete.
+      WriteSynthItem(files, view, meta.dump(1) + "\n");
       ++summary.rendered;
     }
     ReportProgress(progress, {"synth", static_cast<std::int64_t>(i - begin + 1), summary.items, ""});

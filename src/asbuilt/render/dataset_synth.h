@@ -15,8 +15,9 @@
 // share are level rig views from the room's turn-in-place spot. Item i is a
 // pure function of (options, i): shards split the items into contiguous
 // blocks, so shards never overlap and their union equals the unsharded run.
-// Resumable: an item whose meta file exists (written last) is skipped; every
-// file is written atomically. Memory stays flat: one scene is held at a time.
+// Resumable: a complete item (formats/synth_dataset.h: every file there; the
+// meta file is written last, every file atomically) is skipped, and the temp
+// files of a killed writer are removed. Memory stays flat: one scene is held at a time.
 
 #include <array>
 #include <cstdint>
@@ -26,10 +27,13 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "asbuilt/render/photo_textures.h"
 #include "asbuilt/render/renderer.h"
 #include "asbuilt/scene/procedural.h"
 #include "asbuilt/util/progress.h"
+#include "asbuilt/util/shard.h"
 
 namespace asbuilt {
 
@@ -107,9 +111,6 @@ struct DatasetSynthSummary {
   std::string BriefReport() const;
 };
 
-// The items [begin, end) of shard `shard_index` of `shard_count` over `count`.
-std::pair<int, int> ShardRange(int count, int shard_index, int shard_count);
-
 // The scene and camera of item `index` (exposed for tests and tools).
 struct SynthItem {
   int index = 0;
@@ -129,6 +130,12 @@ RandomSceneOptions LeveredSceneOptions(const DatasetSynthOptions& options);
 SceneLook MakeSceneLook(const SynthLevers& levers, const PhotoLibrary& photos, Scene& scene, std::uint64_t seed);
 std::uint64_t SynthSceneSeed(const DatasetSynthOptions& options, int index);
 
+// What DIR/synth.json records (formats/synth_dataset.h): every option that
+// changes an item's bytes; not the shard, not resume.
+nlohmann::json SynthRecordOptions(const DatasetSynthOptions& options);
+
+// Renders this shard's items into `dir`. A folder made with other options is
+// refused (InputError naming them) before anything is written.
 DatasetSynthSummary SynthesizeDataset(const std::filesystem::path& dir, const DatasetSynthOptions& options,
                                       const ProgressCallback& progress = {});
 

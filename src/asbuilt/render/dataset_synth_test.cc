@@ -40,19 +40,6 @@ TEST(DatasetSynthOptions, RejectsAShardOutsideTheCount) {
   EXPECT_THROW(o.Check(), InvalidArgument);
 }
 
-TEST(ShardRange, ShardsTileTheItemsWithoutOverlap) {
-  for (int shards : {1, 3, 7}) {
-    int next = 0;
-    for (int k = 0; k < shards; ++k) {
-      auto [b, e] = ShardRange(20, k, shards);
-      EXPECT_EQ(b, next);
-      EXPECT_GE(e, b);
-      next = e;
-    }
-    EXPECT_EQ(next, 20);
-  }
-}
-
 TEST(PlanSynthItem, PhotoViewsStandInsideTheRoomFacingTheirTarget) {
   DatasetSynthOptions o = TinyOptions();
   Scene scene = RandomScene(o.scene, 5);

@@ -60,7 +60,7 @@ void Erase(std::vector<std::pair<T, T>>& list, const T& a, const T& b) {
 
 }  // namespace
 
-// The page (review/home_page.html), compiled in by CMake (review/embed_page.cmake).
+// The page (review/home_page.html), compiled in by CMake (cmake/embed_text.cmake).
 extern const char kHomeReviewPageHtml[];
 
 bool HomeReviewSession::IsHomeSurvey(const fs::path& out_dir) { return fs::exists(HomeReviewInputPath(out_dir)); }

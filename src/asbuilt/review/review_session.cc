@@ -654,7 +654,7 @@ ReviewSession& ReviewSession::operator=(ReviewSession&&) noexcept = default;
 
 const fs::path& ReviewSession::out_dir() const { return impl_->out_dir; }
 double ReviewSession::last_fit_seconds() const { return impl_->fit_seconds; }
-// The page (review/page.html), compiled in by CMake (review/embed_page.cmake).
+// The page (review/page.html), compiled in by CMake (cmake/embed_text.cmake).
 extern const char kReviewPageHtml[];
 const char* ReviewSession::PageHtml() const { return kReviewPageHtml; }
 

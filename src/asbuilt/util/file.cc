@@ -80,7 +80,7 @@ bool IsAtomicTempName(const fs::path& path) {
   return name.size() > 1 && name[0] == '.' && name.find(".tmp-") != std::string::npos;
 }
 
-int RemoveDeadAtomicTemps(const fs::path& dir) {
+int RemoveDeadAtomicTemps(const fs::path& dir, std::chrono::seconds min_age) {
   int removed = 0;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
@@ -92,6 +92,11 @@ int RemoveDeadAtomicTemps(const fs::path& dir) {
     const long pid = std::strtol(name.c_str() + at, &end, 10);
     if (end == name.c_str() + at || *end != '-' || pid <= 0) continue;
     if (pid == ::getpid() || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+    if (min_age.count() > 0) {
+      std::error_code time_ec;
+      const auto written = fs::last_write_time(entry.path(), time_ec);
+      if (time_ec || fs::file_time_type::clock::now() - written < min_age) continue;
+    }
     std::error_code rm_ec;
     if (fs::remove(entry.path(), rm_ec)) ++removed;
   }

@@ -5,6 +5,7 @@
 // the same folder + rename), so a crash or kill never leaves a half-written
 // output under its final name.
 
+#include <chrono>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -50,7 +51,10 @@ bool IsAtomicTempName(const std::filesystem::path& path);
 // (the pid in the name is not alive): what a SIGKILL or power loss in the
 // middle of a write leaves behind. The final files they were meant to replace
 // are untouched. Returns how many were removed; a missing dir removes none.
-int RemoveDeadAtomicTemps(const std::filesystem::path& dir);
+// On a folder that processes on other machines write too (a cluster's shared
+// filesystem), a pid says nothing: give `min_age`, and only temps untouched
+// for that long are removed.
+int RemoveDeadAtomicTemps(const std::filesystem::path& dir, std::chrono::seconds min_age = std::chrono::seconds(0));
 
 }  // namespace asbuilt
 

@@ -1,0 +1,190 @@
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "asbuilt/cluster/slurm.h"
+#include "asbuilt/cluster/synth_job.h"
+#include "asbuilt/formats/synth_dataset.h"
+#include "asbuilt/util/error.h"
+#include "asbuilt/util/file.h"
+#include "asbuilt/util/shard.h"
+
+namespace asbuilt {
+namespace {
+namespace fs = std::filesystem;
+
+fs::path FreshDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("asbuilt_cluster_{}_{}", name, ::getpid());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void WriteExecutable(const fs::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+  fs::permissions(path, fs::perms::owner_all);
+}
+
+// Every file of item i, as a finished synth leaves it.
+void MakeItem(const fs::path& dir, int i) {
+  for (const fs::path& file : SynthItemFiles(dir, i)) {
+    fs::create_directories(file.parent_path());
+    std::ofstream(file) << "x";
+  }
+}
+
+// A fake sbatch that logs its arguments and answers job ids 100, 101, …
+SlurmOptions FakeSlurm(const fs::path& bin, const std::string& squeue_output = "") {
+  fs::create_directories(bin);
+  WriteExecutable(bin / "sbatch", fmt::format("#!/bin/sh\necho \"$@\" >> {0}/sbatch.log\n"
+                                              "n=$(wc -l < {0}/sbatch.log)\necho $((99 + n))\n",
+                                              bin.string()));
+  WriteExecutable(bin / "squeue", "#!/bin/sh\nprintf '" + squeue_output + "'\n");
+  return {.sbatch = (bin / "sbatch").string(), .squeue = (bin / "squeue").string()};
+}
+
+ClusterSynthRequest Request(const fs::path& dir, const SlurmOptions& slurm) {
+  return {.dir = dir,
+          .shards = 4,
+          .count = 8,
+          .record = {{"count", 8}, {"seed", 7}},
+          .synth_args = {"--count", "8", "--seed", "7", "--photo-dir", "/photos/with space"},
+          .asbuilt = "/opt/asbuilt",
+          .slurm = slurm};
+}
+
+TEST(MakeBatchScript, ReplacesTheTemplatesDirectivesAndSetsItsVariables) {
+  const std::string script = MakeBatchScript(SlurmTemplate("synth"), {"--job-name=x", "--partition=gpu"},
+                                             {{"ASBUILT_OUT", "/data/it's here"}});
+  EXPECT_EQ(script.rfind("#!/bin/bash\n#SBATCH --job-name=x\n#SBATCH --partition=gpu\n", 0), 0u) << script;
+  EXPECT_EQ(script.find("#SBATCH --output=asbuilt-synth"), std::string::npos) << "the template's own directive";
+  EXPECT_NE(script.find("export ASBUILT_OUT='/data/it'\\''s here'\n"), std::string::npos) << script;
+  EXPECT_EQ(ShellQuote("--count"), "--count");
+  EXPECT_EQ(ShellQuote(""), "''");
+  EXPECT_NE(script.find("dataset synth -o \"$ASBUILT_OUT\" --shard \"$task/$ASBUILT_SHARDS\""), std::string::npos);
+  EXPECT_THROW(SlurmTemplate("train"), InvalidArgument);
+}
+
+TEST(SynthBatchScript, RunsItsShardWithTheArgumentsAsGivenAndLeavesItsExitStatus) {
+  const fs::path dir = FreshDir("script");
+  const fs::path bin = dir / "bin";
+  fs::create_directories(bin);
+  // A stand-in asbuilt: one argument per line, then fails when asked to.
+  WriteExecutable(bin / "asbuilt", fmt::format("#!/bin/sh\nfor a in \"$@\"; do echo \"$a\"; done > {}/args\n"
+                                               "exit ${{FAKE_EXIT:-0}}\n",
+                                               dir.string()));
+  ClusterSynthResult r = SubmitClusterSynth([&] {
+    ClusterSynthRequest q = Request(dir / "ds", {});
+    q.asbuilt = bin / "asbuilt";
+    q.dry_run = true;
+    return q;
+  }());
+  EXPECT_FALSE(fs::exists(dir / "ds" / "synth.json")) << "a dry run writes nothing";
+  WriteExecutable(dir / "synth.sbatch", r.synth_script);
+  ASSERT_EQ(std::system(fmt::format("SLURM_ARRAY_TASK_ID=2 bash {}/synth.sbatch", dir.string()).c_str()), 0);
+  EXPECT_EQ(ReadFile(dir / "args"), fmt::format("dataset\nsynth\n-o\n{}\n--shard\n2/4\n--count\n8\n--seed\n7\n"
+                                                "--photo-dir\n/photos/with space\n",
+                                                fs::absolute(dir / "ds").string()));
+  EXPECT_EQ(ReadFile(dir / "ds" / "cluster" / "synth" / "2.exit"), "0\n");
+  EXPECT_TRUE(fs::exists(dir / "ds" / "cluster" / "synth" / "2.started"));
+  EXPECT_NE(std::system(fmt::format("FAKE_EXIT=3 SLURM_ARRAY_TASK_ID=1 bash {}/synth.sbatch", dir.string()).c_str()),
+            0);
+  EXPECT_EQ(ReadFile(dir / "ds" / "cluster" / "synth" / "1.exit"), "3\n");
+}
+
+TEST(SubmitClusterSynth, SubmitsTheArrayThenTheMergeAfterItAndResumesOnlyWhatIsUnfinished) {
+  const fs::path dir = FreshDir("submit");
+  const SlurmOptions slurm = FakeSlurm(dir / "bin");
+  ClusterSynthResult first = SubmitClusterSynth(Request(dir / "ds", slurm));
+  EXPECT_EQ(first.array_job, "100");
+  EXPECT_EQ(first.merge_job, "101");
+  EXPECT_EQ(first.tasks, (std::vector<int>{0, 1, 2, 3}));
+  const fs::path ds = fs::absolute(dir / "ds");
+  EXPECT_EQ(ReadFile(dir / "bin" / "sbatch.log"),
+            fmt::format("--parsable --array=0-3 {0}/cluster/synth.sbatch\n"
+                        "--parsable --dependency=afterany:100 {0}/cluster/merge.sbatch\n",
+                        ds.string()));
+  EXPECT_EQ(ReadSynthRecord(ds), (nlohmann::json{{"count", 8}, {"seed", 7}}));
+
+  try {
+    SubmitClusterSynth(Request(dir / "ds", slurm));
+    FAIL() << "a second run on the same folder without --resume";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--resume"), std::string::npos) << e.what();
+  }
+  for (int i : {0, 1, 2, 3, 6, 7}) MakeItem(ds, i);  // Shards 0, 1 and 3 complete.
+  ClusterSynthRequest resume = Request(dir / "ds", slurm);
+  resume.resume = true;
+  ClusterSynthResult second = SubmitClusterSynth(resume);
+  EXPECT_EQ(second.tasks, (std::vector<int>{2}));
+  EXPECT_NE(ReadFile(dir / "bin" / "sbatch.log").find("--parsable --array=2 "), std::string::npos);
+  resume.shards = 2;
+  EXPECT_THROW(SubmitClusterSynth(resume), InputError);
+}
+
+TEST(SubmitClusterSynth, RefusesAFolderMadeWithOtherOptionsAndWritesNothing) {
+  const fs::path dir = FreshDir("other");
+  ClaimSynthDir(dir / "ds", {{"count", 8}, {"seed", 6}});
+  const std::string before = ReadFile(dir / "ds" / "synth.json");
+  try {
+    SubmitClusterSynth(Request(dir / "ds", FakeSlurm(dir / "bin")));
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("options.seed: this folder was made with 6, this run asks for 7"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(ReadFile(dir / "ds" / "synth.json"), before);
+  EXPECT_FALSE(fs::exists(dir / "ds" / "cluster"));
+  EXPECT_FALSE(fs::exists(dir / "bin" / "sbatch.log"));
+}
+
+TEST(SubmitClusterSynth, SaysHowToGetSbatchWhenItIsMissingAndRefusesMoreShardsThanItems) {
+  const fs::path dir = FreshDir("nosbatch");
+  try {
+    SubmitClusterSynth(Request(dir / "ds", {.sbatch = "asbuilt-no-such-sbatch"}));
+    FAIL() << "expected Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--dry-run"), std::string::npos) << e.what();
+  }
+  ClusterSynthRequest q = Request(dir / "ds2", {});
+  q.shards = 9;
+  EXPECT_THROW(SubmitClusterSynth(q), InvalidArgument);
+  q.shards = 0;
+  EXPECT_THROW(SubmitClusterSynth(q), InvalidArgument);
+}
+
+TEST(ReadClusterStatus, TellsEachShardsStateFromTheFilesAndTheQueue) {
+  const fs::path dir = FreshDir("status");
+  const SlurmOptions slurm = FakeSlurm(dir / "bin", "100_3 PENDING\\n");
+  SubmitClusterSynth(Request(dir / "ds", slurm));
+  const fs::path ds = fs::absolute(dir / "ds");
+  for (int i : {0, 1, 2}) MakeItem(ds, i);  // Shard 0 done, shard 1 half.
+  const fs::path state = ds / "cluster" / "synth";
+  fs::create_directories(state);
+  std::ofstream(state / "1.started") << "node7 100 0\n";
+  std::ofstream(state / "1.exit") << "1\n";
+  std::ofstream(state / "2.started") << "node8 100 0\n";
+  ClusterStatus s = ReadClusterStatus(ds, slurm);
+  ASSERT_EQ(s.shard_status.size(), 4u);
+  EXPECT_EQ(s.shard_status[0].state, "done");
+  EXPECT_EQ(s.shard_status[1].state, "failed (exit 1)");
+  EXPECT_EQ(s.shard_status[1].complete, 1);
+  EXPECT_EQ(s.shard_status[1].host, "node7");
+  EXPECT_EQ(s.shard_status[2].state, "lost") << "started, no exit, not in the queue";
+  EXPECT_EQ(s.shard_status[3].state, "pending");
+  EXPECT_FALSE(s.all_done());
+  EXPECT_NE(s.Table().find("--resume"), std::string::npos) << s.Table();
+  EXPECT_NE(s.Table().find("items complete: 3 of 8"), std::string::npos) << s.Table();
+  EXPECT_THROW(ReadClusterStatus(dir / "nothing", slurm), InputError);
+}
+
+}  // namespace
+}  // namespace asbuilt

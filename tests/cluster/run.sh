@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# The tests that need a real Slurm cluster (`make test-cluster`, and ctest
+# cluster/slurm when root and Slurm are there), run against the one-node
+# cluster on localhost that scripts/slurm/local-cluster.sh has brought up.
+#
+#   tests/cluster/run.sh [BUILD_DIR]   BUILD_DIR: where `asbuilt` was built (default build)
+#
+# 1. the cluster's own self-test (sbatch, array, dependency, srun, scancel);
+# 2. `asbuilt cluster synth`, 4 shards through sbatch, then the merge job:
+#    the manifest equals one process's, byte for byte; `cluster status`;
+# 3. the same with one task's asbuilt killed -9 mid-run and the rest
+#    cancelled (scancel): no item left partial, the status names them, and
+#    `cluster synth --resume` finishes to the same manifest;
+# 4. a damaged file is caught by `dataset verify`.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+BUILD=$(cd "${1:-build}" && pwd)
+ASBUILT=$BUILD/asbuilt
+# shellcheck source=/dev/null
+. "${ASBUILT_SLURM_DIR:-/tmp/asbuilt-slurm}/env.sh"
+
+T=$(mktemp -d /tmp/asbuilt-cluster-test.XXXXXX)
+trap 'rm -rf "$T"' EXIT
+ITEMS=(--count 24 --seed 5 --size 160x120 --spp 2 --items-per-scene 3)
+fail() { echo "tests/cluster: FAIL: $*" >&2; exit 1; }
+ok() { echo "ok    $*"; }
+
+# Waits (at most $2 s) until job $1 has left the queue.
+wait_job() {
+  local t=0
+  while [[ -n $(squeue -h -j "$1" 2>/dev/null) ]]; do
+    ((t++ < $2 * 5)) || fail "job $1 still queued after $2 s"
+    sleep 0.2
+  done
+}
+# The merge job id `cluster synth` printed.
+merge_job() { sed -n 's/.*merge job \([0-9]*\).*/\1/p' <<<"$1" | tail -1; }
+
+bash scripts/slurm/local-cluster.sh selftest
+
+"$ASBUILT" dataset synth -o "$T/ref" "${ITEMS[@]}" >/dev/null 2>&1
+"$ASBUILT" dataset merge "$T/ref" >/dev/null
+
+# 2. Four shards and the merge, through sbatch.
+out=$("$ASBUILT" cluster synth -o "$T/ds" --shards 4 "${ITEMS[@]}")
+wait_job "$(merge_job "$out")" 300
+cmp -s "$T/ref/synth_manifest.json" "$T/ds/synth_manifest.json" ||
+  fail "4-shard manifest differs from one process's: $(cat "$T"/ds/cluster/logs/merge-*.out)"
+status=$("$ASBUILT" cluster status "$T/ds")
+grep -q "items complete: 24 of 24" <<<"$status" && grep -q "^merged:" <<<"$status" || fail "status: $status"
+ok "cluster synth: 4 shards + merge = one process's manifest; status: all done, merged"
+
+# 3. Kill one task's asbuilt with SIGKILL as soon as it has finished an item, cancel the rest.
+out=$("$ASBUILT" cluster synth -o "$T/killed" --shards 4 "${ITEMS[@]}")
+array=$(sed -n 's/.*as job \([0-9]*\).*/\1/p' <<<"$out")
+for _ in $(seq 600); do
+  compgen -G "$T/killed/meta/*.json" >/dev/null && break
+  sleep 0.05
+done
+pkill -9 -f "dataset synth -o $T/killed --shard 0/4" || true
+scancel "$array"
+wait_job "$array" 60
+wait_job "$(merge_job "$out")" 60
+[[ ! -e $T/killed/synth_manifest.json ]] || fail "the merge ran over missing items"
+for meta in "$T"/killed/meta/*.json; do
+  i=$(basename "$meta" .json)
+  for f in images labels idmaps depth; do [[ -e $T/killed/$f/$i.png ]] || fail "item $i is partial: no $f"; done
+done
+for f in "$T"/killed/{images,labels,idmaps,depth}/*.png; do
+  [[ -e $T/killed/meta/$(basename "$f" .png).json ]] || fail "partial item: $f without its meta file"
+done
+status=$("$ASBUILT" cluster status "$T/killed")
+grep -Eq "killed \(exit 137\)|cancelled" <<<"$status" || fail "status names no killed or cancelled shard: $status"
+grep -q -- "--resume" <<<"$status" || fail "status does not say how to finish: $status"
+ok "a task killed -9 and the rest cancelled: no partial item; status: $(grep -Ec 'killed|cancelled' <<<"$status") shards stopped"
+out=$("$ASBUILT" cluster synth -o "$T/killed" --resume)
+wait_job "$(merge_job "$out")" 300
+cmp -s "$T/ref/synth_manifest.json" "$T/killed/synth_manifest.json" ||
+  fail "resumed manifest differs: $(cat "$T"/killed/cluster/logs/merge-*.out)"
+ok "cluster synth --resume: $(sed -n 's/.*submitted \([0-9]*\) synth task.*/\1/p' <<<"$out") shard(s) again, the same manifest"
+
+# 4. A damaged file.
+printf 'x' | dd of="$T/ds/images/000007.png" bs=1 seek=100 conv=notrunc status=none
+if "$ASBUILT" dataset verify "$T/ds" >"$T/verify.txt" 2>&1; then fail "verify passed a damaged file"; fi
+grep -q "images/000007.png: changed since the merge" "$T/verify.txt" || fail "verify: $(cat "$T/verify.txt")"
+ok "dataset verify names a damaged file"
+
+echo "tests/cluster: passed"
