@@ -11,7 +11,9 @@
 # 3. the same with one task's asbuilt killed -9 mid-run and the rest
 #    cancelled (scancel): no item left partial, the status names them, and
 #    `cluster synth --resume` finishes to the same manifest;
-# 4. a damaged file is caught by `dataset verify`.
+# 4. a damaged file is caught by `dataset verify`;
+# 5. `asbuilt cluster eval`, 3 shards and the merge: metrics.json equals one
+#    process's `eval seg --json`, byte for byte.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 BUILD=$(cd "${1:-build}" && pwd)
@@ -73,16 +75,30 @@ status=$("$ASBUILT" cluster status "$T/killed")
 grep -Eq "killed \(exit 137\)|cancelled" <<<"$status" || fail "status names no killed or cancelled shard: $status"
 grep -q -- "--resume" <<<"$status" || fail "status does not say how to finish: $status"
 ok "a task killed -9 and the rest cancelled: no partial item; status: $(grep -Ec 'killed|cancelled' <<<"$status") shards stopped"
+sed 's/^/      /' <<<"$status"
 out=$("$ASBUILT" cluster synth -o "$T/killed" --resume)
 wait_job "$(merge_job "$out")" 300
 cmp -s "$T/ref/synth_manifest.json" "$T/killed/synth_manifest.json" ||
   fail "resumed manifest differs: $(cat "$T"/killed/cluster/logs/merge-*.out)"
-ok "cluster synth --resume: $(sed -n 's/.*submitted \([0-9]*\) synth task.*/\1/p' <<<"$out") shard(s) again, the same manifest"
+ok "cluster synth --resume: $(sed -n 's/.*submitted \([0-9]*\) task.*/\1/p' <<<"$out") shard(s) again, the same manifest"
 
 # 4. A damaged file.
 printf 'x' | dd of="$T/ds/images/000007.png" bs=1 seek=100 conv=notrunc status=none
 if "$ASBUILT" dataset verify "$T/ds" >"$T/verify.txt" 2>&1; then fail "verify passed a damaged file"; fi
 grep -q "images/000007.png: changed since the merge" "$T/verify.txt" || fail "verify: $(cat "$T/verify.txt")"
 ok "dataset verify names a damaged file"
+
+# 5. A sharded evaluation (skipped by a build without LibTorch).
+if "$ASBUILT" eval seg --model default --images "$T/ref" --json "$T/eval-whole.json" >"$T/eval.txt" 2>&1; then
+  out=$("$ASBUILT" cluster eval default "$T/ref" -o "$T/eval" --shards 3)
+  wait_job "$(merge_job "$out")" 300
+  cmp -s "$T/eval-whole.json" "$T/eval/metrics.json" ||
+    fail "cluster eval metrics differ from one process's: $(cat "$T"/eval/cluster/logs/eval-merge-*.out)"
+  "$ASBUILT" cluster status "$T/eval" | grep -q "shards done: 3 of 3" || fail "eval status: $("$ASBUILT" cluster status "$T/eval")"
+  ok "cluster eval: 3 shards + merge = one process's metrics.json"
+else
+  grep -q "no LibTorch" "$T/eval.txt" || fail "eval seg: $(cat "$T/eval.txt")"
+  echo "skip  cluster eval: this build has no LibTorch"
+fi
 
 echo "tests/cluster: passed"

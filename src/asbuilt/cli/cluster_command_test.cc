@@ -113,5 +113,40 @@ TEST(ClusterCommand, DryRunPrintsTheScriptsAndBadInputIsRefused) {
   EXPECT_NE(status.out.find("job.json: not found"), std::string::npos) << status.out;
 }
 
+TEST(EvalCommand, ShardsMergeToTheMetricsOfOneProcessExactly) {
+  const fs::path d = testing_util::FreshTestDir("asbuilt_cli_eval_shards_");
+  const fs::path toy = d / "toy";
+  ASSERT_EQ(
+      RunAsbuilt(fmt::format("experiment toy-rooms -o {} --count 7 --width 48 --height 32 --seed 5", toy.string()))
+          .exit_code,
+      0);
+  RunResult whole = RunAsbuilt(
+      fmt::format("eval seg --model default --images {} --json {}", toy.string(), (d / "whole.json").string()));
+  if (whole.out.find("no LibTorch") != std::string::npos) GTEST_SKIP() << "this build has no LibTorch";
+  ASSERT_EQ(whole.exit_code, 0) << whole.out;
+  for (int k : {0, 2}) {
+    RunResult r =
+        RunAsbuilt(fmt::format("eval seg --model default --images {} --shard {}/3 --json {}/shards/{}-of-3.json",
+                               toy.string(), k, d.string(), k));
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+  }
+  RunResult early = RunAsbuilt(fmt::format("eval merge {} --shards 3", d.string()));
+  EXPECT_EQ(early.exit_code, 1) << early.out;
+  EXPECT_NE(early.out.find("shard(s) 1 of 3 missing"), std::string::npos) << early.out;
+  ASSERT_EQ(RunAsbuilt(fmt::format("eval seg --model default --images {} --shard 1/3 --json {}/shards/1-of-3.json",
+                                   toy.string(), d.string()))
+                .exit_code,
+            0);
+  RunResult merged = RunAsbuilt(fmt::format("eval merge {} --shards 3", d.string()));
+  ASSERT_EQ(merged.exit_code, 0) << merged.out;
+  EXPECT_EQ(ReadFile(d / "metrics.json"), ReadFile(d / "whole.json")) << "summed confusion matrices, exactly";
+
+  RunResult other = RunAsbuilt(fmt::format("eval merge {} --shards 2", d.string()));
+  EXPECT_EQ(other.exit_code, 1) << other.out;
+  RunResult many = RunAsbuilt(fmt::format("eval seg --model default --images {} --shard 0/8", toy.string()));
+  EXPECT_EQ(many.exit_code, 2) << many.out;
+  EXPECT_NE(many.out.find("8 shards over 7 items"), std::string::npos) << many.out;
+}
+
 }  // namespace
 }  // namespace asbuilt

@@ -1,14 +1,19 @@
 // `asbuilt eval <what> …` — scores results against the truth. Each kind of
 // evaluation is one CLI11 subcommand:
 //   eval plan PLAN TRUTH [--json FILE]   floor plan vs truth.json (plan/score.h)
-//   eval seg --model M (--manifest F | --images D [--labels D])   segmenter (seg/evaluate.h)
+//   eval seg --model M (--manifest F | --images D [--labels D]) [--shard i/N]   segmenter (seg/evaluate.h)
+//   eval merge DIR --shards N            the shards' metrics of `cluster eval` summed (seg/metrics.h)
 //   eval zind --model M --zind TOUR [-o DIR]   segmenter on real photos (pipeline/zind_eval.h)
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "asbuilt/cli/command.h"
+#include "asbuilt/cluster/cluster_job.h"
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/formats/zind.h"
 #include "asbuilt/pipeline/survey.h"
@@ -18,8 +23,51 @@
 #include "asbuilt/seg/seg_data.h"
 #include "asbuilt/util/progress.h"
 #include "asbuilt/util/file.h"
+#include "asbuilt/util/json_reader.h"
+#include "asbuilt/util/shard.h"
 
 namespace asbuilt::cli {
+
+namespace {
+
+// `eval merge DIR --shards N`: DIR/shards/i-of-N.json summed into DIR/metrics.json and metrics.md.
+void MergeEvalShards(const std::string& merge_dir, int merge_shards) {
+  if (merge_shards < 1) throw CLI::ValidationError("--shards", "must be >= 1");
+  std::vector<SegmentationMetrics> parts;
+  std::vector<std::string> missing;
+  std::optional<std::int64_t> total;
+  for (int k = 0; k < merge_shards; ++k) {
+    const std::filesystem::path file = EvalShardPath(merge_dir, k, merge_shards);
+    if (!std::filesystem::exists(file)) {
+      missing.push_back(std::to_string(k));
+      continue;
+    }
+    JsonDiagnostics diag(file.string());
+    const nlohmann::json json = ParseJsonFile(file, diag);
+    diag.ThrowIfErrors();
+    const nlohmann::json shard = json.value("shard", nlohmann::json::object());
+    if (shard.value("index", -1) != k || shard.value("count", -1) != merge_shards) {
+      throw InputError(file.string(), "shard", fmt::format("expected shard {} of {}", k, merge_shards));
+    }
+    if (total && shard.value("images_total", -1) != *total) {
+      throw InputError(file.string(), "shard.images_total",
+                       "differs from the earlier shards': not the same evaluation");
+    }
+    total = shard.value("images_total", std::int64_t{-1});
+    parts.push_back(MetricsFromJson(json, file.string()));
+  }
+  if (!missing.empty()) {
+    throw InputError((std::filesystem::path(merge_dir) / "shards").string(), "",
+                     fmt::format("shard(s) {} of {} missing: finish them (asbuilt cluster eval -o {} --resume)",
+                                 fmt::join(missing, ", "), merge_shards, merge_dir));
+  }
+  SegmentationMetrics m = MergeMetrics(parts);
+  WriteFileAtomic(std::filesystem::path(merge_dir) / "metrics.json", m.ToJson().dump(2) + "\n");
+  WriteFileAtomic(std::filesystem::path(merge_dir) / "metrics.md", m.ToMarkdown());
+  fmt::print("{}\n{}\nwrote {}/metrics.json, metrics.md\n", m.ToMarkdown(), m.BriefReport(), merge_dir);
+}
+
+}  // namespace
 
 int RunEvalCommand(int argc, char** argv) {
   CLI::App app("Score results against the truth.", "asbuilt eval");
@@ -68,6 +116,20 @@ int RunEvalCommand(int argc, char** argv) {
   seg_cmd->add_option("--mode", seg_segment.mode, "whole or slide")->capture_default_str();
   seg_cmd->add_option("--json", seg_json, "also write the metrics as JSON to FILE");
   seg_cmd->add_option("--markdown", seg_md, "also write the Markdown table to FILE");
+  std::string seg_shard;
+  seg_cmd->add_option("--shard", seg_shard,
+                      "score only shard i of N of the images (i/N, 0-based); its --json holds the confusion\n"
+                      "matrix that `eval merge` sums");
+
+  // eval merge
+  CLI::App* merge_cmd = app.add_subcommand(
+      "merge",
+      "the metrics of a sharded evaluation (asbuilt cluster eval): DIR/shards/i-of-N.json summed into\n"
+      "DIR/metrics.json and metrics.md, the metrics one process gives");
+  std::string merge_dir;
+  int merge_shards = 0;
+  merge_cmd->add_option("dir", merge_dir, "the evaluation folder (with shards/)")->required();
+  merge_cmd->add_option("--shards", merge_shards, "how many shards the evaluation had")->required();
 
   // eval zind
   CLI::App* zind_cmd = app.add_subcommand(
@@ -142,13 +204,31 @@ int RunEvalCommand(int argc, char** argv) {
     } else {
       samples = SplitFromFolders(seg_images, seg_labels, 0.0).train;
     }
+    if (seg_options.max_images > 0 && static_cast<int>(samples.size()) > seg_options.max_images) {
+      samples.resize(seg_options.max_images);
+    }
+    const std::size_t total_images = samples.size();
+    std::optional<Shard> shard;
+    if (!seg_shard.empty()) {
+      shard = ParseShard(seg_shard);
+      CheckShardCount(shard->count, static_cast<int>(samples.size()));
+      auto [begin, end] = ShardRange(static_cast<int>(samples.size()), *shard);
+      samples = std::vector<SegSample>(samples.begin() + begin, samples.begin() + end);
+    }
     auto segmenter = LoadSegmenter(ModelPathFor(seg_model), seg_segment);
     ProgressPrinter printer;
     SegmentationMetrics m = EvaluateSegmentation(*segmenter, samples, seg_options, printer.Callback());
     printer.Finish();
-    if (!seg_json.empty()) WriteFileAtomic(seg_json, m.ToJson().dump(2) + "\n");
+    nlohmann::json json = m.ToJson();
+    if (shard) json["shard"] = {{"index", shard->index}, {"count", shard->count}, {"images_total", total_images}};
+    if (!seg_json.empty()) WriteFileAtomic(seg_json, json.dump(2) + "\n");
     if (!seg_md.empty()) WriteFileAtomic(seg_md, m.ToMarkdown());
     fmt::print("{}\n{}\n", m.ToMarkdown(), m.BriefReport());
+    return 0;
+  }
+
+  if (merge_cmd->parsed()) {
+    MergeEvalShards(merge_dir, merge_shards);
     return 0;
   }
 

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "asbuilt/cluster/slurm.h"
-#include "asbuilt/cluster/synth_job.h"
+#include "asbuilt/cluster/cluster_job.h"
 #include "asbuilt/formats/synth_dataset.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
@@ -50,12 +50,13 @@ SlurmOptions FakeSlurm(const fs::path& bin, const std::string& squeue_output = "
   return {.sbatch = (bin / "sbatch").string(), .squeue = (bin / "squeue").string()};
 }
 
-ClusterSynthRequest Request(const fs::path& dir, const SlurmOptions& slurm) {
-  return {.dir = dir,
+ClusterRequest Request(const fs::path& dir, const SlurmOptions& slurm) {
+  return {.kind = ClusterJobKind::kSynth,
+          .dir = dir,
           .shards = 4,
           .count = 8,
           .record = {{"count", 8}, {"seed", 7}},
-          .synth_args = {"--count", "8", "--seed", "7", "--photo-dir", "/photos/with space"},
+          .args = {"--count", "8", "--seed", "7", "--photo-dir", "/photos/with space"},
           .asbuilt = "/opt/asbuilt",
           .slurm = slurm};
 }
@@ -70,6 +71,7 @@ TEST(MakeBatchScript, ReplacesTheTemplatesDirectivesAndSetsItsVariables) {
   EXPECT_EQ(ShellQuote(""), "''");
   EXPECT_NE(script.find("dataset synth -o \"$ASBUILT_OUT\" --shard \"$task/$ASBUILT_SHARDS\""), std::string::npos);
   EXPECT_THROW(SlurmTemplate("train"), InvalidArgument);
+  EXPECT_NE(SlurmTemplate("eval").find("eval seg"), std::string_view::npos);
 }
 
 TEST(SynthBatchScript, RunsItsShardWithTheArgumentsAsGivenAndLeavesItsExitStatus) {
@@ -80,14 +82,14 @@ TEST(SynthBatchScript, RunsItsShardWithTheArgumentsAsGivenAndLeavesItsExitStatus
   WriteExecutable(bin / "asbuilt", fmt::format("#!/bin/sh\nfor a in \"$@\"; do echo \"$a\"; done > {}/args\n"
                                                "exit ${{FAKE_EXIT:-0}}\n",
                                                dir.string()));
-  ClusterSynthResult r = SubmitClusterSynth([&] {
-    ClusterSynthRequest q = Request(dir / "ds", {});
+  ClusterSubmission r = SubmitClusterJob([&] {
+    ClusterRequest q = Request(dir / "ds", {});
     q.asbuilt = bin / "asbuilt";
     q.dry_run = true;
     return q;
   }());
   EXPECT_FALSE(fs::exists(dir / "ds" / "synth.json")) << "a dry run writes nothing";
-  WriteExecutable(dir / "synth.sbatch", r.synth_script);
+  WriteExecutable(dir / "synth.sbatch", r.task_script);
   ASSERT_EQ(std::system(fmt::format("SLURM_ARRAY_TASK_ID=2 bash {}/synth.sbatch", dir.string()).c_str()), 0);
   EXPECT_EQ(ReadFile(dir / "args"), fmt::format("dataset\nsynth\n-o\n{}\n--shard\n2/4\n--count\n8\n--seed\n7\n"
                                                 "--photo-dir\n/photos/with space\n",
@@ -99,42 +101,42 @@ TEST(SynthBatchScript, RunsItsShardWithTheArgumentsAsGivenAndLeavesItsExitStatus
   EXPECT_EQ(ReadFile(dir / "ds" / "cluster" / "synth" / "1.exit"), "3\n");
 }
 
-TEST(SubmitClusterSynth, SubmitsTheArrayThenTheMergeAfterItAndResumesOnlyWhatIsUnfinished) {
+TEST(SubmitClusterJob, SubmitsTheArrayThenTheMergeAfterItAndResumesOnlyWhatIsUnfinished) {
   const fs::path dir = FreshDir("submit");
   const SlurmOptions slurm = FakeSlurm(dir / "bin");
-  ClusterSynthResult first = SubmitClusterSynth(Request(dir / "ds", slurm));
+  ClusterSubmission first = SubmitClusterJob(Request(dir / "ds", slurm));
   EXPECT_EQ(first.array_job, "100");
   EXPECT_EQ(first.merge_job, "101");
   EXPECT_EQ(first.tasks, (std::vector<int>{0, 1, 2, 3}));
   const fs::path ds = fs::absolute(dir / "ds");
   EXPECT_EQ(ReadFile(dir / "bin" / "sbatch.log"),
             fmt::format("--parsable --array=0-3 {0}/cluster/synth.sbatch\n"
-                        "--parsable --dependency=afterany:100 {0}/cluster/merge.sbatch\n",
+                        "--parsable --dependency=afterany:100 {0}/cluster/synth-merge.sbatch\n",
                         ds.string()));
   EXPECT_EQ(ReadSynthRecord(ds), (nlohmann::json{{"count", 8}, {"seed", 7}}));
 
   try {
-    SubmitClusterSynth(Request(dir / "ds", slurm));
+    SubmitClusterJob(Request(dir / "ds", slurm));
     FAIL() << "a second run on the same folder without --resume";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("--resume"), std::string::npos) << e.what();
   }
   for (int i : {0, 1, 2, 3, 6, 7}) MakeItem(ds, i);  // Shards 0, 1 and 3 complete.
-  ClusterSynthRequest resume = Request(dir / "ds", slurm);
+  ClusterRequest resume = Request(dir / "ds", slurm);
   resume.resume = true;
-  ClusterSynthResult second = SubmitClusterSynth(resume);
+  ClusterSubmission second = SubmitClusterJob(resume);
   EXPECT_EQ(second.tasks, (std::vector<int>{2}));
   EXPECT_NE(ReadFile(dir / "bin" / "sbatch.log").find("--parsable --array=2 "), std::string::npos);
   resume.shards = 2;
-  EXPECT_THROW(SubmitClusterSynth(resume), InputError);
+  EXPECT_THROW(SubmitClusterJob(resume), InputError);
 }
 
-TEST(SubmitClusterSynth, RefusesAFolderMadeWithOtherOptionsAndWritesNothing) {
+TEST(SubmitClusterJob, RefusesAFolderMadeWithOtherOptionsAndWritesNothing) {
   const fs::path dir = FreshDir("other");
   ClaimSynthDir(dir / "ds", {{"count", 8}, {"seed", 6}});
   const std::string before = ReadFile(dir / "ds" / "synth.json");
   try {
-    SubmitClusterSynth(Request(dir / "ds", FakeSlurm(dir / "bin")));
+    SubmitClusterJob(Request(dir / "ds", FakeSlurm(dir / "bin")));
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("options.seed: this folder was made with 6, this run asks for 7"),
@@ -146,25 +148,25 @@ TEST(SubmitClusterSynth, RefusesAFolderMadeWithOtherOptionsAndWritesNothing) {
   EXPECT_FALSE(fs::exists(dir / "bin" / "sbatch.log"));
 }
 
-TEST(SubmitClusterSynth, SaysHowToGetSbatchWhenItIsMissingAndRefusesMoreShardsThanItems) {
+TEST(SubmitClusterJob, SaysHowToGetSbatchWhenItIsMissingAndRefusesMoreShardsThanItems) {
   const fs::path dir = FreshDir("nosbatch");
   try {
-    SubmitClusterSynth(Request(dir / "ds", {.sbatch = "asbuilt-no-such-sbatch"}));
+    SubmitClusterJob(Request(dir / "ds", {.sbatch = "asbuilt-no-such-sbatch"}));
     FAIL() << "expected Error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("--dry-run"), std::string::npos) << e.what();
   }
-  ClusterSynthRequest q = Request(dir / "ds2", {});
+  ClusterRequest q = Request(dir / "ds2", {});
   q.shards = 9;
-  EXPECT_THROW(SubmitClusterSynth(q), InvalidArgument);
+  EXPECT_THROW(SubmitClusterJob(q), InvalidArgument);
   q.shards = 0;
-  EXPECT_THROW(SubmitClusterSynth(q), InvalidArgument);
+  EXPECT_THROW(SubmitClusterJob(q), InvalidArgument);
 }
 
 TEST(ReadClusterStatus, TellsEachShardsStateFromTheFilesAndTheQueue) {
   const fs::path dir = FreshDir("status");
   const SlurmOptions slurm = FakeSlurm(dir / "bin", "100_3 PENDING\\n");
-  SubmitClusterSynth(Request(dir / "ds", slurm));
+  SubmitClusterJob(Request(dir / "ds", slurm));
   const fs::path ds = fs::absolute(dir / "ds");
   for (int i : {0, 1, 2}) MakeItem(ds, i);  // Shard 0 done, shard 1 half.
   const fs::path state = ds / "cluster" / "synth";
@@ -183,7 +185,31 @@ TEST(ReadClusterStatus, TellsEachShardsStateFromTheFilesAndTheQueue) {
   EXPECT_FALSE(s.all_done());
   EXPECT_NE(s.Table().find("--resume"), std::string::npos) << s.Table();
   EXPECT_NE(s.Table().find("items complete: 3 of 8"), std::string::npos) << s.Table();
+  EXPECT_NE(s.Table().find("shards done: 1 of 4"), std::string::npos) << s.Table();
   EXPECT_THROW(ReadClusterStatus(dir / "nothing", slurm), InputError);
+}
+
+TEST(ReadClusterStatus, CountsAnEvalShardDoneWhenItsMetricsAreThere) {
+  const fs::path dir = FreshDir("eval");
+  const SlurmOptions slurm = FakeSlurm(dir / "bin");
+  ClusterSubmission r = SubmitClusterJob({.kind = ClusterJobKind::kEval,
+                                          .dir = dir / "ev",
+                                          .shards = 2,
+                                          .count = 5,
+                                          .args = {"--model", "default", "--images", "/data/x"},
+                                          .slurm = slurm});
+  EXPECT_NE(r.task_script.find("export ASBUILT_ARGS='--model default --images /data/x'"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / "ev" / "cluster" / "eval.sbatch"));
+  EXPECT_FALSE(fs::exists(dir / "ev" / "synth.json")) << "an eval claims no dataset";
+  fs::create_directories(dir / "ev" / "shards");
+  std::ofstream(EvalShardPath(dir / "ev", 1, 2)) << "{}";
+  ClusterStatus s = ReadClusterStatus(fs::absolute(dir / "ev"), slurm);
+  EXPECT_EQ(s.kind, ClusterJobKind::kEval);
+  EXPECT_EQ(s.shard_status[0].state, "not started") << "no file, never started, not queued";
+  EXPECT_EQ(s.shard_status[1].state, "done");
+  EXPECT_FALSE(s.merged);
+  std::ofstream(dir / "ev" / "metrics.json") << "{}";
+  EXPECT_TRUE(ReadClusterStatus(fs::absolute(dir / "ev"), slurm).merged);
 }
 
 }  // namespace

@@ -18,7 +18,9 @@ namespace fs = std::filesystem;
 
 // scripts/slurm/*.sbatch, compiled in by cmake/embed_text.cmake.
 extern const char kSynthSbatch[];
-extern const char kMergeSbatch[];
+extern const char kSynthMergeSbatch[];
+extern const char kEvalSbatch[];
+extern const char kEvalMergeSbatch[];
 
 namespace {
 
@@ -56,8 +58,10 @@ void SlurmOptions::Check() const {
 
 std::string_view SlurmTemplate(std::string_view name) {
   if (name == "synth") return kSynthSbatch;
-  if (name == "merge") return kMergeSbatch;
-  throw InvalidArgument(fmt::format("no Slurm batch script named '{}' (synth, merge)", name));
+  if (name == "synth-merge") return kSynthMergeSbatch;
+  if (name == "eval") return kEvalSbatch;
+  if (name == "eval-merge") return kEvalMergeSbatch;
+  throw InvalidArgument(fmt::format("no Slurm batch script named '{}' (synth, synth-merge, eval, eval-merge)", name));
 }
 
 std::string ShellQuote(std::string_view text) {

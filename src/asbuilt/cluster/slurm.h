@@ -28,7 +28,8 @@ struct SlurmOptions {
   void Check() const;
 };
 
-// The compiled-in text of scripts/slurm/NAME.sbatch ("synth", "merge").
+// The compiled-in text of scripts/slurm/NAME.sbatch ("synth", "synth-merge",
+// "eval", "eval-merge").
 // Throws InvalidArgument for another name.
 std::string_view SlurmTemplate(std::string_view name);
 

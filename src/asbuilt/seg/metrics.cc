@@ -181,4 +181,55 @@ nlohmann::json SegmentationMetrics::ToJson() const {
   return j;
 }
 
+SegmentationMetrics MetricsFromJson(const nlohmann::json& json, const std::string& file) {
+  const nlohmann::json* rows =
+      json.is_object() && json.contains("confusion_matrix") ? &json["confusion_matrix"] : nullptr;
+  if (rows == nullptr || !rows->is_array() || rows->empty()) {
+    throw InputError(file, "confusion_matrix", "expected a square array of pixel counts");
+  }
+  const int n = static_cast<int>(rows->size());
+  ConfusionMatrix confusion(n);
+  for (int r = 0; r < n; ++r) {
+    const nlohmann::json& row = (*rows)[r];
+    if (!row.is_array() || static_cast<int>(row.size()) != n) {
+      throw InputError(file, fmt::format("confusion_matrix[{}]", r), fmt::format("expected {} counts", n));
+    }
+    for (int c = 0; c < n; ++c) {
+      if (!row[c].is_number_integer() || row[c].get<std::int64_t>() < 0) {
+        throw InputError(file, fmt::format("confusion_matrix[{}][{}]", r, c), "expected a count >= 0");
+      }
+      confusion.Add(r, c, row[c].get<std::int64_t>());
+    }
+  }
+  std::vector<std::string> names;
+  if (json.contains("classes") && json["classes"].is_array() && static_cast<int>(json["classes"].size()) == n) {
+    for (const nlohmann::json& c : json["classes"]) names.push_back(c.value("name", ""));
+  }
+  if (!json.contains("images") || !json["images"].is_number_integer()) {
+    throw InputError(file, "images", "expected the number of images");
+  }
+  SegmentationMetrics m = ComputeMetrics(confusion, names);
+  m.images = json["images"].get<std::int64_t>();
+  return m;
+}
+
+SegmentationMetrics MergeMetrics(const std::vector<SegmentationMetrics>& parts) {
+  CheckArgument(!parts.empty(), "MergeMetrics: no parts");
+  ConfusionMatrix confusion(parts.front().confusion.num_classes());
+  std::vector<std::string> names;
+  for (const ClassMetrics& c : parts.front().classes) names.push_back(c.name);
+  std::int64_t images = 0;
+  for (const SegmentationMetrics& part : parts) {
+    std::vector<std::string> part_names;
+    for (const ClassMetrics& c : part.classes) part_names.push_back(c.name);
+    CheckArgument(part.confusion.num_classes() == confusion.num_classes() && part_names == names,
+                  "MergeMetrics: the parts score different classes");
+    confusion.Merge(part.confusion);
+    images += part.images;
+  }
+  SegmentationMetrics merged = ComputeMetrics(confusion, names);
+  merged.images = images;
+  return merged;
+}
+
 }  // namespace asbuilt

@@ -70,6 +70,16 @@ std::vector<std::string> DefaultClassNames();
 SegmentationMetrics ComputeMetrics(const ConfusionMatrix& confusion,
                                    const std::vector<std::string>& class_names = DefaultClassNames());
 
+// The metrics a ToJson() wrote, recomputed from its confusion matrix, image
+// count and class names. Throws InputError naming `file` and the field.
+SegmentationMetrics MetricsFromJson(const nlohmann::json& json, const std::string& file);
+
+// The metrics of several parts of one evaluation (shards of its images): the
+// confusion matrices and image counts summed, every metric recomputed, so the
+// result is the whole evaluation's, exactly. Throws InvalidArgument when the
+// parts' classes differ.
+SegmentationMetrics MergeMetrics(const std::vector<SegmentationMetrics>& parts);
+
 }  // namespace asbuilt
 
 #endif  // ASBUILT_SEG_METRICS_H_
