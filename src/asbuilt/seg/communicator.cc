@@ -17,6 +17,12 @@ namespace asbuilt {
 namespace {
 
 #if ASBUILT_SEG_HAS_GLOO
+// An exception's message; c10's without the stack trace it carries.
+std::string MessageOf(const std::exception& e) {
+  if (const auto* c10_error = dynamic_cast<const c10::Error*>(&e)) return c10_error->what_without_backtrace();
+  return e.what();
+}
+
 bool IsLoopback(const std::string& host) { return host == "localhost" || host.rfind("127.", 0) == 0 || host == "::1"; }
 
 class GlooCommunicator : public Communicator {
@@ -50,7 +56,7 @@ class GlooCommunicator : public Communicator {
       throw Error(
           fmt::format("lost contact with the other ranks during {} (a rank died, or did not answer within the {} s of "
                       "--dist-timeout): {}; re-run every rank to resume from the last checkpoint",
-                      what, options_.timeout_s, e.what()));
+                      what, options_.timeout_s, MessageOf(e)));
     }
   }
 
@@ -86,7 +92,7 @@ std::shared_ptr<Communicator> ConnectGloo(const DistributedOptions& o) {
     return std::make_shared<GlooCommunicator>(o, std::move(group));
   } catch (const std::exception& e) {
     throw Error(fmt::format("could not meet the other {} rank(s) at {}:{} within {} s (--dist-timeout): {}",
-                            o.world_size - 1, o.master_addr, o.master_port, o.timeout_s, e.what()));
+                            o.world_size - 1, o.master_addr, o.master_port, o.timeout_s, MessageOf(e)));
   }
 #else
   throw Error("--distributed: this build has no Gloo headers (Debian package libgloo-dev); install it and rebuild");
