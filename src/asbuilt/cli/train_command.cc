@@ -1,5 +1,6 @@
 // `asbuilt train` — trains SegFormer on a manifest or image/label folders
-// (seg/train.h): checkpoints, logs and a plot in -o, resumable after a kill.
+// (seg/train.h): checkpoints, logs and a plot in -o, resumable after a kill;
+// with --distributed, one rank of a data-parallel run (`srun -n K`).
 
 #include <cstdio>
 #include <string>
@@ -12,6 +13,7 @@
 #include "asbuilt/seg/segmenter.h"
 #include "asbuilt/seg/train.h"
 #include "asbuilt/util/error.h"
+#include "asbuilt/util/log.h"
 #include "asbuilt/util/progress.h"
 
 namespace asbuilt::cli {
@@ -25,7 +27,7 @@ int RunTrainCommand(int argc, char** argv) {
   AddCommonFlags(app);
   TrainOptions o;
   std::string manifest, images, labels, out, init, scale, crop, finetune;
-  bool no_resume = false, no_flip = false, no_photometric = false, no_blur_noise = false;
+  bool no_resume = false, no_flip = false, no_photometric = false, no_blur_noise = false, distributed = false;
   app.add_option("--manifest", manifest, "dataset manifest.json (train/val pairs)");
   app.add_option("--images", images, "image folder (or a dataset folder when --labels is absent)");
   app.add_option("--labels", labels, "label folder (PNG, same stems as the images)");
@@ -71,6 +73,14 @@ int RunTrainCommand(int argc, char** argv) {
   app.add_flag("--no-resume", no_resume, "start afresh even if OUT/last.pt exists");
   app.add_option("--stop-after", o.stop_after_epoch, "end this run after epoch N (schedule still spans --epochs)");
   app.add_option("--threads", o.threads, "LibTorch threads (0 = every core)")->capture_default_str();
+  app.add_flag("--distributed", distributed,
+               "data-parallel training: this process is one rank of `srun -n K` (SLURM_PROCID, SLURM_NTASKS, "
+               "SLURM_STEP_NODELIST) or of RANK, WORLD_SIZE, MASTER_ADDR, MASTER_PORT; --batch is the global "
+               "batch (divisible by K); rank 0 writes every file");
+  app.add_option("--dist-timeout", o.distributed.timeout_s,
+                 "seconds a rank waits for the others (rendezvous, each exchange) before it fails")
+      ->capture_default_str()
+      ->needs("--distributed");
   Parse(app, argc, argv);
 
   if (!finetune.empty()) {
@@ -108,10 +118,21 @@ int RunTrainCommand(int argc, char** argv) {
   o.augment.blur_noise = !no_blur_noise;
   ParseSizeFlag(scale, "--scale", o.augment.scale_width_px, o.augment.scale_height_px);
   ParseSizeFlag(crop, "--crop", o.augment.crop_width_px, o.augment.crop_height_px);
+  if (distributed) {
+    const double timeout_s = o.distributed.timeout_s;
+    o.distributed = DistributedOptionsFromEnvironment();
+    o.distributed.timeout_s = timeout_s;
+  }
+  const bool rank0 = o.distributed.rank == 0;
+  if (!rank0) ConfigureLogging(Verbosity::kQuiet);  // Only rank 0 reports; every rank's errors name it.
 
 #ifdef ASBUILT_SEG_NO_TORCH
   throw Error("asbuilt train: this build has no LibTorch (configured with ASBUILT_WITH_TORCH=OFF)");
 #else
+  if (!rank0) {
+    TrainSegmenter(o);
+    return 0;
+  }
   ProgressPrinter printer;
   TrainSummary summary = TrainSegmenter(o, printer.Callback());
   printer.Finish();

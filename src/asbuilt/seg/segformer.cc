@@ -9,6 +9,9 @@
 #include <string>
 #include <thread>
 
+#include "asbuilt/seg/communicator.h"
+#include "asbuilt/seg/sync_batch_norm.h"
+
 namespace asbuilt {
 namespace {
 namespace nn = torch::nn;
@@ -50,7 +53,13 @@ torch::Tensor DropPathImpl::forward(torch::Tensor x) {
   double keep = 1.0 - p_;
   std::vector<int64_t> shape(x.dim(), 1);
   shape[0] = x.size(0);
-  torch::Tensor mask = torch::empty(shape, x.options()).bernoulli_(keep);
+  if (!comm_) {
+    torch::Tensor mask = torch::empty(shape, x.options()).bernoulli_(keep);
+    return x * mask / keep;
+  }
+  shape[0] *= comm_->world_size();
+  torch::Tensor mask =
+      torch::empty(shape, x.options()).bernoulli_(keep).narrow(0, comm_->rank() * x.size(0), x.size(0));
   return x * mask / keep;
 }
 
@@ -167,14 +176,31 @@ torch::Tensor SegformerHeadImpl::forward(const std::vector<torch::Tensor>& featu
   std::vector<torch::Tensor> up;
   // mmseg order: deepest first in the concatenation.
   for (int i = 3; i >= 0; --i) {
-    torch::Tensor y = linear_c_[i]->forward(features[i]);
+    torch::Tensor y = ConvBnRelu(linear_c_[i], features[i]);
     if (i > 0) {
       y = F::interpolate(y, F::InterpolateFuncOptions().size(size).mode(torch::kBilinear).align_corners(false));
     }
     up.push_back(y);
   }
-  torch::Tensor fused = fuse->forward(torch::cat(up, 1));
-  return classifier->forward(dropout->forward(fused));
+  torch::Tensor fused = ConvBnRelu(fuse, torch::cat(up, 1));
+  return classifier->forward(Dropout(fused));
+}
+
+torch::Tensor SegformerHeadImpl::ConvBnRelu(nn::Sequential& layers, const torch::Tensor& x) {
+  if (!comm_ || !is_training()) return layers->forward(x);
+  torch::Tensor y = layers->ptr(0)->as<nn::Conv2d>()->forward(x);
+  return torch::relu(SyncBatchNorm(*layers->ptr(1)->as<nn::BatchNorm2d>(), y, *comm_));
+}
+
+torch::Tensor SegformerHeadImpl::Dropout(const torch::Tensor& x) {
+  const double p = dropout->options.p();
+  if (!comm_ || !is_training() || p <= 0) return dropout->forward(x);
+  // As ATen's dropout draws its mask (bernoulli_(1 − p), ÷ (1 − p)), for the global batch.
+  std::vector<int64_t> shape = x.sizes().vec();
+  shape[0] *= comm_->world_size();
+  torch::Tensor noise = torch::empty(shape, x.options()).bernoulli_(1 - p);
+  noise.div_(1 - p);
+  return x * noise.narrow(0, comm_->rank() * x.size(0), x.size(0));
 }
 
 SegformerImpl::SegformerImpl(const SegformerConfig& config) : config_(config) {
@@ -189,6 +215,13 @@ SegformerImpl::SegformerImpl(const SegformerConfig& config) : config_(config) {
 }
 
 torch::Tensor SegformerImpl::forward(torch::Tensor x) { return decoder->forward(encoder->forward(x)); }
+
+void SegformerImpl::SetDataParallel(const std::shared_ptr<Communicator>& comm) {
+  for (const auto& m : modules(/*include_self=*/false)) {
+    if (auto* drop_path = m->as<DropPathImpl>()) drop_path->set_data_parallel(comm);
+  }
+  decoder->set_data_parallel(comm);
+}
 
 int64_t CountParameters(const torch::nn::Module& module) {
   int64_t n = 0;

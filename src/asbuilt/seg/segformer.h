@@ -18,19 +18,28 @@
 
 #include <torch/torch.h>
 
+#include <memory>
 #include <vector>
 
 #include "asbuilt/seg/segformer_config.h"
 
 namespace asbuilt {
 
+class Communicator;
+
+// Stochastic depth: in training, each sample's branch is dropped with
+// probability p (and the kept ones scaled by 1/(1 − p)). In data-parallel
+// training the mask is drawn for the global batch and this rank's rows are
+// kept, so K ranks draw what one process does (SegformerImpl::SetDataParallel).
 class DropPathImpl : public torch::nn::Module {
  public:
   explicit DropPathImpl(double p) : p_(p) {}
   torch::Tensor forward(torch::Tensor x);
+  void set_data_parallel(std::shared_ptr<Communicator> comm) { comm_ = std::move(comm); }
 
  private:
   double p_;
+  std::shared_ptr<Communicator> comm_;
 };
 TORCH_MODULE(DropPath);
 
@@ -101,8 +110,15 @@ class SegformerHeadImpl : public torch::nn::Module {
   explicit SegformerHeadImpl(const SegformerConfig& config);
   torch::Tensor forward(const std::vector<torch::Tensor>& features);
   torch::Tensor& classifier_weight() { return classifier->weight; }
+  void set_data_parallel(std::shared_ptr<Communicator> comm) { comm_ = std::move(comm); }
 
  private:
+  // conv → BN → ReLU; in data-parallel training the BN is SyncBatchNorm.
+  torch::Tensor ConvBnRelu(torch::nn::Sequential& layers, const torch::Tensor& x);
+  // Dropout; in data-parallel training the mask is the global batch's rows of this rank.
+  torch::Tensor Dropout(const torch::Tensor& x);
+
+  std::shared_ptr<Communicator> comm_;
   std::vector<torch::nn::Sequential> linear_c_;
   torch::nn::Sequential fuse{nullptr};
   torch::nn::Dropout dropout{nullptr};
@@ -116,6 +132,14 @@ class SegformerImpl : public torch::nn::Module {
   // (B, 3, H, W) normalised RGB → (B, classes, ceil(H/4), ceil(W/4)) logits.
   torch::Tensor forward(torch::Tensor x);
   const SegformerConfig& config() const { return config_; }
+  // Data-parallel training: this process is rank r of comm's K and its
+  // batches are the r-th of K equal shares of a global batch. In training
+  // mode, DropPath and dropout masks are drawn for the global batch (with
+  // the same seed every rank's generator stays in step) and the decoder's
+  // batch norms take the global batch's statistics, so the ranks together
+  // compute what one process computes on the global batch. Null: one process
+  // (the default; then nothing changes). Evaluation mode needs no other rank.
+  void SetDataParallel(const std::shared_ptr<Communicator>& comm);
   MixTransformer encoder{nullptr};
   SegformerHead decoder{nullptr};
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 
 #include <fmt/format.h>
@@ -11,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 #include <spdlog/spdlog.h>
 
+#include "asbuilt/seg/communicator.h"
 #include "asbuilt/seg/metrics.h"
 #include "asbuilt/seg/model_io.h"
 #include "asbuilt/seg/tflite_segmenter.h"
@@ -132,13 +134,15 @@ struct TrainBatch {
   std::vector<cv::Mat> images, labels;
 };
 
-// The batch of global step `step`: which pairs (SampleIndex) and how they are
-// augmented follow from the seed and the step alone, so a resumed run reads
-// the batches an uninterrupted one would.
+// Samples [first, first + count) of the batch of global step `step`: which
+// pairs (SampleIndex) and how they are augmented follow from the seed, the
+// step and the place in the batch alone, so a resumed run reads the batches
+// an uninterrupted one would, and K ranks reading a share each read the
+// global batch one process would.
 TrainBatch ReadTrainBatch(const TrainOptions& options, const std::vector<SegSample>& train, std::int64_t step,
-                          std::vector<size_t>& perm, std::int64_t& perm_pass) {
+                          int first, int count, std::vector<size_t>& perm, std::int64_t& perm_pass) {
   TrainBatch batch;
-  for (int b = 0; b < options.batch_size; ++b) {
+  for (int b = first; b < first + count; ++b) {
     const std::int64_t k = step * options.batch_size + b;
     const SegSample& sample = train[SampleIndex(options.seed, k, train.size(), perm, perm_pass)];
     SegPair pair = ReadSegPair(sample, options.num_classes);
@@ -163,6 +167,10 @@ class TrainNet {
   virtual const char* format() const = 0;
   virtual nlohmann::json Config() const = 0;
   virtual std::unique_ptr<Segmenter> Validator(const SegmenterInfo& info) = 0;
+  // Data-parallel training: what the network draws at random or reduces over
+  // the batch must span every rank's share (SegformerImpl::SetDataParallel).
+  // A TFLite graph has neither (its batch norms are folded into its convs).
+  virtual void SetDataParallel(const std::shared_ptr<Communicator>& comm) {}
 };
 
 torch::Tensor Upsampled(const torch::Tensor& logits, int64_t h, int64_t w) {
@@ -184,6 +192,7 @@ class SegformerTrainNet : public TrainNet {
   }
   const char* format() const override { return kCheckpointFormat; }
   nlohmann::json Config() const override { return ConfigToJson(config_); }
+  void SetDataParallel(const std::shared_ptr<Communicator>& comm) override { model_->SetDataParallel(comm); }
   std::unique_ptr<Segmenter> Validator(const SegmenterInfo& info) override {
     SegmenterInfo i = info;
     i.config = config_;
@@ -246,17 +255,74 @@ double OptimizerStep(TrainNet& net, torch::optim::AdamW& optimizer, const TrainB
   return loss.item<double>();
 }
 
-// Segments every validation pair with the model being trained and stores
-// the metrics (mIoU, mFscore, …) in `rec`.
+// The same step for rank r of K ranks, `batch` being the r-th share of the
+// global batch. The global count of labelled pixels is summed first, this
+// rank's loss is the sum of its pixels' cross entropy over that count (so the
+// ranks' losses add up to the global batch's mean) and every gradient is
+// summed over the ranks before the step: the step one process takes on the
+// global batch, up to rounding. Returns the global batch's loss, or nullopt,
+// taking no step, when a rank asked to stop (`stop` on any rank stops all).
+std::optional<double> DataParallelStep(TrainNet& net, torch::optim::AdamW& optimizer, const TrainBatch& batch,
+                                       Communicator& comm, bool stop) {
+  torch::Tensor y = LabelsToTensor(batch.labels);
+  torch::Tensor counts =
+      torch::tensor({static_cast<double>((y != 255).sum().item<std::int64_t>()), stop ? 1.0 : 0.0}, torch::kDouble);
+  comm.AllReduceSum(counts);
+  if (counts[1].item<double>() > 0) return std::nullopt;
+  torch::Tensor scores = net.Scores(batch.images, y.size(1), y.size(2));
+  torch::Tensor loss =
+      F::cross_entropy(scores, y, F::CrossEntropyFuncOptions().ignore_index(255).reduction(torch::kSum)) /
+      counts[0].item<double>();
+  optimizer.zero_grad();
+  loss.backward();
+  std::vector<torch::Tensor> sums;
+  for (const torch::Tensor& p : net.module().parameters()) sums.push_back(p.grad());
+  torch::Tensor global_loss = loss.detach().reshape({1}).clone();
+  sums.push_back(global_loss);
+  AllReduceSumEach(comm, sums);
+  optimizer.step();
+  return global_loss.item<double>();
+}
+
+// FNV-1a over the bytes of every parameter and buffer: equal on every rank
+// as long as the ranks train in step.
+std::int64_t ParameterDigest(torch::nn::Module& module) {
+  std::uint64_t h = 1469598103934665603ull;
+  auto add = [&](const torch::Tensor& t) {
+    const torch::Tensor c = t.detach().contiguous();
+    const auto* bytes = static_cast<const unsigned char*>(c.data_ptr());
+    for (std::size_t i = 0; i < c.nbytes(); ++i) h = (h ^ bytes[i]) * 1099511628211ull;
+  };
+  for (const torch::Tensor& p : module.parameters()) add(p);
+  for (const torch::Tensor& b : module.buffers()) add(b);
+  return static_cast<std::int64_t>(h);
+}
+
+// Segments the validation pairs with the model being trained and stores the
+// metrics (mIoU, mFscore, …) in `rec`. With `comm`, rank r segments pairs
+// r, r + K, … and the confusion matrices are summed: the same metrics, K×
+// sooner.
 void ValidateEpoch(Segmenter& validator, const std::vector<SegSample>& val, int num_classes, int epoch,
-                   const ProgressCallback& progress, EpochRecord& rec) {
+                   const ProgressCallback& progress, Communicator* comm, EpochRecord& rec) {
   ConfusionMatrix cm(num_classes);
   for (size_t i = 0; i < val.size(); ++i) {
+    if (comm != nullptr && static_cast<int>(i % comm->world_size()) != comm->rank()) continue;
     SegPair pair = ReadSegPair(val[i], num_classes);
     cm.Add(pair.label, validator.Segment(pair.bgr));
     ReportProgress(progress, {.stage = fmt::format("validate epoch {}", epoch),
                               .done = static_cast<std::int64_t>(i + 1),
                               .total = static_cast<std::int64_t>(val.size())});
+  }
+  if (comm != nullptr) {
+    torch::Tensor counts = torch::zeros({num_classes * num_classes}, torch::kInt64);
+    for (int l = 0; l < num_classes; ++l) {
+      for (int p = 0; p < num_classes; ++p) counts[l * num_classes + p] = cm.at(l, p);
+    }
+    comm->AllReduceSum(counts);
+    cm = ConfusionMatrix(num_classes);
+    for (int l = 0; l < num_classes; ++l) {
+      for (int p = 0; p < num_classes; ++p) cm.Add(l, p, counts[l * num_classes + p].item<std::int64_t>());
+    }
   }
   const SegmentationMetrics m = ComputeMetrics(cm);
   rec.val_miou = m.miou;
@@ -266,29 +332,11 @@ void ValidateEpoch(Segmenter& validator, const std::vector<SegSample>& val, int 
   rec.val_aacc = m.aacc;
 }
 
-}  // namespace
-
-TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallback& progress, std::stop_token stop) {
-  options_in.Check();
-  TrainOptions options = options_in;
-  const auto start_time = std::chrono::steady_clock::now();
-  SetTorchThreads(options.threads);
-  torch::manual_seed(options.seed);
-
-  SegDataSplit split = options.manifest.empty() ? SplitFromFolders(options.images_dir, options.labels_dir,
-                                                                   options.val_fraction, options.seed)
-                                                : SplitFromManifest(options.manifest);
-  if (options.val_max_images > 0 && static_cast<int>(split.val.size()) > options.val_max_images) {
-    split.val.resize(options.val_max_images);
-  }
-  spdlog::info("train: {} ({} train, {} val pairs)", split.source, split.train.size(), split.val.size());
-
-  std::unique_ptr<TrainNet> net = MakeTrainNet(options);
-  const std::int64_t n_params = CountParameters(net->module());
-
-  // Head parameters may get a larger lr (mmseg SegFormer's decoder: lr_mult 10).
-  std::vector<torch::Tensor> head_params = net->HeadParameters();
-  std::vector<torch::Tensor> body_params = Without(net->module().parameters(), head_params);
+// AdamW over the body at lr and the head at lr · head_lr_mult (mmseg
+// SegFormer's decoder: lr_mult 10).
+std::unique_ptr<torch::optim::AdamW> MakeOptimizer(TrainNet& net, const TrainOptions& options) {
+  std::vector<torch::Tensor> head_params = net.HeadParameters();
+  std::vector<torch::Tensor> body_params = Without(net.module().parameters(), head_params);
   std::vector<torch::optim::OptimizerParamGroup> groups;
   groups.emplace_back(body_params, std::make_unique<torch::optim::AdamWOptions>(
                                        torch::optim::AdamWOptions(options.lr).weight_decay(options.weight_decay)));
@@ -296,25 +344,13 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
       head_params,
       std::make_unique<torch::optim::AdamWOptions>(
           torch::optim::AdamWOptions(options.lr * options.head_lr_mult).weight_decay(options.weight_decay)));
-  torch::optim::AdamW optimizer(std::move(groups), torch::optim::AdamWOptions(options.lr));
+  return std::make_unique<torch::optim::AdamW>(std::move(groups), torch::optim::AdamWOptions(options.lr));
+}
 
-  const fs::path out = options.out_dir;
-  fs::create_directories(out);
-  // A run killed mid-write (SIGKILL, power loss) leaves a temp file beside the
-  // intact checkpoint it was replacing; clear those before resuming.
-  if (int stale = RemoveDeadAtomicTemps(out); stale > 0) {
-    spdlog::info("train: removed {} temp file(s) left by a killed run in {}", stale, out.string());
-  }
-  const fs::path last_path = out / "last.pt", best_path = out / "best.pt";
-
-  TrainSummary summary;
-  summary.out_dir = out;
-  summary.train_pairs = static_cast<int>(split.train.size());
-  summary.val_pairs = static_cast<int>(split.val.size());
-  summary.best_miou = kNaN;
-  double wall_offset = 0;
-  int start_epoch = 0;
-
+// Loads OUT/last.pt (model, optimizer, history into `summary`) when resuming,
+// else the --init weights; returns the last finished epoch (0: fresh start).
+int ResumeOrInit(const TrainOptions& options, const fs::path& last_path, TrainNet& net, torch::optim::AdamW& optimizer,
+                 TrainSummary& summary) {
   if (options.resume && fs::exists(last_path)) {
     nlohmann::json meta = ReadCheckpointMeta(last_path);
     const std::string saved_arch = meta.value("config", nlohmann::json::object()).value("arch", "?");
@@ -325,19 +361,79 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
                       "asked; use another -o or --no-resume",
                       last_path.string(), saved_arch, saved_classes, options.arch, options.num_classes));
     }
-    LoadWeights(last_path, net->module(), &optimizer, /*strict=*/true);
-    start_epoch = meta.value("epoch", 0);
+    LoadWeights(last_path, net.module(), &optimizer, /*strict=*/true);
+    const int start_epoch = meta.value("epoch", 0);
     for (const auto& r : meta.at("history")) summary.history.push_back(RecordFromJson(r));
-    if (!summary.history.empty()) wall_offset = summary.history.back().wall_s;
     summary.best_miou = meta.contains("best_miou") ? FromNum(meta["best_miou"]) : kNaN;
     summary.best_epoch = meta.value("best_epoch", 0);
     summary.resumed_from_epoch = start_epoch;
     spdlog::info("train: resuming {} after epoch {}", last_path.string(), start_epoch);
-  } else if (!options.init.empty() && options.arch != "tflite") {  // A TFLite net is built from its init.
+    return start_epoch;
+  }
+  if (!options.init.empty() && options.arch != "tflite") {  // A TFLite net is built from its init.
     int skipped = 0;
-    int loaded = LoadWeights(options.init, net->module(), nullptr, /*strict=*/false, &skipped);
+    int loaded = LoadWeights(options.init, net.module(), nullptr, /*strict=*/false, &skipped);
     if (loaded == 0) throw InputError(options.init.string(), "", "no tensor matches the model (wrong architecture?)");
     spdlog::info("train: initialised {} tensors from {} ({} skipped)", loaded, options.init.string(), skipped);
+  }
+  return 0;
+}
+
+// Every rank starts from rank 0's weights and from the same epoch (they all
+// read OUT/last.pt, which must be on a shared file system).
+void StartInStep(Communicator& comm, TrainNet& net, int start_epoch, const fs::path& out) {
+  CheckSameOnEveryRank(comm, start_epoch,
+                       fmt::format("epoch to resume after (is {} one shared folder for every rank?)", out.string()));
+  std::vector<torch::Tensor> state = net.module().parameters();
+  for (const torch::Tensor& b : net.module().buffers()) state.push_back(b);
+  BroadcastEach(comm, state, 0);
+}
+
+// The training of one process: alone (comm null) or as one rank of several.
+// Only rank 0 writes files and reports progress.
+TrainSummary Train(const TrainOptions& options, const std::shared_ptr<Communicator>& comm,
+                   const ProgressCallback& progress_in, std::stop_token stop) {
+  const auto start_time = std::chrono::steady_clock::now();
+  const int rank = comm ? comm->rank() : 0, world = comm ? comm->world_size() : 1;
+  const bool writer = rank == 0;
+  const ProgressCallback progress = writer ? progress_in : ProgressCallback{};
+  SetTorchThreads(options.threads);
+  torch::manual_seed(options.seed);
+
+  SegDataSplit split = options.manifest.empty() ? SplitFromFolders(options.images_dir, options.labels_dir,
+                                                                   options.val_fraction, options.seed)
+                                                : SplitFromManifest(options.manifest);
+  if (options.val_max_images > 0 && static_cast<int>(split.val.size()) > options.val_max_images) {
+    split.val.resize(options.val_max_images);
+  }
+  spdlog::info("train: {} ({} train, {} val pairs{})", split.source, split.train.size(), split.val.size(),
+               comm ? fmt::format("; {} ranks, global batch {}", world, options.batch_size) : "");
+
+  std::unique_ptr<TrainNet> net = MakeTrainNet(options);
+  const std::int64_t n_params = CountParameters(net->module());
+  std::unique_ptr<torch::optim::AdamW> optimizer = MakeOptimizer(*net, options);
+
+  const fs::path out = options.out_dir;
+  fs::create_directories(out);
+  // A run killed mid-write (SIGKILL, power loss) leaves a temp file beside the
+  // intact checkpoint it was replacing; clear those before resuming.
+  if (writer) {
+    if (int stale = RemoveDeadAtomicTemps(out); stale > 0) {
+      spdlog::info("train: removed {} temp file(s) left by a killed run in {}", stale, out.string());
+    }
+  }
+  const fs::path last_path = out / "last.pt", best_path = out / "best.pt";
+
+  TrainSummary summary;
+  summary.out_dir = out;
+  summary.train_pairs = static_cast<int>(split.train.size());
+  summary.val_pairs = static_cast<int>(split.val.size());
+  summary.best_miou = kNaN;
+  const int start_epoch = ResumeOrInit(options, last_path, *net, *optimizer, summary);
+  const double wall_offset = summary.history.empty() ? 0 : summary.history.back().wall_s;
+  if (comm) {
+    StartInStep(*comm, *net, start_epoch, out);
+    net->SetDataParallel(comm);
   }
 
   const int steps_per_epoch =
@@ -386,6 +482,7 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
 
   std::vector<size_t> perm;
   std::int64_t perm_pass = -1;
+  const int share = options.batch_size / world;  // This rank's samples of each global batch.
   const int last_epoch =
       options.stop_after_epoch > 0 ? std::min(options.epochs, options.stop_after_epoch) : options.epochs;
   for (int epoch = start_epoch + 1; epoch <= last_epoch; ++epoch) {
@@ -395,16 +492,26 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
     double lr = 0;
     const std::string stage = fmt::format("train epoch {}/{}", epoch, options.epochs);
     for (int s = 0; s < steps_per_epoch; ++s) {
-      if (stop.stop_requested()) {
+      if (!comm && stop.stop_requested()) {
         summary.stopped = true;
         break;
       }
       const std::int64_t step = static_cast<std::int64_t>(epoch - 1) * steps_per_epoch + s;
-      const TrainBatch batch = ReadTrainBatch(options, split.train, step, perm, perm_pass);
+      const TrainBatch batch = ReadTrainBatch(options, split.train, step, rank * share, share, perm, perm_pass);
       lr = LearningRate(options, step, total_steps);
-      optimizer.param_groups()[0].options().set_lr(lr);
-      optimizer.param_groups()[1].options().set_lr(lr * options.head_lr_mult);
-      const double l = OptimizerStep(*net, optimizer, batch);
+      optimizer->param_groups()[0].options().set_lr(lr);
+      optimizer->param_groups()[1].options().set_lr(lr * options.head_lr_mult);
+      double l = 0;
+      if (comm) {
+        const std::optional<double> global = DataParallelStep(*net, *optimizer, batch, *comm, stop.stop_requested());
+        if (!global) {
+          summary.stopped = true;
+          break;
+        }
+        l = *global;
+      } else {
+        l = OptimizerStep(*net, *optimizer, batch);
+      }
       if (!std::isfinite(l)) {
         throw Error(fmt::format("training diverged at epoch {} step {} (loss {}); lower --lr", epoch, s, l));
       }
@@ -414,6 +521,7 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
       ReportProgress(progress, {.stage = stage, .done = s + 1, .total = steps_per_epoch, .detail = detail});
     }
     if (summary.stopped) break;  // The partial epoch is dropped: resume redoes it.
+    if (comm) CheckSameOnEveryRank(*comm, ParameterDigest(net->module()), fmt::format("weights after epoch {}", epoch));
 
     // Validation.
     EpochRecord rec;
@@ -422,7 +530,7 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
     rec.lr = lr;
     rec.train_loss = loss_count > 0 ? loss_sum / loss_count : kNaN;
     rec.val_miou = rec.val_mfscore = rec.val_mprecision = rec.val_mrecall = rec.val_aacc = kNaN;
-    if (!split.val.empty()) ValidateEpoch(*validator, split.val, options.num_classes, epoch, progress, rec);
+    if (!split.val.empty()) ValidateEpoch(*validator, split.val, options.num_classes, epoch, progress, comm.get(), rec);
     rec.wall_s = wall_offset + std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
     summary.history.push_back(rec);
     bool best = !std::isnan(rec.val_miou) && (std::isnan(summary.best_miou) || rec.val_miou > summary.best_miou);
@@ -430,14 +538,18 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
       summary.best_miou = rec.val_miou;
       summary.best_epoch = epoch;
     }
-    // This run's options.json goes with its first checkpoint, so a run that
-    // fails on its first batch (a corrupt image) leaves no file behind.
-    if (epoch == start_epoch + 1) WriteFileAtomic(out / "options.json", resolved.dump(2) + "\n");
-    // Checkpoints: best first, then last (the resume point) — both atomic.
-    if (best || split.val.empty()) SaveCheckpoint(best_path, net->module(), nullptr, make_meta(epoch));
-    SaveCheckpoint(last_path, net->module(), &optimizer, make_meta(epoch));
-    WriteLogs(out, summary.history);
-    spdlog::info("epoch {}: loss {:.4f}, val mIoU {:.4f}, lr {:.2e}", epoch, rec.train_loss, rec.val_miou, lr);
+    if (writer) {
+      // This run's options.json goes with its first checkpoint, so a run that
+      // fails on its first batch (a corrupt image) leaves no file behind.
+      if (epoch == start_epoch + 1) WriteFileAtomic(out / "options.json", resolved.dump(2) + "\n");
+      // Checkpoints: best first, then last (the resume point) — both atomic.
+      if (best || split.val.empty()) SaveCheckpoint(best_path, net->module(), nullptr, make_meta(epoch));
+      SaveCheckpoint(last_path, net->module(), optimizer.get(), make_meta(epoch));
+      WriteLogs(out, summary.history);
+    }
+    if (comm) comm->Barrier();  // No rank runs ahead of rank 0's checkpoint.
+    spdlog::info("epoch {}: loss {:.4f}, val mIoU {:.4f}, lr {:.2e}{}", epoch, rec.train_loss, rec.val_miou, lr,
+                 comm ? fmt::format(", weights identical on the {} ranks", world) : "");
   }
 
   summary.epochs_done = summary.history.empty() ? 0 : summary.history.back().epoch;
@@ -448,6 +560,35 @@ TrainSummary TrainSegmenter(const TrainOptions& options_in, const ProgressCallba
     summary.wall_s = summary.history.back().wall_s;
   }
   return summary;
+}
+
+// Rethrows the exception in flight with "rank R of K: " before its message,
+// keeping its kind (srun interleaves the ranks' error output).
+[[noreturn]] void RethrowNamingRank(const DistributedOptions& d) {
+  const std::string who = fmt::format("rank {} of {}: ", d.rank, d.world_size);
+  try {
+    throw;
+  } catch (const InputError& e) {
+    std::vector<Problem> problems = e.problems();
+    for (Problem& p : problems) p.message = who + p.message;
+    throw InputError(problems);
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(who + e.what());
+  } catch (const std::exception& e) {
+    throw Error(who + e.what());
+  }
+}
+
+}  // namespace
+
+TrainSummary TrainSegmenter(const TrainOptions& options, const ProgressCallback& progress, std::stop_token stop) {
+  options.Check();
+  if (!options.distributed.enabled()) return Train(options, nullptr, progress, stop);
+  try {
+    return Train(options, ConnectGloo(options.distributed), progress, stop);
+  } catch (...) {
+    RethrowNamingRank(options.distributed);
+  }
 }
 
 }  // namespace asbuilt

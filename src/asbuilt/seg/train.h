@@ -20,6 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "asbuilt/seg/distributed.h"
 #include "asbuilt/seg/seg_data.h"
 #include "asbuilt/seg/segmenter.h"
 #include "asbuilt/util/progress.h"
@@ -42,7 +43,7 @@ struct TrainOptions {
   int num_classes = 4;
   int epochs = 50;             // Paper: 50.
   int steps_per_epoch = 0;     // 0 = ceil(train pairs / batch); else a fixed count.
-  int batch_size = 2;          // Paper: 2.
+  int batch_size = 2;          // Paper: 2. Global: K ranks read batch_size/K each.
   double lr = 1e-4;            // AdamW learning rate (paper: 1e-4).
   double weight_decay = 1e-3;  // AdamW weight decay (paper: 1e-3).
   double head_lr_mult = 1.0;   // Decoder lr multiplier (mmseg SegFormer: 10).
@@ -59,6 +60,10 @@ struct TrainOptions {
   int stop_after_epoch = 0;     // End this run after that epoch (0 = run to
                                 // `epochs`); the schedule still spans `epochs`.
   int threads = 0;              // LibTorch intra-op threads; 0 = every core.
+
+  // This process's rank among K training together (world_size 1: alone;
+  // docs/seg.md "Distributed training").
+  DistributedOptions distributed;
 
   void Check() const;
   nlohmann::json ToJson() const;
@@ -99,6 +104,16 @@ TrainOptions FinetuneOptions(const std::filesystem::path& model, const Segmenter
 
 // Trains (or resumes) and writes OUT_DIR as described above. Throws
 // InvalidArgument for bad options, InputError for bad data (naming the file).
+//
+// Distributed (options.distributed.world_size = K > 1; every rank calls this
+// with the same options but its rank): data-parallel over c10d's Gloo process
+// group. Rank r reads and augments the r-th K-th of each global batch, the
+// loss is the global batch's mean, gradients are summed over the ranks and
+// the decoder's batch norm is synchronised, so the run follows a single
+// process's up to rounding. Rank 0 writes every file and reports progress;
+// validation is split between the ranks. Every rank resumes from
+// OUT_DIR/last.pt (a shared folder). Errors name the rank ("rank 1 of 2: …");
+// a rank that dies makes the others fail within options.distributed.timeout_s.
 TrainSummary TrainSegmenter(const TrainOptions& options, const ProgressCallback& progress = {},
                             std::stop_token stop = {});
 

@@ -47,6 +47,11 @@ void TrainOptions::Check() const {
   CheckArgument(stop_after_epoch >= 0,
                 fmt::format("TrainOptions.stop_after_epoch = {}, must be >= 0", stop_after_epoch));
   augment.Check();
+  distributed.Check();
+  CheckArgument(batch_size % distributed.world_size == 0,
+                fmt::format("TrainOptions.batch_size = {} is the global batch: it must be divisible by the {} "
+                            "ranks of --distributed (each reads an equal share)",
+                            batch_size, distributed.world_size));
 }
 
 TrainOptions FinetuneOptions(const std::filesystem::path& model, const SegmenterInfo& info) {
@@ -109,7 +114,8 @@ nlohmann::json TrainOptions::ToJson() const {
           {"init", init.string()},
           {"resume", resume},
           {"stop_after_epoch", stop_after_epoch},
-          {"threads", threads}};
+          {"threads", threads},
+          {"distributed", distributed.ToJson()}};
 }
 
 nlohmann::json EpochRecord::ToJson() const {
