@@ -13,7 +13,11 @@
 #    `cluster synth --resume` finishes to the same manifest;
 # 4. a damaged file is caught by `dataset verify`;
 # 5. `asbuilt cluster eval`, 3 shards and the merge: metrics.json equals one
-#    process's `eval seg --json`, byte for byte.
+#    process's `eval seg --json`, byte for byte;
+# 6. `asbuilt cluster train --tasks 2`: two ranks under srun give the single
+#    process's epoch losses within 1e-4, and the same weights on both ranks;
+#    one rank killed -9 after the first checkpoint stops the job, and
+#    `cluster train --resume` finishes the run from it.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 BUILD=$(cd "${1:-build}" && pwd)
@@ -99,6 +103,40 @@ if "$ASBUILT" eval seg --model default --images "$T/ref" --json "$T/eval-whole.j
 else
   grep -q "no LibTorch" "$T/eval.txt" || fail "eval seg: $(cat "$T/eval.txt")"
   echo "skip  cluster eval: this build has no LibTorch"
+fi
+
+# 6. Data-parallel training (skipped by a build without LibTorch).
+if ! grep -q "no LibTorch" "$T/eval.txt"; then
+  "$ASBUILT" experiment toy-rooms -o "$T/toy" --count 10 --width 48 --height 32 --seed 5 >/dev/null 2>&1
+  train=(--images "$T/toy" --arch tiny --batch 2 --scale 48x32 --crop 48x32 --lr 1e-5 --val-fraction 0.2 --seed 3
+    --threads 1)
+  "$ASBUILT" train -o "$T/single" "${train[@]}" --epochs 2 --steps-per-epoch 4 >/dev/null 2>&1
+  out=$("$ASBUILT" cluster train -o "$T/two" --tasks 2 "${train[@]}" --epochs 2 --steps-per-epoch 4 --dist-timeout 60)
+  job=$(sed -n 's/.*submitted job \([0-9]*\).*/\1/p' <<<"$out")
+  wait_job "$job" 300
+  grep -q "weights identical on the 2 ranks" "$T"/two/cluster/logs/train-*.out ||
+    fail "cluster train: $(cat "$T"/two/cluster/logs/train-*.out)"
+  python3 - "$T/single/log.csv" "$T/two/log.csv" <<'PY' || fail "cluster train: losses differ from one process's"
+import csv, sys
+a, b = ([float(r["train_loss"]) for r in csv.DictReader(open(p))] for p in sys.argv[1:])
+assert len(a) == len(b) == 2 and all(abs(x - y) <= 1e-4 for x, y in zip(a, b)), (a, b)
+PY
+  ok "cluster train: 2 ranks under srun = one process's losses (1e-4), identical weights on both ranks"
+
+  out=$("$ASBUILT" cluster train -o "$T/killed-train" --tasks 2 "${train[@]}" --epochs 3 --steps-per-epoch 80 \
+    --dist-timeout 60)
+  job=$(sed -n 's/.*submitted job \([0-9]*\).*/\1/p' <<<"$out")
+  for _ in $(seq 1200); do [[ -e $T/killed-train/last.pt ]] && break; sleep 0.05; done
+  [[ -e $T/killed-train/last.pt ]] || fail "cluster train wrote no checkpoint: $(cat "$T"/killed-train/cluster/logs/*)"
+  kill -9 "$(pgrep -f "^$ASBUILT train -o $T/killed-train" | tail -1)" 2>/dev/null || true
+  wait_job "$job" 120
+  epochs=$("$ASBUILT" cluster status "$T/killed-train" | sed -n 's/^epochs done: \([0-9]*\).*/\1/p')
+  ((epochs < 3)) || fail "the kill came after the run had finished"
+  out=$("$ASBUILT" cluster train -o "$T/killed-train" --resume)
+  wait_job "$(sed -n 's/.*submitted job \([0-9]*\).*/\1/p' <<<"$out")" 300
+  status=$("$ASBUILT" cluster status "$T/killed-train")
+  grep -q "^epochs done: 3" <<<"$status" || fail "resumed cluster train: $status $(tail -5 "$T"/killed-train/cluster/logs/*)"
+  ok "cluster train: a rank killed -9 after epoch $epochs of 3; --resume finished the run from its checkpoint"
 fi
 
 echo "tests/cluster: passed"

@@ -1,7 +1,7 @@
-// `asbuilt cluster <synth|eval|status>` — sharded work on Slurm (cluster/,
+// `asbuilt cluster <synth|eval|train|status>` — work on Slurm (cluster/,
 // docs/cluster.md): a dataset rendered by an array job and merged after it,
-// a segmenter scored by one and its confusion matrices summed, and what each
-// shard has done.
+// a segmenter scored by one and its confusion matrices summed, a model
+// trained data-parallel by the tasks of one job, and how each is going.
 
 #include <filesystem>
 #include <optional>
@@ -27,9 +27,11 @@ struct SubmitFlags {
   SlurmOptions slurm;
 };
 
-void AddSubmitFlags(CLI::App& app, SubmitFlags& flags, const std::string& what) {
+void AddSubmitFlags(CLI::App& app, SubmitFlags& flags, const std::string& what, bool sharded = true) {
   app.add_option("-o,--out", flags.out, what + ", on a filesystem every node sees")->required();
-  app.add_option("--shards", flags.shards, "array tasks (the work split among them); required unless --resume");
+  if (sharded) {
+    app.add_option("--shards", flags.shards, "array tasks (the work split among them); required unless --resume");
+  }
   app.add_option("--partition", flags.slurm.partition, "Slurm partition (default: the cluster's)");
   app.add_option("--time", flags.slurm.time, "time limit of each task, e.g. 2:00:00");
   app.add_option("--account", flags.slurm.account, "Slurm account to charge");
@@ -59,9 +61,15 @@ int Submit(const SubmitFlags& flags, ClusterRequest request) {
   request.slurm = flags.slurm;
   request.resume = flags.resume;
   request.dry_run = flags.dry_run;
-  if (request.shards < 1) throw CLI::ValidationError("--shards", "give the number of array tasks (>= 1)");
+  if (request.shards < 1) {
+    throw CLI::ValidationError(request.kind == ClusterJobKind::kTrain ? "--tasks" : "--shards",
+                               "give the number of tasks (>= 1)");
+  }
   const ClusterSubmission result = SubmitClusterJob(request);
-  if (flags.dry_run) {
+  if (flags.dry_run && request.kind == ClusterJobKind::kTrain) {
+    fmt::print("# {}/cluster/train.sbatch\n{}\n# would run: sbatch --parsable train.sbatch\n", flags.out,
+               result.task_script);
+  } else if (flags.dry_run) {
     const std::string kind = ClusterJobKindName(request.kind);
     fmt::print("# {}/cluster/{}.sbatch\n{}\n# {}/cluster/{}-merge.sbatch\n{}\n", flags.out, kind, result.task_script,
                flags.out, kind, result.merge_script);
@@ -81,6 +89,7 @@ int RunClusterCommand(int argc, char** argv) {
       "Sharded work on a Slurm cluster (docs/cluster.md).\n"
       "  synth   a synthetic dataset rendered by an array job (task i: dataset synth --shard i/N), then merged\n"
       "  eval    a segmenter scored by an array job (task i: eval seg --shard i/N), the metrics merged exactly\n"
+      "  train   a model trained data-parallel by the K tasks of one job (srun asbuilt train --distributed)\n"
       "  status  each shard's progress, state and host, from the folder and the queue",
       "asbuilt cluster");
   AddCommonFlags(app);
@@ -110,6 +119,17 @@ int RunClusterCommand(int argc, char** argv) {
   eval->add_option("--split", eval_split, "manifest list to score: test, val or train")->capture_default_str();
   eval->add_option("--label-map", eval_label_map, "label ids: asbuilt, ade20k, nyu40")->capture_default_str();
   eval->add_option("--mode", eval_mode, "whole or slide")->capture_default_str();
+
+  CLI::App* train = app.add_subcommand(
+      "train",
+      "train on Slurm: one job of --tasks K tasks, each a rank of `asbuilt train --distributed` (gradients\n"
+      "all-reduced every step; --batch is the global batch, divisible by K; rank 0 writes OUT). Every flag\n"
+      "not listed here goes to `asbuilt train` as it is (e.g. --images DIR --epochs 20 --batch 8). Submitted\n"
+      "again (--resume), the run continues from OUT/last.pt");
+  SubmitFlags train_flags;
+  AddSubmitFlags(*train, train_flags, "training run folder", /*sharded=*/false);
+  train->add_option("--tasks", train_flags.shards, "ranks (Slurm tasks, one process each); required unless --resume");
+  train->allow_extras();
 
   CLI::App* status = app.add_subcommand("status", "each shard's progress, state and host; merged or not");
   std::string status_dir;
@@ -151,6 +171,21 @@ int RunClusterCommand(int argc, char** argv) {
                                      "--mode",         eval_mode};
     if (manifest) args.insert(args.end(), {"--split", eval_split});
     return Submit(eval_flags, {.kind = ClusterJobKind::kEval, .count = static_cast<int>(images), .args = args});
+  }
+  if (train->parsed()) {
+    std::vector<std::string> args = train->remaining();
+    for (const std::string& a : args) {
+      if (a == "--distributed" || a == "-o" || a == "--out" || a.rfind("--out=", 0) == 0) {
+        throw CLI::ValidationError(a, "cluster train sets it itself (-o is the run folder; every task is distributed)");
+      }
+    }
+    const std::optional<ClusterRunRecord> earlier = ReadClusterRun(train_flags.out);
+    const bool recorded = train_flags.resume && earlier && earlier->kind == ClusterJobKind::kTrain;
+    if (recorded && args.empty()) args = earlier->args;
+    if (recorded && train_flags.shards == 0) train_flags.shards = earlier->shards;
+    if (args.empty())
+      throw CLI::ValidationError("cluster train", "give the training flags (e.g. --images DIR --epochs 20)");
+    return Submit(train_flags, {.kind = ClusterJobKind::kTrain, .args = args});
   }
   if (status->parsed()) {
     ClusterStatus s = ReadClusterStatus(status_dir);

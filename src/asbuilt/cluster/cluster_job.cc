@@ -3,6 +3,7 @@
 #include <chrono>
 #include <ctime>
 #include <fstream>
+#include <algorithm>
 #include <map>
 
 #include <fmt/format.h>
@@ -23,7 +24,8 @@ fs::path JobRecordPath(const fs::path& dir) { return dir / "cluster" / "job.json
 ClusterJobKind KindFromName(const std::string& name, const fs::path& file) {
   if (name == "synth") return ClusterJobKind::kSynth;
   if (name == "eval") return ClusterJobKind::kEval;
-  throw InputError(file.string(), "kind", fmt::format("expected \"synth\" or \"eval\", got \"{}\"", name));
+  if (name == "train") return ClusterJobKind::kTrain;
+  throw InputError(file.string(), "kind", fmt::format("expected \"synth\", \"eval\" or \"train\", got \"{}\"", name));
 }
 
 nlohmann::json ReadJobRecord(const fs::path& dir) {
@@ -72,7 +74,35 @@ std::pair<int, int> ShardProgress(ClusterJobKind kind, const fs::path& dir, int 
 }
 
 fs::path MergedPath(ClusterJobKind kind, const fs::path& dir) {
+  if (kind == ClusterJobKind::kTrain) return dir / "last.pt";
   return kind == ClusterJobKind::kSynth ? SynthManifestPath(dir) : dir / "metrics.json";
+}
+
+// A training run's rows of log.csv (one per finished epoch, after a header).
+int EpochsDone(const fs::path& dir) {
+  std::ifstream in(dir / "log.csv");
+  std::string line;
+  int rows = -1;
+  while (std::getline(in, line)) rows += line.empty() ? 0 : 1;
+  return std::max(rows, 0);
+}
+
+// One job of `request.shards` tasks, one rank each (no array, no merge).
+ClusterSubmission SubmitTrainJob(const ClusterRequest& request, const fs::path& dir, nlohmann::json& job,
+                                 const std::vector<std::pair<std::string, std::string>>& variables) {
+  ClusterSubmission result;
+  std::vector<std::string> directives =
+      SlurmDirectives(request.slurm, "asbuilt-train", dir / "cluster" / "logs" / "train-%j.out");
+  directives.push_back(fmt::format("--ntasks={}", request.shards));
+  result.task_script = MakeBatchScript(SlurmTemplate("train"), directives, variables);
+  if (request.dry_run) return result;
+  fs::create_directories(dir / "cluster" / "logs");
+  WriteFileAtomic(dir / "cluster" / "train.sbatch", result.task_script);
+  result.array_job = SubmitBatch(request.slurm, {}, dir / "cluster" / "train.sbatch");
+  for (int k = 0; k < request.shards; ++k) result.tasks.push_back(k);
+  job["submissions"].push_back({{"time", NowUtc()}, {"job", result.array_job}});
+  WriteFileAtomic(JobRecordPath(dir), job.dump(1) + "\n");
+  return result;
 }
 
 std::string MergeCommand(ClusterJobKind kind, const fs::path& dir, int shards) {
@@ -82,7 +112,17 @@ std::string MergeCommand(ClusterJobKind kind, const fs::path& dir, int shards) {
 
 }  // namespace
 
-const char* ClusterJobKindName(ClusterJobKind kind) { return kind == ClusterJobKind::kSynth ? "synth" : "eval"; }
+const char* ClusterJobKindName(ClusterJobKind kind) {
+  switch (kind) {
+    case ClusterJobKind::kSynth:
+      return "synth";
+    case ClusterJobKind::kEval:
+      return "eval";
+    case ClusterJobKind::kTrain:
+      break;
+  }
+  return "train";
+}
 
 fs::path EvalShardPath(const fs::path& dir, int index, int shards) {
   return dir / "shards" / fmt::format("{}-of-{}.json", index, shards);
@@ -90,13 +130,21 @@ fs::path EvalShardPath(const fs::path& dir, int index, int shards) {
 
 void ClusterRequest::Check() const {
   CheckArgument(!dir.empty(), "ClusterRequest.dir is empty");
-  CheckArgument(count >= 1, fmt::format("ClusterRequest.count = {}, must be >= 1", count));
-  CheckShardCount(shards, count);
+  if (kind == ClusterJobKind::kTrain) {
+    CheckArgument(shards >= 1, fmt::format("{} tasks: need at least 1", shards));
+  } else {
+    CheckArgument(count >= 1, fmt::format("ClusterRequest.count = {}, must be >= 1", count));
+    CheckShardCount(shards, count);
+  }
   slurm.Check();
 }
 
 std::string ClusterSubmission::BriefReport(const fs::path& dir) const {
   if (array_job.empty() && merge_job.empty()) return "dry run: nothing written, nothing submitted";
+  if (merge_job.empty()) {
+    return fmt::format("submitted job {} ({} tasks, one rank each).\nprogress: asbuilt cluster status {}", array_job,
+                       tasks.size(), dir.string());
+  }
   std::string text = tasks.empty() ? "every shard is done; "
                                    : fmt::format("submitted {} task(s) as job {}; ", tasks.size(), array_job);
   return text +
@@ -129,7 +177,7 @@ ClusterSubmission SubmitClusterJob(const ClusterRequest& request) {
   }
 
   ClusterSubmission result;
-  for (int k = 0; k < request.shards; ++k) {
+  for (int k = 0; k < request.shards && request.kind != ClusterJobKind::kTrain; ++k) {
     auto [done, units] = ShardProgress(request.kind, dir, request.count, k, request.shards);
     if (!request.resume || done < units) result.tasks.push_back(k);
   }
@@ -140,6 +188,7 @@ ClusterSubmission SubmitClusterJob(const ClusterRequest& request) {
       {"ASBUILT_OUT", dir.string()},
       {"ASBUILT_SHARDS", std::to_string(request.shards)},
       {"ASBUILT_ARGS", fmt::format("{}", fmt::join(words, " "))}};
+  if (request.kind == ClusterJobKind::kTrain) return SubmitTrainJob(request, dir, job, variables);
   result.task_script = MakeBatchScript(
       SlurmTemplate(kind), SlurmDirectives(request.slurm, "asbuilt-" + kind, cluster / "logs" / (kind + "-%A_%a.out")),
       variables);
@@ -189,6 +238,11 @@ bool ClusterStatus::all_done() const {
 }
 
 std::string ClusterStatus::Table() const {
+  if (kind == ClusterJobKind::kTrain) {
+    return fmt::format("{}: train, {} tasks (one rank each), job {}: {}\nepochs done: {}{}\n", dir.string(), shards,
+                       array_job.empty() ? "-" : array_job, job_state.empty() ? "not in the queue" : job_state,
+                       epochs_done, merged ? fmt::format(" (checkpoint {})", MergedPath(kind, dir).string()) : "");
+  }
   const bool synth = kind == ClusterJobKind::kSynth;
   std::string text = fmt::format("{}: {} of {} {} in {} shards (array job {}, merge job {})\n", dir.string(),
                                  ClusterJobKindName(kind), count, synth ? "items" : "images", shards,
@@ -232,8 +286,15 @@ nlohmann::json ClusterStatus::ToJson() const {
     shards_json.push_back(
         {{"index", s.index}, {"items", s.items}, {"complete", s.complete}, {"state", s.state}, {"host", s.host}});
   }
-  return {{"dir", dir.string()}, {"kind", ClusterJobKindName(kind)}, {"count", count},        {"shards", shards_json},
-          {"merged", merged},    {"array_job", array_job},           {"merge_job", merge_job}};
+  nlohmann::json j = {
+      {"dir", dir.string()}, {"kind", ClusterJobKindName(kind)}, {"count", count},        {"shards", shards_json},
+      {"merged", merged},    {"array_job", array_job},           {"merge_job", merge_job}};
+  if (kind == ClusterJobKind::kTrain) {
+    j["tasks"] = shards;
+    j["job_state"] = job_state;
+    j["epochs_done"] = epochs_done;
+  }
+  return j;
 }
 
 ClusterStatus ReadClusterStatus(const fs::path& dir, const SlurmOptions& slurm) {
@@ -251,6 +312,15 @@ ClusterStatus ReadClusterStatus(const fs::path& dir, const SlurmOptions& slurm) 
     const nlohmann::json& last = job["submissions"].back();
     status.array_job = last.value("array_job", "");
     status.merge_job = last.value("merge_job", "");
+  }
+  if (status.kind == ClusterJobKind::kTrain) {
+    if (job.contains("submissions") && !job["submissions"].empty()) {
+      status.array_job = job["submissions"].back().value("job", "");
+    }
+    status.job_state = JobState(slurm, status.array_job);
+    status.epochs_done = EpochsDone(dir);
+    status.merged = fs::exists(MergedPath(status.kind, dir));
+    return status;
   }
   // The queue's word on the latest array job; an earlier submission's tasks have ended.
   const std::map<int, std::string> queue = ArrayTaskStates(slurm, status.array_job);

@@ -14,6 +14,9 @@
 //          merge = `asbuilt eval merge DIR` (DIR/metrics.json, metrics.md: the
 //          shards' confusion matrices summed). A shard is done when its file is there.
 //
+//   train: one job of K tasks, `srun asbuilt train --distributed` (seg/distributed.h):
+//          data-parallel ranks, rank 0 writes DIR/last.pt; submitted again, it resumes.
+//
 //   DIR/cluster/job.json            the run: kind, shards, the task arguments, every submission's job ids
 //   DIR/cluster/KIND.sbatch         the array job; merge.sbatch the merge job
 //   DIR/cluster/KIND/i.started      host, job id, time; i.exit the task's exit status
@@ -30,14 +33,14 @@
 
 namespace asbuilt {
 
-enum class ClusterJobKind { kSynth, kEval };
-const char* ClusterJobKindName(ClusterJobKind kind);  // "synth", "eval"
+enum class ClusterJobKind { kSynth, kEval, kTrain };
+const char* ClusterJobKindName(ClusterJobKind kind);  // "synth", "eval", "train"
 
 struct ClusterRequest {
   ClusterJobKind kind = ClusterJobKind::kSynth;
   std::filesystem::path dir;                  // Output folder, on a filesystem every node sees.
-  int shards = 1;                             // Array tasks.
-  int count = 0;                              // Items (synth) or images (eval) in all.
+  int shards = 1;                             // Array tasks (train: the job's tasks, one rank each).
+  int count = 0;                              // Items (synth) or images (eval) in all; train: unused.
   nlohmann::json record;                      // synth: what DIR/synth.json records (render/dataset_synth.h).
   std::vector<std::string> args;              // The task command's own flags (dataset synth's, eval seg's).
   std::filesystem::path asbuilt = "asbuilt";  // The binary the tasks run.
@@ -59,7 +62,8 @@ struct ClusterSubmission {
 };
 
 // Writes the scripts and the run record and submits the array and the merge
-// (afterany: the merge names a failed shard rather than waiting forever). A
+// (afterany: the merge names a failed shard rather than waiting forever); a
+// train is one job of `shards` tasks and no merge (on resume, all of it). A
 // synth claims DIR for its options first (refused, nothing written, when it
 // was made with others). A folder with a run already needs `resume`, with
 // the same kind and shards.
@@ -92,8 +96,10 @@ struct ClusterStatus {
   int shards = 0;
   int count = 0;
   std::vector<ShardStatus> shard_status;
-  bool merged = false;  // The merge's output is there.
-  std::string array_job, merge_job;
+  bool merged = false;               // The merge's output is there (train: a checkpoint, DIR/last.pt).
+  std::string array_job, merge_job;  // train: its job in array_job.
+  std::string job_state;             // train: the queue's word on it ("" when it has left).
+  int epochs_done = 0;               // train: rows of DIR/log.csv.
 
   bool all_done() const;
   // A table, one row per shard, and a closing line with what to do next.

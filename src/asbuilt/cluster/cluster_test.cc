@@ -70,7 +70,7 @@ TEST(MakeBatchScript, ReplacesTheTemplatesDirectivesAndSetsItsVariables) {
   EXPECT_EQ(ShellQuote("--count"), "--count");
   EXPECT_EQ(ShellQuote(""), "''");
   EXPECT_NE(script.find("dataset synth -o \"$ASBUILT_OUT\" --shard \"$task/$ASBUILT_SHARDS\""), std::string::npos);
-  EXPECT_THROW(SlurmTemplate("train"), InvalidArgument);
+  EXPECT_THROW(SlurmTemplate("render"), InvalidArgument);
   EXPECT_NE(SlurmTemplate("eval").find("eval seg"), std::string_view::npos);
 }
 
@@ -210,6 +210,36 @@ TEST(ReadClusterStatus, CountsAnEvalShardDoneWhenItsMetricsAreThere) {
   EXPECT_FALSE(s.merged);
   std::ofstream(dir / "ev" / "metrics.json") << "{}";
   EXPECT_TRUE(ReadClusterStatus(fs::absolute(dir / "ev"), slurm).merged);
+}
+
+TEST(SubmitClusterJob, SubmitsATrainingRunAsOneJobOfKTasksAndReadsItsEpochs) {
+  const fs::path dir = FreshDir("train");
+  const SlurmOptions slurm = FakeSlurm(dir / "bin");
+  const ClusterRequest request = {.kind = ClusterJobKind::kTrain,
+                                  .dir = dir / "run",
+                                  .shards = 3,
+                                  .args = {"--images", "/data/toy", "--batch", "6"},
+                                  .slurm = slurm};
+  ClusterSubmission r = SubmitClusterJob(request);
+  EXPECT_EQ(r.array_job, "100");
+  EXPECT_TRUE(r.merge_job.empty());
+  EXPECT_NE(r.task_script.find("#SBATCH --ntasks=3\n"), std::string::npos) << r.task_script;
+  EXPECT_NE(r.task_script.find("srun --kill-on-bad-exit=1 \"$ASBUILT\" train -o \"$ASBUILT_OUT\""), std::string::npos);
+  EXPECT_EQ(ReadFile(dir / "bin" / "sbatch.log"),
+            fmt::format("--parsable {}/cluster/train.sbatch\n", fs::absolute(dir / "run").string()));
+  EXPECT_THROW(SubmitClusterJob(request), InputError) << "a second run needs --resume";
+  std::ofstream(dir / "run" / "log.csv") << "epoch,train_loss\n1,0.5\n2,0.4\n";
+  ClusterStatus s = ReadClusterStatus(fs::absolute(dir / "run"), slurm);
+  EXPECT_EQ(s.kind, ClusterJobKind::kTrain);
+  EXPECT_EQ(s.epochs_done, 2);
+  EXPECT_NE(s.Table().find("job 100: not in the queue\nepochs done: 2"), std::string::npos) << s.Table();
+  ClusterRequest resume = request;
+  resume.resume = true;
+  EXPECT_EQ(SubmitClusterJob(resume).array_job, "101");
+  std::optional<ClusterRunRecord> run = ReadClusterRun(dir / "run");
+  ASSERT_TRUE(run.has_value());
+  EXPECT_EQ(run->shards, 3);
+  EXPECT_EQ(run->args, request.args);
 }
 
 }  // namespace

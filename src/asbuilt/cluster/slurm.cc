@@ -21,6 +21,7 @@ extern const char kSynthSbatch[];
 extern const char kSynthMergeSbatch[];
 extern const char kEvalSbatch[];
 extern const char kEvalMergeSbatch[];
+extern const char kTrainSbatch[];
 
 namespace {
 
@@ -61,7 +62,9 @@ std::string_view SlurmTemplate(std::string_view name) {
   if (name == "synth-merge") return kSynthMergeSbatch;
   if (name == "eval") return kEvalSbatch;
   if (name == "eval-merge") return kEvalMergeSbatch;
-  throw InvalidArgument(fmt::format("no Slurm batch script named '{}' (synth, synth-merge, eval, eval-merge)", name));
+  if (name == "train") return kTrainSbatch;
+  throw InvalidArgument(
+      fmt::format("no Slurm batch script named '{}' (synth, synth-merge, eval, eval-merge, train)", name));
 }
 
 std::string ShellQuote(std::string_view text) {
@@ -148,6 +151,13 @@ std::string SubmitBatch(const SlurmOptions& options, const std::vector<std::stri
   // "123" or "123;cluster", possibly after warnings on earlier lines.
   out = out.substr(out.find_last_of('\n') == std::string::npos ? 0 : out.find_last_of('\n') + 1);
   return out.substr(0, out.find(';'));
+}
+
+std::string JobState(const SlurmOptions& options, std::string_view job_id) {
+  const fs::path squeue = FindProgram(options.squeue);
+  if (squeue.empty() || job_id.empty()) return "";
+  const CommandResult r = RunCommand(fmt::format("{} -h -j {} -o %T", ShellQuote(squeue.string()), ShellQuote(job_id)));
+  return r.exit_code == 0 ? Trimmed(r.out.substr(0, r.out.find('\n'))) : "";
 }
 
 std::map<int, std::string> ArrayTaskStates(const SlurmOptions& options, std::string_view job_id) {

@@ -29,7 +29,7 @@ struct SlurmOptions {
 };
 
 // The compiled-in text of scripts/slurm/NAME.sbatch ("synth", "synth-merge",
-// "eval", "eval-merge").
+// "eval", "eval-merge", "train").
 // Throws InvalidArgument for another name.
 std::string_view SlurmTemplate(std::string_view name);
 
@@ -56,6 +56,10 @@ std::filesystem::path FindProgram(std::string_view program);
 // how to get it and that --dry-run shows the scripts without it.
 std::string SubmitBatch(const SlurmOptions& options, const std::vector<std::string>& args,
                         const std::filesystem::path& script);
+
+// The queue's state of job `job_id` ("PENDING", "RUNNING", …); empty when
+// squeue is missing or the job has left the queue.
+std::string JobState(const SlurmOptions& options, std::string_view job_id);
 
 // The queue's state of each task of array job `job_id` ("PENDING",
 // "RUNNING", …) by task index; empty when squeue is missing or the job has
