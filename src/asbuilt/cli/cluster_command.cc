@@ -3,6 +3,7 @@
 // a segmenter scored by one and its confusion matrices summed, a model
 // trained data-parallel by the tasks of one job, and how each is going.
 
+#include <algorithm>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@
 #include "asbuilt/cli/dataset_synth_flags.h"
 #include "asbuilt/cluster/cluster_job.h"
 #include "asbuilt/seg/seg_data.h"
+#include "asbuilt/util/error.h"
 
 namespace asbuilt::cli {
 namespace fs = std::filesystem;
@@ -52,6 +54,21 @@ DatasetSynthOptions RecordedSynthOptions(const ClusterRunRecord& run) {
   std::vector<std::string> args(run.args.rbegin(), run.args.rend());  // CLI11 parses back to front.
   app.parse(args);
   return ResolveDatasetSynthFlags(flags);
+}
+
+// Bad training flags fail here, at submission, with train's own message,
+// rather than on the cluster after the job has waited in the queue.
+void CheckTrainFlags(const std::string& out, const std::vector<std::string>& args, int tasks) {
+  std::vector<std::string> words = {"train", "-o", out};
+  words.insert(words.end(), args.begin(), args.end());
+  words.insert(words.end(), {"--distributed", "--check-flags", std::to_string(std::max(tasks, 1))});
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  try {
+    RunTrainCommand(static_cast<int>(argv.size()), argv.data());
+  } catch (const CLI::ParseError& e) {
+    throw InvalidArgument(fmt::format("the training flags: {} (asbuilt train --help lists them)", e.what()));
+  }
 }
 
 int Submit(const SubmitFlags& flags, ClusterRequest request) {
@@ -185,6 +202,7 @@ int RunClusterCommand(int argc, char** argv) {
     if (recorded && train_flags.shards == 0) train_flags.shards = earlier->shards;
     if (args.empty())
       throw CLI::ValidationError("cluster train", "give the training flags (e.g. --images DIR --epochs 20)");
+    CheckTrainFlags(train_flags.out, args, train_flags.shards);
     return Submit(train_flags, {.kind = ClusterJobKind::kTrain, .args = args});
   }
   if (status->parsed()) {

@@ -108,6 +108,20 @@ TEST(ClusterCommand, DryRunPrintsTheScriptsAndBadInputIsRefused) {
   EXPECT_NE(out.find("sbatch: not found on PATH"), std::string::npos) << out;
   EXPECT_NE(out.find("--dry-run"), std::string::npos) << out;
 
+  RunResult train = RunAsbuilt(
+      fmt::format("cluster train -o {} --tasks 2 --images {} --batchh 4 --dry-run", (d / "run").string(), d.string()));
+  EXPECT_EQ(train.exit_code, 2) << train.out;
+  EXPECT_NE(train.out.find("the training flags: The following arguments were not expected"), std::string::npos)
+      << train.out;
+  RunResult odd = RunAsbuilt(
+      fmt::format("cluster train -o {} --tasks 2 --images {} --batch 3 --dry-run", (d / "run").string(), d.string()));
+  EXPECT_EQ(odd.exit_code, 2) << odd.out;
+  EXPECT_NE(odd.out.find("must be divisible by the 2 ranks"), std::string::npos) << odd.out;
+  RunResult own = RunAsbuilt(
+      fmt::format("cluster train -o {} --tasks 2 --images {} --distributed", (d / "run").string(), d.string()));
+  EXPECT_EQ(own.exit_code, 2) << own.out;
+  EXPECT_FALSE(fs::exists(d / "run"));
+
   RunResult status = RunAsbuilt("cluster status " + (d / "nothing").string());
   EXPECT_EQ(status.exit_code, 1) << status.out;
   EXPECT_NE(status.out.find("job.json: not found"), std::string::npos) << status.out;

@@ -81,6 +81,10 @@ int RunTrainCommand(int argc, char** argv) {
                  "seconds a rank waits for the others (rendezvous, each exchange) before it fails")
       ->capture_default_str()
       ->needs("--distributed");
+  int check_ranks = 0;
+  app.add_option("--check-flags", check_ranks,
+                 "check the flags and options for a run of K ranks (1: one process), then stop without reading\n"
+                 "data or training (asbuilt cluster train does so before it submits)");
   Parse(app, argc, argv);
 
   if (!finetune.empty()) {
@@ -118,6 +122,14 @@ int RunTrainCommand(int argc, char** argv) {
   o.augment.blur_noise = !no_blur_noise;
   ParseSizeFlag(scale, "--scale", o.augment.scale_width_px, o.augment.scale_height_px);
   ParseSizeFlag(crop, "--crop", o.augment.crop_width_px, o.augment.crop_height_px);
+  if (check_ranks > 0) {
+    o.distributed.world_size = check_ranks;  // A stand-in rendezvous: only the options are checked.
+    o.distributed.master_addr = "localhost";
+    o.distributed.master_port = 1;
+    o.Check();
+    fmt::print("asbuilt train: the flags hold for {} rank(s)\n", check_ranks);
+    return 0;
+  }
   if (distributed) {
     const double timeout_s = o.distributed.timeout_s;
     o.distributed = DistributedOptionsFromEnvironment();
