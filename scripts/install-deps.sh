@@ -35,7 +35,7 @@ for flag in "$@"; do
   case "$flag" in
     --bench) packages+=(python3-torch hyperfine) ;;
     --photos) packages+=(gimp-data) ;;
-    --cluster) packages+=(slurm-wlm slurmctld slurmd slurm-client munge) ;;
+    --cluster) packages+=(slurm-wlm slurmctld slurmd slurm-client munge procps) ;;
   esac
 done
 # Node.js (for the MCP SDK client test). Some images ship nodesource's nodejs,
