@@ -183,12 +183,12 @@ ClusterSubmission SubmitClusterJob(const ClusterRequest& request) {
   }
   std::vector<std::string> words;
   for (const std::string& a : request.args) words.push_back(ShellQuote(a));
-  const std::vector<std::pair<std::string, std::string>> variables = {
+  std::vector<std::pair<std::string, std::string>> variables = {
       {"ASBUILT", request.asbuilt.string()},
       {"ASBUILT_OUT", dir.string()},
-      {"ASBUILT_SHARDS", std::to_string(request.shards)},
       {"ASBUILT_ARGS", fmt::format("{}", fmt::join(words, " "))}};
   if (request.kind == ClusterJobKind::kTrain) return SubmitTrainJob(request, dir, job, variables);
+  variables.emplace_back("ASBUILT_SHARDS", std::to_string(request.shards));
   result.task_script = MakeBatchScript(
       SlurmTemplate(kind), SlurmDirectives(request.slurm, "asbuilt-" + kind, cluster / "logs" / (kind + "-%A_%a.out")),
       variables);

@@ -119,8 +119,6 @@ std::string SynthVerifySummary::BriefReport() const {
                      ok() ? std::string("all match") : fmt::format("{} problems", problems.size()));
 }
 
-bool IsSynthDatasetDir(const fs::path& dir) { return fs::is_regular_file(SynthRecordPath(dir)); }
-
 SynthMergeSummary MergeSynthDataset(const fs::path& dir, const SynthMergeOptions& options,
                                     const ProgressCallback& progress) {
   options.Check();
@@ -132,34 +130,45 @@ SynthMergeSummary MergeSynthDataset(const fs::path& dir, const SynthMergeOptions
   const int count = record["count"].get<int>();
   if (options.shard_count > count) CheckShardCount(options.shard_count, count);
 
+  // Every item is checked first (existence, then the cheap damage checks);
+  // the files are hashed only when the manifest will be written.
   std::vector<int> missing;
   for (int i = 0; i < count; ++i) {
     if (!IsSynthItemComplete(dir, i)) missing.push_back(i);
   }
   std::vector<Problem> problems = MissingProblems(dir, missing, count, options.shard_count);
+  std::vector<char> complete(count, 1);
+  for (int i : missing) complete[i] = 0;
+  std::mutex mutex;
+  std::vector<Problem> damaged;
+  ParallelItems(count, options.num_threads, [&](int i) {
+    if (!complete[i]) return;
+    const std::array<fs::path, 5> files = SynthItemFiles(dir, i);
+    for (const fs::path& file : files) {
+      if (std::optional<std::string> damage = DamageOf(file, i)) {
+        std::lock_guard lock(mutex);
+        damaged.push_back({file.string(), "",
+                           fmt::format("damaged ({}): delete {} and re-run its shard with --resume", *damage,
+                                       files.back().string())});
+      }
+    }
+  });
+  std::sort(damaged.begin(), damaged.end(), [](const Problem& a, const Problem& b) { return a.file < b.file; });
+  problems.insert(problems.end(), damaged.begin(), damaged.end());
+  if (!problems.empty()) throw InputError(std::move(problems));
 
   std::vector<std::array<std::string, 5>> hashes(count);
   std::vector<std::int64_t> bytes(count, 0);
-  std::mutex mutex;
   std::atomic<int> done = 0;
   ParallelItems(count, options.num_threads, [&](int i) {
-    if (!IsSynthItemComplete(dir, i)) return;
     const std::array<fs::path, 5> files = SynthItemFiles(dir, i);
     for (std::size_t k = 0; k < files.size(); ++k) {
-      if (std::optional<std::string> damage = DamageOf(files[k], i)) {
-        std::lock_guard lock(mutex);
-        problems.push_back({files[k].string(), "",
-                            fmt::format("damaged ({}): delete {} and re-run its shard with --resume", *damage,
-                                        files.back().string())});
-        continue;
-      }
       hashes[i][k] = Sha256OfFile(files[k]);
       bytes[i] += static_cast<std::int64_t>(fs::file_size(files[k]));
     }
     const int n = ++done;
     if (n % 64 == 0 || n == count) ReportProgress(progress, {"merge", n, count, ""});
   });
-  if (!problems.empty()) throw InputError(std::move(problems));
 
   // One item per line: a diff of two manifests reads item by item.
   std::string text = fmt::format("{{\"version\": 1, \"kind\": \"{}\", \"count\": {}, \"options\": {},\n \"items\": [\n",

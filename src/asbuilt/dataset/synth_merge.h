@@ -63,9 +63,6 @@ struct SynthVerifySummary {
 SynthVerifySummary VerifySynthDataset(const std::filesystem::path& dir, int num_threads = 0,
                                       const ProgressCallback& progress = {});
 
-// True when `dir` holds a synthetic dataset's run record (DIR/synth.json).
-bool IsSynthDatasetDir(const std::filesystem::path& dir);
-
 }  // namespace asbuilt
 
 #endif  // ASBUILT_DATASET_SYNTH_MERGE_H_
