@@ -13,6 +13,7 @@
 #include "asbuilt/pipeline/review_input.h"
 #include "asbuilt/plan/drawing.h"
 #include "asbuilt/plan/fit_plan.h"
+#include "asbuilt/plan/plan_wall_line.h"
 #include "asbuilt/plan/verdict.h"
 #include "asbuilt/review/training_example.h"
 #include "asbuilt/review/view_geometry.h"
@@ -315,6 +316,48 @@ struct ReviewSession::Impl {
     }
   }
 
+  // Where a new corner at xy goes in l's corners: of the places where the
+  // room crosses itself no more than it does now, the one of least cost, in
+  // metres: how much longer the outline gets, plus how far the two new
+  // walls stray from the room's dominant directions (length × |sin| of the
+  // angle off), plus kOffBearingM when its bearing from the viewpoint is not
+  // between its two neighbours' (the order a turn around the room sees them in).
+  int InsertionIndex(const Layout& l, const Vec2& xy) const {
+    constexpr double kOffBearingM = 0.5;
+    const int n = static_cast<int>(l.corners.size());
+    const std::vector<Vec2>& at = fit.plan.rooms.at(0).polygon;
+    const Vec2 v = fitter->viewpoint();
+    auto bearing = [&](const Vec2& p) { return std::atan2(p.y() - v.y(), p.x() - v.x()); };
+    auto stray = [&](const Vec2& a, const Vec2& b) {
+      const std::vector<double>& directions = fit.summary.dominant_directions_deg;
+      if (directions.empty()) return 0.0;
+      const double theta = std::atan2(b.y() - a.y(), b.x() - a.x());
+      double off = kPi;
+      for (double d : directions) {
+        for (double turn : {0.0, 0.5 * kPi}) off = std::min(off, std::abs(AngleDiffModPi(theta, DegToRad(d) + turn)));
+      }
+      return (b - a).norm() * std::sin(off);
+    };
+    std::vector<std::pair<double, int>> order;
+    for (int i = 0; i < n; ++i) {
+      const Vec2 a = at[i], b = at[(i + 1) % n];
+      const double ccw = std::remainder(bearing(b) - bearing(a), 2 * kPi);
+      const double into = std::remainder(bearing(xy) - bearing(a), 2 * kPi);
+      const bool holds = ccw > 0 && into >= 0 && into <= ccw;
+      const double detour = (xy - a).norm() + (xy - b).norm() - (b - a).norm();
+      order.push_back({detour + stray(a, xy) + stray(xy, b) + (holds ? 0.0 : kOffBearingM), i + 1});
+    }
+    std::sort(order.begin(), order.end());
+    const std::vector<Vec2> hints = CornerPoints(l);
+    const int crossings = PolygonCrossings(hints);
+    for (const auto& [cost, index] : order) {
+      std::vector<Vec2> with = hints;
+      with.insert(with.begin() + index, xy);
+      if (PolygonCrossings(with) <= crossings) return index;
+    }
+    return order.front().second;
+  }
+
   Layout Apply(const nlohmann::json& edit) const {
     if (!edit.is_object()) throw EditError("an edit is a JSON object with \"op\"");
     if (!edit.contains("op") || !edit["op"].is_string()) throw EditError("an edit needs \"op\" (a string)");
@@ -322,21 +365,18 @@ struct ReviewSession::Impl {
     Layout l = layout;
     if (op == "add_corner") {
       const Vec2 xy = FloorPoint(edit);
-      l.corners_edited = true;
-      // Where it lengthens the outline least: between the two corners it belongs between.
-      const int n = static_cast<int>(l.corners.size());
-      const std::vector<Vec2>& at = fit.plan.rooms.at(0).polygon;
-      int best = 0;
-      double best_cost = INFINITY;
-      for (int i = 0; i < n; ++i) {
-        const Vec2 a = at[i], b = at[(i + 1) % n];
-        const double cost = (xy - a).norm() + (xy - b).norm() - (b - a).norm();
-        if (cost < best_cost) {
-          best_cost = cost;
-          best = i;
-        }
+      // "after" / "before": the person says which corner it follows or
+      // precedes in the room's order (tracing the outline); else asbuilt decides.
+      int index = 0;
+      if (edit.contains("after")) {
+        index = CornerIndex(l, Integer(edit, "after"), op) + 1;
+      } else if (edit.contains("before")) {
+        index = CornerIndex(l, Integer(edit, "before"), op);
+      } else {
+        index = InsertionIndex(l, xy);
       }
-      l.corners.insert(l.corners.begin() + best + 1, Corner{.id = l.next_id++, .xy_m = xy, .user = true});
+      l.corners_edited = true;
+      l.corners.insert(l.corners.begin() + index, Corner{.id = l.next_id++, .xy_m = xy, .user = true});
     } else if (op == "move_corner") {
       const int i = CornerIndex(l, Integer(edit, "id"), op);
       Vec2 xy;
@@ -365,6 +405,21 @@ struct ReviewSession::Impl {
       }
       if (PolygonCrossings(CornerPoints(l)) > 0)
         throw EditError("set_corners: the corners cross each other: give them in the room's order");
+      l.corners_edited = true;
+    } else if (op == "straighten") {  // One wall from corner "from" to corner "to": the corners between go.
+      const int n = static_cast<int>(l.corners.size());
+      const int from = CornerIndex(l, Integer(edit, "from"), op), to = CornerIndex(l, Integer(edit, "to"), op);
+      const int between = (to - from + n) % n - 1;
+      if (from == to || between < 1) {
+        throw EditError(fmt::format("straighten: no corners between corner {} and corner {} (in the room's order)",
+                                    l.corners[from].id, l.corners[to].id));
+      }
+      if (n - between < 3) throw EditError("straighten: a room needs at least 3 corners");
+      std::vector<Corner> kept;
+      for (int k = 0; k < n; ++k) {
+        if ((k - from + n) % n == 0 || (k - from + n) % n > between) kept.push_back(l.corners[k]);
+      }
+      l.corners = std::move(kept);
       l.corners_edited = true;
     } else if (op == "delete_corner") {
       const int i = CornerIndex(l, Integer(edit, "id"), op);
@@ -403,10 +458,10 @@ struct ReviewSession::Impl {
       const int i = OpeningIndex(l, Integer(edit, "id"), op);
       l.openings.erase(l.openings.begin() + i);
     } else {
-      throw EditError(
-          fmt::format("unknown op \"{}\" (add_corner, move_corner, set_corners, delete_corner, ceiling, add_opening, "
-                      "move_opening, delete_opening, undo, redo)",
-                      op));
+      throw EditError(fmt::format(
+          "unknown op \"{}\" (add_corner, move_corner, set_corners, delete_corner, straighten, ceiling, add_opening, "
+          "move_opening, delete_opening, undo, redo)",
+          op));
     }
     return l;
   }

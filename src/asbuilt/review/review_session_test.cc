@@ -206,6 +206,41 @@ TEST(ReviewSession, AHiddenCornerClickedThroughAWallGoesWhereItBelongs) {
   EXPECT_GE(RoomPolygonOverlap(PlanOf(state), truth_plan)->Iou(), 0.98);
 }
 
+// Two corners put on the south wall, then "straighten" from its west end
+// to its east end: one wall again, re-fitted from the photo.
+TEST(ReviewSession, StraightenMakesOneWallOfTheCornersBetween) {
+  ReviewSession session = ReviewSession::Open(PanoramaSurvey("straighten"));
+  const nlohmann::json start = session.State();
+  const int sw = CornerNear(start, {kX0, kY0}), se = CornerNear(start, {kX1, kY0});
+  nlohmann::json state = session.Edit(Click("add_corner", PanoPixel(Vec3(-0.5, kY0, 0.0))));
+  // Traced: the second one follows the first.
+  const int first = CornerNear(state, {-0.5, kY0});
+  state = session.Edit({{"op", "add_corner"},
+                        {"after", first},
+                        {"u", PanoPixel(Vec3(0.8, kY0, 0.0)).x()},
+                        {"v", PanoPixel(Vec3(0.8, kY0, 0.0)).y()}});
+  ASSERT_EQ(state["corners"].size(), 6u);
+  std::vector<int> ids;
+  for (const nlohmann::json& c : state["corners"]) ids.push_back(c["id"]);
+  const auto at = std::find(ids.begin(), ids.end(), first);
+  ASSERT_NE(at, ids.end());
+  const nlohmann::json& next = state["corners"][(at - ids.begin() + 1) % 6];
+  EXPECT_NEAR(next["xy_m"][0].get<double>(), 0.8, 0.05) << state["corners"].dump();
+  state = session.Edit({{"op", "straighten"}, {"from", sw}, {"to", se}});
+  EXPECT_EQ(state["corners"].size(), 4u);
+  EXPECT_LE(WorstCornerError(PlanOf(state), {{kX0, kY0}, {kX1, kY0}, {kX1, kY1}, {kX0, kY1}}), 0.05);
+  // Nothing between two neighbours; a room of fewer than 3 corners; an unknown corner.
+  const int ne = CornerNear(state, {kX1, kY1});
+  for (const nlohmann::json& bad : {nlohmann::json{{"op", "straighten"}, {"from", sw}, {"to", se}},
+                                    nlohmann::json{{"op", "straighten"}, {"from", se}, {"to", sw}},
+                                    nlohmann::json{{"op", "straighten"}, {"from", ne}, {"to", 999}}}) {
+    EXPECT_THROW(session.Edit(bad), EditError) << bad.dump();
+  }
+  EXPECT_EQ(session.State()["corners"].size(), 4u);
+  state = session.Edit({{"op", "undo"}});
+  EXPECT_EQ(state["corners"].size(), 6u);
+}
+
 TEST(ReviewSession, DeleteUndoRedo) {
   ReviewSession session = ReviewSession::Open(PanoramaSurvey("undo"));
   const nlohmann::json start = session.State();
