@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace asbuilt {
 namespace {
@@ -36,13 +37,18 @@ int BearingBin(const Vec2& d) {
   return std::clamp(b, 0, kVisibleBins - 1);
 }
 
-// Range along the ray from `view` at bearing `a` to the candidate, or ∞.
-double RayRange(const VisibleCandidate& c, const Vec2& view, double a) {
-  const Vec2 n = c.Normal();
-  const double denom = n.dot(Vec2(std::cos(a), std::sin(a)));
+// Range along the ray from `view` in unit direction `u` to the line n·x =
+// rho, or ∞.
+double RayRange(const Vec2& n, double rho, const Vec2& view, const Vec2& u) {
+  const double denom = n.dot(u);
   if (std::abs(denom) < 1e-9) return kVisibleInf;
-  const double t = (c.rho - n.dot(view)) / denom;
+  const double t = (rho - n.dot(view)) / denom;
   return t >= kVisibleMinRangeM && t <= kVisibleMaxRangeM ? t : kVisibleInf;
+}
+
+// The same at bearing `a`.
+double RayRange(const VisibleCandidate& c, const Vec2& view, double a) {
+  return RayRange(c.Normal(), c.rho, view, Vec2(std::cos(a), std::sin(a)));
 }
 
 // Peaks of the wall points' offsets along the normal of direction `theta`:
@@ -107,20 +113,26 @@ std::vector<VisibleCandidate> VisibleCandidates(const WallPoints& walls, const s
   return out;
 }
 
-// The change cost between candidates a and b at the boundary before bin b0:
-// a corner when they meet within a bin of that bearing, else a jump.
-double ChangeCost(const VisibleCandidate& a, const VisibleCandidate& b, const Vec2& view, int b0, double corner) {
-  if (a.off_axis || b.off_axis) return kVisibleJumpCorners * corner;
+// The bearing from `view` at which candidates a and b meet, when they may
+// meet in a corner there (both on the frame's axes, not parallel, within
+// range); nullopt otherwise.
+std::optional<double> CornerBearing(const VisibleCandidate& a, const VisibleCandidate& b, const Vec2& view) {
+  if (a.off_axis || b.off_axis) return std::nullopt;
   const Vec2 na = a.Normal(), nb = b.Normal();
   const double det = na.x() * nb.y() - na.y() * nb.x();
-  if (std::abs(det) > 1e-6) {
-    const Vec2 x((a.rho * nb.y() - b.rho * na.y()) / det, (na.x() * b.rho - nb.x() * a.rho) / det);
-    const Vec2 d = x - view;
-    const double boundary = BinBearing(b0) - kPi / kVisibleBins;
-    const double off = std::abs(WrapAngle(std::atan2(d.y(), d.x()) - boundary));
-    if (d.norm() <= kVisibleMaxRangeM && off <= 1.5 * 2 * kPi / kVisibleBins) return corner;
-  }
-  return kVisibleJumpCorners * corner;
+  if (std::abs(det) <= 1e-6) return std::nullopt;
+  const Vec2 x((a.rho * nb.y() - b.rho * na.y()) / det, (na.x() * b.rho - nb.x() * a.rho) / det);
+  const Vec2 d = x - view;
+  if (d.norm() > kVisibleMaxRangeM) return std::nullopt;
+  return std::atan2(d.y(), d.x());
+}
+
+// Whether a change between two candidates that meet at `bearing` is a corner
+// at the boundary before bin b0 (they meet within a bin and a half of it),
+// not a jump.
+bool CornerAtBoundary(double bearing, int b0) {
+  const double boundary = BinBearing(b0) - kPi / kVisibleBins;
+  return std::abs(WrapAngle(bearing - boundary)) <= 1.5 * 2 * kPi / kVisibleBins;
 }
 
 // One candidate per bin (Viterbi along bins start, start + 1, … around the
@@ -179,15 +191,19 @@ std::vector<WallLine> SelectVisibleLines(const WallPoints& walls, std::vector<Wa
   std::vector<std::vector<double>> score(kVisibleBins, std::vector<double>(n, 0.0));
   std::vector<double> bin_votes(kVisibleBins, 0.0);
   std::vector<int> bin_of(pts.size());
+  std::vector<Vec2> normals;
+  for (const VisibleCandidate& c : cands) normals.push_back(c.Normal());
   for (size_t i = 0; i < pts.size(); ++i) {
     bin_of[i] = BearingBin(pts[i].p - view);
     bin_votes[bin_of[i]] += pts[i].vote;
     const Vec2 ray = pts[i].p - view;
     const double range = ray.norm();
+    const double bearing = std::atan2(ray.y(), ray.x());
+    const Vec2 u(std::cos(bearing), std::sin(bearing));
     for (int k = 0; k < n; ++k) {
-      if (std::abs(cands[k].Normal().dot(pts[i].p) - cands[k].rho) < pts[i].thr) {
+      if (std::abs(normals[k].dot(pts[i].p) - cands[k].rho) < pts[i].thr) {
         score[bin_of[i]][k] += pts[i].vote;
-      } else if (range > RayRange(cands[k], view, std::atan2(ray.y(), ray.x())) + pts[i].thr) {
+      } else if (range > RayRange(normals[k], cands[k].rho, view, u) + pts[i].thr) {
         score[bin_of[i]][k] -= kVisibleBeyondWeight * pts[i].vote;  // Seen through it.
       }
     }
@@ -219,8 +235,9 @@ std::vector<WallLine> SelectVisibleLines(const WallPoints& walls, std::vector<Wa
   for (int j = 0; j < n; ++j) {
     for (int k = 0; k < n; ++k) {
       if (j == k) continue;
-      for (int b = 0; b < kVisibleBins; ++b)
-        corner_at[b][j * n + k] = ChangeCost(cands[j], cands[k], view, b, corner) < jump;
+      const std::optional<double> bearing = CornerBearing(cands[j], cands[k], view);
+      if (!bearing) continue;
+      for (int b = 0; b < kVisibleBins; ++b) corner_at[b][j * n + k] = CornerAtBoundary(*bearing, b);
     }
   }
 
@@ -248,7 +265,7 @@ std::vector<WallLine> SelectVisibleLines(const WallPoints& walls, std::vector<Wa
     std::vector<int> idx;
     for (int t = 0; t < len && k >= 0; ++t) {
       for (int i : members_in_bin[(b0 + t) % kVisibleBins]) {
-        if (std::abs(cands[k].Normal().dot(pts[i].p) - cands[k].rho) < pts[i].thr) idx.push_back(i);
+        if (std::abs(normals[k].dot(pts[i].p) - cands[k].rho) < pts[i].thr) idx.push_back(i);
       }
     }
     s += len;
