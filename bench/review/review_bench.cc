@@ -7,7 +7,10 @@
 //
 // The surveyor sees the truth corners (pixels of the room's raw layout in the
 // panorama, with 1 px of noise) and makes, at each step, the one edit a person
-// would: set the ceiling line once where it is off by more than 5 cm; then,
+// would: set the ceiling line once where it is off by more than 5 cm; trace the
+// outline afresh (a click per corner and Enter, counted as that many edits)
+// when its IoU is under 0.5 or fewer than half the room's corners have a
+// plan corner within 1 m; then,
 // with truth and plan corners paired one to one (nearest first, within 1 m),
 // add a missing corner (an unpaired truth corner), else straighten a run of
 // two or more spurious corners between two paired ones into one wall, else
@@ -120,6 +123,7 @@ RoomResult Correct(const fs::path& survey, const ZindPanorama& pano, std::mt1993
     iou = Iou(state, truth);
   }
   if (iou >= kTargetIou) r.noc = r.edits;
+  bool traced = false;
   while (r.noc < 0 && r.edits < kMaxEdits) {
     std::vector<Vec2> plan_corners;
     std::vector<int> ids;
@@ -150,10 +154,28 @@ RoomResult Correct(const fs::path& survey, const ZindPanorama& pano, std::mt1993
     for (const auto& [d, i, t] : pairs) {
       if (truth_of[i] < 0 && plan_of[t] < 0) truth_of[i] = t, plan_of[t] = i;
     }
+    // An outline far off (IoU under 0.5, or fewer than half the room's
+    // corners within 1 m of one of its own) is traced afresh: a click per
+    // corner and Enter.
+    const int m = static_cast<int>(corners.size());
+    const int paired = static_cast<int>(std::count_if(plan_of.begin(), plan_of.end(), [](int i) { return i >= 0; }));
+    if (!traced && (iou < 0.5 || 2 * paired < m) && r.edits + m + 1 <= kMaxEdits) {
+      traced = true;
+      nlohmann::json points = nlohmann::json::array();
+      for (const Vec2& c : corners) {
+        const Vec2 px = pixel(Vec3(c.x(), c.y(), 0.0));
+        points.push_back({{"u", std::clamp(px.x(), 0.0, width - 1.0)}, {"v", px.y()}});
+      }
+      if (edit({{"op", "trace"}, {"points", points}})) {
+        r.edits += m;  // The clicks; edit() counted the Enter.
+        iou = Iou(state, truth);
+        if (iou >= kTargetIou) r.noc = r.edits;
+        continue;
+      }
+    }
     // The edits a person would make, best first; a refused one (the page
     // says why) is followed by the next.
     std::vector<nlohmann::json> candidates;
-    const int m = static_cast<int>(corners.size());
     for (int t = 0; t < m; ++t) {  // Missing corners.
       if (plan_of[t] < 0) {
         const Vec2 px = pixel(Vec3(corners[t].x(), corners[t].y(), 0.0));
@@ -291,7 +313,9 @@ int main(int argc, char** argv) {
       "## Review: a scripted surveyor corrects panorama surveys (ZInD sample tour)\n\n"
       "Research measurement (ZInD: academic use only, a test set). Measured {} on the 2-core development machine. "
       "{} rooms; corner and ceiling edits only (openings are not scripted yet); a room not at IoU 0.95 within "
-      "{} edits counts as {}. The surveyor adds a missing corner, else straightens a run of spurious corners into "
+      "{} edits counts as {}. The surveyor traces the outline afresh where fewer than half the corners are near the "
+      "truth (a click per corner and Enter, counted as that many edits), else adds a missing corner, else straightens "
+      "a run of spurious corners into "
       "one wall, else deletes one, else moves the worst-placed one (bench/review/review_bench.cc).\n\n",
       Today(), panos.size(), kMaxEdits, kMaxEdits + 1);
   for (const auto& [title, model] : models) {

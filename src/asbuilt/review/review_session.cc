@@ -406,6 +406,24 @@ struct ReviewSession::Impl {
       if (PolygonCrossings(CornerPoints(l)) > 0)
         throw EditError("set_corners: the corners cross each other: give them in the room's order");
       l.corners_edited = true;
+    } else if (op == "trace") {  // The outline clicked afresh on the photo, corner by corner.
+      if (!edit.contains("points") || !edit["points"].is_array() || edit["points"].size() < 3) {
+        throw EditError(
+            "trace: \"points\" must be a list of 3 or more floor corners {\"u\", \"v\"}, in the room's order");
+      }
+      std::vector<Vec2> xy;
+      for (std::size_t k = 0; k < edit["points"].size(); ++k) {
+        nlohmann::json point = edit["points"][k];
+        if (!point.is_object()) throw EditError(fmt::format("trace: point {} must be {{\"u\", \"v\"}}", k));
+        point["op"] = fmt::format("trace: point {}", k);
+        xy.push_back(FloorPoint(point));
+      }
+      if (PolygonCrossings(xy) > 0)
+        throw EditError("trace: the corners cross each other: click them in the room's order");
+      if (PolygonArea(xy) < 0) std::reverse(xy.begin(), xy.end());  // The room on the left, as the plan's rings.
+      l.corners.clear();
+      for (const Vec2& p : xy) l.corners.push_back(Corner{.id = l.next_id++, .xy_m = p, .user = true});
+      l.corners_edited = true;
     } else if (op == "straighten") {  // One wall from corner "from" to corner "to": the corners between go.
       const int n = static_cast<int>(l.corners.size());
       const int from = CornerIndex(l, Integer(edit, "from"), op), to = CornerIndex(l, Integer(edit, "to"), op);
@@ -459,7 +477,8 @@ struct ReviewSession::Impl {
       l.openings.erase(l.openings.begin() + i);
     } else {
       throw EditError(fmt::format(
-          "unknown op \"{}\" (add_corner, move_corner, set_corners, delete_corner, straighten, ceiling, add_opening, "
+          "unknown op \"{}\" (add_corner, move_corner, set_corners, trace, delete_corner, straighten, ceiling, "
+          "add_opening, "
           "move_opening, delete_opening, undo, redo)",
           op));
     }

@@ -241,6 +241,39 @@ TEST(ReviewSession, StraightenMakesOneWallOfTheCornersBetween) {
   EXPECT_EQ(state["corners"].size(), 6u);
 }
 
+// A far-off outline clicked afresh: the corners in either turn, the room on the left.
+TEST(ReviewSession, TraceReplacesTheOutlineWithTheClickedCorners) {
+  ReviewSession session = ReviewSession::Open(PanoramaSurvey("trace"));
+  session.Edit({{"op", "move_corner"}, {"id", CornerNear(session.State(), {kX1, kY1})}, {"xy_m", {3.5, 2.8}}});
+  const std::vector<Vec2> truth = {{kX0, kY0}, {kX1, kY0}, {kX1, kY1}, {kX0, kY1}};
+  nlohmann::json points = nlohmann::json::array();
+  for (auto it = truth.rbegin(); it != truth.rend(); ++it) {  // Clockwise.
+    const Vec2 px = PanoPixel(Vec3(it->x(), it->y(), 0.0));
+    points.push_back({{"u", px.x()}, {"v", px.y()}});
+  }
+  const nlohmann::json state = session.Edit({{"op", "trace"}, {"points", points}});
+  ASSERT_EQ(state["corners"].size(), 4u);
+  for (const nlohmann::json& c : state["corners"]) EXPECT_EQ(c["by"], "user");
+  EXPECT_LE(WorstCornerError(PlanOf(state), truth), 0.02);
+  EXPECT_NEAR(PlanOf(state).rooms[0].area_m2, 12.0, 0.1);
+  // Refused: two points, corners out of order, a point above the horizon.
+  const nlohmann::json crossed = {points[0], points[2], points[1], points[3]};
+  nlohmann::json high = points;
+  high[1]["v"] = 100;
+  for (const auto& [bad, message] : std::vector<std::pair<nlohmann::json, std::string>>{
+           {{{"op", "trace"}, {"points", {points[0], points[1]}}}, "3 or more"},
+           {{{"op", "trace"}, {"points", crossed}}, "cross each other"},
+           {{{"op", "trace"}, {"points", high}}, "trace: point 1"}}) {
+    try {
+      session.Edit(bad);
+      ADD_FAILURE() << "accepted " << bad.dump();
+    } catch (const EditError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(session.State()["edits"], 2);
+}
+
 TEST(ReviewSession, DeleteUndoRedo) {
   ReviewSession session = ReviewSession::Open(PanoramaSurvey("undo"));
   const nlohmann::json start = session.State();
