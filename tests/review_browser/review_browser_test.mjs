@@ -188,7 +188,18 @@ async function checkSurvey(browser, name, out) {
       await page.waitForFunction(() => document.querySelector("#rv-edits").textContent === "5", null, {timeout: 20000});
       const left = await page.evaluate(() => state.corners.map(c => c.id));
       if (left.length !== ids.length - 1 || left.includes(ids[1])) fail(`${name}: straighten left corners ${left} of ${ids}`);
-      expectedEdits = 5;
+      // Trace: t, a click on each corner in turn, Enter: the same outline, every corner the person's.
+      await page.keyboard.press("t");
+      for (const id of left) {
+        const box = await page.locator(`circle.corner[data-id="${id}"]`).boundingBox();
+        await page.mouse.click(box.x + box.width / 2, box.y + box.height / 2);
+      }
+      if ((await page.locator("circle.trace-point").count()) !== left.length) fail(`${name}: trace drew no points`);
+      await page.keyboard.press("Enter");
+      await page.waitForFunction(() => document.querySelector("#rv-edits").textContent === "6", null, {timeout: 20000});
+      const traced = await page.evaluate(() => state.corners.map(c => c.by));
+      if (traced.length !== left.length || traced.some(by => by !== "user")) fail(`${name}: trace gave corners ${traced}`);
+      expectedEdits = 6;
     }
     const saved = await area(page);
     await page.keyboard.press("?");
