@@ -300,21 +300,10 @@ struct ReviewSession::Impl {
     return o;
   }
 
-  // The openings as a list the person edits (the fit's own, until edited).
-  void MaterializeOpenings(Layout& l) const {
-    if (l.openings_edited) return;
-    l.openings_edited = true;
-    l.openings.clear();
-    for (const PlanOpening& o : fit.plan.openings) {
-      l.openings.push_back({.id = l.next_id++,
-                            .kind = o.kind,
-                            .start_m = o.start,
-                            .end_m = o.end,
-                            .bottom_m = o.sill.value_or(0.0),
-                            .top_m = o.sill.value_or(0.0) + o.height.value_or(2.0),
-                            .user = false});
-    }
-  }
+  // The openings become the person's list to edit. Until then FollowFit
+  // keeps them the fit's own, under the ids the state shows, so an edit
+  // names a survey opening by the id the person saw.
+  static void MaterializeOpenings(Layout& l) { l.openings_edited = true; }
 
   // Where a new corner at xy goes in l's corners: of the places where the
   // room crosses itself no more than it does now, the one of least cost, in

@@ -274,6 +274,20 @@ TEST(ReviewSession, TraceReplacesTheOutlineWithTheClickedCorners) {
   EXPECT_EQ(session.State()["edits"], 2);
 }
 
+// The survey's own openings are addressed by the ids the state shows, also
+// after a corner edit re-fitted them.
+TEST(ReviewSession, ASurveyOpeningIsEditedByTheIdTheStateShows) {
+  ReviewSession session = ReviewSession::Open(PanoramaSurvey("survey_opening"));
+  nlohmann::json state = session.Edit(
+      {{"op", "move_corner"}, {"id", CornerNear(session.State(), {kX1, kY1})}, {"xy_m", {kX1 + 0.02, kY1 + 0.02}}});
+  ASSERT_GE(state["openings"].size(), 1u) << "the box room's door";
+  const std::size_t n = state["openings"].size();
+  const int id = state["openings"][0]["id"];
+  state = session.Edit({{"op", "delete_opening"}, {"id", id}});
+  EXPECT_EQ(state["openings"].size(), n - 1);
+  for (const nlohmann::json& o : state["openings"]) EXPECT_NE(o["id"], id);
+}
+
 TEST(ReviewSession, DeleteUndoRedo) {
   ReviewSession session = ReviewSession::Open(PanoramaSurvey("undo"));
   const nlohmann::json start = session.State();
