@@ -11,20 +11,6 @@
 namespace asbuilt {
 namespace fs = std::filesystem;
 
-const char* LabelClassName(LabelClass c) {
-  switch (c) {
-    case LabelClass::kBackground:
-      return "background";
-    case LabelClass::kWall:
-      return "wall";
-    case LabelClass::kDoor:
-      return "door";
-    case LabelClass::kWindow:
-      return "window";
-  }
-  return "unknown";
-}
-
 const char* PointSourceName(PointSource s) {
   switch (s) {
     case PointSource::kCorner:

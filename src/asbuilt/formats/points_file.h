@@ -26,13 +26,9 @@
 #include <vector>
 
 #include "asbuilt/geometry/rig.h"
+#include "asbuilt/geometry/label_class.h"
 
 namespace asbuilt {
-
-// Label ids (DESIGN.md).
-enum class LabelClass : std::uint8_t { kBackground = 0, kWall = 1, kDoor = 2, kWindow = 3 };
-inline constexpr std::uint8_t kIgnoreLabel = 255;
-const char* LabelClassName(LabelClass c);  // "background", "wall", "door", "window"
 
 // kBoundary: a door/window label edge (wall on the other side) placed on the
 // wall's surface — it fixes an opening's width, not the wall's position.

@@ -68,7 +68,7 @@ Palette ParsePalette(const fs::path& path, JsonDiagnostics& diag) {
 
 std::string LabelIdName(std::uint8_t id) {
   if (id <= 3) return LabelClassName(static_cast<LabelClass>(id));
-  if (id == kIgnoreLabel) return "ignore";
+  if (id == kLabelIgnore) return "ignore";
   return std::to_string(id);
 }
 

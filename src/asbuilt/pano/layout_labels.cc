@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <opencv2/core.hpp>
 
+#include "asbuilt/geometry/label_class.h"
 #include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/util/error.h"
 
@@ -82,7 +83,7 @@ class LayoutScene {
     for (const WallRect::Hole& h : best->holes) {
       if (best_s >= h.s0 && best_s <= h.s1 && z >= h.bottom && z <= h.top) {
         // A passage drawn over a door keeps the ignore label; otherwise the first wins.
-        if (label == 1 || h.label == kPassageLabel) label = h.label;
+        if (label == kLabelWall || h.label == kPassageLabel) label = h.label;
       }
     }
     return label;

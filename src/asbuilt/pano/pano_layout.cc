@@ -698,7 +698,7 @@ cv::Mat EquirectFromViewLabels(const std::vector<PanoView>& views, const std::ve
   CheckArgument(width_px >= 2 && width_px % 2 == 0,
                 fmt::format("EquirectFromViewLabels: width_px = {}, must be even and >= 2", width_px));
   const int rows = width_px / 2;
-  cv::Mat out(rows, width_px, CV_8UC1, cv::Scalar(kIgnoreLabel));
+  cv::Mat out(rows, width_px, CV_8UC1, cv::Scalar(kLabelIgnore));
   std::vector<Mat3> camera_from_world;
   for (const PanoView& v : views) camera_from_world.push_back(v.WorldFromCamera().transpose());
   for (int y = 0; y < rows; ++y) {

@@ -183,7 +183,7 @@ TEST(EquirectFromViewLabels, EachPixelTakesTheViewThatSeesIt) {
   EXPECT_EQ(gathered.at<uchar>(32, 0), 0);
   EXPECT_EQ(gathered.at<uchar>(32, 96), 1);
   EXPECT_EQ(gathered.at<uchar>(32, 64), 2);
-  EXPECT_EQ(gathered.at<uchar>(0, 0), kIgnoreLabel) << "the zenith is outside every view";
+  EXPECT_EQ(gathered.at<uchar>(0, 0), kLabelIgnore) << "the zenith is outside every view";
 }
 
 }  // namespace

@@ -27,18 +27,12 @@
 
 #include <Eigen/Core>
 
+#include "asbuilt/geometry/label_class.h"
 #include "asbuilt/scene/scene.h"
 
 namespace asbuilt {
 
 using Vec3f = Eigen::Vector3f;
-
-// Label ids (DESIGN.md).
-inline constexpr std::uint8_t kLabelBackground = 0;
-inline constexpr std::uint8_t kLabelWall = 1;
-inline constexpr std::uint8_t kLabelDoor = 2;
-inline constexpr std::uint8_t kLabelWindow = 3;
-inline constexpr std::uint8_t kLabelIgnore = 255;
 
 // What an object is, for shading and statistics.
 enum class SurfaceRole : std::uint8_t {

@@ -8,6 +8,7 @@
 
 #include "asbuilt/dataset/manifest.h"
 #include "asbuilt/dataset/pairs.h"
+#include "asbuilt/geometry/label_class.h"
 #include "asbuilt/imageio/image_io.h"
 #include "asbuilt/util/error.h"
 
@@ -131,7 +132,7 @@ void AddStrayLight(SegPair& pair, std::mt19937_64& rng) {
   f.convertTo(pair.bgr, CV_8UC3);  // Saturates: blown-out light, as in photos.
   if (u01(rng) < 0.5) {
     // A dull or shaded window: darker and greyer than the room around it.
-    cv::Mat window = pair.label == 3;
+    cv::Mat window = pair.label == kLabelWindow;
     if (cv::countNonZero(window) == 0) return;
     cv::Mat grey, grey3, dim;
     cv::cvtColor(pair.bgr, grey, cv::COLOR_BGR2GRAY);

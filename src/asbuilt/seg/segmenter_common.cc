@@ -1,6 +1,7 @@
 // Parts of segmenter.h that need no LibTorch (built with and without it).
 #include <fmt/format.h>
 
+#include "asbuilt/geometry/label_class.h"
 #include "asbuilt/seg/model_file.h"
 #include "asbuilt/seg/segmenter.h"
 #include "asbuilt/util/error.h"
@@ -43,7 +44,7 @@ cv::Mat LabelOverlay(const cv::Mat& bgr, const cv::Mat& labels, double alpha) {
     cv::Vec3b* o = out.ptr<cv::Vec3b>(r);
     const std::uint8_t* l = labels.ptr<std::uint8_t>(r);
     for (int c = 0; c < out.cols; ++c) {
-      if (l[c] == 0 || l[c] > 3) continue;
+      if (l[c] == kLabelBackground || l[c] > kLabelWindow) continue;
       for (int k = 0; k < 3; ++k) {
         o[c][k] = static_cast<std::uint8_t>((1 - alpha) * o[c][k] + alpha * kColours[l[c]][k]);
       }

@@ -9,6 +9,8 @@
 #include <fmt/format.h>
 #include <opencv2/imgproc.hpp>
 
+#include "asbuilt/geometry/label_class.h"
+
 namespace asbuilt {
 namespace {
 
@@ -177,7 +179,7 @@ void MoveWallFeetBehindSkirting(double depth_m, const Eigen::Isometry3d& world_f
   // The boundary points take their wall depth from these columns.
   if (feet.empty()) return;
   for (FloorColumn& c : *floor_columns) {
-    if (c.label != 1) continue;
+    if (c.label != kLabelWall) continue;
     const double b = (c.u - cam.cx) / cam.fx;
     const auto nearest = std::min_element(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
       return std::abs(bearing[x] - b) < std::abs(bearing[y] - b);
@@ -220,7 +222,7 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
     }
     return true;
   };
-  auto is_background = [](unsigned char l) { return l == 0; };
+  auto is_background = [](unsigned char l) { return l == kLabelBackground; };
   const Mat3 rot = world_from_cam.linear();
   const Vec3 origin = world_from_cam.translation();
   auto ray = [&](double u, double v) { return Vec3(rot * UnprojectToCamera(cam, Vec2(u, v), 1.0)); };
@@ -267,7 +269,7 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
         const unsigned char* l = labels.ptr<unsigned char>(y);
         const double predicted = fxb * (y - cam.cy) / (cam.fy * h);
         for (int x = std::max(0, u - 2); x <= std::min(cols - 1, u + 2); ++x) {
-          if (l[x] == 0 && std::isfinite(d[x])) excess.push_back(static_cast<float>(d[x] - predicted));
+          if (l[x] == kLabelBackground && std::isfinite(d[x])) excess.push_back(static_cast<float>(d[x] - predicted));
         }
       }
       if (excess.size() >= 5) {
@@ -296,7 +298,7 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
                                  PointSource::kContact, frame.index};
         ++result->floor_contacts;
         floor_columns->push_back({u, floor_row, z, floor_label});
-        if (floor_label == 1 && !steps.empty()) {
+        if (floor_label == kLabelWall && !steps.empty()) {
           ++wall_feet;
           if (const auto s = SkirtingTop(steps, u, floor_row, z, h, cam, options.contact_snap_min_step)) {
             skirting_heights.push_back(*s);
@@ -314,8 +316,9 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
     for (int v = run; v < rows - run; ++v) {
       if (v - 0.5 >= cam.cy - 1.0) break;  // At or below the horizon.
       if (label_at(v, u) != 1 || label_at(v - 1, u) != 0) continue;
-      if (!runs(v - 1, -1, run, is_background, u) || !runs(
-                                                         v, 1, run, [](unsigned char l) { return l == 1; }, u)) {
+      if (!runs(v - 1, -1, run, is_background, u) ||
+          !runs(
+              v, 1, run, [](unsigned char l) { return l == kLabelWall; }, u)) {
         continue;
       }
       ceiling_edge = v - 0.5;
@@ -361,7 +364,7 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
         const float* d = disparity.ptr<float>(y);
         const unsigned char* l = labels.ptr<unsigned char>(y);
         for (int x = std::max(0, u - 2); x <= std::min(cols - 1, u + 2); ++x) {
-          if (l[x] == 1 && std::isfinite(d[x]) && d[x] > 0) ds.push_back(d[x]);
+          if (l[x] == kLabelWall && std::isfinite(d[x]) && d[x] > 0) ds.push_back(d[x]);
         }
       }
       if (ds.size() >= 5) {

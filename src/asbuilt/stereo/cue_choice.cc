@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "asbuilt/geometry/label_class.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {

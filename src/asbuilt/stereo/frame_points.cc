@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <opencv2/imgproc.hpp>
 
+#include "asbuilt/geometry/label_class.h"
 #include "asbuilt/stereo/cue_choice.h"
 #include "asbuilt/util/error.h"
 
@@ -72,7 +73,7 @@ bool VerticalEdge(const cv::Mat& labels, int v, int u_wall, int u_open, unsigned
     for (int shift = -1; shift <= 1 && !found; ++shift) {
       const int w = u_wall + shift, o = u_open + shift;
       if (std::min(w, o) < 0 || std::max(w, o) >= labels.cols) continue;
-      found = l[w] == 1 && l[o] == c;
+      found = l[w] == kLabelWall && l[o] == c;
     }
     if (!found) return false;
   }
@@ -237,7 +238,7 @@ struct FramePass {
   // Whether a pixel's point is already placed by a contact (or, without the
   // wall's stereo, wall pixels give no stereo points at all).
   bool Explained(const Vec2& px, unsigned char label) const {
-    if (label != 1) return false;
+    if (label != kLabelWall) return false;
     if (!wall_stereo) return true;
     const int u = static_cast<int>(std::lround(px.x())), v = static_cast<int>(std::lround(px.y()));
     return u >= 0 && v >= 0 && u < covered.cols && v < covered.rows && covered.at<unsigned char>(v, u) != 0;
@@ -285,7 +286,7 @@ void AddEdgePoints(const FramePass& pass) {
   // frames (a band along the region border) give edge points.
   cv::Mat band_distance;
   {
-    cv::Mat opening = (frame.labels_left == 2) | (frame.labels_left == 3);
+    cv::Mat opening = (frame.labels_left == kLabelDoor) | (frame.labels_left == kLabelWindow);
     cv::distanceTransform(opening, band_distance, cv::DIST_L2, 3);
   }
   const float opening_band_px = static_cast<float>(options.window_band_px);
@@ -297,7 +298,7 @@ void AddEdgePoints(const FramePass& pass) {
         continue;
       }
       if (pass.Explained(Vec2(u, v), lab[u])) continue;
-      if (lab[u] != 1 && band_distance.at<float>(v, u) > opening_band_px) continue;
+      if (lab[u] != kLabelWall && band_distance.at<float>(v, u) > opening_band_px) continue;
       bool clean = true;
       for (int y = v - 1; y <= v + 1 && clean; ++y) {
         const unsigned char* row = frame.labels_left.ptr<unsigned char>(y);
@@ -488,11 +489,11 @@ void AddDensePoints(const FramePass& pass) {
   const bool enabled[4] = {false, options.dense_wall, options.dense_door, options.dense_window};
   const cv::Mat kernel = cv::getStructuringElement(
       cv::MORPH_RECT, cv::Size(2 * options.dense_inset_px + 1, 2 * options.dense_inset_px + 1));
-  for (int c = 1; c <= 3; ++c) {
+  for (int c = kLabelWall; c <= kLabelWindow; ++c) {
     if (!enabled[c]) continue;
     cv::Mat mask = frame.labels_left == c;
     if (options.dense_inset_px > 0) cv::erode(mask, mask, kernel);
-    if (c == 3) {
+    if (c == kLabelWindow) {
       // Windows: only the frame and casing band along the region border;
       // the glass shows the outside.
       cv::Mat distance;
@@ -508,7 +509,7 @@ void AddDensePoints(const FramePass& pass) {
       const float* around = neighbours.ptr<float>(v);
       for (int u = 0; u < mask.cols; u += options.dense_stride_px) {
         if (!m[u] || !ok[u] || !std::isfinite(d[u])) continue;
-        if (c == 1 && (!pass.wall_stereo || pass.covered.at<unsigned char>(v, u))) continue;
+        if (c == kLabelWall && (!pass.wall_stereo || pass.covered.at<unsigned char>(v, u))) continue;
         if (!RightLabelAgrees(frame.labels_right, Vec2(u - d[u], v), static_cast<unsigned char>(c), 0)) continue;
         // SGBM's sub-pixel parabola is drawn towards whole pixels; where the
         // images pin the disparity down better, take theirs.
@@ -692,10 +693,10 @@ void AddMonoOpeningPoints(const MonoFrame& frame, const FramePointsOptions& opti
     const unsigned char* lab = frame.labels.ptr<unsigned char>(v);
     for (int u0 = 1; u0 < cols - 1; ++u0) {
       const unsigned char c = lab[u0];
-      if ((c != 2 && c != 3) || lab[u0 - 1] != 1) continue;
+      if ((c != kLabelDoor && c != kLabelWindow) || lab[u0 - 1] != kLabelWall) continue;
       int u1 = u0;
       while (u1 + 1 < cols && lab[u1 + 1] == c) ++u1;
-      if (u1 + 1 >= cols || lab[u1 + 1] != 1) {
+      if (u1 + 1 >= cols || lab[u1 + 1] != kLabelWall) {
         u0 = u1;
         continue;
       }

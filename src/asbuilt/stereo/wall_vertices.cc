@@ -5,6 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "asbuilt/geometry/label_class.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
@@ -58,7 +59,7 @@ std::vector<WallVertex> FindWallVertices(const cv::Mat& gray_left, const cv::Mat
 
   // Wall on both sides: a horizontal run of 2s+1 wall labels centred on u.
   cv::Mat wall;
-  cv::Mat(labels_left == 1).convertTo(wall, CV_32F, 1.0 / 255);
+  cv::Mat(labels_left == kLabelWall).convertTo(wall, CV_32F, 1.0 / 255);
   cv::Mat run;
   cv::blur(wall, run, cv::Size(2 * s + 1, 1), cv::Point(-1, -1), cv::BORDER_CONSTANT);
   auto eligible = [&](int v, int u) { return run.at<float>(v, u) > 1 - 1e-4f; };
