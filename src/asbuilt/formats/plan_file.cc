@@ -169,16 +169,6 @@ bool IsVerdictWord(const std::string& word) { return word == "good" || word == "
 
 const char* OpeningKindName(OpeningKind kind) { return kind == OpeningKind::kDoor ? "door" : "window"; }
 
-double PolygonArea(const std::vector<Vec2>& polygon) {
-  double twice = 0.0;
-  for (std::size_t i = 0; i < polygon.size(); ++i) {
-    const Vec2& a = polygon[i];
-    const Vec2& b = polygon[(i + 1) % polygon.size()];
-    twice += a.x() * b.y() - b.x() * a.y();
-  }
-  return 0.5 * twice;
-}
-
 std::string Plan::ToString() const {
   double area = 0.0;
   for (const PlanRoom& r : rooms) area += r.area_m2;

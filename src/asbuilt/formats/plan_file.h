@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "asbuilt/formats/capture.h"
+#include "asbuilt/geometry/polygon.h"
 #include "asbuilt/geometry/rig.h"
 
 namespace asbuilt {
@@ -90,9 +91,6 @@ struct Plan {
 
   std::string ToString() const;
 };
-
-// Signed area of a polygon (positive when counter-clockwise), m².
-double PolygonArea(const std::vector<Vec2>& polygon);
 
 // Reads and validates a plan. Throws InputError listing every problem with its
 // field path (wrong types, NaN/inf, negative sizes, wall index out of range,

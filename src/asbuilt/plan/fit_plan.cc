@@ -59,12 +59,6 @@ std::vector<ClassPoint> WithCeilingAt(const PlanInput& input, double ceiling_m) 
   return out;
 }
 
-bool SegmentsCross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-  const double d1 = Cross(b - a, c - a), d2 = Cross(b - a, d - a);
-  const double d3 = Cross(d - c, a - c), d4 = Cross(d - c, b - c);
-  return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
-}
-
 // Is angle x within the shorter arc from a to b (both ends included)?
 bool InArc(double x, double a, double b) {
   const double span = WrapAngle(b - a), d = WrapAngle(x - a);
@@ -325,18 +319,6 @@ std::vector<PlanOpening> PlaceOpenings(const std::vector<PlanUserOpening>& given
 }
 
 }  // namespace
-
-int PolygonCrossings(const std::vector<Vec2>& p) {
-  const int n = static_cast<int>(p.size());
-  int count = 0;
-  for (int i = 0; i < n; ++i) {
-    for (int j = i + 2; j < n; ++j) {
-      if (i == 0 && j == n - 1) continue;
-      count += SegmentsCross(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n]);
-    }
-  }
-  return count;
-}
 
 PlanOptions ResolvePlanOptions(const PlanInput& input, const PlanOptions& options) {
   PlanOptions o = options;

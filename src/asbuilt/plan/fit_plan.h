@@ -35,6 +35,7 @@
 
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/formats/points_file.h"
+#include "asbuilt/geometry/polygon.h"
 #include "asbuilt/plan/plan_options.h"
 #include "asbuilt/plan/reconstruct.h"
 
@@ -95,10 +96,6 @@ struct PlanConstraints {
   // an edit that adds a crossing).
   void Check() const;
 };
-
-// Pairs of non-neighbouring edges of the closed polygon that cross each
-// other (0 for a simple polygon).
-int PolygonCrossings(const std::vector<Vec2>& polygon);
 
 // Keeps stages 1–4 of a fit (per ceiling height) so that a re-fit with new
 // corners or openings runs only the stages they touch (milliseconds).

@@ -591,67 +591,6 @@ SceneMesh BuildSceneMesh(const Scene& scene, const SceneMeshOptions& options) {
   return MeshBuilder(scene, options).Build();
 }
 
-std::vector<Eigen::Vector3i> TriangulatePolygon(const std::vector<Vec2>& polygon) {
-  std::vector<Eigen::Vector3i> out;
-  const int n = static_cast<int>(polygon.size());
-  if (n < 3) return out;
-  std::vector<int> idx(n);
-  for (int i = 0; i < n; ++i) idx[i] = i;
-  auto inside_tri = [&](const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
-    return Cross(b - a, p - a) >= 0 && Cross(c - b, p - b) >= 0 && Cross(a - c, p - c) >= 0;
-  };
-  int guard = 0;
-  while (idx.size() > 3 && guard++ < 10 * n * n) {
-    bool clipped = false;
-    const int m = static_cast<int>(idx.size());
-    for (int i = 0; i < m; ++i) {
-      int ia = idx[(i + m - 1) % m], ib = idx[i], ic = idx[(i + 1) % m];
-      const Vec2 &a = polygon[ia], &b = polygon[ib], &c = polygon[ic];
-      if (Cross(b - a, c - b) <= 1e-12) continue;  // Reflex or degenerate.
-      bool ear = true;
-      for (int k : idx) {
-        if (k == ia || k == ib || k == ic) continue;
-        if (inside_tri(polygon[k], a, b, c)) {
-          ear = false;
-          break;
-        }
-      }
-      if (!ear) continue;
-      out.emplace_back(ia, ib, ic);
-      idx.erase(idx.begin() + i);
-      clipped = true;
-      break;
-    }
-    if (!clipped) break;  // Not simple; fall back to a fan below.
-  }
-  if (idx.size() == 3) {
-    out.emplace_back(idx[0], idx[1], idx[2]);
-  } else {
-    for (std::size_t i = 1; i + 1 < idx.size(); ++i) out.emplace_back(idx[0], idx[i], idx[i + 1]);
-  }
-  return out;
-}
-
-std::vector<Vec2> OffsetPolygonOutwards(const std::vector<Vec2>& polygon, double distance_m) {
-  const int n = static_cast<int>(polygon.size());
-  std::vector<Vec2> out(n);
-  for (int i = 0; i < n; ++i) {
-    Vec2 a = polygon[(i + n - 1) % n], b = polygon[i], c = polygon[(i + 1) % n];
-    Vec2 d0 = (b - a).normalized(), d1 = (c - b).normalized();
-    Vec2 n0(d0.y(), -d0.x()), n1(d1.y(), -d1.x());  // Outward normals (right side).
-    Vec2 bis = n0 + n1;
-    double len = bis.norm();
-    if (len < 1e-9) {
-      out[i] = b + distance_m * n0;
-      continue;
-    }
-    bis /= len;
-    double cos_half = std::max(0.2, bis.dot(n0));
-    out[i] = b + (distance_m / cos_half) * bis;
-  }
-  return out;
-}
-
 double IntersectPortal(const LabelPortal& portal, const Vec3& origin, const Vec3& dir) {
   Vec3 normal = portal.edge_u.cross(portal.edge_v);
   double denom = normal.dot(dir);

@@ -28,6 +28,7 @@
 #include <Eigen/Core>
 
 #include "asbuilt/geometry/label_class.h"
+#include "asbuilt/geometry/polygon.h"
 #include "asbuilt/scene/scene.h"
 
 namespace asbuilt {
@@ -127,14 +128,6 @@ struct SceneMeshOptions {
 // Builds the triangles. Throws InputError (file "scene") for a material name
 // that resolves nowhere. Deterministic: exterior objects come from scene.seed.
 SceneMesh BuildSceneMesh(const Scene& scene, const SceneMeshOptions& options = {});
-
-// Triangulates a simple counter-clockwise polygon (ear clipping); returns
-// index triples. Empty for fewer than 3 points.
-std::vector<Eigen::Vector3i> TriangulatePolygon(const std::vector<Vec2>& polygon);
-
-// The polygon offset outwards by `distance_m` (mitred corners) — the outer
-// faces of walls of that thickness around a counter-clockwise polygon.
-std::vector<Vec2> OffsetPolygonOutwards(const std::vector<Vec2>& polygon, double distance_m);
 
 // Ray–portal test: distance along the ray (unit dir) to the portal, or a
 // negative number if it misses.
