@@ -1,250 +1,30 @@
 #include "asbuilt/scene/scene_text.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <map>
 #include <optional>
-#include <set>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "asbuilt/scene/furnish.h"
+#include "asbuilt/scene/scene_text_tokens.h"
+#include "asbuilt/scene/scene_text_vocabulary.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
 namespace {
 
-// ------------------------------------------------------------------ vocabulary
-
-const std::map<std::string, double>& NumberWords() {
-  static const std::map<std::string, double> kWords = {
-      {"zero", 0},      {"one", 1},       {"two", 2},       {"three", 3},    {"four", 4},     {"five", 5},
-      {"six", 6},       {"seven", 7},     {"eight", 8},     {"nine", 9},     {"ten", 10},     {"eleven", 11},
-      {"twelve", 12},   {"thirteen", 13}, {"fourteen", 14}, {"fifteen", 15}, {"sixteen", 16}, {"seventeen", 17},
-      {"eighteen", 18}, {"nineteen", 19}, {"twenty", 20},   {"thirty", 30},  {"forty", 40},   {"fifty", 50}};
-  return kWords;
-}
-
-// Metres per unit word.
-std::optional<double> UnitFactor(const std::string& w) {
-  static const std::map<std::string, double> kUnits = {{"m", 1.0},
-                                                       {"metre", 1.0},
-                                                       {"metres", 1.0},
-                                                       {"meter", 1.0},
-                                                       {"meters", 1.0},
-                                                       {"mtr", 1.0},
-                                                       {"cm", 0.01},
-                                                       {"centimetre", 0.01},
-                                                       {"centimetres", 0.01},
-                                                       {"centimeter", 0.01},
-                                                       {"centimeters", 0.01},
-                                                       {"mm", 0.001},
-                                                       {"millimetre", 0.001},
-                                                       {"millimetres", 0.001},
-                                                       {"millimeter", 0.001},
-                                                       {"millimeters", 0.001},
-                                                       {"ft", 0.3048},
-                                                       {"foot", 0.3048},
-                                                       {"feet", 0.3048},
-                                                       {"inch", 0.0254},
-                                                       {"inches", 0.0254}};
-  auto it = kUnits.find(w);
-  if (it == kUnits.end()) return std::nullopt;
-  return it->second;
-}
-
-// Words that carry no information here; never reported as unused.
-bool IsStopWord(const std::string& w) {
-  static const std::set<std::string> kStop = {
-      "a",      "an",      "the",    "of",        "is",    "are",   "has",  "have",  "there",
-      "its",    "it",      "which",  "that",      "to",    "for",   "on",   "in",    "at",
-      "by",     "this",    "these",  "those",     "we",    "i",     "want", "need",  "please",
-      "make",   "create",  "build",  "generate",  "give",  "me",    "us",   "about", "approximately",
-      "around", "roughly", "approx", "measuring", "sized", "size",  "each", "be",    "should",
-      "would",  "like",    "some",   "one",       "side",  "sides", "wall", "walls", "from",
-      "into",   "room",    "scene",  "model",     "so",    "also",  "just", "very",  "quite"};
-  return kStop.count(w) > 0;
-}
-
-bool IsBreakWord(const std::string& w) {
-  static const std::set<std::string> kBreak = {
-      ",",    ";",   ".",      ":",         "!",         "?",          "(",     ")",     "with", "and",
-      "plus", "but", "having", "featuring", "including", "containing", "while", "where", "then"};
-  return kBreak.count(w) > 0;
-}
-
-// Canonical compass name for a word, or nullopt.
-std::optional<std::string> CompassWord(const std::string& w) {
-  static const std::map<std::string, std::string> kCompass = {{"north", "north"},
-                                                              {"northern", "north"},
-                                                              {"northerly", "north"},
-                                                              {"south", "south"},
-                                                              {"southern", "south"},
-                                                              {"southerly", "south"},
-                                                              {"east", "east"},
-                                                              {"eastern", "east"},
-                                                              {"easterly", "east"},
-                                                              {"west", "west"},
-                                                              {"western", "west"},
-                                                              {"westerly", "west"},
-                                                              {"north-east", "north-east"},
-                                                              {"northeast", "north-east"},
-                                                              {"north-eastern", "north-east"},
-                                                              {"north-west", "north-west"},
-                                                              {"northwest", "north-west"},
-                                                              {"north-western", "north-west"},
-                                                              {"south-east", "south-east"},
-                                                              {"southeast", "south-east"},
-                                                              {"south-eastern", "south-east"},
-                                                              {"south-west", "south-west"},
-                                                              {"southwest", "south-west"},
-                                                              {"south-western", "south-west"}};
-  auto it = kCompass.find(w);
-  if (it == kCompass.end()) return std::nullopt;
-  return it->second;
-}
-
-Vec2 CompassVector(const std::string& name) {
-  Vec2 v = Vec2::Zero();
-  if (name.find("north") != std::string::npos) v.y() += 1;
-  if (name.find("south") != std::string::npos) v.y() -= 1;
-  if (name.find("east") != std::string::npos) v.x() += 1;
-  if (name.find("west") != std::string::npos) v.x() -= 1;
-  return v.normalized();
-}
-
-struct RoomKind {
-  std::vector<std::string> words;  // One or two words ("living room").
-  std::string name;
-  double width_m, depth_m, height_m;
-  std::vector<std::pair<std::string, int>> furniture;  // Catalogue word, count.
-  bool free_standing_desks = false;
-};
-
-const std::vector<RoomKind>& RoomKinds() {
-  static const std::vector<RoomKind> kKinds = {
-      {{"classroom"}, "classroom", 7.0, 9.0, 3.0, {{"desk", 8}, {"cabinet", 1}, {"bookshelf", 1}}, true},
-      {{"schoolroom"}, "classroom", 7.0, 9.0, 3.0, {{"desk", 8}, {"cabinet", 1}}, true},
-      {{"bedroom"}, "bedroom", 3.5, 4.0, 2.6, {{"bed", 1}, {"wardrobe", 1}, {"nightstand", 1}, {"desk", 1}}},
-      {{"kitchen"}, "kitchen", 3.5, 4.5, 2.6, {{"counter", 2}, {"fridge", 1}, {"stove", 1}, {"table", 1}}},
-      {{"office"}, "office", 4.0, 5.0, 2.7, {{"desk", 2}, {"cabinet", 1}, {"bookshelf", 1}, {"chair", 2}}},
-      {{"study"}, "study", 3.0, 3.5, 2.6, {{"desk", 1}, {"bookshelf", 2}, {"chair", 1}}},
-      {{"living", "room"},
-       "living room",
-       5.0,
-       6.0,
-       2.7,
-       {{"sofa", 1}, {"armchair", 1}, {"table", 1}, {"tv", 1}, {"bookshelf", 1}}},
-      {{"sitting", "room"}, "living room", 5.0, 6.0, 2.7, {{"sofa", 1}, {"armchair", 2}, {"tv", 1}}},
-      {{"lounge"}, "living room", 5.0, 6.0, 2.7, {{"sofa", 1}, {"armchair", 1}, {"tv", 1}}},
-      {{"bathroom"}, "bathroom", 2.5, 3.0, 2.5, {{"bathtub", 1}, {"toilet", 1}, {"sink", 1}}},
-      {{"washroom"}, "bathroom", 2.5, 3.0, 2.5, {{"toilet", 1}, {"sink", 1}}},
-      {{"hallway"}, "hallway", 1.6, 6.0, 2.6, {{"cabinet", 1}}},
-      {{"corridor"}, "hallway", 1.8, 8.0, 2.7, {}},
-      {{"hall"}, "hall", 6.0, 8.0, 3.2, {{"table", 2}, {"chair", 4}}},
-      {{"dining", "room"}, "dining room", 4.0, 5.0, 2.7, {{"table", 1}, {"chair", 4}, {"cabinet", 1}}},
-      {{"meeting", "room"}, "meeting room", 5.0, 7.0, 2.8, {{"table", 2}, {"chair", 6}}},
-      {{"conference", "room"}, "meeting room", 5.0, 7.0, 2.8, {{"table", 2}, {"chair", 6}}},
-      {{"garage"}, "garage", 6.0, 6.0, 2.5, {{"workbench", 1}, {"bookshelf", 2}}},
-      {{"studio"}, "studio", 5.0, 6.0, 2.7, {{"bed", 1}, {"sofa", 1}, {"counter", 1}, {"table", 1}}},
-      {{"laboratory"}, "laboratory", 6.0, 8.0, 3.0, {{"workbench", 4}, {"cabinet", 2}}},
-      {{"lab"}, "laboratory", 6.0, 8.0, 3.0, {{"workbench", 4}, {"cabinet", 2}}},
-      {{"storage", "room"}, "storage room", 3.0, 3.0, 2.5, {{"bookshelf", 3}, {"box", 3}}},
-      {{"storeroom"}, "storage room", 3.0, 3.0, 2.5, {{"bookshelf", 3}, {"box", 3}}},
-      {{"nursery"}, "nursery", 3.0, 3.5, 2.6, {{"bed", 1}, {"dresser", 1}}},
-      {{"library"}, "library", 6.0, 8.0, 3.0, {{"bookshelf", 6}, {"table", 2}}},
-      {{"gym"}, "gym", 8.0, 10.0, 3.5, {{"bench", 2}}},
-      {{"workshop"}, "workshop", 6.0, 8.0, 3.0, {{"workbench", 3}, {"cabinet", 2}}},
-      {{"lecture", "hall"}, "lecture hall", 10.0, 12.0, 4.0, {{"desk", 16}}, true},
-      {{"room"}, "room", 4.0, 5.0, 2.7, {{"table", 1}, {"chair", 2}, {"cabinet", 1}}},
-  };
-  return kKinds;
-}
-
-// ------------------------------------------------------------------ tokens
-
-struct Token {
-  std::string text;
-  std::optional<double> number;  // Digits or a number word.
-  bool digits = false;
-  bool used = false;
-};
-
-std::vector<Token> Tokenize(std::string_view raw) {
-  // Normalise a few UTF-8 symbols first.
-  std::string text;
-  for (std::size_t i = 0; i < raw.size(); ++i) {
-    auto starts = [&](std::string_view s) { return raw.substr(i, s.size()) == s; };
-    if (starts("×")) {
-      text += " x ";
-      i += std::string_view("×").size() - 1;
-      continue;
-    }
-    if (starts("°")) {
-      text += " deg ";
-      i += std::string_view("°").size() - 1;
-      continue;
-    }
-    if (starts("²")) {
-      text += "2";
-      i += std::string_view("²").size() - 1;
-      continue;
-    }
-    if (starts("’") || starts("‘")) {
-      text += "'";
-      i += std::string_view("’").size() - 1;
-      continue;
-    }
-    text += static_cast<char>(std::tolower(static_cast<unsigned char>(raw[i])));
-  }
-  std::vector<Token> tokens;
-  std::size_t i = 0;
-  while (i < text.size()) {
-    unsigned char c = text[i];
-    if (std::isspace(c)) {
-      ++i;
-    } else if (std::isdigit(c) ||
-               (c == '.' && i + 1 < text.size() && std::isdigit(static_cast<unsigned char>(text[i + 1])))) {
-      std::size_t j = i;
-      bool dot = false;
-      while (j < text.size() && (std::isdigit(static_cast<unsigned char>(text[j])) ||
-                                 (text[j] == '.' && !dot && j + 1 < text.size() &&
-                                  std::isdigit(static_cast<unsigned char>(text[j + 1]))))) {
-        dot = dot || text[j] == '.';
-        ++j;
-      }
-      std::string s = text.substr(i, j - i);
-      tokens.push_back({s, std::stod(s), true});
-      i = j;
-      if (i < text.size() && text[i] == '-') ++i;  // "1.5-metre".
-    } else if (std::isalpha(c)) {
-      std::size_t j = i;
-      while (j < text.size() && (std::isalpha(static_cast<unsigned char>(text[j])) ||
-                                 ((text[j] == '-' || text[j] == '\'') && j + 1 < text.size() &&
-                                  std::isalpha(static_cast<unsigned char>(text[j + 1]))))) {
-        ++j;
-      }
-      std::string w = text.substr(i, j - i);
-      if (w.size() > 2 && w.substr(w.size() - 2) == "'s") w = w.substr(0, w.size() - 2);
-      Token t{w};
-      auto it = NumberWords().find(w);
-      if (it != NumberWords().end()) t.number = it->second;
-      tokens.push_back(t);
-      i = j;
-    } else if (std::string_view(",;.:!?()").find(static_cast<char>(c)) != std::string_view::npos) {
-      tokens.push_back({std::string(1, static_cast<char>(c))});
-      ++i;
-    } else if (c == '*') {
-      tokens.push_back({"x"});
-      ++i;
-    } else {
-      ++i;  // Other symbols ('-', quotes) separate words.
-    }
-  }
-  return tokens;
-}
+using scene_text::CompassVector;
+using scene_text::CompassWord;
+using scene_text::IsBreakWord;
+using scene_text::IsStopWord;
+using scene_text::RoomKind;
+using scene_text::RoomKinds;
+using scene_text::Token;
+using scene_text::Tokenize;
+using scene_text::UnitFactor;
 
 // ------------------------------------------------------------------ requests
 
