@@ -10,248 +10,12 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
-#include "asbuilt/geometry/polygon.h"
-#include "asbuilt/plan/room_iou.h"
+#include "asbuilt/home/placement_geometry.h"
 #include "asbuilt/util/error.h"
 
 namespace asbuilt {
+namespace placement {
 namespace {
-
-using Pose = Eigen::Isometry2d;
-
-// Score weights, in metres of shared partition.
-constexpr double kPlacedRoom = 2.0;      // Each room placed.
-constexpr double kContactPerM = 1.0;     // Partition faces shared, per metre.
-constexpr double kDoorsMeet = 3.0;       // A door lands on a door of a placed room.
-constexpr double kDoorIntoWall = 2.0;    // A door lands on a placed room's plain wall.
-constexpr double kWindowIntoWall = 2.0;  // A window looks into a placed room.
-constexpr double kWidthPerM = 10.0;      // Linked doors' width difference.
-constexpr double kOverlapPerM2 = 2.0;    // Floor shared with a placed room.
-constexpr double kUserLink = 1000.0;     // A link the person asked for comes first.
-constexpr double kEmptyPerM2 = 0.05;     // Floor of the home's bounding box no room covers.
-constexpr double kContinues = 1.0;       // A wall continues another room's across a partition.
-constexpr double kOneSided = 4.0;        // A door seen from one side only.
-constexpr int kPlainWalls = 6;           // Plain walls per room a one-sided link may open onto.
-constexpr double kThicknessPrior = 0.5;  // Weight of the partition's prior against one link's metre.
-constexpr double kThinnestWall = 0.05;   // A partition thinner is none.
-const double kAntiParallel = std::cos(10.0 * std::numbers::pi / 180.0);
-const double kFacesAntiParallel = std::cos(3.0 * std::numbers::pi / 180.0);
-
-struct Face {
-  Vec2 a, b, n;  // Inner face from a to b; n: unit normal out of the room.
-  Vec2 Dir() const { return (b - a).normalized(); }
-  double Length() const { return (b - a).norm(); }
-};
-
-struct Hole {
-  int opening = -1, wall = -1;
-  Vec2 c, n;  // Centre on the face, the face's outward normal.
-  double width = 0.0;
-};
-
-// A room's outline, faces and openings, in some frame.
-struct RoomGeom {
-  Plan outline;  // One room, for overlap areas; no room when the survey closed none.
-  double area = 0.0;
-  std::vector<Face> walls;
-  std::vector<Hole> doors, windows;
-  std::vector<char> wall_has_opening;  // Per wall: a door or window was found on it.
-  std::vector<int> plain_walls;        // Walls with no opening found, longest first, at most kPlainWalls.
-  Vec2 lo = Vec2::Constant(1e300), hi = Vec2::Constant(-1e300);  // Bounding box of walls and outline.
-};
-
-Vec2 Perp(const Vec2& d) { return Vec2(-d.y(), d.x()); }
-
-RoomGeom GeomOf(const Plan& plan) {
-  RoomGeom g;
-  const std::vector<Vec2>* polygon = nullptr;
-  for (const PlanRoom& r : plan.rooms) {
-    if (r.polygon.size() >= 3) {
-      polygon = &r.polygon;
-      g.outline.rooms.push_back(PlanRoom{.polygon = r.polygon, .area_m2 = std::abs(PolygonArea(r.polygon))});
-      g.area = g.outline.rooms.back().area_m2;
-      break;
-    }
-  }
-  Vec2 mean = Vec2::Zero();
-  for (const PlanWall& w : plan.walls) mean += 0.5 * (w.start + w.end);
-  if (!plan.walls.empty()) mean /= static_cast<double>(plan.walls.size());
-  for (const PlanWall& w : plan.walls) {
-    Face f{w.start, w.end, Vec2::Zero()};
-    const Vec2 d = w.end - w.start;
-    Vec2 n = d.norm() > 1e-9 ? Perp(d.normalized()) : Vec2(1, 0);
-    const Vec2 mid = 0.5 * (w.start + w.end);
-    const bool inward = polygon ? PointInPolygon(*polygon, mid + 0.05 * n) : n.dot(mean - mid) > 0;
-    f.n = inward ? -n : n;
-    g.walls.push_back(f);
-    for (const Vec2& p : {w.start, w.end}) {
-      g.lo = g.lo.cwiseMin(p);
-      g.hi = g.hi.cwiseMax(p);
-    }
-  }
-  if (polygon) {
-    for (const Vec2& p : *polygon) {
-      g.lo = g.lo.cwiseMin(p);
-      g.hi = g.hi.cwiseMax(p);
-    }
-  }
-  for (std::size_t i = 0; i < plan.openings.size(); ++i) {
-    const PlanOpening& o = plan.openings[i];
-    if (o.wall < 0 || o.wall >= static_cast<int>(g.walls.size())) continue;
-    Hole h{static_cast<int>(i), o.wall, o.Centre(), g.walls[o.wall].n, o.width};
-    (o.kind == OpeningKind::kDoor ? g.doors : g.windows).push_back(h);
-  }
-  g.wall_has_opening.assign(g.walls.size(), 0);
-  for (const auto* holes : {&g.doors, &g.windows}) {
-    for (const Hole& h : *holes) g.wall_has_opening[h.wall] = 1;
-  }
-  for (int k = 0; k < static_cast<int>(g.walls.size()); ++k) {
-    if (!g.wall_has_opening[k]) g.plain_walls.push_back(k);
-  }
-  std::stable_sort(g.plain_walls.begin(), g.plain_walls.end(),
-                   [&](int x, int y) { return g.walls[x].Length() > g.walls[y].Length(); });
-  if (static_cast<int>(g.plain_walls.size()) > kPlainWalls) g.plain_walls.resize(kPlainWalls);
-  return g;
-}
-
-RoomGeom Transformed(const RoomGeom& g, const Pose& t) {
-  RoomGeom out;
-  out.area = g.area;
-  const Eigen::Matrix2d r = t.linear();
-  for (const PlanRoom& room : g.outline.rooms) {
-    PlanRoom moved = room;
-    for (Vec2& p : moved.polygon) p = t * p;
-    out.outline.rooms.push_back(std::move(moved));
-  }
-  for (const Face& f : g.walls) {
-    out.walls.push_back({t * f.a, t * f.b, r * f.n});
-    for (const Vec2& p : {out.walls.back().a, out.walls.back().b}) {
-      out.lo = out.lo.cwiseMin(p);
-      out.hi = out.hi.cwiseMax(p);
-    }
-  }
-  for (const PlanRoom& room : out.outline.rooms) {
-    for (const Vec2& p : room.polygon) {
-      out.lo = out.lo.cwiseMin(p);
-      out.hi = out.hi.cwiseMax(p);
-    }
-  }
-  out.wall_has_opening = g.wall_has_opening;
-  out.plain_walls = g.plain_walls;
-  auto move = [&](const std::vector<Hole>& in, std::vector<Hole>& to) {
-    for (Hole h : in) {
-      h.c = t * h.c;
-      h.n = r * h.n;
-      to.push_back(h);
-    }
-  };
-  move(g.doors, out.doors);
-  move(g.windows, out.windows);
-  return out;
-}
-
-bool WidthsMatch(double a, double b, const PlacementOptions& o) {
-  return std::abs(a - b) <= std::max(o.max_width_difference_m, o.width_tolerance * std::max(a, b));
-}
-
-// Where `f`'s line lies along `n` from `p`, and whether `p` projects onto the
-// face at least `inset` from its ends.
-struct FaceHit {
-  double along = 0.0;  // Position on the face from f.a.
-  bool within = false;
-};
-FaceHit ProjectOnFace(const Face& f, const Vec2& p, double inset) {
-  const double s = (p - f.a).dot(f.Dir());
-  return {s, s >= inset && s <= f.Length() - inset};
-}
-
-// What the openings of `x` make of the walls of `y` (both placed): a door
-// that meets a door of y's on the same partition closes a loop; a door or
-// window that opens onto y's plain wall cannot be.
-double OpeningsAgainstWalls(const RoomGeom& x, const RoomGeom& y, const PlacementOptions& o) {
-  double score = 0.0;
-  auto face_in_front = [&](const Hole& h) -> const Face* {
-    for (const Face& f : y.walls) {
-      if (h.n.dot(f.n) > -kAntiParallel) continue;
-      const double dist = (f.a - h.c).dot(h.n);
-      if (dist < -0.05 || dist > o.max_wall_thickness_m) continue;
-      if (ProjectOnFace(f, h.c, 0.1).within) return &f;
-    }
-    return nullptr;
-  };
-  for (const Hole& d : x.doors) {
-    const Face* f = face_in_front(d);
-    if (f == nullptr) continue;
-    const int wall = static_cast<int>(f - y.walls.data());
-    const double s = ProjectOnFace(*f, d.c, 0).along;
-    bool meets = false;
-    for (const Hole& e : y.doors) {
-      meets |=
-          e.wall == wall && std::abs(ProjectOnFace(*f, e.c, 0).along - s) < 0.35 && WidthsMatch(d.width, e.width, o);
-    }
-    score += meets ? kDoorsMeet : -kDoorIntoWall;
-  }
-  for (const Hole& w : x.windows) {
-    if (face_in_front(w) != nullptr) score -= kWindowIntoWall;
-  }
-  return score;
-}
-
-// Metres of partition the two rooms' walls share: anti-parallel faces, each
-// outside the other room, at most max_wall_thickness_m apart.
-double SharedFaces(const RoomGeom& x, const RoomGeom& y, const PlacementOptions& o) {
-  double metres = 0.0;
-  for (const Face& f : x.walls) {
-    for (const Face& g : y.walls) {
-      if (f.n.dot(g.n) > -kFacesAntiParallel) continue;
-      const double da = (g.a - f.a).dot(f.n), db = (g.b - f.a).dot(f.n);
-      if (std::min(da, db) < -0.03 || std::max(da, db) > o.max_wall_thickness_m) continue;
-      const double s0 = ProjectOnFace(f, g.a, 0).along, s1 = ProjectOnFace(f, g.b, 0).along;
-      const double lo = std::max(0.0, std::min(s0, s1)), hi = std::min(f.Length(), std::max(s0, s1));
-      if (hi - lo > 0.1) metres += hi - lo;
-    }
-  }
-  return metres;
-}
-
-// Walls of the two rooms that lie on one line, facing the same way, their
-// ends a partition apart: one wall of the home running past a partition.
-int ContinuingWalls(const RoomGeom& x, const RoomGeom& y, const PlacementOptions& o) {
-  int count = 0;
-  for (const Face& f : x.walls) {
-    for (const Face& g : y.walls) {
-      if (f.n.dot(g.n) < kFacesAntiParallel) continue;
-      if (std::abs((g.a - f.a).dot(f.n)) > 0.05 || std::abs((g.b - f.a).dot(f.n)) > 0.05) continue;
-      const double s0 = ProjectOnFace(f, g.a, 0).along, s1 = ProjectOnFace(f, g.b, 0).along;
-      const double gap = std::max(std::min(s0, s1) - f.Length(), -std::max(s0, s1));
-      if (gap >= -0.05 && gap <= o.max_wall_thickness_m) ++count;
-    }
-  }
-  return count;
-}
-
-bool BoxesNear(const RoomGeom& x, const RoomGeom& y, double margin) {
-  return x.lo.x() <= y.hi.x() + margin && y.lo.x() <= x.hi.x() + margin && x.lo.y() <= y.hi.y() + margin &&
-         y.lo.y() <= x.hi.y() + margin;
-}
-
-// The terms of room x placed beside placed room y; nullopt: refused (they
-// share too much floor).
-std::optional<double> PairScore(const RoomGeom& x, const RoomGeom& y, const PlacementOptions& o) {
-  if (!BoxesNear(x, y, o.max_wall_thickness_m + 0.05)) return 0.0;
-  double score = 0.0;
-  if (!x.outline.rooms.empty() && !y.outline.rooms.empty()) {
-    const auto overlap = RoomPolygonOverlap(x.outline, y.outline, RoomIouOptions{.row_step_m = 0.02});
-    if (overlap) {
-      const double shared = overlap->intersection_m2;
-      if (shared > o.max_overlap * std::min(x.area, y.area)) return std::nullopt;
-      score -= kOverlapPerM2 * shared;
-    }
-  }
-  score += kContactPerM * SharedFaces(x, y, o) + kContinues * ContinuingWalls(x, y, o);
-  score += OpeningsAgainstWalls(x, y, o) + OpeningsAgainstWalls(y, x, o);
-  return score;
-}
 
 // B's pose relative to A's when A's door i and B's door j are one door, the
 // faces `thickness` apart: B's door turned to face A's, centre on centre.
@@ -881,6 +645,22 @@ HomePlacement Finish(const std::vector<HomeRoomInput>& rooms, const std::vector<
   }
   return h;
 }
+
+}  // namespace
+}  // namespace placement
+
+namespace {
+
+using placement::Finish;
+using placement::GeomOf;
+using placement::OpeningsAgainstWalls;
+using placement::PairScore;
+using placement::Placer;
+using placement::Pose;
+using placement::RoomGeom;
+using placement::SharedFaces;
+using placement::State;
+using placement::Transformed;
 
 }  // namespace
 
