@@ -110,7 +110,8 @@ class SceneTools {
 
  private:
   using Handler = ToolResult (SceneTools::*)(const FieldArgs&, const ToolCallContext&);
-  // The table, registered by group (tools.cc).
+  // The table, registered by group, each group with its tools' handlers
+  // (tools_build.cc, tools_style_rig.cc, tools_whole_scene.cc, tools_output.cc).
   void RegisterBuildTools();
   void RegisterStyleTools();
   void RegisterRigTools();
