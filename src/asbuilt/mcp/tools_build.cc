@@ -151,40 +151,14 @@ ToolResult SceneTools::AddRoom(const FieldArgs& a, const ToolCallContext&) {
 
 namespace {
 
-const std::vector<std::string_view> kCompass = {"north", "north-east", "east", "south-east",
-                                                "south", "south-west", "west", "north-west"};
-
-Vec2 CompassVector(std::string_view name) {
-  for (std::size_t i = 0; i < kCompass.size(); ++i) {
-    if (kCompass[i] == name) {
-      double a = DegToRad(90.0 - 45.0 * static_cast<double>(i));  // north = +Y.
-      return {std::cos(a), std::sin(a)};
-    }
-  }
-  return {0, 1};
-}
-
-// The wall of `room` facing `side` (outward normal nearest that direction;
-// the longest among equals). Throws InvalidArgument when none faces it.
-int WallFacing(const Room& room, std::string_view side) {
-  Vec2 dir = CompassVector(side);
-  int best = -1;
-  double best_dot = -2, best_len = 0;
-  for (int w = 0; w < WallCount(room); ++w) {
-    if (WallLength(room, w) < 1e-9) continue;
-    double dot = WallOutwardNormal(room, w).dot(dir);
-    double len = WallLength(room, w);
-    if (dot > best_dot + 1e-6 || (std::abs(dot - best_dot) <= 1e-6 && len > best_len)) {
-      best = w, best_dot = dot, best_len = len;
-    }
-  }
-  if (best < 0 || best_dot < std::cos(DegToRad(30.0))) {
-    throw InvalidArgument(
-        fmt::format("arguments.side: no wall of this room faces {}; give the wall number instead. "
-                    "Walls:\n{}",
-                    side, DescribeWalls(room)));
-  }
-  return best;
+// The wall of `room` facing `side` (scene.h's WallFacing, within 30°).
+// Throws InvalidArgument when none faces it.
+int WallFacingSide(const Room& room, std::string_view side) {
+  if (const std::optional<int> wall = WallFacing(room, side, 30.0)) return *wall;
+  throw InvalidArgument(
+      fmt::format("arguments.side: no wall of this room faces {}; give the wall number instead. "
+                  "Walls:\n{}",
+                  side, DescribeWalls(room)));
 }
 
 // Tool fields shared by add_door and add_window.
@@ -206,7 +180,7 @@ std::vector<Field> OpeningFields(OpeningKind kind, const ToolLimits& limits) {
        .kind = FieldKind::kEnum,
        .description = "Compass side instead of a wall number: the wall facing that way "
                       "(north = +y, east = +x).",
-       .choices = kCompass},
+       .choices = CompassNames()},
       {.name = "offset_m",
        .kind = FieldKind::kNumber,
        .description = "Distance along the wall from its start corner to the near edge of the "
@@ -316,7 +290,7 @@ ToolResult SceneTools::AddOpenings(const FieldArgs& a, OpeningKind kind) {
     }
     wall = static_cast<int>(w);
   } else {
-    wall = WallFacing(room, a.String("side"));
+    wall = WallFacingSide(room, a.String("side"));
   }
   const double length = WallLength(room, wall);
   const double width = a.Number("width_m");

@@ -318,6 +318,55 @@ std::string WallCompassName(const Room& room, int wall) {
   return kNames[sector];
 }
 
+const std::vector<std::string_view>& CompassNames() {
+  static const std::vector<std::string_view> kNames = {"north", "north-east", "east", "south-east",
+                                                       "south", "south-west", "west", "north-west"};
+  return kNames;
+}
+
+std::optional<Vec2> CompassVector(std::string_view name) {
+  const auto& names = CompassNames();
+  if (std::find(names.begin(), names.end(), name) == names.end()) return std::nullopt;
+  Vec2 v = Vec2::Zero();
+  if (name.find("north") != std::string_view::npos) v.y() += 1;
+  if (name.find("south") != std::string_view::npos) v.y() -= 1;
+  if (name.find("east") != std::string_view::npos) v.x() += 1;
+  if (name.find("west") != std::string_view::npos) v.x() -= 1;
+  return v.normalized();
+}
+
+std::vector<int> WallsFacing(const Room& room, std::string_view compass, double max_off_deg) {
+  const std::optional<Vec2> dir = CompassVector(compass);
+  if (!dir) return {};
+  std::vector<int> named;
+  for (int w = 0; w < WallCount(room); ++w) {
+    if (WallLength(room, w) >= 1e-9 && WallCompassName(room, w) == compass) named.push_back(w);
+  }
+  if (!named.empty()) return named;
+  int best = -1;
+  double best_dot = -2, best_length = 0;
+  for (int w = 0; w < WallCount(room); ++w) {
+    const double length = WallLength(room, w);
+    if (length < 1e-9) continue;
+    const double dot = WallOutwardNormal(room, w).dot(*dir);
+    if (dot > best_dot + 1e-9 || (std::abs(dot - best_dot) <= 1e-9 && length > best_length)) {
+      best = w, best_dot = dot, best_length = length;
+    }
+  }
+  if (best < 0 || best_dot < std::cos(DegToRad(max_off_deg)) - 1e-12) return {};
+  return {best};
+}
+
+std::optional<int> WallFacing(const Room& room, std::string_view compass, double max_off_deg) {
+  const std::vector<int> walls = WallsFacing(room, compass, max_off_deg);
+  if (walls.empty()) return std::nullopt;
+  int best = walls.front();
+  for (int w : walls) {
+    if (WallLength(room, w) > WallLength(room, best) + 1e-9) best = w;
+  }
+  return best;
+}
+
 Vec2 PolygonCentroid(const std::vector<Vec2>& polygon) {
   double area2 = 0.0;
   Vec2 c = Vec2::Zero();

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "asbuilt/formats/plan_file.h"
@@ -194,6 +195,20 @@ Vec2 WallOutwardNormal(const Room& room, int wall);
 // Compass name of the way a wall faces outwards, north = +Y, east = +X:
 // "north", "north-east", "east", … (nearest of eight).
 std::string WallCompassName(const Room& room, int wall);
+// The eight compass names, north first, clockwise.
+const std::vector<std::string_view>& CompassNames();
+// Unit vector of a compass name (north = +Y, east = +X); nullopt for a word
+// that is not one of CompassNames().
+std::optional<Vec2> CompassVector(std::string_view name);
+// The walls a compass name means, one rule for the text parser and the MCP
+// tools: every wall whose WallCompassName it is (in wall order), else the
+// one wall whose outward normal is nearest its direction (the longest of
+// equals) when that is within `max_off_deg`; empty otherwise, or for a word
+// that is not a compass name.
+std::vector<int> WallsFacing(const Room& room, std::string_view compass, double max_off_deg = 180.0);
+// The wall a compass name means where one is wanted: the longest of
+// WallsFacing (the first of equals).
+std::optional<int> WallFacing(const Room& room, std::string_view compass, double max_off_deg = 180.0);
 // Centroid of the polygon's area (vertex mean for degenerate polygons).
 Vec2 PolygonCentroid(const std::vector<Vec2>& polygon);
 // Where a surveyor sets the tripod in a counter-clockwise room polygon: a

@@ -136,6 +136,23 @@ TEST(WallCompassName, NamesTheOutwardDirection) {
   EXPECT_EQ(WallCompassName(diamond, 1), "north-east");
 }
 
+// One rule for the text parser and the MCP tools: the walls of that name,
+// else the nearest (the longest of equals) within the limit.
+TEST(WallFacing, NamedWallsElseTheNearestLongest) {
+  Room l;
+  l.polygon = {{0, 0}, {4, 0}, {4, 2.5}, {2, 2.5}, {2, 5}, {0, 5}};  // North-east corner cut out.
+  EXPECT_EQ(WallsFacing(l, "north"), (std::vector<int>{2, 4}));
+  EXPECT_EQ(WallFacing(l, "north"), 2);  // Both 2 m: the first.
+  EXPECT_EQ(WallFacing(l, "east"), 1);   // 2.5 m against 2.5 m: the first.
+  // No wall faces south-west: south (4 m) and west (5 m) are 45° off; the longer.
+  EXPECT_EQ(WallsFacing(l, "south-west"), (std::vector<int>{5}));
+  EXPECT_FALSE(WallFacing(l, "south-west", 30.0).has_value());
+  EXPECT_FALSE(WallFacing(l, "upwards").has_value());
+  EXPECT_FALSE(CompassVector("nord").has_value());
+  EXPECT_TRUE(CompassVector("north-east")->isApprox(Vec2(1, 1).normalized()));
+  EXPECT_EQ(CompassNames().size(), 8u);
+}
+
 TEST(PointInPolygon, HandlesAnLShape) {
   std::vector<Vec2> l = {{0, 0}, {4, 0}, {4, 2}, {2, 2}, {2, 4}, {0, 4}};
   EXPECT_TRUE(PointInPolygon(l, {1, 3}));

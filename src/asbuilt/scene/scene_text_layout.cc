@@ -37,35 +37,6 @@ std::vector<Vec2> RoomPolygon(const Request& r, double w, double d, std::vector<
 
 namespace {
 
-// The walls a compass name means: every wall facing exactly that way, or
-// the one facing closest to it.
-std::vector<int> WallsFacing(const Room& room, const std::string& compass) {
-  std::vector<int> exact;
-  for (int w = 0; w < WallCount(room); ++w) {
-    if (WallCompassName(room, w) == compass) exact.push_back(w);
-  }
-  if (!exact.empty()) return exact;
-  Vec2 dir = CompassVector(compass);
-  int best = 0;
-  double best_dot = -2;
-  for (int w = 0; w < WallCount(room); ++w) {
-    double dot = WallOutwardNormal(room, w).dot(dir);
-    if (dot > best_dot + 1e-9) {
-      best_dot = dot;
-      best = w;
-    }
-  }
-  return {best};
-}
-
-int LongestOf(const Room& room, const std::vector<int>& walls) {
-  int best = walls.front();
-  for (int w : walls) {
-    if (WallLength(room, w) > WallLength(room, best) + 1e-9) best = w;
-  }
-  return best;
-}
-
 struct PendingOpening {
   Opening opening;
   Placement placement = Placement::kAuto;
@@ -93,7 +64,7 @@ void LayOutWall(const Room& room, int wall, std::vector<PendingOpening*>& ops, s
     Opening& o = p->opening;
     const double w = o.width_m;
     auto toward = [&](const std::string& compass, double margin) -> std::optional<double> {
-      double t = dir.dot(CompassVector(compass));
+      double t = dir.dot(CompassVector(compass).value_or(Vec2::Zero()));
       if (t > 0.3) return length - w - margin;  // The named end is the wall's end.
       if (t < -0.3) return margin;
       return std::nullopt;
@@ -118,7 +89,7 @@ void LayOutWall(const Room& room, int wall, std::vector<PendingOpening*>& ops, s
         offset = toward(p->compass, 0.3);
         break;
       case Placement::kFromEnd: {
-        double t = dir.dot(CompassVector(p->compass));
+        double t = dir.dot(CompassVector(p->compass).value_or(Vec2::Zero()));
         if (t > 0.3) offset = length - w - p->from_end_m;
         if (t < -0.3) offset = p->from_end_m;
         break;
@@ -249,7 +220,7 @@ std::vector<Opening> BuildOpenings(const Request& r, const Room& room, std::vect
         if (q.each_wall) {
           walls.insert(walls.end(), facing.begin(), facing.end());
         } else {
-          walls.push_back(LongestOf(room, facing));
+          walls.push_back(WallFacing(room, name).value_or(0));
         }
       }
     }
@@ -263,7 +234,7 @@ std::vector<Opening> BuildOpenings(const Request& r, const Room& room, std::vect
           name = placement_compass.substr(0, dash);
         }
       }
-      walls.push_back(LongestOf(room, WallsFacing(room, name)));
+      walls.push_back(WallFacing(room, name).value_or(0));
       assumptions.push_back(fmt::format("\"{}\": no wall given, used the {} wall", q.text, name));
     }
     if (!q.count_given && q.count > 1 && !q.each_wall) {

@@ -89,15 +89,6 @@ std::optional<std::string> CompassWord(const std::string& w) {
   return it->second;
 }
 
-Vec2 CompassVector(const std::string& name) {
-  Vec2 v = Vec2::Zero();
-  if (name.find("north") != std::string::npos) v.y() += 1;
-  if (name.find("south") != std::string::npos) v.y() -= 1;
-  if (name.find("east") != std::string::npos) v.x() += 1;
-  if (name.find("west") != std::string::npos) v.x() -= 1;
-  return v.normalized();
-}
-
 const std::vector<RoomKind>& RoomKinds() {
   static const std::vector<RoomKind> kKinds = {
       {{"classroom"}, "classroom", 7.0, 9.0, 3.0, {{"desk", 8}, {"cabinet", 1}, {"bookshelf", 1}}, true},

@@ -31,9 +31,6 @@ bool IsBreakWord(const std::string& w);
 // Canonical compass name for a word, or nullopt.
 std::optional<std::string> CompassWord(const std::string& w);
 
-// Unit vector of a canonical compass name (north = +Y, east = +X).
-Vec2 CompassVector(const std::string& name);
-
 struct RoomKind {
   std::vector<std::string> words;  // One or two words ("living room").
   std::string name;
