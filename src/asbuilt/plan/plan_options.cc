@@ -1,4 +1,4 @@
-// PlanOptions' field list (plan_options.h); Check() stays in reconstruct.cc.
+// PlanOptions' field list (plan_options.h) and Check(), which reads its bounds from it.
 
 #include "asbuilt/plan/plan_options.h"
 
@@ -32,7 +32,7 @@ const FieldList<PlanOptions>& PlanOptionFields() {
       Bind(&O::min_wall_fraction, {.name = "min_wall_fraction",
                                    .description = "Nor fewer than this fraction of all wall votes (< 0.2).",
                                    .minimum = 0.0,
-                                   .maximum = 0.2}),
+                                   .exclusive_maximum = 0.2}),
       Bind(&O::min_wall_length_m, {.name = "min_wall_length_m",
                                    .description = "Shorter point runs are not walls, m.",
                                    .exclusive_minimum = 0.0}),
@@ -43,7 +43,7 @@ const FieldList<PlanOptions>& PlanOptionFields() {
            {.name = "min_relative_density",
             .description = "Walls need this fraction of the densest wall's votes per metre (< 1).",
             .minimum = 0.0,
-            .maximum = 1.0}),
+            .exclusive_maximum = 1.0}),
       Bind(&O::ransac_iterations, {.name = "ransac_iterations",
                                    .description = "Hypotheses per line; more = surer on clutter, slower.",
                                    .minimum = 1.0}),
@@ -84,7 +84,7 @@ const FieldList<PlanOptions>& PlanOptionFields() {
            {.name = "parallel_max_deg",
             .description = "Neighbours closer than this in angle are not intersected, deg (< 90).",
             .exclusive_minimum = 0.0,
-            .maximum = 90.0}),
+            .exclusive_maximum = 90.0}),
       Bind(&O::max_corner_extension_m, {.name = "max_corner_extension_m",
                                         .description = "A corner may lie at most this far beyond a wall's points, m.",
                                         .exclusive_minimum = 0.0}),
@@ -125,7 +125,7 @@ const FieldList<PlanOptions>& PlanOptionFields() {
       Bind(&O::edge_level, {.name = "edge_level",
                             .description = "Opening extent: 2 cm bins with at least this fraction of a full bin (< 1).",
                             .exclusive_minimum = 0.0,
-                            .maximum = 1.0}),
+                            .exclusive_maximum = 1.0}),
       Bind(&O::min_boundary_points,
            {.name = "min_boundary_points",
             .description = "Label-edge points needed per side to measure an opening's width from them.",
@@ -196,5 +196,9 @@ const FieldList<PlanOptions>& PlanOptionFields() {
   };
   return kList;
 }
+
+// Every bound of one option is stated once, in the list above; no rule
+// involves several options.
+void PlanOptions::Check() const { PlanOptionFields().CheckValues(*this, "PlanOptions"); }
 
 }  // namespace asbuilt

@@ -100,69 +100,6 @@ void SummarizeResiduals(const WallPoints& walls, const Ring& ring, PlanSummary& 
 
 }  // namespace
 
-void PlanOptions::Check() const {
-  auto positive = [](double v, const char* name) {
-    CheckArgument(v > 0 && std::isfinite(v), fmt::format("PlanOptions.{} = {}, must be > 0", name, v));
-  };
-  auto non_negative = [](double v, const char* name) {
-    CheckArgument(v >= 0 && std::isfinite(v), fmt::format("PlanOptions.{} = {}, must be >= 0", name, v));
-  };
-  positive(epsilon_m, "epsilon_m");
-  non_negative(inlier_sigmas, "inlier_sigmas");
-  positive(max_inlier_distance_m, "max_inlier_distance_m");
-  positive(nominal_sigma_m, "nominal_sigma_m");
-  non_negative(shared_sigma_fraction, "shared_sigma_fraction");
-  non_negative(shared_stereo_sigma_fraction, "shared_stereo_sigma_fraction");
-  non_negative(leaf_edge_sigma_m, "leaf_edge_sigma_m");
-  non_negative(extent_edge_sigma_m, "extent_edge_sigma_m");
-  if (contact_scale_sigma) non_negative(*contact_scale_sigma, "contact_scale_sigma");
-  if (ceiling_scale_sigma) non_negative(*ceiling_scale_sigma, "ceiling_scale_sigma");
-  if (label_edge_sigma_mrad) non_negative(*label_edge_sigma_mrad, "label_edge_sigma_mrad");
-  CheckArgument(vote_sigma_m > 0 && std::isfinite(vote_sigma_m),
-                fmt::format("PlanOptions.vote_sigma_m = {}, must be > 0", vote_sigma_m));
-  CheckArgument(min_wall_points >= 3, fmt::format("PlanOptions.min_wall_points = {}, must be >= 3", min_wall_points));
-  positive(min_wall_length_m, "min_wall_length_m");
-  positive(max_gap_m, "max_gap_m");
-  CheckArgument(min_wall_fraction >= 0 && min_wall_fraction < 0.2,
-                fmt::format("PlanOptions.min_wall_fraction = {}, must be in [0, 0.2)", min_wall_fraction));
-  CheckArgument(min_relative_density >= 0 && min_relative_density < 1,
-                fmt::format("PlanOptions.min_relative_density = {}, must be in [0, 1)", min_relative_density));
-  CheckArgument(ransac_iterations >= 1,
-                fmt::format("PlanOptions.ransac_iterations = {}, must be >= 1", ransac_iterations));
-  CheckArgument(ransac_subset_points >= 10,
-                fmt::format("PlanOptions.ransac_subset_points = {}, must be >= 10", ransac_subset_points));
-  non_negative(snap_sigmas, "snap_sigmas");
-  non_negative(snap_max_deg, "snap_max_deg");
-  non_negative(manhattan_snap_max_deg, "manhattan_snap_max_deg");
-  non_negative(snap_min_deg, "snap_min_deg");
-  non_negative(manhattan_max_deg, "manhattan_max_deg");
-  non_negative(manhattan_always_deg, "manhattan_always_deg");
-  non_negative(noisy_snap_max_deg, "noisy_snap_max_deg");
-  non_negative(bend_sigmas, "bend_sigmas");
-  CheckArgument(parallel_max_deg > 0 && parallel_max_deg < 90,
-                fmt::format("PlanOptions.parallel_max_deg = {}, must be in (0, 90)", parallel_max_deg));
-  positive(max_corner_extension_m, "max_corner_extension_m");
-  non_negative(door_casing_m, "door_casing_m");
-  non_negative(window_casing_m, "window_casing_m");
-  non_negative(casing_depth_m, "casing_depth_m");
-  non_negative(casing_sigma_m, "casing_sigma_m");
-  positive(opening_band_m, "opening_band_m");
-  positive(opening_front_m, "opening_front_m");
-  positive(opening_gap_m, "opening_gap_m");
-  CheckArgument(min_opening_points >= 2,
-                fmt::format("PlanOptions.min_opening_points = {}, must be >= 2", min_opening_points));
-  CheckArgument(min_boundary_points >= 1,
-                fmt::format("PlanOptions.min_boundary_points = {}, must be >= 1", min_boundary_points));
-  positive(min_opening_width_m, "min_opening_width_m");
-  CheckArgument(edge_level > 0 && edge_level < 1,
-                fmt::format("PlanOptions.edge_level = {}, must be in (0, 1)", edge_level));
-  CheckArgument(max_independent_points >= 2,
-                fmt::format("PlanOptions.max_independent_points = {}, must be >= 2", max_independent_points));
-  if (viewpoint_m) {
-    CheckArgument(viewpoint_m->allFinite(), "PlanOptions.viewpoint_m must be finite");
-  }
-}
-
 std::string PlanSummary::BriefReport() const {
   std::vector<double> sorted;
   for (double d : dominant_directions_deg) {

@@ -142,6 +142,29 @@ TEST(PlanOptions, DefaultsAreValidAndBadValuesAreNamed) {
   }
 }
 
+// The bounds come from PlanOptionFields(), the one statement of each: the
+// list's and Check()'s once disagreed (min_wall_fraction 0.2 passed the flag
+// and failed Check), and the list's own bounds were not checked for a
+// library caller.
+TEST(PlanOptions, CheckReadsTheBoundsOfTheFieldList) {
+  auto problem = [](const PlanOptions& o) -> std::string {
+    try {
+      o.Check();
+      return "";
+    } catch (const InvalidArgument& e) {
+      return e.what();
+    }
+  };
+  EXPECT_EQ(problem({.min_wall_fraction = 0.2}), "PlanOptions.min_wall_fraction = 0.2, must be in [0, 0.2)");
+  EXPECT_EQ(problem({.min_wall_fraction = 0.19}), "");
+  EXPECT_EQ(problem({.min_wall_points = 2}), "PlanOptions.min_wall_points = 2, must be >= 3");
+  EXPECT_EQ(problem({.parallel_max_deg = 90}), "PlanOptions.parallel_max_deg = 90, must be in (0, 90)");
+  EXPECT_EQ(problem({.casing_depth_m = 0.5}), "PlanOptions.casing_depth_m = 0.5, must be in [0, 0.1]");
+  EXPECT_EQ(problem({.epsilon_m = NAN}), "PlanOptions.epsilon_m = nan, must be > 0");
+  EXPECT_EQ(problem({.viewpoint_m = Vec3(NAN, 0, 0)}), "PlanOptions.viewpoint_m = [nan, 0, 0], must be finite");
+  EXPECT_EQ(problem({.contact_scale_sigma = 0.6}), "PlanOptions.contact_scale_sigma = 0.6, must be in [0, 0.5]");
+}
+
 TEST(PlanSummary, BriefReportSaysWhatWasFound) {
   PlanResult r = ReconstructPlan(SamplePointsFromPlan(RectangleRoom(), {}, 2), {});
   std::string s = r.summary.BriefReport();

@@ -30,6 +30,7 @@ std::string RangeText(const Field& f) {
   if (f.exclusive_minimum) parts.push_back("> " + Fmt(*f.exclusive_minimum));
   if (f.minimum) parts.push_back(">= " + Fmt(*f.minimum));
   if (f.maximum) parts.push_back("<= " + Fmt(*f.maximum));
+  if (f.exclusive_maximum) parts.push_back("< " + Fmt(*f.exclusive_maximum));
   return fmt::format("{}", fmt::join(parts, " and "));
 }
 
@@ -37,10 +38,11 @@ bool InRange(const Field& f, double v) {
   if (f.exclusive_minimum && !(v > *f.exclusive_minimum)) return false;
   if (f.minimum && !(v >= *f.minimum)) return false;
   if (f.maximum && !(v <= *f.maximum)) return false;
+  if (f.exclusive_maximum && !(v < *f.exclusive_maximum)) return false;
   return true;
 }
 
-bool HasBounds(const Field& f) { return f.minimum || f.exclusive_minimum || f.maximum; }
+bool HasBounds(const Field& f) { return f.minimum || f.exclusive_minimum || f.maximum || f.exclusive_maximum; }
 
 bool IsFiniteNumber(const nlohmann::json& v) { return v.is_number() && std::isfinite(v.get<double>()); }
 
@@ -48,6 +50,30 @@ void AddBounds(const Field& f, nlohmann::json& s) {
   if (f.minimum) s["minimum"] = *f.minimum;
   if (f.exclusive_minimum) s["exclusiveMinimum"] = *f.exclusive_minimum;
   if (f.maximum) s["maximum"] = *f.maximum;
+  if (f.exclusive_maximum) s["exclusiveMaximum"] = *f.exclusive_maximum;
+}
+
+// "> 0", ">= 3", "in [0, 0.2)": a field's bounds as a library message says them.
+std::string BoundsText(const Field& f) {
+  const std::optional<double> lo = f.minimum ? f.minimum : f.exclusive_minimum;
+  const std::optional<double> hi = f.maximum ? f.maximum : f.exclusive_maximum;
+  if (lo && hi) {
+    return fmt::format("in {}{}, {}{}", f.minimum ? "[" : "(", Fmt(*lo), Fmt(*hi), f.maximum ? "]" : ")");
+  }
+  if (lo) return fmt::format("{} {}", f.minimum ? ">=" : ">", Fmt(*lo));
+  if (hi) return fmt::format("{} {}", f.maximum ? "<=" : "<", Fmt(*hi));
+  return "finite";
+}
+
+// A value as a library message prints it: 2, 0.5, nan, [1, 2].
+std::string ValueText(const nlohmann::json& v) {
+  if (v.is_number_float()) return Fmt(v.get<double>());
+  if (v.is_array()) {
+    std::vector<std::string> parts;
+    for (const nlohmann::json& e : v) parts.push_back(ValueText(e));
+    return fmt::format("[{}]", fmt::join(parts, ", "));
+  }
+  return v.dump();
 }
 
 nlohmann::json FixedNumberArray(std::size_t n, const Field* bounds) {
@@ -339,6 +365,34 @@ std::vector<std::vector<double>> FieldArgs::Points(std::string_view name) const 
   return Get(name).get<std::vector<std::vector<double>>>();
 }
 
+std::optional<std::string> FieldValuesProblem(std::span<const Field> fields, const nlohmann::json& values,
+                                              std::string_view prefix) {
+  for (const Field& f : fields) {
+    auto it = values.find(f.name);
+    if (it == values.end() || it->is_null()) continue;
+    std::vector<nlohmann::json> numbers;
+    switch (f.kind) {
+      case FieldKind::kNumber:
+      case FieldKind::kInteger:
+        numbers = {*it};
+        break;
+      case FieldKind::kPoint2:
+      case FieldKind::kPoint3:
+      case FieldKind::kNumberList:
+        numbers.assign(it->begin(), it->end());
+        break;
+      default:
+        continue;
+    }
+    for (const nlohmann::json& n : numbers) {
+      if (!IsFiniteNumber(n) || !InRange(f, n.get<double>())) {
+        return fmt::format("{}.{} = {}, must be {}", prefix, f.name, ValueText(*it), BoundsText(f));
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 std::string FieldsMarkdown(std::span<const Field> fields) {
   if (fields.empty()) return "No arguments.\n";
   std::string out = "| argument | type | default | description |\n|---|---|---|---|\n";
@@ -349,7 +403,9 @@ std::string FieldsMarkdown(std::span<const Field> fields) {
     }
     std::string range = RangeText(f);
     if (!range.empty() && f.kind != FieldKind::kEnum) type += " " + range;
-    std::string def = f.required ? "required" : f.default_value.is_null() ? "—" : "`" + f.default_value.dump() + "`";
+    const std::string def = f.required                  ? std::string("required")
+                            : f.default_value.is_null() ? std::string("—")
+                                                        : fmt::format("`{}`", f.default_value.dump());
     out += fmt::format("| `{}` | {} | {} | {} |\n", f.name, type, def, f.description);
   }
   return out;

@@ -67,6 +67,7 @@ struct Field {
   std::optional<double> minimum;
   std::optional<double> exclusive_minimum;
   std::optional<double> maximum;
+  std::optional<double> exclusive_maximum;
   // kPolygon / kNumberList: element count bounds.
   std::size_t min_items = 0;
   std::size_t max_items = 0;  // 0: no limit.
@@ -125,6 +126,13 @@ class FieldArgs {
 // (usually typos the caller should fix). Throws FieldArgsError listing every
 // problem.
 FieldArgs ParseFieldArgs(std::span<const Field> fields, const nlohmann::json& arguments);
+
+// The first problem with the values `values` holds (by field name, as
+// FieldList::ToJson gives them) against the fields' bounds, worded for a
+// library caller: "PlanOptions.epsilon_m = -1, must be > 0" (`prefix`
+// "PlanOptions"); nullopt when every value is within its bounds and finite.
+std::optional<std::string> FieldValuesProblem(std::span<const Field> fields, const nlohmann::json& values,
+                                              std::string_view prefix);
 
 // Markdown table of the fields (name, type, default, description), e.g. for
 // docs/mcp.md.
@@ -293,6 +301,14 @@ class FieldList {
       if (!v.is_null()) out[f.field.name] = std::move(v);
     }
     return out;
+  }
+
+  // Throws InvalidArgument naming the first value of `t` outside its
+  // field's bounds (FieldValuesProblem): the one statement of every
+  // single-field bound, so an Options struct's Check() keeps only the rules
+  // that involve several fields.
+  void CheckValues(const T& t, std::string_view prefix) const {
+    if (auto problem = FieldValuesProblem(Fields(), ToJson(t), prefix)) throw InvalidArgument(*problem);
   }
 
   const std::vector<BoundField<T>>& bound() const { return fields_; }
