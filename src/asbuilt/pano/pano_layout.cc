@@ -453,36 +453,16 @@ double RayPolygonDistance(const Vec2& direction, const std::vector<Vec2>& polygo
 
 }  // namespace
 
+// Every single-option bound is stated once, in PanoLayoutOptionFields();
+// here only the rules that involve several options, or what a bound cannot say.
 void PanoLayoutOptions::Check() const {
-  CheckArgument(width_px >= 64 && width_px <= 8192 && width_px % 2 == 0,
-                fmt::format("PanoLayoutOptions.width_px = {}, must be even and in 64..8192", width_px));
-  CheckArgument(std::isfinite(min_distance_m) && min_distance_m > 0,
-                fmt::format("PanoLayoutOptions.min_distance_m = {}, must be > 0", min_distance_m));
-  CheckArgument(std::isfinite(max_distance_m) && max_distance_m > min_distance_m,
+  PanoLayoutOptionFields().CheckValues(*this, "PanoLayoutOptions");
+  CheckArgument(width_px % 2 == 0, fmt::format("PanoLayoutOptions.width_px = {}, must be even", width_px));
+  CheckArgument(max_distance_m > min_distance_m,
                 fmt::format("PanoLayoutOptions.max_distance_m = {}, must be > min_distance_m", max_distance_m));
-  CheckArgument(distance_bins >= 8 && distance_bins <= 4096,
-                fmt::format("PanoLayoutOptions.distance_bins = {}, must be in 8..4096", distance_bins));
-  CheckArgument(std::isfinite(min_ceiling_m) && min_ceiling_m > 0,
-                fmt::format("PanoLayoutOptions.min_ceiling_m = {}, must be > 0", min_ceiling_m));
-  CheckArgument(std::isfinite(max_ceiling_m) && max_ceiling_m >= min_ceiling_m,
+  CheckArgument(max_ceiling_m >= min_ceiling_m,
                 fmt::format("PanoLayoutOptions.max_ceiling_m = {}, must be >= min_ceiling_m", max_ceiling_m));
-  CheckArgument(std::isfinite(ceiling_step_m) && ceiling_step_m > 0,
-                fmt::format("PanoLayoutOptions.ceiling_step_m = {}, must be > 0", ceiling_step_m));
-  for (const auto& [name, value] : {std::pair{"floor_edge_weight", floor_edge_weight},
-                                    {"ceiling_edge_weight", ceiling_edge_weight},
-                                    {"label_weight_per_row", label_weight_per_row},
-                                    {"smooth_cost_per_bin", smooth_cost_per_bin},
-                                    {"jump_cost", jump_cost},
-                                    {"corner_cost", corner_cost},
-                                    {"min_column_support", min_column_support}}) {
-    CheckArgument(std::isfinite(value) && value >= 0,
-                  fmt::format("PanoLayoutOptions.{} = {}, must be finite and >= 0", name, value));
-  }
-  CheckArgument(min_wall_columns >= 1,
-                fmt::format("PanoLayoutOptions.min_wall_columns = {}, must be >= 1", min_wall_columns));
-  CheckArgument(support_half_width >= 0 && support_half_width <= 256,
-                fmt::format("PanoLayoutOptions.support_half_width = {}, must be in 0..256", support_half_width));
-  CheckArgument(smooth_bins >= 0 && smooth_bins < distance_bins,
+  CheckArgument(smooth_bins < distance_bins,
                 fmt::format("PanoLayoutOptions.smooth_bins = {}, must be in 0..distance_bins − 1", smooth_bins));
 }
 

@@ -94,64 +94,11 @@ void FramePointsOptions::Check() const {
   corners.Check();
   match.Check();
   vertices.Check();
-  CheckArgument(vertex_sigma_px > 0,
-                fmt::format("FramePointsOptions.vertex_sigma_px = {}, must be > 0", vertex_sigma_px));
-  CheckArgument(dense_stride_px >= 1,
-                fmt::format("FramePointsOptions.dense_stride_px = {}, must be >= 1", dense_stride_px));
-  CheckArgument(dense_inset_px >= 0,
-                fmt::format("FramePointsOptions.dense_inset_px = {}, must be >= 0", dense_inset_px));
-  CheckArgument(edge_row_step_px >= 1,
-                fmt::format("FramePointsOptions.edge_row_step_px = {}, must be >= 1", edge_row_step_px));
-  CheckArgument(edge_min_gradient > 0,
-                fmt::format("FramePointsOptions.edge_min_gradient = {}, must be > 0", edge_min_gradient));
-  CheckArgument(boundary_row_step_px >= 1,
-                fmt::format("FramePointsOptions.boundary_row_step_px = {}, must be >= 1", boundary_row_step_px));
-  CheckArgument(boundary_wall_gap_px >= 0 && boundary_wall_span_px >= 1 && boundary_inside_px >= 1,
-                fmt::format("FramePointsOptions.boundary_wall_gap_px = {}, boundary_wall_span_px "
-                            "= {}, "
-                            "boundary_inside_px = {}: need gap >= 0, span >= 1, inside >= 1",
-                            boundary_wall_gap_px, boundary_wall_span_px, boundary_inside_px));
-  CheckArgument(boundary_tolerance_px > 0 && boundary_sigma_px > 0,
-                fmt::format("FramePointsOptions.boundary_tolerance_px = {}, "
-                            "boundary_sigma_px = {}: must be > 0",
-                            boundary_tolerance_px, boundary_sigma_px));
-  CheckArgument(guide_radius_px >= 1,
-                fmt::format("FramePointsOptions.guide_radius_px = {}, must be >= 1", guide_radius_px));
-  CheckArgument(corner_sigma_px > 0 && edge_sigma_px > 0 && dense_sigma_px > 0,
-                "FramePointsOptions.*_sigma_px must be > 0");
-  CheckArgument(min_depth_m > 0 && max_depth_m > min_depth_m,
-                fmt::format("FramePointsOptions.min_depth_m = {}, max_depth_m "
-                            "= {}: need 0 < min < max",
-                            min_depth_m, max_depth_m));
-  CheckArgument(window_band_px > 0, fmt::format("FramePointsOptions.window_band_px = {}, must be > 0", window_band_px));
-  CheckArgument(contact_col_step_px >= 1 && contact_min_run_px >= 1 && contact_sigma_px > 0 &&
-                    camera_height_sigma_m >= 0 && contact_floor_tolerance_px > 0,
-                fmt::format("FramePointsOptions: contact_col_step_px = {}, "
-                            "contact_min_run_px = {}, "
-                            "contact_sigma_px = {}, camera_height_sigma_m = "
-                            "{}, contact_floor_tolerance_px = {}: "
-                            "need step, run >= 1 and sigmas, tolerance > 0",
-                            contact_col_step_px, contact_min_run_px, contact_sigma_px, camera_height_sigma_m,
-                            contact_floor_tolerance_px));
-  CheckArgument(contact_snap_px.value_or(0) >= 0 && floor_snap_px.value_or(0) >= 0 && contact_snap_min_step >= 0,
-                fmt::format("FramePointsOptions: contact_snap_px = {}, floor_snap_px = {}, "
-                            "contact_snap_min_step = {}: must be >= 0",
-                            contact_snap_px.value_or(0), floor_snap_px.value_or(0), contact_snap_min_step));
-  CheckArgument(skirting_depth_m >= 0 && skirting_depth_m < 0.1,
-                fmt::format("FramePointsOptions.skirting_depth_m = {}, must be in [0, 0.1)", skirting_depth_m));
-  CheckArgument(stereo_check_tolerance_px > 0 && stereo_check_min_agree >= 0 && stereo_check_min_agree <= 1 &&
-                    stereo_check_min_pixels >= 0 && stereo_check_min_contacts >= 0,
-                fmt::format("FramePointsOptions: stereo_check_tolerance_px = {}, "
-                            "stereo_check_min_agree = {}, "
-                            "stereo_check_min_pixels = {}, stereo_check_min_contacts = "
-                            "{}: need tolerance > 0, "
-                            "agree in [0, 1], counts >= 0",
-                            stereo_check_tolerance_px, stereo_check_min_agree, stereo_check_min_pixels,
-                            stereo_check_min_contacts));
-  CheckArgument(!ceiling_height_m || (std::isfinite(*ceiling_height_m) && *ceiling_height_m > 0),
-                "FramePointsOptions.ceiling_height_m must be > 0");
-  CheckArgument(right_label_radius_px >= 0,
-                fmt::format("FramePointsOptions.right_label_radius_px = {}, must be >= 0", right_label_radius_px));
+  // Every single-option bound is stated once, in FramePointsOptionFields().
+  FramePointsOptionFields().CheckValues(*this, "FramePointsOptions");
+  CheckArgument(
+      max_depth_m > min_depth_m,
+      fmt::format("FramePointsOptions.min_depth_m = {}, max_depth_m = {}: need min < max", min_depth_m, max_depth_m));
 }
 
 std::string FrameCues::CarriedBy() const {

@@ -132,7 +132,7 @@ FieldList<FramePointsOptions> FramePointsContactFields() {
            {.name = "skirting_depth_m",
             .description = "Move wall-foot contacts back this far where a skirting board is seen (0 = off), m.",
             .minimum = 0.0,
-            .maximum = 0.1}),
+            .exclusive_maximum = 0.1}),
       Bind(&O::stereo_check_tolerance_px,
            {.name = "stereo_check_tolerance_px",
             .description = "Stereo check: a wall column's disparities agree within max(this, 3 %), px.",
