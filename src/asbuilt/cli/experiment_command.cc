@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "asbuilt/cli/command.h"
+#include "asbuilt/cli/train_flags.h"
 #include "asbuilt/seg/experiment.h"
 #include "asbuilt/seg/toy_rooms.h"
 #include "asbuilt/util/error.h"
@@ -26,9 +27,9 @@ int RunExperimentCommand(int argc, char** argv) {
       "train and evaluate one segmenter per real/synthetic mix (R100, S100, RS5050, RS8020, …) on the same\n"
       "held-out real test set; writes OUT/results.md (the paper's table), results.json and plot.png");
   RatioExperimentOptions r;
-  std::string real, synthetic, real_test, out, configs = "R100,S100,RS5050,RS8020", scale, crop;
+  TrainFlags flags;
+  std::string real, synthetic, real_test, out, configs = "R100,S100,RS5050,RS8020";
   std::vector<std::string> extra_tests;
-  bool no_photometric = false, no_blur_noise = false;
   ratios->add_option("--real", real, "dataset folder of real annotated photos");
   ratios->add_option("--synthetic", synthetic, "dataset folder of synthetic views");
   ratios->add_option("--real-test", real_test, "explicit real test folder (default: hold out 10 % of --real)");
@@ -39,21 +40,8 @@ int RunExperimentCommand(int argc, char** argv) {
   ratios->add_option("--total", r.total, "train + val pairs per config (0 = as many as allowed)")
       ->capture_default_str();
   ratios->add_option("-o,--out", out, "output folder")->required();
-  ratios->add_option("--arch", r.train.arch, "architecture: b0, b1, b2, tiny")->capture_default_str();
-  ratios->add_option("--epochs", r.train.epochs, "epochs per config")->capture_default_str();
-  ratios->add_option("--steps-per-epoch", r.train.steps_per_epoch, "0 = one pass")->capture_default_str();
-  ratios->add_option("--batch", r.train.batch_size, "batch size")->capture_default_str();
-  ratios->add_option("--lr", r.train.lr, "AdamW learning rate")->capture_default_str();
-  ratios->add_option("--weight-decay", r.train.weight_decay, "AdamW weight decay")->capture_default_str();
+  flags.Add(*ratios, r.train);
   ratios->add_option("--init", r.train.init, "initial weights for every config");
-  ratios->add_option("--warmup", r.train.warmup_steps, "linear warm-up steps")->capture_default_str();
-  ratios->add_option("--scale", scale, "base scale WxH images are fitted to (default 256x192)");
-  ratios->add_option("--crop", crop, "training crop WxH (default 192x192)");
-  ratios->add_flag("--no-photometric", no_photometric, "no photometric distortion");
-  ratios->add_flag("--no-blur-noise", no_blur_noise, "no blur / noise augmentation");
-  ratios->add_option("--val-max", r.train.val_max_images, "validate on at most N images (0 = all)")
-      ->capture_default_str();
-  ratios->add_option("--threads", r.train.threads, "LibTorch threads (0 = every core)")->capture_default_str();
   ratios->add_option("--seed", r.seed, "mix and training seed")->capture_default_str();
 
   CLI::App* toy = app.add_subcommand("toy-rooms", "write N labelled toy-room views: OUT/images, OUT/labels");
@@ -76,10 +64,7 @@ int RunExperimentCommand(int argc, char** argv) {
     r.synthetic_dir = synthetic;
     r.real_test_dir = real_test;
     for (const std::string& e : extra_tests) r.extra_test_dirs.emplace_back(e);
-    ParseSizeFlag(scale, "--scale", r.train.augment.scale_width_px, r.train.augment.scale_height_px);
-    ParseSizeFlag(crop, "--crop", r.train.augment.crop_width_px, r.train.augment.crop_height_px);
-    r.train.augment.photometric = !no_photometric;
-    r.train.augment.blur_noise = !no_blur_noise;
+    flags.Apply(r.train);
     r.out_dir = out;
     r.train.seed = r.seed;
     r.configs.clear();

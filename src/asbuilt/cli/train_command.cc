@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "asbuilt/cli/command.h"
+#include "asbuilt/cli/train_flags.h"
 #include "asbuilt/pipeline/survey.h"
 #include "asbuilt/seg/segformer_config.h"
 #include "asbuilt/seg/segmenter.h"
@@ -26,40 +27,27 @@ int RunTrainCommand(int argc, char** argv) {
       "asbuilt train");
   AddCommonFlags(app);
   TrainOptions o;
-  std::string manifest, images, labels, out, init, scale, crop, finetune;
-  bool no_resume = false, no_flip = false, no_photometric = false, no_blur_noise = false, distributed = false;
+  TrainFlags flags;
+  std::string manifest, images, labels, out, init, finetune;
+  bool no_resume = false, no_flip = false, distributed = false;
   app.add_option("--manifest", manifest, "dataset manifest.json (train/val pairs)");
   app.add_option("--images", images, "image folder (or a dataset folder when --labels is absent)");
   app.add_option("--labels", labels, "label folder (PNG, same stems as the images)");
   app.add_option("-o,--out", out, "output folder for checkpoints and logs")->required();
-  app.add_option("--arch", o.arch,
-                 "architecture: b0, b1, b2, tiny, or tflite (fine-tunes the TFLite network of --init)")
-      ->capture_default_str();
-  app.add_option("--epochs", o.epochs, "epochs (paper: 50)")->capture_default_str();
-  app.add_option("--steps-per-epoch", o.steps_per_epoch, "steps per epoch; 0 = one pass over the data")
-      ->capture_default_str();
-  app.add_option("--batch", o.batch_size, "batch size (paper: 2)")->capture_default_str();
-  app.add_option("--lr", o.lr, "AdamW learning rate (paper: 1e-4)")->capture_default_str();
-  app.add_option("--weight-decay", o.weight_decay, "AdamW weight decay (paper: 1e-3)")->capture_default_str();
+  flags.Add(app, o);
   app.add_option("--head-lr-mult", o.head_lr_mult, "decoder learning-rate multiplier (mmseg: 10)")
       ->capture_default_str();
-  app.add_option("--warmup", o.warmup_steps, "linear warm-up steps")->capture_default_str();
   app.add_option("--poly-power", o.poly_power, "poly schedule power")->capture_default_str();
   app.add_option("--drop-path", o.drop_path_rate, "stochastic depth rate")->capture_default_str();
-  app.add_option("--scale", scale, "base scale WxH images are fitted to (default 256x192)");
-  app.add_option("--crop", crop, "training crop WxH (default 192x192)");
   app.add_option("--ratio-min", o.augment.ratio_min, "random resize ratio, min")->capture_default_str();
   app.add_option("--ratio-max", o.augment.ratio_max, "random resize ratio, max")->capture_default_str();
   app.add_flag("--no-flip", no_flip, "no horizontal flips");
-  app.add_flag("--no-photometric", no_photometric, "no photometric distortion");
-  app.add_flag("--no-blur-noise", no_blur_noise, "no blur / noise augmentation");
   app.add_option("--stray-light", o.augment.stray_light_probability,
                  "share of crops given patches of sun/lamp light and dimmed windows, so bright is not window "
                  "(real photos; 0 = off)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--val-fraction", o.val_fraction, "folders: share held out for validation")->capture_default_str();
-  app.add_option("--val-max", o.val_max_images, "validate on at most N images (0 = all)")->capture_default_str();
   app.add_option("--seed", o.seed, "seed for split, order, augmentation, init")->capture_default_str();
   app.add_option("--init", init,
                  "initial weights: an asbuilt checkpoint (mismatched tensors skipped); with --arch tflite a .tflite "
@@ -72,7 +60,6 @@ int RunTrainCommand(int argc, char** argv) {
       ->excludes("--arch");
   app.add_flag("--no-resume", no_resume, "start afresh even if OUT/last.pt exists");
   app.add_option("--stop-after", o.stop_after_epoch, "end this run after epoch N (schedule still spans --epochs)");
-  app.add_option("--threads", o.threads, "LibTorch threads (0 = every core)")->capture_default_str();
   app.add_flag("--distributed", distributed,
                "data-parallel training: this process is one rank of `srun -n K` (SLURM_PROCID, SLURM_NTASKS, "
                "SLURM_STEP_NODELIST) or of RANK, WORLD_SIZE, MASTER_ADDR, MASTER_PORT; --batch is the global "
@@ -102,11 +89,11 @@ int RunTrainCommand(int argc, char** argv) {
     unless_given("--lr", o.lr, f.lr);
     unless_given("--head-lr-mult", o.head_lr_mult, f.head_lr_mult);
     unless_given("--warmup", o.warmup_steps, f.warmup_steps);
-    if (scale.empty()) {
+    if (flags.scale.empty()) {
       o.augment.scale_width_px = f.augment.scale_width_px;
       o.augment.scale_height_px = f.augment.scale_height_px;
     }
-    if (crop.empty()) {
+    if (flags.crop.empty()) {
       o.augment.crop_width_px = f.augment.crop_width_px;
       o.augment.crop_height_px = f.augment.crop_height_px;
     }
@@ -118,10 +105,7 @@ int RunTrainCommand(int argc, char** argv) {
   o.init = init;
   o.resume = !no_resume;
   o.augment.flip = !no_flip;
-  o.augment.photometric = !no_photometric;
-  o.augment.blur_noise = !no_blur_noise;
-  ParseSizeFlag(scale, "--scale", o.augment.scale_width_px, o.augment.scale_height_px);
-  ParseSizeFlag(crop, "--crop", o.augment.crop_width_px, o.augment.crop_height_px);
+  flags.Apply(o);
   if (check_ranks > 0) {
     o.distributed.world_size = check_ranks;  // A stand-in rendezvous: only the options are checked.
     o.distributed.master_addr = "localhost";
