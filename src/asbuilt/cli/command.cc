@@ -80,12 +80,14 @@ void AddCommonFlags(CLI::App& app) {
 }
 
 void AddTurnInPlaceFlags(CLI::App& app, TurnInPlaceOptions* turn, std::string* size) {
-  app.add_option("--size", *size, "view size WIDTHxHEIGHT")
+  // The --pano-* spellings are `survey`'s for the same four.
+  app.add_option("--size,--pano-size", *size, "view size WIDTHxHEIGHT")
       ->default_str(fmt::format("{}x{}", turn->width_px, turn->height_px));
-  app.add_option("--fx", turn->fx, "focal length, pixels")->capture_default_str();
+  app.add_option("--fx,--pano-fx", turn->fx, "focal length, pixels")->capture_default_str();
   app.add_option("--fy", turn->fy, "vertical focal length, pixels (0 = fx)")->capture_default_str();
-  app.add_option("--views", turn->views, "views per panorama")->capture_default_str();
-  app.add_option("--yaw-step", turn->yaw_step_deg, "degrees between views, counter-clockwise seen from above")
+  app.add_option("--views,--pano-views", turn->views, "views per panorama")->capture_default_str();
+  app.add_option("--yaw-step,--pano-yaw-step", turn->yaw_step_deg,
+                 "degrees between views, counter-clockwise seen from above")
       ->capture_default_str();
   app.add_option("--first-yaw", turn->first_yaw_deg,
                  "yaw of the first view, degrees (0 looks along the pano frame's +Y)")

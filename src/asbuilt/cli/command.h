@@ -44,7 +44,8 @@ void ParseSizeFlag(const std::string& text, const std::string& flag, int& w, int
 
 // The views of a panorama (TurnInPlaceOptions), shared by `pano views` and
 // `eval zind`: --size WxH (into *size, parsed by ApplyTurnInPlaceSize),
-// --fx, --fy, --views, --yaw-step, --first-yaw, --pitch.
+// --fx, --fy, --views, --yaw-step, --first-yaw, --pitch; --pano-size,
+// --pano-fx, --pano-views and --pano-yaw-step (survey's spellings) too.
 void AddTurnInPlaceFlags(CLI::App& app, TurnInPlaceOptions* turn, std::string* size);
 void ApplyTurnInPlaceSize(const std::string& size, TurnInPlaceOptions& turn);
 
