@@ -31,6 +31,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
@@ -90,6 +91,89 @@ double Iou(const nlohmann::json& state, const Plan& truth) {
   return overlap ? overlap->Iou() : 0.0;
 }
 
+// The openings, after the corners: add a missing one (a box from its head on one side to
+// its sill on the other), else redraw a wrong one (the nearest of its kind
+// within 1 m), else delete a spurious one of the survey's; each truth
+// opening drawn once at most; until every opening is right, nothing is
+// left to do, or the budget (two edits an opening, and four) is spent.
+// Edits go through `edit` (false: refused), which keeps `state` current.
+void CorrectOpenings(const Plan& truth, int width, const std::function<Vec2(const Vec3&)>& pixel,
+                     const std::function<bool(nlohmann::json)>& edit, const nlohmann::json& state, RoomResult& r) {
+  r.truth_openings = static_cast<int>(truth.openings.size());
+  const int budget = 2 * r.truth_openings + 4;
+  auto count_right = [&] {
+    int right = 0;
+    for (const PlanOpening& t : truth.openings) {
+      right += std::any_of(state["openings"].begin(), state["openings"].end(),
+                           [&](const nlohmann::json& o) { return OpeningRight(o, t); });
+    }
+    return right;
+  };
+  r.openings_right_start = count_right();
+  // A truth opening drawn once is where the photo shows it: a person does
+  // not draw it again (its ends can still be off where the walls are).
+  std::vector<bool> drawn(truth.openings.size(), false);
+  while (r.opening_edits < budget) {
+    std::vector<bool> used(state["openings"].size(), false);
+    std::vector<int> wrong;
+    for (std::size_t t = 0; t < truth.openings.size(); ++t) {
+      bool right = false;
+      for (std::size_t i = 0; i < used.size() && !right; ++i) {
+        if (!used[i] && OpeningRight(state["openings"][i], truth.openings[t])) used[i] = right = true;
+      }
+      if (!right) wrong.push_back(static_cast<int>(t));
+    }
+    const bool spurious = std::find(used.begin(), used.end(), false) != used.end();
+    if (wrong.empty() && !spurious) {
+      r.openings_done = r.opening_edits;
+      break;
+    }
+    std::vector<std::pair<int, nlohmann::json>> candidates;  // (clicks, edit)
+    std::vector<int> drawing;                                // The truth opening each candidate draws, or −1.
+    for (int t : wrong) {
+      if (drawn[t]) continue;
+      const PlanOpening& o = truth.openings[t];
+      const double sill = o.sill.value_or(0.0), top = sill + o.height.value_or(2.0);
+      const Vec2 mid = o.Centre();
+      const Vec2 p0 = pixel(Vec3(o.start.x(), o.start.y(), 0.5 * (sill + top)));
+      const Vec2 p1 = pixel(Vec3(o.end.x(), o.end.y(), 0.5 * (sill + top)));
+      nlohmann::json box = {{"kind", OpeningKindName(o.kind)},
+                            {"u0", std::clamp(p0.x(), 0.0, width - 1.0)},
+                            {"u1", std::clamp(p1.x(), 0.0, width - 1.0)},
+                            {"v_top", pixel(Vec3(mid.x(), mid.y(), top)).y()},
+                            {"v_bottom", pixel(Vec3(mid.x(), mid.y(), sill)).y()}};
+      int nearest = -1;
+      double best = 1.0;
+      for (std::size_t i = 0; i < used.size(); ++i) {
+        const nlohmann::json& p = state["openings"][i];
+        const Vec2 c = 0.5 * (Vec2(p["start_m"][0], p["start_m"][1]) + Vec2(p["end_m"][0], p["end_m"][1]));
+        if (!used[i] && p["kind"] == box["kind"] && (c - mid).norm() < best) best = (c - mid).norm(), nearest = int(i);
+      }
+      box["op"] = nearest >= 0 ? "move_opening" : "add_opening";
+      if (nearest >= 0) {
+        box["id"] = state["openings"][nearest]["id"];
+        used[nearest] = true;
+      }
+      candidates.push_back({2, box});
+      drawing.push_back(t);
+    }
+    for (std::size_t i = 0; i < used.size(); ++i) {
+      if (!used[i] && state["openings"][i]["by"] != "user") {
+        candidates.push_back({1, {{"op", "delete_opening"}, {"id", state["openings"][i]["id"]}}});
+        drawing.push_back(-1);
+      }
+    }
+    bool done = false;
+    for (std::size_t c = 0; c < candidates.size() && r.opening_edits < budget && !done; ++c) {
+      r.opening_clicks += candidates[c].first;
+      done = edit(candidates[c].second);
+      if (drawing[c] >= 0) drawn[drawing[c]] = true;
+    }
+    if (!done) break;
+  }
+  r.openings_right_end = count_right();
+}
+
 RoomResult Correct(const fs::path& survey, const ZindPanorama& pano, std::mt19937& rng) {
   RoomResult r{.pano = pano.pano_id, .label = pano.label};
   ReviewSession session = ReviewSession::Open(survey);
@@ -99,7 +183,7 @@ RoomResult Correct(const fs::path& survey, const ZindPanorama& pano, std::mt1993
   const int width = state["images"][0]["width"], height = state["images"][0]["height"];
   const Vec3 camera(0, 0, pano.camera_height_m);
   std::normal_distribution<double> noise(0.0, 1.0);
-  auto pixel = [&](const Vec3& p) {
+  auto pixel = [&](const Vec3& p) -> Vec2 {  // A Vec2, not an Eigen expression of temporaries.
     return EquirectPixelFromDirection(p - camera, width, height) + Vec2(noise(rng), noise(rng));
   };
   int* counter = &r.edits;  // Corner edits, then opening edits.
@@ -235,85 +319,8 @@ RoomResult Correct(const fs::path& survey, const ZindPanorama& pano, std::mt1993
   }
   r.end_iou = iou;
 
-  // Then the openings: add a missing one (a box from its head on one side to
-  // its sill on the other), else redraw a wrong one (the nearest of its kind
-  // within 1 m), else delete a spurious one of the survey's; each truth
-  // opening drawn once at most; until every opening is right, nothing is
-  // left to do, or the budget (two edits an opening, and four) is spent.
   counter = &r.opening_edits;
-  r.truth_openings = static_cast<int>(truth.openings.size());
-  const int budget = 2 * r.truth_openings + 4;
-  auto count_right = [&] {
-    int right = 0;
-    for (const PlanOpening& t : truth.openings) {
-      right += std::any_of(state["openings"].begin(), state["openings"].end(),
-                           [&](const nlohmann::json& o) { return OpeningRight(o, t); });
-    }
-    return right;
-  };
-  r.openings_right_start = count_right();
-  // A truth opening drawn once is where the photo shows it: a person does
-  // not draw it again (its ends can still be off where the walls are).
-  std::vector<bool> drawn(truth.openings.size(), false);
-  while (r.opening_edits < budget) {
-    std::vector<bool> used(state["openings"].size(), false);
-    std::vector<int> wrong;
-    for (std::size_t t = 0; t < truth.openings.size(); ++t) {
-      bool right = false;
-      for (std::size_t i = 0; i < used.size() && !right; ++i) {
-        if (!used[i] && OpeningRight(state["openings"][i], truth.openings[t])) used[i] = right = true;
-      }
-      if (!right) wrong.push_back(static_cast<int>(t));
-    }
-    const bool spurious = std::find(used.begin(), used.end(), false) != used.end();
-    if (wrong.empty() && !spurious) {
-      r.openings_done = r.opening_edits;
-      break;
-    }
-    std::vector<std::pair<int, nlohmann::json>> candidates;  // (clicks, edit)
-    std::vector<int> drawing;                                // The truth opening each candidate draws, or −1.
-    for (int t : wrong) {
-      if (drawn[t]) continue;
-      const PlanOpening& o = truth.openings[t];
-      const double sill = o.sill.value_or(0.0), top = sill + o.height.value_or(2.0);
-      const Vec2 mid = o.Centre();
-      const Vec2 p0 = pixel(Vec3(o.start.x(), o.start.y(), 0.5 * (sill + top)));
-      const Vec2 p1 = pixel(Vec3(o.end.x(), o.end.y(), 0.5 * (sill + top)));
-      nlohmann::json box = {{"kind", OpeningKindName(o.kind)},
-                            {"u0", std::clamp(p0.x(), 0.0, width - 1.0)},
-                            {"u1", std::clamp(p1.x(), 0.0, width - 1.0)},
-                            {"v_top", pixel(Vec3(mid.x(), mid.y(), top)).y()},
-                            {"v_bottom", pixel(Vec3(mid.x(), mid.y(), sill)).y()}};
-      int nearest = -1;
-      double best = 1.0;
-      for (std::size_t i = 0; i < used.size(); ++i) {
-        const nlohmann::json& p = state["openings"][i];
-        const Vec2 c = 0.5 * (Vec2(p["start_m"][0], p["start_m"][1]) + Vec2(p["end_m"][0], p["end_m"][1]));
-        if (!used[i] && p["kind"] == box["kind"] && (c - mid).norm() < best) best = (c - mid).norm(), nearest = int(i);
-      }
-      box["op"] = nearest >= 0 ? "move_opening" : "add_opening";
-      if (nearest >= 0) {
-        box["id"] = state["openings"][nearest]["id"];
-        used[nearest] = true;
-      }
-      candidates.push_back({2, box});
-      drawing.push_back(t);
-    }
-    for (std::size_t i = 0; i < used.size(); ++i) {
-      if (!used[i] && state["openings"][i]["by"] != "user") {
-        candidates.push_back({1, {{"op", "delete_opening"}, {"id", state["openings"][i]["id"]}}});
-        drawing.push_back(-1);
-      }
-    }
-    bool done = false;
-    for (std::size_t c = 0; c < candidates.size() && r.opening_edits < budget && !done; ++c) {
-      r.opening_clicks += candidates[c].first;
-      done = edit(candidates[c].second);
-      if (drawing[c] >= 0) drawn[drawing[c]] = true;
-    }
-    if (!done) break;
-  }
-  r.openings_right_end = count_right();
+  CorrectOpenings(truth, width, pixel, edit, state, r);
   return r;
 }
 
