@@ -23,12 +23,13 @@
 #include <cstdint>
 
 #include "asbuilt/formats/zind.h"
+#include "asbuilt/geometry/label_class.h"
 #include "asbuilt/imageio/image.h"
 #include "asbuilt/pano/perspective.h"
 
 namespace asbuilt {
 
-inline constexpr std::uint8_t kPassageLabel = 255;  // ZInD openings (passages): ignored.
+inline constexpr std::uint8_t kPassageLabel = kLabelIgnore;  // ZInD openings (passages): ignored.
 
 // The label of one viewing ray (pano frame direction, any length).
 std::uint8_t LayoutLabelOfRay(const ZindPanorama& pano, const ZindLayout& layout, const Vec3& ray);
