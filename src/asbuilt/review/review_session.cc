@@ -168,11 +168,6 @@ struct ReviewSession::Impl {
     return o;
   }
 
-  // The openings become the person's list to edit. Until then FollowFit
-  // keeps them the fit's own, under the ids the state shows, so an edit
-  // names a survey opening by the id the person saw.
-  static void MaterializeOpenings(Layout& l) { l.openings_edited = true; }
-
   // Where a new corner at xy goes in l's corners: of the places where the
   // room crosses itself no more than it does now, the one of least cost, in
   // metres: how much longer the outline gets, plus how far the two new
@@ -215,6 +210,16 @@ struct ReviewSession::Impl {
     return order.front().second;
   }
 
+  // The whole outline replaced by `xy`, every corner the person's, turned
+  // counter-clockwise (the room on the left, as the plan's rings) whichever
+  // way it was given.
+  static void SetOutline(Layout& l, std::vector<Vec2> xy) {
+    if (PolygonArea(xy) < 0) std::reverse(xy.begin(), xy.end());
+    l.corners.clear();
+    for (const Vec2& p : xy) l.corners.push_back(Corner{.id = l.next_id++, .xy_m = p, .user = true});
+    l.corners_edited = true;
+  }
+
   Layout Apply(const nlohmann::json& edit) const {
     if (!edit.is_object()) throw EditError("an edit is a JSON object with \"op\"");
     if (!edit.contains("op") || !edit["op"].is_string()) throw EditError("an edit needs \"op\" (a string)");
@@ -236,17 +241,7 @@ struct ReviewSession::Impl {
       l.corners.insert(l.corners.begin() + index, Corner{.id = l.next_id++, .xy_m = xy, .user = true});
     } else if (op == "move_corner") {
       const int i = CornerIndex(l, Integer(edit, "id"), op);
-      Vec2 xy;
-      if (edit.contains("xy_m")) {
-        const nlohmann::json& v = edit["xy_m"];
-        if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number() ||
-            !std::isfinite(v[0].get<double>()) || !std::isfinite(v[1].get<double>())) {
-          throw EditError("move_corner: \"xy_m\" must be [x, y], two finite numbers");
-        }
-        xy = Vec2(v[0].get<double>(), v[1].get<double>());
-      } else {
-        xy = FloorPoint(edit);
-      }
+      const Vec2 xy = edit.contains("xy_m") ? PlanPoint(edit, "xy_m", op) : FloorPoint(edit);
       l.corners_edited = true;
       l.corners[i].xy_m = xy;
       l.corners[i].user = true;
@@ -254,15 +249,14 @@ struct ReviewSession::Impl {
       if (!edit.contains("corners_m") || !edit["corners_m"].is_array() || edit["corners_m"].size() < 3) {
         throw EditError("set_corners: \"corners_m\" must be a list of 3 or more [x, y] floor points, in room order");
       }
-      l.corners.clear();
+      std::vector<Vec2> xy;
       for (std::size_t k = 0; k < edit["corners_m"].size(); ++k) {
         const nlohmann::json point = {{"xy", edit["corners_m"][k]}};
-        l.corners.push_back(Corner{
-            .id = l.next_id++, .xy_m = PlanPoint(point, "xy", fmt::format("set_corners: corner {}", k)), .user = true});
+        xy.push_back(PlanPoint(point, "xy", fmt::format("set_corners: corner {}", k)));
       }
-      if (PolygonCrossings(CornerPoints(l)) > 0)
+      if (PolygonCrossings(xy) > 0)
         throw EditError("set_corners: the corners cross each other: give them in the room's order");
-      l.corners_edited = true;
+      SetOutline(l, std::move(xy));
     } else if (op == "trace") {  // The outline clicked afresh on the photo, corner by corner.
       if (!edit.contains("points") || !edit["points"].is_array() || edit["points"].size() < 3) {
         throw EditError(
@@ -277,10 +271,7 @@ struct ReviewSession::Impl {
       }
       if (PolygonCrossings(xy) > 0)
         throw EditError("trace: the corners cross each other: click them in the room's order");
-      if (PolygonArea(xy) < 0) std::reverse(xy.begin(), xy.end());  // The room on the left, as the plan's rings.
-      l.corners.clear();
-      for (const Vec2& p : xy) l.corners.push_back(Corner{.id = l.next_id++, .xy_m = p, .user = true});
-      l.corners_edited = true;
+      SetOutline(l, std::move(xy));
     } else if (op == "straighten") {  // One wall from corner "from" to corner "to": the corners between go.
       const int n = static_cast<int>(l.corners.size());
       const int from = CornerIndex(l, Integer(edit, "from"), op), to = CornerIndex(l, Integer(edit, "to"), op);
@@ -321,17 +312,20 @@ struct ReviewSession::Impl {
                         pixel.x(), pixel.y(), h, image.camera_m.z(), kMaxCeilingM));
       }
       l.ceiling_m = h;
-    } else if (op == "add_opening") {
-      MaterializeOpenings(l);
-      l.openings.push_back(OpeningFrom(edit, l.next_id++));
-    } else if (op == "move_opening") {
-      MaterializeOpenings(l);
-      const int i = OpeningIndex(l, Integer(edit, "id"), op);
-      l.openings[i] = OpeningFrom(edit, l.openings[i].id);
-    } else if (op == "delete_opening") {
-      MaterializeOpenings(l);
-      const int i = OpeningIndex(l, Integer(edit, "id"), op);
-      l.openings.erase(l.openings.begin() + i);
+    } else if (op == "add_opening" || op == "move_opening" || op == "delete_opening") {
+      // The openings become the person's list. Until now FollowFit kept them
+      // the fit's own under the ids the state shows, so an edit names a
+      // survey opening by the id the person saw.
+      l.openings_edited = true;
+      if (op == "add_opening") {
+        l.openings.push_back(OpeningFrom(edit, l.next_id++));
+      } else if (op == "move_opening") {
+        const int i = OpeningIndex(l, Integer(edit, "id"), op);
+        l.openings[i] = OpeningFrom(edit, l.openings[i].id);
+      } else {
+        const int i = OpeningIndex(l, Integer(edit, "id"), op);
+        l.openings.erase(l.openings.begin() + i);
+      }
     } else {
       throw EditError(fmt::format(
           "unknown op \"{}\" (add_corner, move_corner, set_corners, trace, delete_corner, straighten, ceiling, "

@@ -288,6 +288,17 @@ TEST(ReviewSession, ASurveyOpeningIsEditedByTheIdTheStateShows) {
   for (const nlohmann::json& o : state["openings"]) EXPECT_NE(o["id"], id);
 }
 
+// A whole outline in metres, given clockwise, is the same room as counter-clockwise.
+TEST(ReviewSession, SetCornersTakesEitherTurn) {
+  ReviewSession session = ReviewSession::Open(PanoramaSurvey("set_turn"));
+  const nlohmann::json ccw = {{kX0, kY0}, {kX1, kY0}, {kX1, kY1}, {kX0, kY1}};
+  const nlohmann::json cw = {{kX0, kY1}, {kX1, kY1}, {kX1, kY0}, {kX0, kY0}};
+  const double area = PlanOf(session.Edit({{"op", "set_corners"}, {"corners_m", ccw}})).rooms[0].area_m2;
+  const Plan plan = PlanOf(session.Edit({{"op", "set_corners"}, {"corners_m", cw}}));
+  EXPECT_NEAR(plan.rooms[0].area_m2, area, 1e-9);
+  EXPECT_GT(PolygonArea(plan.rooms[0].polygon), 0);
+}
+
 TEST(ReviewSession, DeleteUndoRedo) {
   ReviewSession session = ReviewSession::Open(PanoramaSurvey("undo"));
   const nlohmann::json start = session.State();
