@@ -36,6 +36,9 @@ void AddDatasetSynthFlags(CLI::App& app, DatasetSynthFlags& flags) {
                  "folder of photos for photo_textures/outside_photos (repeatable; replaces the Debian\n"
                  "defaults: /usr/share/gimp/2.0/patterns, /usr/share/blender/datafiles/studiolights/world)");
   app.add_flag("--no-indirect", flags.no_indirect, "direct light only (faster)");
+  app.add_flag("--layout-labels", o.render.layout_labels,
+               "label by the layout rule, as reviews and ZInD do: furniture and door leaves before a wall are\n"
+               "wall (docs/seg.md); default: what the ray meets first");
 }
 
 DatasetSynthOptions ResolveDatasetSynthFlags(const DatasetSynthFlags& flags) {
@@ -74,6 +77,7 @@ std::vector<std::string> DatasetSynthArgs(const DatasetSynthOptions& o) {
     for (const auto& dir : o.photo_dirs) args.insert(args.end(), {"--photo-dir", dir.string()});
   }
   if (!o.render.indirect_light) args.push_back("--no-indirect");
+  if (o.render.layout_labels) args.push_back("--layout-labels");
   return args;
 }
 

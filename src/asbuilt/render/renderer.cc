@@ -331,6 +331,40 @@ void DenoiseIrradiance(PixelBuffers& b, int passes) {
   }
 }
 
+// What the layout rule looks through: the room's contents, not its shell.
+bool IsRoomContent(SurfaceRole role) {
+  return role == SurfaceRole::kFurniture || role == SurfaceRole::kMirror || role == SurfaceRole::kLight ||
+         role == SurfaceRole::kDoorLeaf;
+}
+
+// The label and distance of a primary ray's first hit that counts: the hit
+// itself, or with the layout rule the first part of the shell behind the
+// room's contents. Label portals crossed first win in both.
+std::uint8_t PrimaryLabel(const RayTracer& tracer, const Vec3f& origin, const Vec3f& dir, bool found, RayHit hit,
+                          bool layout) {
+  const SceneMesh& mesh = tracer.mesh();
+  double t_first = found ? hit.t : 1e30;
+  if (layout && found) {
+    float travelled = 0.0f;
+    for (int k = 0; found && k < 16 && IsRoomContent(mesh.objects[hit.object].role); ++k) {
+      travelled += hit.t;
+      found = tracer.Intersect(origin + travelled * dir, dir, kEpsilon, kFar, true, &hit);
+    }
+    t_first = found ? travelled + hit.t : 1e30;
+  }
+  std::uint8_t label = found ? mesh.objects[hit.object].label : kLabelBackground;
+  const Vec3 o_d = origin.cast<double>(), dir_d = dir.cast<double>();
+  double best = 1e30;
+  for (const LabelPortal& portal : mesh.portals) {
+    double tp = IntersectPortal(portal, o_d, dir_d);
+    if (tp > 0 && tp <= t_first + 1e-4 && tp < best) {
+      best = tp;
+      label = portal.label;
+    }
+  }
+  return label;
+}
+
 // A camera-frame normal as an 8-bit BGR pixel (each component −1..1 → 0..255).
 cv::Vec3b NormalPixel(const Vec3f& nc) {
   auto byte = [](float v) { return static_cast<std::uint8_t>(std::lround(127.5f * (v + 1))); };
@@ -397,18 +431,8 @@ RenderedView SceneRenderer::Render(const StereoCamera& cam, const RenderOptions&
               bool found = im.tracer->Intersect(origin, dir, layer == 0 ? 0.0f : kEpsilon, kFar, true, &hit);
               if (s == 0 && first && with_aux) {
                 // Exact aux outputs from the first hit through the centre.
-                std::uint8_t label = found ? im.mesh.objects[hit.object].label : kLabelBackground;
-                double t_first = found ? hit.t : 1e30;
-                const Vec3 o_d = origin.cast<double>(), dir_d = dir.cast<double>();
-                double best = 1e30;
-                for (const LabelPortal& portal : im.mesh.portals) {
-                  double tp = IntersectPortal(portal, o_d, dir_d);
-                  if (tp > 0 && tp <= t_first + 1e-4 && tp < best) {
-                    best = tp;
-                    label = portal.label;
-                  }
-                }
-                aux.labels.at<std::uint8_t>(y, x) = label;
+                aux.labels.at<std::uint8_t>(y, x) =
+                    PrimaryLabel(*im.tracer, origin, dir, found, hit, options.layout_labels);
                 if (found) {
                   double z_mm = hit.t / d_cam_norm * 1000.0;
                   aux.depth_mm.at<std::uint16_t>(y, x) =

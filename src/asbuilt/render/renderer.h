@@ -53,6 +53,9 @@ struct RenderOptions {
                                 // sharpening, saturation. Off: the plain camera's effects.
   bool normals = false;         // Also produce camera-frame normals.
   bool instance_ids = false;    // Also produce per-object instance ids.
+  bool layout_labels = false;   // Labels by the layout rule (docs/seg.md, as ZInD's and a review's):
+                                // furniture, mirrors, lights and door leaves are looked through, so
+                                // the wall behind them is labelled wall.
   std::uint64_t seed = 0;       // Sampling and effects; same seed → identical images.
 
   void Check() const;

@@ -368,6 +368,35 @@ TEST(Render, ACeilingInTheWallsPaintIsStillBackground) {
   EXPECT_GT(cv::norm(AsMat(a.left), AsMat(b.left), cv::NORM_L1), 0.0);
 }
 
+TEST(Render, LayoutLabelsLookThroughFurnitureToTheWallAndDoorBehind) {
+  Scene s = TestRoom();
+  // A sideboard before wall 2 left of the door (x ∈ [0.4, 1.4]) and a chair
+  // before the door (x ∈ [2.1, 2.6]), both 0.9 m high.
+  s.furniture.push_back({.name = "sideboard", .centre_m = Vec2(0.9, 2.7), .size_m = Vec3(1.0, 0.5, 0.9)});
+  s.furniture.push_back({.name = "chair", .centre_m = Vec2(2.35, 2.5), .size_m = Vec3(0.5, 0.5, 0.9)});
+  StereoCamera cam = SmallCamera({Vec3(2.0, 0.5, 1.4), 0.0, -10.0}, 70.0);
+  RenderOptions layout = FastOptions();
+  layout.layout_labels = true;
+  const SceneRenderer renderer(s);
+  const cv::Mat hit = AsMat(renderer.Render(cam, FastOptions(), 0, false).labels);
+  const cv::Mat rule = AsMat(renderer.Render(cam, layout, 0, false).labels);
+  auto label_at = [&](const cv::Mat& labels, const Vec3& world) {
+    auto px = ProjectLeft(cam, world);
+    EXPECT_TRUE(px.has_value() && px->x() >= 0 && px->x() < 159.5 && px->y() >= 0 && px->y() < 119.5);
+    return labels.at<std::uint8_t>(static_cast<int>(std::lround(px->y())), static_cast<int>(std::lround(px->x())));
+  };
+  const Vec3 sideboard_front(0.9, 2.45, 0.5), chair_front(2.35, 2.25, 0.5);
+  EXPECT_EQ(label_at(hit, sideboard_front), kLabelBackground);
+  EXPECT_EQ(label_at(rule, sideboard_front), kLabelWall);
+  EXPECT_EQ(label_at(hit, chair_front), kLabelBackground);
+  EXPECT_EQ(label_at(rule, chair_front), kLabelDoor);
+  // The shell itself is labelled alike: floor before the furniture, wall above it.
+  EXPECT_EQ(label_at(rule, Vec3(2.0, 2.0, 0.0)), kLabelBackground);
+  EXPECT_EQ(label_at(rule, Vec3(0.9, 3.0, 1.5)), kLabelWall);
+  const cv::Mat differ = hit != rule;
+  EXPECT_EQ(cv::countNonZero(differ & (hit != kLabelBackground)), 0);  // Only furniture pixels change.
+}
+
 TEST(RandomViewEffects, PhoneProcessingLeavesTheOtherDrawsAlone) {
   for (std::uint64_t seed : {1u, 2u, 3u}) {
     ViewEffects plain = RandomViewEffects(1.0, seed), phone = RandomViewEffects(1.0, seed, true);
