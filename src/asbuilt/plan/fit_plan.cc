@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 
+#include "asbuilt/geometry/polygon.h"
 #include "asbuilt/plan/plan_stages.h"
 #include "asbuilt/plan/plan_uncertainty.h"
 #include "asbuilt/util/error.h"
@@ -374,7 +376,8 @@ void PlanConstraints::Check() const {
 struct PlanFitter::State {
   PlanInput input;
   PlanOptions options;
-  std::unique_ptr<StagesHolder> measured;
+  std::unique_ptr<StagesHolder> measured;  // Null when the points hold fewer than two walls,
+  std::exception_ptr no_walls;             // and then why.
   // The stages at the last ceiling height asked for (a review changes it seldom).
   mutable std::optional<double> ceiling_m;
   mutable std::unique_ptr<StagesHolder> at_ceiling;
@@ -384,7 +387,11 @@ PlanFitter::PlanFitter(PlanInput input, const PlanOptions& options) : state_(std
   state_->options = ResolvePlanOptions(input, options);
   state_->options.Check();
   state_->input = std::move(input);
-  state_->measured = RunStages(state_->input.points, state_->options, state_->input.source);
+  try {
+    state_->measured = RunStages(state_->input.points, state_->options, state_->input.source);
+  } catch (const Error&) {
+    state_->no_walls = std::current_exception();  // Fit() without corners rethrows it; with corners it needs no points.
+  }
 }
 
 PlanFitter::~PlanFitter() = default;
@@ -393,12 +400,43 @@ PlanFitter& PlanFitter::operator=(PlanFitter&&) noexcept = default;
 
 const PlanInput& PlanFitter::input() const { return state_->input; }
 const PlanOptions& PlanFitter::options() const { return state_->options; }
-Vec2 PlanFitter::viewpoint() const { return state_->measured->stages.ring.viewpoint; }
+Vec2 PlanFitter::viewpoint() const {
+  if (state_->measured) return state_->measured->stages.ring.viewpoint;
+  return state_->options.viewpoint_m ? Vec2(state_->options.viewpoint_m->head<2>()) : Vec2::Zero();
+}
+
+namespace {
+
+// The plan of a person's corners alone (the points held no walls): straight
+// walls between them, `height_m` high when known.
+PlanResult PlanOfCorners(const std::vector<PlanCorner>& corners, std::optional<double> height_m) {
+  PlanResult result;
+  PlanRoom room;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    PlanWall w{.start = corners[i].xy_m, .end = corners[(i + 1) % corners.size()].xy_m, .height = height_m};
+    result.plan.walls.push_back(w);
+    room.polygon.push_back(corners[i].xy_m);
+  }
+  room.area_m2 = std::abs(PolygonArea(room.polygon));
+  result.plan.rooms.push_back(room);
+  result.summary.walls = static_cast<int>(result.plan.walls.size());
+  result.summary.wall_inferred.assign(result.plan.walls.size(), false);
+  return result;
+}
+
+}  // namespace
 
 PlanResult PlanFitter::Fit(const PlanConstraints& constraints) const {
   constraints.Check();
   const auto start_time = std::chrono::steady_clock::now();
   const State& s = *state_;
+  if (!s.measured) {
+    if (constraints.corners.empty()) std::rethrow_exception(s.no_walls);
+    PlanResult result = PlanOfCorners(constraints.corners, constraints.ceiling_height_m);
+    if (constraints.openings) result.plan.openings = PlaceOpenings(*constraints.openings, result.plan.walls);
+    result.summary.openings = static_cast<int>(result.plan.openings.size());
+    return result;
+  }
   const StagesHolder* h = s.measured.get();
   const bool new_ceiling =
       constraints.ceiling_height_m && !(std::abs(*constraints.ceiling_height_m - s.input.ceiling_height_m) < 1e-6);

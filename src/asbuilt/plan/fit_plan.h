@@ -101,8 +101,10 @@ struct PlanConstraints {
 // corners or openings runs only the stages they touch (milliseconds).
 class PlanFitter {
  public:
-  // Runs the first fit; throws as ReconstructPlan (InvalidArgument for bad
-  // options, Error / InputError when the points hold fewer than two walls).
+  // Runs the stages the constraints do not touch. Throws InvalidArgument for
+  // bad options. Points that hold fewer than two walls are no error here:
+  // Fit() then throws as ReconstructPlan, unless given corners, whose plan
+  // needs no points (a review that traces a room the survey did not find).
   PlanFitter(PlanInput input, const PlanOptions& options);
   ~PlanFitter();
   PlanFitter(PlanFitter&&) noexcept;

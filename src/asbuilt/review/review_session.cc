@@ -45,6 +45,7 @@ struct ReviewSession::Impl {
   std::vector<Layout> undo, redo;
   nlohmann::json log = nlohmann::json::array();  // Every edit in order (corrections.json).
   double fit_seconds = 0.0;
+  std::string no_walls_note;  // Set when the survey's own plan had no walls.
 
   const ReviewImage& ImageOf(const nlohmann::json& edit) const {
     if (input.kind == "panorama") return input.images.front();
@@ -84,8 +85,13 @@ struct ReviewSession::Impl {
 
   // The horizontal distance to the wall seen in pixel's column: from its
   // floor edge (the median of the floor contacts within ±1.5° of its bearing,
-  // which a ceiling height does not move), else from the plan's walls.
-  std::optional<double> WallDistanceInColumn(const ReviewImage& image, const Vec2& pixel) const {
+  // which a ceiling height does not move), else from the plan's walls. Once
+  // the person has set the corners, their plan comes first: the contacts are
+  // the segmenter's reading.
+  std::optional<double> WallDistanceInColumn(const ReviewImage& image, const Vec2& pixel, bool plan_first) const {
+    if (plan_first) {
+      if (const auto hit = WallOfPixel(image, fit.plan, pixel)) return hit->distance_m;
+    }
     const Vec3 ray = RayOfPixel(image, pixel);
     const double bearing = std::atan2(ray.y(), ray.x());
     std::vector<double> distances;
@@ -299,7 +305,7 @@ struct ReviewSession::Impl {
     } else if (op == "ceiling") {
       const ReviewImage& image = ImageOf(edit);
       const Vec2 pixel = PixelOf(edit, image, "u", "v");
-      const std::optional<double> distance = WallDistanceInColumn(image, pixel);
+      const std::optional<double> distance = WallDistanceInColumn(image, pixel, l.corners_edited);
       if (!distance) {
         throw EditError(
             fmt::format("ceiling: ({:.1f}, {:.1f}) does not look at a wall of the plan", pixel.x(), pixel.y()));
@@ -357,7 +363,8 @@ struct ReviewSession::Impl {
   // The fit's own corners and openings where the person has not edited them.
   void FollowFit(Layout& l) const {
     if (!l.corners_edited) {
-      const std::vector<Vec2>& polygon = fit.plan.rooms.at(0).polygon;
+      static const std::vector<Vec2> kNone;
+      const std::vector<Vec2>& polygon = fit.plan.rooms.empty() ? kNone : fit.plan.rooms.front().polygon;
       if (l.corners.size() != polygon.size()) {
         l.corners.clear();
         for (const Vec2& p : polygon) l.corners.push_back({.id = l.next_id++, .xy_m = p});
@@ -553,6 +560,7 @@ struct ReviewSession::Impl {
       js["walls"].push_back(wj);
     }
     js["notes"] = survey_summary.value("notes", nlohmann::json::array());
+    if (!no_walls_note.empty() && layout.corners.empty()) js["notes"].insert(js["notes"].begin(), no_walls_note);
     js["wall_cues"] = survey_summary.value("wall_cues", nlohmann::json::array());
     try {
       js["svg"] = marked.walls.empty() ? std::string() : PlanToSvg(marked);
@@ -637,6 +645,10 @@ ReviewSession ReviewSession::Open(const fs::path& out_dir) {
     s.fit = s.fitter->Fit();
   } catch (const InvalidArgument& e) {
     throw InputError(s.input.plan_input.source, "", fmt::format("the survey's plan cannot be fitted: {}", e.what()));
+  } catch (const Error& e) {
+    // The survey found no walls: the person traces the room from nothing.
+    s.fit = {};
+    s.no_walls_note = fmt::format("the survey found no walls ({}): trace the room's floor corners (t)", e.what());
   }
   s.fit_seconds = std::chrono::duration<double>(Clock::now() - t).count();
   s.FollowFit(s.initial);

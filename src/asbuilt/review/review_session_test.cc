@@ -13,6 +13,7 @@
 #include "asbuilt/dataset/manifest.h"
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/pano/perspective.h"
+#include "asbuilt/pipeline/review_input.h"
 #include "asbuilt/plan/fit_plan.h"
 #include "asbuilt/plan/room_iou.h"
 #include "asbuilt/review/review_test_fixtures.h"
@@ -272,6 +273,45 @@ TEST(ReviewSession, TraceReplacesTheOutlineWithTheClickedCorners) {
     }
   }
   EXPECT_EQ(session.State()["edits"], 2);
+}
+
+// The clicks of a trace of the box room's corners, scaled about the camera.
+nlohmann::json BoxTracePoints(double scale) {
+  nlohmann::json points = nlohmann::json::array();
+  const Plan truth = BoxTruth();
+  for (const Vec2& c : truth.rooms[0].polygon) {
+    const Vec2 xy = kCamera.head<2>() + scale * (c - kCamera.head<2>());
+    const Vec2 px = PanoPixel(Vec3(xy.x(), xy.y(), 0.0));
+    points.push_back({{"u", px.x()}, {"v", px.y()}});
+  }
+  return points;
+}
+
+TEST(ReviewSession, ASurveyThatFoundNoWallsOpensAndIsTraced) {
+  const fs::path out = PanoramaSurvey("no_walls");
+  ReviewInput input = ReadReviewInput(out);
+  std::erase_if(input.plan_input.points, [](const ClassPoint& p) { return p.label == LabelClass::kWall; });
+  WriteReviewInput(out, input);
+  ReviewSession session = ReviewSession::Open(out);
+  nlohmann::json state = session.State();
+  EXPECT_TRUE(state["corners"].empty());
+  ASSERT_FALSE(state["notes"].empty());
+  EXPECT_NE(state["notes"][0].get<std::string>().find("the survey found no walls"), std::string::npos);
+  state = session.Edit({{"op", "trace"}, {"points", BoxTracePoints(1.0)}});
+  EXPECT_GE(RoomPolygonOverlap(PlanOf(state), BoxTruth())->Iou(), 0.99);
+  state = session.Edit(Click("ceiling", PanoPixel(Vec3(kX1, 0.3, kCeiling))));
+  EXPECT_NEAR(state["ceiling_height_m"].get<double>(), kCeiling, 0.02);
+  EXPECT_FALSE(session.Save().empty());
+  EXPECT_TRUE(fs::is_regular_file(out / "review" / "training" / "manifest.json"));
+}
+
+TEST(ReviewSession, ACeilingClickAfterATraceReadsThePersonsWallsNotTheContacts) {
+  ReviewSession session = ReviewSession::Open(PanoramaSurvey("trace_ceiling"));
+  // The person says every wall stands 20 % farther than the labels put it.
+  session.Edit({{"op", "trace"}, {"points", BoxTracePoints(1.2)}});
+  const double east_x = kCamera.x() + 1.2 * (kX1 - kCamera.x());
+  const nlohmann::json state = session.Edit(Click("ceiling", PanoPixel(Vec3(east_x, 0.3, 2.8))));
+  EXPECT_NEAR(state["ceiling_height_m"].get<double>(), 2.8, 0.02);
 }
 
 // The survey's own openings are addressed by the ids the state shows, also
