@@ -146,14 +146,6 @@ void AddStrayLight(SegPair& pair, std::mt19937_64& rng) {
 void AugmentPair(SegPair& pair, const AugmentOptions& o, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u01(0, 1);
   auto U = [&](double a, double b) { return a + (b - a) * u01(rng); };
-  const int side = std::min(pair.bgr.cols, pair.bgr.rows), length = std::max(pair.bgr.cols, pair.bgr.rows);
-  if (o.tall_as_squares && length > side * 5 / 4) {
-    const int start = static_cast<int>(U(0, length - side + 1 - 1e-9));
-    const cv::Rect square =
-        pair.bgr.rows > pair.bgr.cols ? cv::Rect(0, start, side, side) : cv::Rect(start, 0, side, side);
-    pair.bgr = pair.bgr(square).clone();
-    pair.label = pair.label(square).clone();
-  }
   // Random resize around the base scale.
   cv::Size fit = FitSize(pair.bgr.size(), o.scale_width_px, o.scale_height_px);
   double ratio = U(o.ratio_min, o.ratio_max);

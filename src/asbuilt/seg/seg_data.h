@@ -59,11 +59,6 @@ struct AugmentOptions {
   bool flip = true;             // Horizontal flip, p = 0.5.
   bool photometric = true;      // Brightness, contrast, saturation, hue (mmseg).
   bool blur_noise = true;       // Gaussian blur (p 0.3) and noise (p 0.3).
-  // An image whose long side exceeds the short by more than a quarter (a
-  // panorama's tall view) is first cut to a random square of its short side,
-  // as the TFLite segmenter reads it (tflite_segmenter.cc), so that training
-  // sees it at the scale the survey does. Set by training for --arch tflite.
-  bool tall_as_squares = false;
   // Light that is not a window (issue 21: real photos' sunlit patches, lamps
   // and white appliances read as window). With this probability per crop:
   // 1–3 soft-edged patches of warm light (a sun patch's parallelogram or a

@@ -147,7 +147,7 @@ TrainBatch ReadTrainBatch(const TrainOptions& options, const std::vector<SegSamp
     const SegSample& sample = train[SampleIndex(options.seed, k, train.size(), perm, perm_pass)];
     SegPair pair = ReadSegPair(sample, options.num_classes);
     std::mt19937_64 rng(options.seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(k));
-    AugmentPair(pair, options.EffectiveAugment(), rng);
+    AugmentPair(pair, options.augment, rng);
     batch.images.push_back(pair.bgr);
     batch.labels.push_back(pair.label);
   }

@@ -66,9 +66,6 @@ struct TrainOptions {
   DistributedOptions distributed;
 
   void Check() const;
-  // `augment` as training applies it: a TFLite graph also gets tall views
-  // as squares (AugmentOptions::tall_as_squares), as it reads them.
-  AugmentOptions EffectiveAugment() const;
   nlohmann::json ToJson() const;
 };
 

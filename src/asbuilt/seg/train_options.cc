@@ -82,12 +82,6 @@ TrainOptions FinetuneOptions(const std::filesystem::path& model, const Segmenter
   return o;
 }
 
-AugmentOptions TrainOptions::EffectiveAugment() const {
-  AugmentOptions a = augment;
-  a.tall_as_squares = a.tall_as_squares || arch == "tflite";
-  return a;
-}
-
 nlohmann::json TrainOptions::ToJson() const {
   return {{"manifest", manifest.string()},
           {"images_dir", images_dir.string()},
@@ -114,8 +108,7 @@ nlohmann::json TrainOptions::ToJson() const {
             {"flip", augment.flip},
             {"photometric", augment.photometric},
             {"blur_noise", augment.blur_noise},
-            {"stray_light_probability", augment.stray_light_probability},
-            {"tall_as_squares", EffectiveAugment().tall_as_squares}}},
+            {"stray_light_probability", augment.stray_light_probability}}},
           {"val_max_images", val_max_images},
           {"seed", seed},
           {"init", init.string()},

@@ -174,36 +174,6 @@ TEST(AugmentPair, ProducesCropSizeAndKeepsLabelsValid) {
   }
 }
 
-// A tall view is cut to a square of its width before the resize, so it is
-// trained at the scale the TFLite segmenter reads it; off, it is fitted whole.
-TEST(AugmentPair, TallAsSquaresTrainsATallViewAtItsSquaresScale) {
-  SegPair tall{cv::Mat(200, 100, CV_8UC3, cv::Scalar(90, 90, 90)), cv::Mat(200, 100, CV_8UC1, cv::Scalar(0))};
-  for (int v = 0; v < 200; ++v) tall.label.row(v).setTo(v / 50);  // Four bands, 50 rows each.
-  AugmentOptions o{.scale_width_px = 64,
-                   .scale_height_px = 64,
-                   .ratio_min = 1.0,
-                   .ratio_max = 1.0,
-                   .crop_width_px = 64,
-                   .crop_height_px = 64,
-                   .cat_max_ratio = 1.0,
-                   .flip = false,
-                   .photometric = false,
-                   .blur_noise = false};
-  std::mt19937_64 rng(3);
-  SegPair whole{tall.bgr.clone(), tall.label.clone()};
-  AugmentPair(whole, o, rng);
-  EXPECT_EQ(cv::countNonZero(whole.label == 255), 64 * 32);  // Fitted as 32 × 64, padded.
-  o.tall_as_squares = true;
-  for (int i = 0; i < 5; ++i) {
-    SegPair p{tall.bgr.clone(), tall.label.clone()};
-    AugmentPair(p, o, rng);
-    EXPECT_EQ(cv::countNonZero(p.label == 255), 0);  // A 100² square fitted to 64²: no padding.
-    double lo, hi;
-    cv::minMaxLoc(p.label, &lo, &hi);
-    EXPECT_LE(hi - lo, 2.0);  // 100 of the 200 rows: at most three bands.
-  }
-}
-
 // Stray light brightens parts of the image (some to white), never darkens
 // a non-window pixel, and leaves the labels as they were; over many draws
 // some crops get their windows dimmed below where they started.
