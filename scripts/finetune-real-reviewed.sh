@@ -7,7 +7,8 @@
 #   scripts/finetune-real-reviewed.sh [BUILD_DIR] [WORK_DIR] [FROM]
 #
 # FROM is the model to continue (default WORK/../distill/real.pt, the output
-# of scripts/finetune-teacher.sh: the `real` model before this stage). Each
+# of scripts/finetune-teacher.sh: the `real` model before this stage, in git
+# as models/deeplabv3_mnv2_asbuilt_real.pt at 4a6f989). Each
 # room is surveyed, its annotation replayed as a review and saved
 # (scripts/review-from-truth.py), which writes the room's views and layout
 # labels to OUT/review/training/. The three CC0 rooms with hand-made truth
@@ -21,7 +22,7 @@
 #
 # Environment: STEPS_EPOCHS [8] epochs of 50 steps, batch 8; LR [5e-5].
 # Time on 2 cores (2026-12-06): renders 8 min, surveys and reviews 2 min,
-# fine-tuning 11 min.
+# fine-tuning 11 min (680 s).
 set -euo pipefail
 BUILD=${1:-build}
 WORK=${2:-runs/real-reviewed}
@@ -77,8 +78,14 @@ for room in comfy_cafe colorful_studio pine_attic; do
   python3 "$HERE/scripts/review-from-truth.py" "$out" "$SHARED/cc0-panoramas/annotated/$room/truth.json" --asbuilt "$ASBUILT"
 done
 
-# 5. RS5050, then the fine-tune (a TFLite graph reads the tall views as squares).
-"$ASBUILT" dataset mix --real "$WORK/reviews" --synthetic "$WORK/synth" --test "$WORK/test" --config RS5050 \
-  --seed 51 -o "$WORK/mix.json"
+# 5. Each 512×1024 view cut into three 4:3 level views (the renders' aspect and scale), RS5050,
+#    then the fine-tune.
+for dir in "$WORK"/reviews/* "$WORK"/test/*; do
+  room=$(basename "$dir") kind=$(basename "$(dirname "$dir")")
+  [ -d "$WORK/views/$kind/$room/images" ] ||
+    "$ASBUILT" dataset level-views "$dir/review/training" -o "$WORK/views/$kind/$room" > /dev/null
+done
+"$ASBUILT" dataset mix --real "$WORK/views/reviews" --synthetic "$WORK/synth" --test "$WORK/views/test" \
+  --config RS5050 --seed 51 --no-checksums -o "$WORK/mix.json"
 "$ASBUILT" train --finetune "$FROM" --manifest "$WORK/mix.json" -o "$WORK/train" --lr "$LR" --epochs "$EPOCHS" --seed 52
 echo "finetune-real-reviewed: model $WORK/train/best.pt (cp to models/deeplabv3_mnv2_asbuilt_real.pt)"

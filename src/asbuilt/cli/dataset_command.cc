@@ -1,8 +1,9 @@
-// `asbuilt dataset <synth|merge|verify|mix|check>` — training sets: rendered
+// `asbuilt dataset <synth|merge|verify|mix|check|level-views>` — training sets: rendered
 // synthetic items (synth: dataset_synth_command.cc) and their one manifest
 // once every shard is in (merge, verify), real/synthetic mixes with a
-// held-out real test list, and validation of (image, label) pairs
-// (dataset/, docs/dataset.md, docs/cluster.md).
+// held-out real test list, validation of (image, label) pairs, and a
+// panorama's tall views cut into level ones (dataset/, docs/dataset.md,
+// docs/cluster.md).
 
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +14,7 @@
 
 #include "asbuilt/cli/command.h"
 #include "asbuilt/dataset/check.h"
+#include "asbuilt/dataset/level_views.h"
 #include "asbuilt/dataset/mix.h"
 #include "asbuilt/dataset/synth_merge.h"
 #include "asbuilt/util/progress.h"
@@ -26,7 +28,8 @@ int RunDatasetCommand(int argc, char** argv) {
       "  check  validate every (image, label) pair of a dataset folder or manifest; class histograms\n"
       "  synth  random rooms rendered as labelled training items (images/ labels/ idmaps/ depth/ meta/)\n"
       "  merge  a synth folder's shards → synth_manifest.json (every item's files and SHA-256)\n"
-      "  verify re-hash every file of a merged synth folder against its manifest",
+      "  verify re-hash every file of a merged synth folder against its manifest\n"
+      "  level-views  a panorama's tall views (a saved review's training/) cut into 4:3 level views",
       "asbuilt dataset");
   AddCommonFlags(app);
   app.require_subcommand(1);
@@ -77,6 +80,15 @@ int RunDatasetCommand(int argc, char** argv) {
   verify->add_option("dir", verify_dir, "folder with synth_manifest.json")->required();
   verify->add_option("--threads", verify_threads, "hashing threads (0 = all cores)")->capture_default_str();
 
+  // level-views
+  CLI::App* level = app.add_subcommand(
+      "level-views",
+      "cut each tall image of IN (a panorama's level views, as OUT/review/training/ holds them) and its label into\n"
+      "three 4:3 windows across its width around its horizon: level views at the renders' scale (docs/dataset.md)");
+  std::string level_in, level_out;
+  level->add_option("in", level_in, "folder with images/ + labels/")->required();
+  level->add_option("-o,--output", level_out, "output folder (images/ + labels/)")->required();
+
   // synth (render/): runs from its callback during Parse.
   CLI::App* synth = AddDatasetSynthSubcommand(app);
 
@@ -94,6 +106,12 @@ int RunDatasetCommand(int argc, char** argv) {
     MixSummary summary = MixDataset(mix_options, real_dirs, mix_synth, mix_test, mix_out, printer.Callback());
     printer.Finish();
     fmt::print("{}\nwrote {}\n", summary.BriefReport(), mix_out);
+    return 0;
+  }
+  if (level->parsed()) {
+    const LevelViewsSummary summary = CutLevelViews(level_in, level_out);
+    fmt::print("{} tall views cut into {} level views, {} kept as they were → {}\n", summary.tall, 3 * summary.tall,
+               summary.skipped, level_out);
     return 0;
   }
   if (merge->parsed()) {
