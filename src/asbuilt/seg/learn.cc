@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "asbuilt/dataset/level_views.h"
 #include "asbuilt/dataset/mix.h"
 #include "asbuilt/seg/evaluate.h"
 #include "asbuilt/seg/seg_data.h"
@@ -31,6 +32,25 @@ bool IsExample(const fs::path& dir) { return fs::is_directory(dir / "images") &&
 fs::path ExampleOfSurvey(const fs::path& survey) {
   const fs::path training = survey / "review" / "training";
   return IsExample(training) ? training : fs::path();
+}
+
+// Each example as level views (dataset/level_views.h: a panorama's tall views
+// cut to the renders' aspect and scale) in ROOT/NAME, NAME its survey's, so
+// that ROOT read as one dataset tree keeps each room one room.
+void AsLevelViews(const std::vector<fs::path>& examples, const fs::path& root) {
+  fs::remove_all(root);
+  std::vector<fs::path> written;
+  for (const fs::path& e : examples) {
+    const bool in_survey = e.filename() == "training" && e.parent_path().filename() == "review";
+    std::string name = (in_survey ? e.parent_path().parent_path() : e).filename().string();
+    if (name.empty() || name == "." || name == "..") name = "room";
+    fs::path dir = root / name;
+    for (int k = 2; std::find(written.begin(), written.end(), dir) != written.end(); ++k) {
+      dir = root / fmt::format("{}-{}", name, k);
+    }
+    CutLevelViews(e, dir);
+    written.push_back(dir);
+  }
 }
 
 }  // namespace
@@ -132,10 +152,14 @@ LearnSummary LearnFromReviews(const LearnOptions& options, const ProgressCallbac
   TrainOptions train = FinetuneOptions(options.model, ReadSegmenterInfo(options.model));
   fs::create_directories(options.out_dir);
 
-  // 1. The mix, split by room.
+  // 1. The rooms as level views, and the mix, split by room.
+  const fs::path views = options.out_dir / "views", held_out_views = options.out_dir / "test" / "views";
+  AsLevelViews(summary.examples, views);
+  if (!held_out.empty()) AsLevelViews({held_out}, held_out_views);
   const fs::path manifest = options.out_dir / "mix.json";
   MixOptions mix{.config = options.config, .test_fraction = options.test_fraction, .seed = options.seed};
-  MixSummary mixed = MixDataset(mix, summary.examples, options.synthetic_dir, held_out, manifest, progress);
+  MixSummary mixed = MixDataset(mix, {views}, options.synthetic_dir, held_out.empty() ? fs::path() : held_out_views,
+                                manifest, progress);
   spdlog::info("learn: {}", mixed.BriefReport());
   const SegDataSplit split = SplitFromManifest(manifest);
   summary.train_pairs = static_cast<std::int64_t>(split.train.size());

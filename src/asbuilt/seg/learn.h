@@ -4,13 +4,15 @@
 // Learning from corrections (issue 38, `asbuilt learn`): each survey a
 // surveyor corrected and saved in `asbuilt review` holds a labelled real room
 // (OUT/review/training/: the survey's views and labels drawn from the
-// corrected plan). One call mixes those rooms with renders (split by room,
+// corrected plan). One call cuts a panorama's tall views into level views
+// (dataset/level_views.h), mixes those rooms with renders (split by room,
 // never by view), fine-tunes the current model on the mix (train.h
 // FinetuneOptions), scores the old and the new model on the held-out rooms
 // and keeps the new one only when it is better there. Does not include
 // LibTorch.
 //
 // OUT_DIR after a run:
+//   views/NAME/   each room's views as level views (test/views/NAME: a --hold-out room)
 //   mix.json      the mix (dataset/manifest.h); its test list is the held-out rooms
 //   train/        the fine-tuning run (train.h layout; re-running resumes it)
 //   report.md     old vs new per class on the held-out rooms, and the decision
