@@ -54,7 +54,7 @@ int RunTrainCommand(int argc, char** argv) {
                  "file or an asbuilt-tflite checkpoint");
   app.add_option("--finetune", finetune,
                  "continue from MODEL (a shipped model's name, \"default\", or a checkpoint): its architecture, "
-                 "scale and crop, lr 3e-5 (TFLite: 1e-4, head x10), 8 epochs of 50 steps, batch 8; flags given "
+                 "scale and crop, lr 3e-5 (TFLite: 5e-5, head x10), 8 epochs of 50 steps, batch 8; flags given "
                  "here win")
       ->excludes("--init")
       ->excludes("--arch");
