@@ -249,13 +249,12 @@ bool IsReviewTrainingFolder(const fs::path& dir) {
   return p.filename() == "training" && p.parent_path().filename() == "review";
 }
 
-// A folder's name; a review's training folder (OUT/review/training) is named by its survey OUT.
+}  // namespace
+
 std::string RoomNameOfFolder(const fs::path& dir) {
   const fs::path p = Normal(dir);
   return IsReviewTrainingFolder(p) ? p.parent_path().parent_path().filename().string() : p.filename().string();
 }
-
-}  // namespace
 
 MixSummary MixDataset(const MixOptions& options, const std::vector<fs::path>& real_dirs, const fs::path& synthetic_dir,
                       const fs::path& real_test_dir, const fs::path& manifest_path, const ProgressCallback& progress) {

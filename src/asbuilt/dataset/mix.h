@@ -84,6 +84,10 @@ struct MixSummary {
 MixSummary BuildMix(const MixOptions& options, const MixSources& sources, const std::filesystem::path& manifest_dir,
                     const ProgressCallback& progress = {});
 
+// The room a real folder shows: its name, or for a review's training folder
+// (OUT/review/training) its survey OUT's.
+std::string RoomNameOfFolder(const std::filesystem::path& dir);
+
 // Lists the dataset folders (ListDatasetPairs; empty paths are skipped),
 // builds the mix and writes the manifest atomically. Several real folders
 // (say, survey folders whose reviews were saved: OUT/review/training/) are

@@ -41,9 +41,8 @@ void AsLevelViews(const std::vector<fs::path>& examples, const fs::path& root) {
   fs::remove_all(root);
   std::vector<fs::path> written;
   for (const fs::path& e : examples) {
-    const bool in_survey = e.filename() == "training" && e.parent_path().filename() == "review";
-    std::string name = (in_survey ? e.parent_path().parent_path() : e).filename().string();
-    if (name.empty() || name == "." || name == "..") name = "room";
+    std::string name = RoomNameOfFolder(e);
+    if (name.empty()) name = "room";
     fs::path dir = root / name;
     for (int k = 2; std::find(written.begin(), written.end(), dir) != written.end(); ++k) {
       dir = root / fmt::format("{}-{}", name, k);
