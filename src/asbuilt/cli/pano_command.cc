@@ -66,7 +66,10 @@ int RunPanoCommand(int argc, char** argv) {
   views_cmd->add_option("--zind", zind_dir, "ZInD tour folder (with zind_data.json): also labels and truth.json");
   views_cmd->add_option("--layout", layout, "ZInD layout the labels come from: raw, complete, visible")
       ->capture_default_str();
-  views_cmd->add_flag("--overlay", options.overlays, "with --zind: also DIR/overlays/NNN.png (labels over the views)");
+  views_cmd->add_option("--labels-pano", options.label_panorama,
+                        "a label panorama of the same scene (8-bit label PNG, or the object-index EXR of `scene "
+                        "export-blender --panorama --labels-pass`): also DIR/labels/NNN.png, nearest pixel");
+  views_cmd->add_flag("--overlay", options.overlays, "with labels: also DIR/overlays/NNN.png (labels over the views)");
 
   CLI::App* level_cmd = app.add_subcommand(
       "level",

@@ -94,6 +94,13 @@ int RunSceneCommand(int argc, char** argv) {
   blender_cmd->add_option("-o,--output", blender_out, "script to write (build.py)")->required();
   blender_cmd->add_option("--samples", blender_options.samples, "Cycles samples per pixel")->capture_default_str();
   blender_cmd->add_flag("!--no-denoise", blender_options.denoise, "turn Cycles denoising off");
+  blender_cmd
+      ->add_option("--panorama", blender_options.panorama_width_px,
+                   "render one 360° equirectangular frame WIDTH x WIDTH/2 from the rig's spot instead of the stereo "
+                   "pairs (the photo of a panorama capture)")
+      ->capture_default_str();
+  blender_cmd->add_flag("--labels-pass", blender_options.labels_pass,
+                        "the label pass: 1 sample at each pixel's centre, no bounces; use its OUT/index/*.exr");
 
   CLI::App* schema_cmd = app.add_subcommand("schema", "print (or write) the scene JSON Schema");
   std::string schema_out;

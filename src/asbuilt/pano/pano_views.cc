@@ -1,6 +1,9 @@
 #include "asbuilt/pano/pano_views.h"
 
+#include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -24,8 +27,8 @@ void PanoViewsOptions::Check() const {
 }
 
 std::string PanoViewsSummary::BriefReport() const {
-  return fmt::format("{} view{}{} → {}", views, views == 1 ? "" : "s", labels ? " + layout labels + truth.json" : "",
-                     views_json.string());
+  return fmt::format("{} view{}{}{} → {}", views, views == 1 ? "" : "s", labels ? (truth ? " + layout labels" : " + labels") : "",
+                     truth ? " + truth.json" : "", views_json.string());
 }
 
 Image ReadEquirect(const fs::path& path) {
@@ -38,6 +41,41 @@ Image ReadEquirect(const fs::path& path) {
   return AsImage(image);
 }
 
+Image ReadLabelEquirect(const fs::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  cv::Mat labels;
+  if (ext == ".exr") {
+    setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0);  // Read once per process, before the first EXR.
+    const cv::Mat stored = ReadImageAsStored(path);
+    cv::Mat first;
+    cv::extractChannel(stored, first, 0);
+    first.convertTo(first, CV_32F);
+    labels.create(first.rows, first.cols, CV_8UC1);
+    for (int y = 0; y < first.rows; ++y) {
+      for (int x = 0; x < first.cols; ++x) {
+        const float value = first.at<float>(y, x);
+        const long id = std::lround(value);
+        if (!(std::abs(value - id) < 0.01f) || !((id >= 0 && id <= 3) || id == 255)) {
+          throw InputError(path.string(), "",
+                           fmt::format("pixel ({}, {}) holds {}, not a label id (0 other, 1 wall, 2 door, 3 "
+                                       "window, 255 ignore)",
+                                       x, y, value));
+        }
+        labels.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(id);
+      }
+    }
+  } else {
+    labels = ReadLabelImage(path);
+  }
+  if (std::abs(labels.cols - 2 * labels.rows) > 1) {
+    throw InputError(path.string(), "",
+                     fmt::format("{}x{} is not an equirectangular label panorama (twice as wide as high)", labels.cols,
+                                 labels.rows));
+  }
+  return AsImage(labels);
+}
+
 PanoViewsSummary WritePanoViews(const fs::path& panorama, const fs::path& out_dir, const PanoViewsOptions& options,
                                 const ZindPanorama* zind, const ProgressCallback& progress) {
   options.Check();
@@ -46,6 +84,10 @@ PanoViewsSummary WritePanoViews(const fs::path& panorama, const fs::path& out_di
   std::optional<double> height = options.camera_height_m;
   if (!height && zind) height = zind->camera_height_m;
   if (zind) zind->Layout(options.layout);  // Throws now if the layout is missing.
+  CheckArgument(!(zind && !options.label_panorama.empty()),
+                "PanoViewsOptions.label_panorama: a ZInD panorama has its own layout labels");
+  std::optional<Image> label_equirect;
+  if (!options.label_panorama.empty()) label_equirect = ReadLabelEquirect(options.label_panorama);
 
   fs::create_directories(out_dir);
   const PinholeCamera& cam = views.front().camera;
@@ -58,8 +100,9 @@ PanoViewsSummary WritePanoViews(const fs::path& panorama, const fs::path& out_di
     nlohmann::json frame = {
         {"index", i}, {"image", "images/" + name}, {"yaw_deg", view.yaw_deg}, {"pitch_deg", view.pitch_deg}};
     if (height) frame["position_m"] = {0.0, 0.0, *height};
-    if (zind) {
-      const Image labels = LayoutLabels(*zind, view, options.layout);
+    if (zind || label_equirect) {
+      const Image labels =
+          zind ? LayoutLabels(*zind, view, options.layout) : RenderPanoLabelView(*label_equirect, view);
       WriteImageAtomic(out_dir / "labels" / name, labels);
       frame["labels"] = "labels/" + name;
       if (options.overlays) WriteImageAtomic(out_dir / "overlays" / name, DrawLabelOverlay(image, labels));
@@ -96,7 +139,9 @@ PanoViewsSummary WritePanoViews(const fs::path& panorama, const fs::path& out_di
   }
   PanoViewsSummary summary;
   summary.views = static_cast<int>(views.size());
-  summary.labels = zind != nullptr;
+  summary.labels = zind != nullptr || label_equirect.has_value();
+  summary.truth = zind != nullptr;
+  if (label_equirect) doc["source"]["labels"] = fs::absolute(options.label_panorama).lexically_normal().string();
   summary.views_json = out_dir / "capture.json";
   WriteFileAtomic(summary.views_json, doc.dump(1) + "\n");
   return summary;

@@ -9,8 +9,9 @@
 //
 //   OUT/capture.json         kind "mono": camera, and per view its image, yaw, pitch, position
 //   OUT/images/NNN.png       the views (8-bit BGR)
-//   OUT/labels/NNN.png       ZInD only: layout labels (pano/layout_labels.h)
-//   OUT/overlays/NNN.png     ZInD only, with `overlays`: labels over the view
+//   OUT/labels/NNN.png       ZInD: layout labels (pano/layout_labels.h); or the
+//                            nearest pixels of a label panorama (`label_panorama`)
+//   OUT/overlays/NNN.png     with labels and `overlays`: labels over the view
 //   OUT/truth.json           ZInD only: the room's plan (ZindTruthPlan), pano frame
 //
 // Everything is in the pano frame (formats/zind.h): the camera at
@@ -32,14 +33,18 @@ struct PanoViewsOptions {
   // Camera height above the floor, metres, for each view's position_m; a
   // ZInD panorama's own height is used when this is unset.
   std::optional<double> camera_height_m;
-  bool overlays = false;                         // ZInD only: also write overlays/NNN.png.
+  // A label panorama of the same scene (any 2:1 size): an 8-bit label PNG, or
+  // the object-index EXR of `scene export-blender --panorama --labels-pass`.
+  std::filesystem::path label_panorama;
+  bool overlays = false;                         // With labels: also write overlays/NNN.png.
   ZindLayoutKind layout = ZindLayoutKind::kRaw;  // ZInD only: the layout the labels come from.
   void Check() const;
 };
 
 struct PanoViewsSummary {
   int views = 0;
-  bool labels = false;               // Labels and truth.json written (a ZInD panorama).
+  bool labels = false;               // labels/NNN.png written.
+  bool truth = false;                // truth.json written (a ZInD panorama).
   std::filesystem::path views_json;  // The mono capture.json.
   std::string BriefReport()
       const;  // "12 views 640x480 (fx 400, yaw step 30°, pitch 0°) + layout labels → OUT/capture.json".
@@ -57,6 +62,12 @@ PanoViewsSummary WritePanoViews(const std::filesystem::path& panorama, const std
 // Reads an equirectangular panorama as 8-bit BGR. Throws InputError naming
 // the file when it cannot be read or is not twice as wide as high.
 Image ReadEquirect(const std::filesystem::path& path);
+
+// Reads an equirectangular label panorama as 8-bit ids: a single-channel
+// label PNG, or an OpenEXR whose first channel holds ids as floats (Blender's
+// object-index pass). Throws InputError naming the file and the first pixel
+// whose value is not a label id of DESIGN.md (0–3, 255), or when not 2:1.
+Image ReadLabelEquirect(const std::filesystem::path& path);
 
 }  // namespace asbuilt
 

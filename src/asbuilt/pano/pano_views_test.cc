@@ -1,12 +1,15 @@
 #include "asbuilt/pano/pano_views.h"
 
+#include <cstdlib>
 #include <filesystem>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "asbuilt/formats/plan_file.h"
+#include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/imageio/image_io.h"
 #include "asbuilt/pano/layout_labels.h"
 #include "asbuilt/util/error.h"
@@ -94,6 +97,47 @@ TEST(WritePanoViews, WritesLabelsOverlaysAndTruthForAnAnnotatedPanorama) {
   EXPECT_EQ(truth.walls.size(), 4u);
   EXPECT_EQ(truth.openings.size(), 1u);
   EXPECT_DOUBLE_EQ(truth.rooms[0].area_m2, 16.0);
+}
+
+// A label panorama (a PNG of ids, or Blender's object-index EXR) is cut into
+// the same views as the photo, nearest pixel.
+TEST(WritePanoViews, CutsALabelPanoramaIntoTheViews) {
+  const fs::path dir = FreshDir("label_pano");
+  const fs::path pano = WriteGradientPanorama(dir);
+  cv::Mat ids(256, 512, CV_8UC1, cv::Scalar(1));
+  ids(cv::Rect(0, 0, 512, 64)).setTo(0);     // Ceiling band.
+  ids(cv::Rect(240, 100, 32, 80)).setTo(2);  // A door facing yaw 180° (the middle column).
+  cv::imwrite((dir / "ids.png").string(), ids);
+  const PanoViewsOptions options{.turn = {.views = 2, .yaw_step_deg = 180}, .label_panorama = dir / "ids.png"};
+  const PanoViewsSummary s = WritePanoViews(pano, dir / "out", options);
+  EXPECT_TRUE(s.labels);
+  EXPECT_FALSE(s.truth);
+  EXPECT_EQ(s.BriefReport(), "2 views + labels → " + (dir / "out/capture.json").string());
+  const nlohmann::json j = nlohmann::json::parse(ReadFile(dir / "out/capture.json"));
+  EXPECT_EQ(j["frames"][1]["labels"], "labels/001.png");
+  EXPECT_EQ(ReadLabelImage(dir / "out/labels/001.png").at<std::uint8_t>(240, 320), 2);  // View 1 looks at yaw 180°.
+  EXPECT_EQ(ReadLabelImage(dir / "out/labels/000.png").at<std::uint8_t>(240, 320), 1);
+
+  // The same ids as Blender writes them: floats in an OpenEXR.
+  setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0);
+  cv::Mat floats;
+  ids.convertTo(floats, CV_32F);
+  cv::Mat rgb;
+  cv::merge(std::vector<cv::Mat>{floats, floats, floats}, rgb);
+  ASSERT_TRUE(cv::imwrite((dir / "index.exr").string(), rgb));
+  const cv::Mat read = AsMat(ReadLabelEquirect(dir / "index.exr"));
+  EXPECT_EQ(cv::countNonZero(read != ids), 0);
+  // A value that is no label id is named with its pixel; so is a bad shape.
+  rgb.at<cv::Vec3f>(7, 9) = cv::Vec3f(1.5f, 1.5f, 1.5f);
+  ASSERT_TRUE(cv::imwrite((dir / "bad.exr").string(), rgb));
+  try {
+    ReadLabelEquirect(dir / "bad.exr");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("pixel (9, 7) holds 1.5"), std::string::npos) << e.what();
+  }
+  cv::imwrite((dir / "square.png").string(), cv::Mat(64, 64, CV_8UC1, cv::Scalar(1)));
+  EXPECT_THROW(ReadLabelEquirect(dir / "square.png"), InputError);
 }
 
 TEST(WritePanoViews, NamesAPanoramaThatIsNotOne) {

@@ -87,13 +87,41 @@ std::vector<PanoView> TurnInPlaceViews(const TurnInPlaceOptions& options) {
   return views;
 }
 
+namespace {
+
+void CheckEquirect(const Image& equirect, const char* caller) {
+  CheckArgument(!equirect.empty(), fmt::format("{}: the panorama is empty", caller));
+  CheckArgument(std::abs(equirect.width() - 2 * equirect.height()) <= 1,
+                fmt::format("{}: an equirectangular panorama is twice as wide as high, got {}x{}", caller,
+                            equirect.width(), equirect.height()));
+}
+
+// Each view pixel's position in `source` (an equirectangular image) padded by
+// kSeamPad columns on either side.
+void PanoViewMaps(const PanoView& view, const cv::Mat& source, cv::Mat* map_x, cv::Mat* map_y) {
+  const int w = view.camera.width_px, h = view.camera.height_px;
+  map_x->create(h, w, CV_32F);
+  map_y->create(h, w, CV_32F);
+  const Mat3 world_from_camera = view.WorldFromCamera();
+  for (int v = 0; v < h; ++v) {
+    float* mx = map_x->ptr<float>(v);
+    float* my = map_y->ptr<float>(v);
+    for (int u = 0; u < w; ++u) {
+      const Vec3 ray =
+          world_from_camera * Vec3((u - view.camera.cx) / view.camera.fx, (v - view.camera.cy) / view.camera.fy, 1.0);
+      const Vec2 p = EquirectPixelFromDirection(ray, source.cols, source.rows);
+      mx[u] = static_cast<float>(p.x() + kSeamPad);
+      my[u] = static_cast<float>(p.y());
+    }
+  }
+}
+
+}  // namespace
+
 Image RenderPanoView(const Image& equirect, const PanoView& view) {
   view.Check();
-  CheckArgument(!equirect.empty(), "RenderPanoView: the panorama is empty");
+  CheckEquirect(equirect, "RenderPanoView");
   const cv::Mat pano = AsMat(equirect);
-  CheckArgument(std::abs(equirect.width() - 2 * equirect.height()) <= 1,
-                fmt::format("RenderPanoView: an equirectangular panorama is twice as wide as high, got {}x{}",
-                            equirect.width(), equirect.height()));
   // Reduce the panorama where a view pixel spans more than 1.5 panorama
   // pixels (at the view's centre, where its pixels span the most).
   cv::Mat source = pano;
@@ -106,23 +134,23 @@ Image RenderPanoView(const Image& equirect, const PanoView& view) {
   cv::Mat padded;
   cv::copyMakeBorder(source, padded, 0, 0, kSeamPad, kSeamPad, cv::BORDER_WRAP);
 
-  // Sample positions: each view pixel's ray → panorama pixel.
-  const int w = view.camera.width_px, h = view.camera.height_px;
-  cv::Mat map_x(h, w, CV_32F), map_y(h, w, CV_32F);
-  const Mat3 world_from_camera = view.WorldFromCamera();
-  for (int v = 0; v < h; ++v) {
-    float* mx = map_x.ptr<float>(v);
-    float* my = map_y.ptr<float>(v);
-    for (int u = 0; u < w; ++u) {
-      const Vec3 ray =
-          world_from_camera * Vec3((u - view.camera.cx) / view.camera.fx, (v - view.camera.cy) / view.camera.fy, 1.0);
-      const Vec2 p = EquirectPixelFromDirection(ray, source.cols, source.rows);
-      mx[u] = static_cast<float>(p.x() + kSeamPad);
-      my[u] = static_cast<float>(p.y());
-    }
-  }
-  cv::Mat out;
+  cv::Mat map_x, map_y, out;
+  PanoViewMaps(view, source, &map_x, &map_y);
   cv::remap(padded, out, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  return AsImage(out);
+}
+
+Image RenderPanoLabelView(const Image& equirect_labels, const PanoView& view) {
+  view.Check();
+  CheckEquirect(equirect_labels, "RenderPanoLabelView");
+  const cv::Mat labels = AsMat(equirect_labels);
+  CheckArgument(
+      labels.type() == CV_8UC1,
+      fmt::format("RenderPanoLabelView: labels are 8-bit with one channel, got OpenCV type {}", labels.type()));
+  cv::Mat padded, map_x, map_y, out;
+  cv::copyMakeBorder(labels, padded, 0, 0, kSeamPad, kSeamPad, cv::BORDER_WRAP);
+  PanoViewMaps(view, labels, &map_x, &map_y);
+  cv::remap(padded, out, map_x, map_y, cv::INTER_NEAREST, cv::BORDER_REPLICATE);
   return AsImage(out);
 }
 

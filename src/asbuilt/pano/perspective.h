@@ -69,6 +69,12 @@ std::vector<PanoView> TurnInPlaceViews(const TurnInPlaceOptions& options);
 // InvalidArgument when the panorama is empty or not 2:1 (±1 pixel).
 Image RenderPanoView(const Image& equirect, const PanoView& view);
 
+// The view's labels from an equirectangular label panorama (8-bit, one
+// channel): each view pixel takes the id of the panorama pixel nearest its
+// ray, so no id is blended with its neighbour's. Throws InvalidArgument as
+// RenderPanoView does.
+Image RenderPanoLabelView(const Image& equirect_labels, const PanoView& view);
+
 }  // namespace asbuilt
 
 #endif  // ASBUILT_PANO_PERSPECTIVE_H_

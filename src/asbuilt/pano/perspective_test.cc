@@ -140,6 +140,28 @@ TEST(RenderPanoView, AveragesALargePanoramaForASmallView) {
   EXPECT_LT(stddev[0], 10);
 }
 
+// Label panoramas are sampled at the nearest pixel: every id in the view is
+// one of the panorama's, and a region keeps its id up to its edge.
+TEST(RenderPanoLabelView, TakesTheNearestIdAndBlendsNone) {
+  cv::Mat labels(256, 512, CV_8UC1, cv::Scalar(0));
+  labels(cv::Rect(0, 128, 512, 128)).setTo(1);  // Below the horizon: wall.
+  labels(cv::Rect(200, 60, 40, 150)).setTo(3);  // A window across it.
+  const PanoView view{.camera = {.width_px = 320, .height_px = 240, .fx = 150, .fy = 150, .cx = 159.5, .cy = 119.5},
+                      .yaw_deg = -150};  // 150° clockwise from +Y: column 213 of 512, the window.
+  const cv::Mat out = AsMat(RenderPanoLabelView(AsImage(labels), view));
+  ASSERT_EQ(out.type(), CV_8UC1);
+  int counts[256] = {};
+  for (int v = 0; v < out.rows; ++v)
+    for (int u = 0; u < out.cols; ++u) ++counts[out.at<std::uint8_t>(v, u)];
+  EXPECT_GT(counts[0], 0);
+  EXPECT_GT(counts[1], 0);
+  EXPECT_GT(counts[3], 0);
+  EXPECT_EQ(counts[0] + counts[1] + counts[3], out.rows * out.cols);  // No 2: nothing blended between 1 and 3.
+  EXPECT_EQ(out.at<std::uint8_t>(119, 159), 3);
+  EXPECT_EQ(out.at<std::uint8_t>(230, 5), 1);  // Low and to the left: wall beside the window.
+  EXPECT_THROW(RenderPanoLabelView(AsImage(cv::Mat(256, 512, CV_8UC3, cv::Scalar(0))), view), InvalidArgument);
+}
+
 TEST(RenderPanoView, RejectsAPanoramaThatIsNotTwoToOne) {
   EXPECT_THROW(RenderPanoView(Image(100, 100, 3, PixelType::kU8), PanoView{}), InvalidArgument);
   EXPECT_THROW(RenderPanoView(Image(), PanoView{}), InvalidArgument);

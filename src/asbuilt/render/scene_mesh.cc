@@ -15,17 +15,10 @@ namespace asbuilt {
 namespace {
 
 // Fixed architectural detail sizes (metres), as in blender-rooms-public.
-constexpr double kLiningM = 0.02;        // Jamb lining board thickness.
-constexpr double kDoorCasingM = 0.07;    // Casing (architrave) width around doors.
-constexpr double kWindowCasingM = 0.05;  // …around windows.
-constexpr double kCasingDepthM = 0.015;  // Casing protrusion from the wall.
+constexpr double kLiningM = 0.02;  // Jamb lining board thickness.
 constexpr double kLeafThicknessM = 0.04;
-constexpr double kLeafRecessM = 0.03;    // A closed leaf sits this far into the opening.
-constexpr double kSillBoardM = 0.03;     // Inner window sill board thickness…
-constexpr double kSillOverhangM = 0.04;  // …and how far it protrudes into the room.
-constexpr double kFrameDepthM = 0.06;    // Window frame depth (across the wall).
-constexpr double kSkirtingHeightM = 0.08;
-constexpr double kSkirtingDepthM = 0.012;
+constexpr double kLeafRecessM = 0.03;        // A closed leaf sits this far into the opening.
+constexpr double kFrameDepthM = 0.06;        // Window frame depth (across the wall).
 constexpr double kClosetDepthM = 1.2;        // The closed space behind exterior doors.
 constexpr double kGlazedStileM = 0.07;       // Glazed door leaf: side stiles…
 constexpr double kGlazedTopRailM = 0.09;     // …top rail…

@@ -44,7 +44,8 @@ def material(name, label):
     key = (name, label)
     if key in _materials:
         return _materials[key]
-    spec = MATERIALS[name]
+    spec = MATERIALS.get(name, {"base_color": [0.5, 0.5, 0.5], "secondary_color": [0.5, 0.5, 0.5],
+                                "roughness": 0.5, "texture": "none", "texture_scale_m": 1.0})
     mat = bpy.data.materials.new("%s.%d" % (name, label))
     mat.pass_index = label
     mat.use_nodes = True
@@ -142,6 +143,27 @@ class MeshBuilder:
         return obj
 
 
+def casing(mb, a, u, inward, s, width, z0, z1, cw, mat):
+    # The architrave on the room side of the wall, cw wide around s..s+width, z0..z1.
+    depth = SETTINGS["casing_depth_m"]
+    left = a + u * (s - cw)
+    bottom = max(0.0, z0 - cw) if z0 > 0 else 0.0
+    mb.box(left + inward * depth, u, -inward, cw, depth, bottom, z1 + cw, mat)
+    mb.box(left + u * (width + cw) + inward * depth, u, -inward, cw, depth, bottom, z1 + cw, mat)
+    mb.box(a + u * s + inward * depth, u, -inward, width, depth, z1, z1 + cw, mat)
+    if z0 > 0:
+        mb.box(a + u * s + inward * depth, u, -inward, width, depth, max(0.0, z0 - cw), z0, mat)
+
+
+def portal(mb, a, u, out, s, width, z0, z1, label):
+    # Label pass only: the opening's face on the wall's inner plane carries its
+    # label, so a doorway or a window reads door or window whatever is seen
+    # through it (DESIGN.md). Not in the photo.
+    if not SETTINGS["labels_pass"]:
+        return
+    mb.box(a + u * s, u, out, width, 0.001, z0, z1, material("portal", label))
+
+
 def build_room(ri, room):
     poly = [Vector(p) for p in room["polygon"]]
     n = len(poly)
@@ -172,13 +194,16 @@ def build_room(ri, room):
             cursor = e
         mb.box(a + u * cursor, u, out, length + ext1 - cursor, thick, 0.0, height, wall_mat)
         if room["skirting"]:
+            # Along the wall, stopping at door casings (and openings down to the floor).
+            sd, sh = SETTINGS["skirting_depth_m"], SETTINGS["skirting_height_m"]
             cursor = 0.0
             for o in ops:
-                if o["sill_m"] < 0.1:
-                    mb.box(a + u * cursor - out * 0.015, u, out, o["offset_m"] - cursor, 0.015, 0.0, 0.08,
+                if o["kind"] == "door" or o["sill_m"] < 0.1:
+                    gap = SETTINGS["door_casing_m"] if o["kind"] == "door" else 0.0
+                    mb.box(a + u * cursor - out * sd, u, out, o["offset_m"] - gap - cursor, sd, 0.0, sh,
                            skirting_mat)
-                    cursor = o["offset_m"] + o["width_m"]
-            mb.box(a + u * cursor - out * 0.015, u, out, length - cursor, 0.015, 0.0, 0.08, skirting_mat)
+                    cursor = o["offset_m"] + o["width_m"] + gap
+            mb.box(a + u * cursor - out * sd, u, out, length - cursor, sd, 0.0, sh, skirting_mat)
         mb.build("wall.r%d.w%d" % (ri, w), LABEL_WALL)
 
         for k, o in enumerate(room["openings"]):
@@ -199,6 +224,8 @@ def build_room(ri, room):
                 if side.dot(out) < 0:
                     side = -side
                 mb.box(hinge, leaf, side, width, 0.04, 0.0, oh, mat)
+                casing(mb, a, u, inward, s, width, 0.0, oh, SETTINGS["door_casing_m"], mat)
+                portal(mb, a, u, out, s, width, 0.0, oh, LABEL_DOOR)
                 mb.build("door.r%d.o%d" % (ri, k), LABEL_DOOR)
             else:
                 frame = material(o["material"] or "window_frame", LABEL_WINDOW)
@@ -214,6 +241,13 @@ def build_room(ri, room):
                     glass = material("glass", LABEL_WINDOW)
                     mb.box(mid + u * fw + out * (0.5 * depth - 0.003), u, out, width - 2 * fw, 0.006,
                            sill + fw, sill + oh - fw, glass)
+                # Sill board through the wall and into the room, casing around.
+                sb, so = SETTINGS["sill_board_m"], SETTINGS["sill_overhang_m"]
+                mb.box(a + u * (s - so) + inward * so, u, out, width + 2 * so, thick + so, max(0.0, sill - sb), sill,
+                       frame)
+                casing(mb, a, u, inward, s, width, max(0.0, sill - sb), sill + oh, SETTINGS["window_casing_m"],
+                       frame)
+                portal(mb, a, u, out, s, width, sill, sill + oh, LABEL_WINDOW)
                 mb.build("window.r%d.o%d" % (ri, k), LABEL_WINDOW)
 
     mb = MeshBuilder()
@@ -298,7 +332,35 @@ def build_world(env):
     bpy.context.scene.world = world
 
 
+def build_panorama_camera(views, width):
+    # Cycles' equirectangular image centre looks along the camera's −Z; the
+    # pano frame's centre column looks along −Y (yaw 180°), its left edge +Y.
+    scene = bpy.context.scene
+    data = bpy.data.cameras.new("pano")
+    data.type = "PANO"
+    if hasattr(data, "panorama_type"):
+        data.panorama_type = "EQUIRECTANGULAR"
+    else:
+        data.cycles.panorama_type = "EQUIRECTANGULAR"
+    data.clip_start, data.clip_end = 0.05, 500.0
+    cam = bpy.data.objects.new("pano", data)
+    scene.collection.objects.link(cam)
+    scene.camera = cam
+    cam.location = views[0]["position_m"]
+    cam.rotation_euler = (math.radians(90.0), 0.0, math.radians(180.0))
+    render = scene.render
+    render.resolution_x, render.resolution_y, render.resolution_percentage = width, width // 2, 100
+    render.use_multiview = False
+    render.image_settings.file_format = "PNG"
+    render.image_settings.color_mode = "RGB"
+    scene.frame_start, scene.frame_end = 1, 1
+    scene.frame_set(1)
+
+
 def build_camera(rig, views):
+    if SETTINGS["panorama_width_px"] > 0:
+        build_panorama_camera(views, SETTINGS["panorama_width_px"])
+        return
     scene = bpy.context.scene
     data = bpy.data.cameras.new("rig")
     data.sensor_fit = "HORIZONTAL"
@@ -361,6 +423,13 @@ def setup_render():
         denoise = False
     scene.cycles.use_denoising = denoise
     scene.view_settings.view_transform = "Standard"
+    if SETTINGS["labels_pass"]:
+        # Each pixel's one sample at its centre: the surface the centre sees.
+        scene.cycles.samples = 1
+        scene.cycles.use_adaptive_sampling = False
+        scene.cycles.use_denoising = False
+        scene.cycles.filter_width = 0.01
+        scene.cycles.max_bounces = 0
     layer = scene.view_layers[0]
     layer.use_pass_object_index = True
     layer.use_pass_material_index = True
@@ -423,9 +492,14 @@ void BlenderExportOptions::Check() const {
   CheckArgument(samples > 0, fmt::format("BlenderExportOptions.samples = {}, must be > 0", samples));
   CheckArgument(sensor_width_mm > 0,
                 fmt::format("BlenderExportOptions.sensor_width_mm = {}, must be > 0", sensor_width_mm));
+  CheckArgument(panorama_width_px == 0 || (panorama_width_px >= 16 && panorama_width_px % 2 == 0),
+                fmt::format("BlenderExportOptions.panorama_width_px = {}, must be 0 (stereo pairs) or an even "
+                            "width >= 16",
+                            panorama_width_px));
 }
 
 std::string BlenderExportSummary::BriefReport() const {
+  if (panorama) return fmt::format("{} objects, {} lights, 1 frame (360° panorama)", objects, lights);
   return fmt::format("{} objects, {} lights, {} frames (stereo pairs)", objects, lights, frames);
 }
 
@@ -469,7 +543,16 @@ std::string BlenderScript(const Scene& scene, const BlenderExportOptions& option
   nlohmann::json settings = {{"samples", options.samples},
                              {"denoise", options.denoise},
                              {"index_pass", options.index_pass},
-                             {"sensor_width_mm", options.sensor_width_mm}};
+                             {"sensor_width_mm", options.sensor_width_mm},
+                             {"panorama_width_px", options.panorama_width_px},
+                             {"labels_pass", options.labels_pass},
+                             {"skirting_depth_m", kSkirtingDepthM},
+                             {"skirting_height_m", kSkirtingHeightM},
+                             {"door_casing_m", kDoorCasingM},
+                             {"window_casing_m", kWindowCasingM},
+                             {"casing_depth_m", kCasingDepthM},
+                             {"sill_board_m", kSillBoardM},
+                             {"sill_overhang_m", kSillOverhangM}};
 
   if (summary) {
     int objects = 0;
@@ -477,7 +560,8 @@ std::string BlenderScript(const Scene& scene, const BlenderExportOptions& option
     objects += static_cast<int>(scene.furniture.size()) + 1 + (scene.environment.exterior_objects ? 8 : 0);
     summary->objects = objects;
     summary->lights = static_cast<int>(scene.lights.size());
-    summary->frames = static_cast<int>(views.size());
+    summary->panorama = options.panorama_width_px > 0;
+    summary->frames = summary->panorama ? 1 : static_cast<int>(views.size());
   }
 
   std::string out;
@@ -486,8 +570,12 @@ std::string BlenderScript(const Scene& scene, const BlenderExportOptions& option
     for (char c : scene.name) n += (c == '\n' || c == '\r') ? ' ' : c;
     return n;
   }() + "\".\n";
-  out += "# Render every view's stereo pair:  blender -b -P build.py -o OUT/ -a\n";
-  out += "# One view (frame N = view N-1):    blender -b -P build.py -o OUT/ -f N\n";
+  if (options.panorama_width_px > 0) {
+    out += "# Render the 360° panorama:          blender -b -P build.py -o OUT/ -f 1\n";
+  } else {
+    out += "# Render every view's stereo pair:  blender -b -P build.py -o OUT/ -a\n";
+    out += "# One view (frame N = view N-1):    blender -b -P build.py -o OUT/ -f N\n";
+  }
   out += "# Object and material pass index = label id (0 other, 1 wall, 2 door, 3 window).\n";
   out += "import json\n\n";
   out += "SCENE = " + PythonJsonLiteral(SceneToJson(scene)) + "\n";

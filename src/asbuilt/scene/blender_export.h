@@ -31,6 +31,15 @@ struct BlenderExportOptions {
   bool denoise = true;
   bool index_pass = true;         // Write the object-index (label id) pass as EXR.
   double sensor_width_mm = 36.0;  // Blender sensor width; focal length follows from fx.
+  // > 0: instead of the stereo pairs, one equirectangular 360° frame of this
+  // width (height half of it) from the first view's position, level, in the
+  // pano frame of pano/perspective.h (left edge along +Y, columns clockwise
+  // seen from above): OUT/0001.png, the photo of a panorama capture.
+  int panorama_width_px = 0;
+  // The label pass: 1 sample per pixel at its centre (0.01 px filter), no
+  // bounces, no denoising; only the index EXR is of use. Rendered apart from
+  // the photo, so that each label pixel is exactly the surface its centre sees.
+  bool labels_pass = false;
 
   void Check() const;
 };
@@ -38,9 +47,10 @@ struct BlenderExportOptions {
 struct BlenderExportSummary {
   int objects = 0;  // Meshes the script creates (walls, openings, floor/ceiling, furniture, outside).
   int lights = 0;
-  int frames = 0;  // One per viewpoint.
+  int frames = 0;  // One per viewpoint; one for a panorama.
+  bool panorama = false;
 
-  // "14 objects, 5 lights, 12 frames (stereo pairs)".
+  // "14 objects, 5 lights, 12 frames (stereo pairs)" or "…, 1 frame (360° panorama)".
   std::string BriefReport() const;
 };
 

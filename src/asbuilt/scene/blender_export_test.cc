@@ -2,8 +2,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <utility>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -122,18 +126,21 @@ with open(os.environ["ASBUILT_CHECK_OUT"], "w") as f:
   EXPECT_NEAR(hi("floor.r0", 1), 8.0, 1e-5);
   EXPECT_NEAR(hi("wall.r0.w1", 2), 3.0, 1e-5);
   // East wall: inner face at x = 6, 0.25 m thick outwards.
-  EXPECT_NEAR(lo("wall.r0.w1", 0), 6.0 - 0.015, 1e-5);  // Skirting stands 15 mm proud.
+  EXPECT_NEAR(lo("wall.r0.w1", 0), 6.0 - kSkirtingDepthM, 1e-5);  // Skirting stands proud of the face.
   EXPECT_NEAR(hi("wall.r0.w1", 0), 6.25, 1e-5);
-  // Door on the east wall: 1.0 m wide from y = 0.5, 2.1 m high.
-  EXPECT_NEAR(lo("door.r0.o0", 1), 0.5, 1e-5);
-  EXPECT_NEAR(hi("door.r0.o0", 1), 1.5, 1e-5);
-  EXPECT_NEAR(hi("door.r0.o0", 2), 2.1, 1e-5);
-  // Windows on the north wall (runs from x = 6 to 0): 1.5 × 1.4 m at sill 0.9.
-  EXPECT_NEAR(lo("window.r0.o1", 0), 3.5, 1e-5);
-  EXPECT_NEAR(hi("window.r0.o1", 0), 5.0, 1e-5);
-  EXPECT_NEAR(lo("window.r0.o1", 2), 0.9, 1e-5);
-  EXPECT_NEAR(hi("window.r0.o1", 2), 2.3, 1e-5);
-  EXPECT_NEAR(lo("window.r0.o2", 0), 1.0, 1e-5);
+  // Door on the east wall: 1.0 m wide from y = 0.5, 2.1 m high, its casing around it.
+  EXPECT_NEAR(lo("door.r0.o0", 1), 0.5 - kDoorCasingM, 1e-5);
+  EXPECT_NEAR(hi("door.r0.o0", 1), 1.5 + kDoorCasingM, 1e-5);
+  EXPECT_NEAR(hi("door.r0.o0", 2), 2.1 + kDoorCasingM, 1e-5);
+  EXPECT_NEAR(lo("door.r0.o0", 0), 6.0 - kCasingDepthM, 1e-5);
+  // Windows on the north wall (runs from x = 6 to 0): 1.5 × 1.4 m at sill 0.9,
+  // a sill board under them and a casing around.
+  EXPECT_NEAR(lo("window.r0.o1", 0), 3.5 - kWindowCasingM, 1e-5);
+  EXPECT_NEAR(hi("window.r0.o1", 0), 5.0 + kWindowCasingM, 1e-5);
+  EXPECT_NEAR(lo("window.r0.o1", 2), 0.9 - kSillBoardM - kWindowCasingM, 1e-5);
+  EXPECT_NEAR(hi("window.r0.o1", 2), 2.3 + kWindowCasingM, 1e-5);
+  EXPECT_NEAR(lo("window.r0.o1", 1), 8.0 - kSillOverhangM, 1e-5);
+  EXPECT_NEAR(lo("window.r0.o2", 0), 1.0 - kWindowCasingM, 1e-5);
   EXPECT_EQ(r["objects"]["window.r0.o1"]["material_labels"], nlohmann::json({3}));
   // One tiny stereo pair rendered.
   EXPECT_TRUE(fs::exists(dir / "out" / "0001_L.png")) << ReadFile(dir / "blender.log");
@@ -173,6 +180,67 @@ print("asbuilt-test: denoiser in this build: %s, denoising: %s"
   }
   EXPECT_TRUE(fs::exists(dir / "out" / "0001_L.png")) << log;
   EXPECT_TRUE(fs::exists(dir / "out" / "0001_R.png")) << log;
+}
+
+// The panorama export's label pass, rendered small, against the room's
+// geometry in the pano frame of pano/perspective.h: the classroom (6 × 8 m,
+// 3 m high, its furniture taken out) from its rig at (3, 4), 1.5 m up. In each compass column the
+// wall runs from the ceiling's edge to the skirting's foot at the rows the
+// distances give, and the door on the east wall is where its bearing is.
+TEST(BlenderScript, PanoramaLabelPassMatchesThePanoFrame) {
+  if (std::system("command -v blender >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "blender is not on PATH (Debian package `blender`, in scripts/install-deps.sh)";
+  }
+  const fs::path dir = fs::temp_directory_path() / ("asbuilt_blender_pano_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  BlenderExportSummary summary;
+  Scene empty = Classroom();
+  empty.furniture.clear();  // Nothing before the wall bases.
+  WriteBlenderScript(empty, {.panorama_width_px = 512, .labels_pass = true}, dir / "labels.py");
+  EXPECT_THAT(BlenderScript(Classroom(), {.panorama_width_px = 512}, &summary), HasSubstr("EQUIRECTANGULAR"));
+  EXPECT_EQ(summary.BriefReport(), "26 objects, 5 lights, 1 frame (360° panorama)");
+  // Blender reads its own EXR: the label of every row in four columns.
+  WriteFileAtomic(dir / "columns.py", R"PY(
+import json, os, bpy
+img = bpy.data.images.load(os.path.join(os.environ["ASBUILT_OUT"], "index", "index_0001.exr"))
+w, h = img.size
+px = list(img.pixels)
+columns = {}
+for u in (0, 128, 188, 256, 384):
+    columns[str(u)] = [round(px[((h - 1 - v) * w + u) * img.channels]) for v in range(h)]
+with open(os.path.join(os.environ["ASBUILT_OUT"], "columns.json"), "w") as f:
+    json.dump({"size": [w, h], "columns": columns}, f)
+)PY");
+  const std::string out = (dir / "out").string();
+  std::string cmd = "cd " + dir.string() + " && blender -b --factory-startup -noaudio -P labels.py -o " + out +
+                    "/ -f 1 > blender.log 2>&1 && ASBUILT_OUT=" + out +
+                    " blender -b --factory-startup -noaudio -P columns.py >> blender.log 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << ReadFile(dir / "blender.log");
+  const nlohmann::json r = nlohmann::json::parse(ReadFile(dir / "out" / "columns.json"));
+  ASSERT_EQ(r["size"], nlohmann::json({512, 256}));
+  const auto column = [&](int u) { return r["columns"][std::to_string(u)].get<std::vector<int>>(); };
+  // Row (pixel centres at integers) where a point `up` metres above the lens at distance d appears.
+  const auto row = [](double up, double d) { return 256 * (0.5 - std::atan2(up, d) / M_PI) - 0.5; };
+  // Column 0 looks along +Y (north wall, 4 m away), 128 along +X (east, 3 m), 256 along −Y, 384 along −X.
+  for (const auto& [u, d] : {std::pair{0, 4.0}, std::pair{128, 3.0}, std::pair{256, 4.0}, std::pair{384, 3.0}}) {
+    const std::vector<int> labels = column(u);
+    const int top = static_cast<int>(std::find(labels.begin(), labels.end(), 1) - labels.begin());
+    const int bottom = static_cast<int>(labels.rend() - std::find(labels.rbegin(), labels.rend(), 1)) - 1;
+    EXPECT_NEAR(top - 0.5, row(1.5, d), 1.0) << "column " << u;                        // The ceiling's edge…
+    EXPECT_NEAR(bottom + 0.5, row(-1.5, d - kSkirtingDepthM), 1.0) << "column " << u;  // …the skirting's foot.
+    EXPECT_EQ(labels[0], 0);
+    EXPECT_EQ(labels[255], 0);
+  }
+  // The door (y 0.5–1.5 on the east wall x = 6) at bearing atan2(3, −2.75) = 132.5° clockwise of +Y:
+  // column 188, door from its foot to 2.1 m (+ casing); the portal labels it door where the opening
+  // shows the outside.
+  const std::vector<int> door = column(188);
+  const double d = std::hypot(3.0, 2.75);
+  EXPECT_EQ(door[std::lround(row(0.75, d))], 1);  // Wall above the casing (its top 2.17 m up).
+  EXPECT_EQ(door[std::lround(row(0.6, d))], 2);
+  EXPECT_EQ(door[std::lround(row(0.0, d))], 2);
+  EXPECT_EQ(door[std::lround(row(-1.45, d))], 2);
 }
 
 TEST(BlenderScript, ChecksForTheDenoiserAtRunTime) {

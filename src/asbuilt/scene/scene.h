@@ -69,8 +69,19 @@ struct Room {
   std::string wall_material = "wall";
   std::string floor_material = "floor";
   std::string ceiling_material = "ceiling";
-  bool skirting = true;  // Skirting boards (labelled wall).
+  bool skirting = true;  // Skirting boards (labelled wall), kSkirtingHeightM × kSkirtingDepthM.
 };
+
+// Details every renderer of a scene draws (metres; render/scene_mesh.cc,
+// scene/blender_export.cc), as in blender-rooms-public. Labels count the
+// casings with their opening, the skirting with its wall.
+constexpr double kSkirtingHeightM = 0.08;
+constexpr double kSkirtingDepthM = 0.012;
+constexpr double kDoorCasingM = 0.07;    // Casing (architrave) width around doors…
+constexpr double kWindowCasingM = 0.05;  // …around windows…
+constexpr double kCasingDepthM = 0.015;  // …and its protrusion from the wall.
+constexpr double kSillBoardM = 0.03;     // Inner window sill board thickness…
+constexpr double kSillOverhangM = 0.04;  // …and how far it protrudes into the room.
 
 // A furniture box standing in the room (occludes walls; label background).
 struct Furniture {
