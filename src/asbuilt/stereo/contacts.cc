@@ -1,6 +1,7 @@
 #include "asbuilt/stereo/contacts.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <iterator>
@@ -49,6 +50,20 @@ cv::Mat VerticalSteps(const cv::Mat& image) {
   cv::Mat steps = cv::Mat::zeros(image.size(), CV_32F);
   summed.reshape(1, diff.rows).copyTo(steps.rowRange(0, f.rows - 1));
   cv::blur(steps, steps, cv::Size(5, 1));
+  return steps;
+}
+
+// Signed brightness steps: B(y, u) = the channels' sum at row y + 1 less at
+// row y, after a Gaussian blur of 1 px. Averaged over many columns, an edge of
+// one sign adds up and noise cancels (SkirtingProfile).
+cv::Mat SignedVerticalSteps(const cv::Mat& image) {
+  cv::Mat f;
+  image.convertTo(f, CV_32F);
+  if (f.channels() > 1) cv::transform(f, f, cv::Matx<float, 1, 3>(1, 1, 1));
+  cv::GaussianBlur(f, f, cv::Size(0, 0), 1.0);
+  cv::Mat steps = cv::Mat::zeros(image.size(), CV_32F);
+  cv::Mat diff = f.rowRange(1, f.rows) - f.rowRange(0, f.rows - 1);
+  diff.copyTo(steps.rowRange(0, f.rows - 1));
   return steps;
 }
 
@@ -115,6 +130,78 @@ bool SkirtingSeen(std::vector<double> heights, int wall_feet, double* height_m) 
   *height_m = median;
   return true;
 }
+
+// FramePointsOptions::skirting_depth_m: a frame's wall feet pooled by height
+// above the floor. At each foot (column u, floor edge at `floor_row`, depth
+// z) the signed brightness steps 3–25 cm above it (SignedVerticalSteps) are
+// added into 5 mm bins, from 3 rows above the foot's own edge up. A
+// skirting's top is one height all round the room and one sign of step
+// (the board lighter or darker than the wall), so it adds up across the feet
+// while sensor or render noise, which one column cannot tell from a step,
+// cancels.
+// Each foot is also read on its own (SkirtingTop); where those readings
+// agree (SkirtingSeen, sharp images) they decide.
+class SkirtingProfile {
+ public:
+  SkirtingProfile(const cv::Mat& steps, const cv::Mat& signed_steps, double min_step)
+      : steps_(steps), signed_steps_(signed_steps), min_step_(min_step) {}
+
+  void Add(int u, double floor_row, double z, double h, const PinholeCamera& cam) {
+    if (steps_.empty() || signed_steps_.empty()) return;
+    if (const auto s = SkirtingTop(steps_, u, floor_row, z, h, cam, min_step_)) per_column_.push_back(*s);
+    const cv::Mat& signed_steps = signed_steps_;
+    ++feet_;
+    for (int b = 0; b < kBins; ++b) {
+      const double edge = cam.cy + cam.fy * (h - Height(b)) / z;  // Image position of the edge at that height.
+      const double k = edge - 0.5;                                // Step row k: between rows k and k + 1.
+      if (k < 0 || k > floor_row - 3.5 || k + 1 >= signed_steps.rows) continue;
+      const int k0 = static_cast<int>(k);
+      const double f = k - k0;
+      const double x = (1 - f) * signed_steps.at<float>(k0, u) + f * signed_steps.at<float>(k0 + 1, u);
+      sum_[b] += x;
+      sum_sq_[b] += x * x;
+      ++count_[b];
+    }
+  }
+
+  // The skirting top's height above the floor: the bin whose mean step
+  // stands out most from zero, when it does by kMinScore standard errors
+  // (each taken as if only every third foot were independent: neighbouring
+  // columns share the blur) and lies inside the range.
+  std::optional<double> Top() const {
+    if (double top = NAN; SkirtingSeen(per_column_, feet_, &top)) return top;
+    if (feet_ < 10) return std::nullopt;
+    std::array<double, kBins> score{};
+    for (int b = 0; b < kBins; ++b) {
+      if (count_[b] < 10) continue;
+      const double n = count_[b], mean = sum_[b] / n;
+      const double var = std::max(1e-9, sum_sq_[b] / n - mean * mean);
+      score[b] = mean / std::sqrt(3.0 * var / n);
+    }
+    // The lowest bins carry the tail of the foot's own edge, blurred upwards
+    // (a plain wall scores up to 5.6 there in a 1024-wide Blender panorama).
+    const auto abs_less = [](double a, double b) { return std::abs(a) < std::abs(b); };
+    const int best =
+        static_cast<int>(std::max_element(score.begin() + kFirstBin, score.end(), abs_less) - score.begin());
+    if (best == kFirstBin || best == kBins - 1 || std::abs(score[best]) < kMinScore) return std::nullopt;
+    const double a = std::abs(score[best - 1]), c = std::abs(score[best + 1]), m = std::abs(score[best]);
+    const double den = a - 2 * m + c;
+    const double offset = den < 0 ? std::clamp(0.5 * (a - c) / den, -0.5, 0.5) : 0.0;
+    return Height(best) + offset * kBinM;
+  }
+
+ private:
+  static constexpr double kLowestM = 0.03, kBinM = 0.005, kMinScore = 7.0;
+  static constexpr int kBins = 44;     // 3–25 cm…
+  static constexpr int kFirstBin = 3;  // …searched from 4.5 cm up.
+  static double Height(int bin) { return kLowestM + (bin + 0.5) * kBinM; }
+  cv::Mat steps_, signed_steps_;
+  double min_step_;
+  std::vector<double> per_column_;  // Each foot's own reading, where it had one.
+  std::array<double, kBins> sum_{}, sum_sq_{};
+  std::array<int, kBins> count_{};
+  int feet_ = 0;
+};
 
 // Moves the wall floor contacts this frame added (from the given indices
 // on) `depth_m` back from the camera, along the wall's normal there (from
@@ -208,9 +295,8 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
           : cv::Mat();
   const std::size_t first_point = result->points.size(), first_paired = result->pending.paired_floor.size(),
                     first_topped = result->pending.topped_floor.size();
-  std::vector<double> skirting_heights;  // Per wall foot: the step above it, in
-                                         // metres above the floor.
-  int wall_feet = 0;
+  SkirtingProfile skirting(steps, options.skirting_depth_m > 0 ? SignedVerticalSteps(frame.left) : cv::Mat(),
+                           options.contact_snap_min_step);
   auto snap = [&](int u, double row) {
     return SnapRowToImageEdge(steps, u, row, options.contact_snap_px.value_or(0), options.contact_snap_min_step);
   };
@@ -298,12 +384,7 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
                                  PointSource::kContact, frame.index};
         ++result->floor_contacts;
         floor_columns->push_back({u, floor_row, z, floor_label});
-        if (floor_label == kLabelWall && !steps.empty()) {
-          ++wall_feet;
-          if (const auto s = SkirtingTop(steps, u, floor_row, z, h, cam, options.contact_snap_min_step)) {
-            skirting_heights.push_back(*s);
-          }
-        }
+        if (floor_label == kLabelWall) skirting.Add(u, floor_row, z, h, cam);
         cover(u, static_cast<int>(floor_edge - 0.5), -1);
       } else {
         floor_row = NAN;
@@ -382,7 +463,9 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
     cover(u, static_cast<int>(ceiling_edge + 0.5), 1);
     result->pending.ceiling_rays.push_back(r);
   }
-  if (options.skirting_depth_m > 0 && SkirtingSeen(skirting_heights, wall_feet, &result->skirting_height_m)) {
+  const std::optional<double> skirting_top = options.skirting_depth_m > 0 ? skirting.Top() : std::nullopt;
+  if (skirting_top) {
+    result->skirting_height_m = *skirting_top;
     MoveWallFeetBehindSkirting(options.skirting_depth_m, world_from_cam, cam, first_point, first_paired, first_topped,
                                result, floor_columns);
   }

@@ -827,3 +827,65 @@ TEST(FramePointsOptions, RejectsBadFieldsByName) {
 
 }  // namespace
 }  // namespace asbuilt
+
+namespace asbuilt {
+namespace {
+
+// A level 512×1024 view of a plain wall 3 m ahead, 1.5 m below the lens to
+// its foot, with a board 8 cm tall and lighter than the wall at its foot
+// (or none), under sensor noise of σ `noise` grey levels.
+MonoFrame WallWithSkirting(bool skirting, double noise) {
+  const PinholeCamera cam{.width_px = 512, .height_px = 1024, .fx = 256, .fy = 256, .cx = 255.5, .cy = 511.5};
+  const double z = 3.0, h = 1.5;
+  const auto row_at = [&](double height_m) { return cam.cy + cam.fy * (h - height_m) / z; };
+  cv::Mat image(cam.height_px, cam.width_px, CV_8UC3), labels(cam.height_px, cam.width_px, CV_8UC1);
+  cv::Mat grain(image.size(), CV_32FC3);
+  cv::RNG rng(7);
+  rng.fill(grain, cv::RNG::NORMAL, 0.0, noise);
+  for (int v = 0; v < image.rows; ++v) {
+    const bool wall = v > row_at(2.7) && v < row_at(0.0);
+    const bool board = skirting && wall && v > row_at(0.08);
+    const double grey = board ? 160 : wall ? 120 : v < row_at(2.7) ? 200 : 80;
+    for (int u = 0; u < image.cols; ++u) {
+      const cv::Vec3f g = grain.at<cv::Vec3f>(v, u);
+      image.at<cv::Vec3b>(v, u) =
+          cv::Vec3b(cv::saturate_cast<uchar>(grey + g[0]), cv::saturate_cast<uchar>(grey + g[1]),
+                    cv::saturate_cast<uchar>(grey + g[2]));
+      labels.at<std::uint8_t>(v, u) = wall ? 1 : 0;
+    }
+  }
+  return {.image = image, .labels = labels, .camera = cam, .pose = {Vec3(0, 0, h), 0.0}, .index = 0};
+}
+
+// The wall feet of a mono frame's result, wherever they were filed.
+std::vector<double> FootDistances(const FramePointsResult& r) {
+  std::vector<double> y;
+  for (const ClassPoint& p : r.points) {
+    if (p.source == PointSource::kContact && p.position_m.z() == 0.0) y.push_back(p.position_m.y());
+  }
+  for (const auto& f : r.contacts.paired_floor) y.push_back(f.point.position_m.y());
+  return y;
+}
+
+// Noise a single column cannot tell from the board's top (σ 80 grey levels
+// against a step of 40) averages out over the frame's wall feet: the board
+// is seen and the feet move back to the wall's face; a plain wall under the
+// same noise moves nothing.
+TEST(ComputeMonoFramePoints, FindsASkirtingUnderNoiseByPoolingTheWallFeet) {
+  FramePointsOptions options;
+  options.contacts = ContactUse::kAlways;
+  options.ResolveSnaps(/*exact_labels=*/true);
+  const FramePointsResult board = ComputeMonoFramePoints(WallWithSkirting(true, 80), options);
+  ASSERT_TRUE(std::isfinite(board.cues.skirting_height_m));
+  EXPECT_NEAR(board.cues.skirting_height_m, 0.08, 0.02);
+  const std::vector<double> moved = FootDistances(board);
+  ASSERT_GT(moved.size(), 100u);
+  EXPECT_NEAR(Percentile(moved, 0.5), 3.0 + options.skirting_depth_m, 0.002);
+
+  const FramePointsResult plain = ComputeMonoFramePoints(WallWithSkirting(false, 80), options);
+  EXPECT_FALSE(std::isfinite(plain.cues.skirting_height_m));
+  EXPECT_NEAR(Percentile(FootDistances(plain), 0.5), 3.0, 0.002);
+}
+
+}  // namespace
+}  // namespace asbuilt
