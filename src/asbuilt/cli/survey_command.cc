@@ -87,6 +87,8 @@ int RunSurveyCommand(int argc, char** argv) {
                  "scale), model (its training scale) or WxH")
       ->capture_default_str();
   app.add_option("--labels", labels_dir, "use these label images (NNN.png per frame) instead of segmenting");
+  app.add_flag("--labels-exact", options.labels_exact,
+               "the --labels images are exact (a renderer's label pass): snapping and ± as for --capture-labels");
   app.add_flag("--capture-labels", options.use_capture_labels,
                "use the capture's own exact labels (synthetic captures; the method's upper bound)");
   app.add_option("--truth", truth, "truth plan to score against (default: truth.json beside the capture)");

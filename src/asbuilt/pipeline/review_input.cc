@@ -109,6 +109,9 @@ void WriteReviewInput(const fs::path& out_dir, const ReviewInput& input) {
   js["ceiling_height_sigma_m"] = std::isfinite(input.plan_input.ceiling_height_sigma_m)
                                      ? nlohmann::json(input.plan_input.ceiling_height_sigma_m)
                                      : nullptr;
+  js["camera_height_sigma_m"] = std::isfinite(input.plan_input.camera_height_sigma_m)
+                                    ? nlohmann::json(input.plan_input.camera_height_sigma_m)
+                                    : nullptr;
   js["frames"] = nlohmann::json::array();
   for (const PlanFrame& f : input.plan_input.frames) {
     js["frames"].push_back(
@@ -178,6 +181,7 @@ ReviewInput ReadReviewInput(const fs::path& out_dir) {
     in.plan_input.exact_labels = need(js, "exact_labels", "").get<bool>();
     in.plan_input.ceiling_height_m = NumberOrNan(js.value("ceiling_height_m", nlohmann::json()));
     in.plan_input.ceiling_height_sigma_m = NumberOrNan(js.value("ceiling_height_sigma_m", nlohmann::json()));
+    in.plan_input.camera_height_sigma_m = NumberOrNan(js.value("camera_height_sigma_m", nlohmann::json()));
     in.plan_input.source = (out_dir / "review" / "points.bin").string();
     const nlohmann::json& frames = need(js, "frames", "");
     for (std::size_t i = 0; i < frames.size(); ++i) {

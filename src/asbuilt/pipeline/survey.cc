@@ -133,6 +133,8 @@ void SurveyOptions::Check() const {
   }
   CheckArgument(!(labels_dir && use_capture_labels),
                 "SurveyOptions: give either labels_dir or use_capture_labels, not both");
+  CheckArgument(!labels_exact || labels_dir,
+                "SurveyOptions.labels_exact: says the labels_dir labels are exact; give labels_dir");
 }
 
 namespace {
@@ -374,7 +376,7 @@ void LabelSourceStage(Survey& s) {
 // Every frame's points (the one frame loop), the wall cue and the ceiling.
 void PointsStage(Survey& s, const ProgressCallback& progress) {
   FramePointsOptions options = s.options.points;
-  options.ResolveSnaps(s.options.use_capture_labels);
+  options.ResolveSnaps(s.options.ExactLabels());
   SurveyFrameObserver observer(s);
   CapturePointsResult gathered = s.views ? ComputeCapturePoints(*s.views, *s.labels, options, &observer, progress)
                                          : ComputeCapturePoints(s.capture, *s.labels, options, &observer, progress);
@@ -454,9 +456,10 @@ PlanInput SurveyPlanInput(const Survey& s) {
   PlanInput input{.points = s.points,
                   .source = s.capture_json.string(),
                   .one_camera = s.capture.kind != CaptureKind::kStereo,
-                  .exact_labels = s.options.use_capture_labels,
+                  .exact_labels = s.options.ExactLabels(),
                   .ceiling_height_m = s.result.summary.ceiling_height_m,
-                  .ceiling_height_sigma_m = s.result.summary.ceiling_height_sigma_m};
+                  .ceiling_height_sigma_m = s.result.summary.ceiling_height_sigma_m,
+                  .camera_height_sigma_m = s.options.points.camera_height_sigma_m};
   const bool stereo = s.capture.kind == CaptureKind::kStereo;
   for (const CaptureFrame& f : s.frames()) {
     const RigPose pose{.position_m = f.position_m, .yaw_rad = DegToRad(f.yaw_deg)};

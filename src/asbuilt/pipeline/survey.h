@@ -53,9 +53,14 @@ struct SurveyOptions {
   // Use these label images (NNN.png per frame index; right view labels in
   // DIR/right/ when present) instead of segmenting.
   std::optional<std::filesystem::path> labels_dir;
+  // Those labels are exact (a renderer's label pass, `pano views
+  // --labels-pano`): snapping and ± as for a capture's own exact labels.
+  bool labels_exact = false;
   // Use the capture's own per-frame `labels` (exact labels of a synthetic
   // capture) instead of segmenting: the upper bound of the method.
   bool use_capture_labels = false;
+  // Whether the labels are exact: the capture's own, or given and said to be.
+  bool ExactLabels() const { return use_capture_labels || (labels_dir && labels_exact); }
   // Truth plan to score against; empty: truth.json beside capture.json when
   // it exists.
   std::optional<std::filesystem::path> truth_path;

@@ -126,6 +126,15 @@ TEST(RunSurvey, PlainPaintedRoomIsMeasuredFromItsContacts) {
   EXPECT_NE(ReadFile(dir / "survey" / "summary.json").find("\"wall_cue\""), std::string::npos);
 }
 
+// Labels given as a folder are a segmenter's unless said to be exact (a
+// renderer's label pass): then they snap and carry ± as a capture's own.
+TEST(SurveyOptions, GivenLabelsAreExactOnlyWhenSaidSo) {
+  EXPECT_FALSE(SurveyOptions{.labels_dir = fs::path("labels")}.ExactLabels());
+  EXPECT_TRUE((SurveyOptions{.labels_dir = fs::path("labels"), .labels_exact = true}.ExactLabels()));
+  EXPECT_TRUE(SurveyOptions{.use_capture_labels = true}.ExactLabels());
+  EXPECT_THROW(SurveyOptions{.labels_exact = true}.Check(), InvalidArgument);
+}
+
 TEST(RunSurvey, MissingLabelDirectoryNamesTheFile) {
   fs::path capture = Room("p01_rect_1door_2win") / "capture.json";
   fs::path out = fs::temp_directory_path() / "asbuilt_survey_missing";

@@ -331,7 +331,13 @@ PlanOptions ResolvePlanOptions(const PlanInput& input, const PlanOptions& option
     viewpoint = sum / static_cast<double>(input.frames.size());
   }
   if (!o.viewpoint_m) o.viewpoint_m = viewpoint;
+  const bool scale_auto = !o.contact_scale_sigma;
   o = o.ForLabels(input.exact_labels);
+  // A camera height off by δ scales every contact's distance by 1 + δ/h
+  // (floor and ceiling alike: the ceiling's height comes from the same pairs).
+  if (scale_auto && viewpoint && viewpoint->z() > 0.1 && std::isfinite(input.camera_height_sigma_m)) {
+    o.contact_scale_sigma = std::hypot(*o.contact_scale_sigma, input.camera_height_sigma_m / viewpoint->z());
+  }
   // The ceiling estimate's σ as a share of its height above the rig: a
   // ceiling contact's distance is proportional to H − h (docs/plan.md, "±").
   const double h_ceiling = input.ceiling_height_m, sigma = input.ceiling_height_sigma_m;

@@ -56,13 +56,17 @@ struct PlanInput {
   bool exact_labels = false;      // The capture's own exact labels, not segmented or given ones.
   double ceiling_height_m = NAN;  // From the wall–ceiling contacts (NaN: not measured).
   double ceiling_height_sigma_m = NAN;
+  // 1σ of the camera height the capture states (a tape's error; NaN:
+  // unknown). It scales every contact's distance alike: a room-wide mode.
+  double camera_height_sigma_m = NAN;
 };
 
 // The options a fit of this input runs with: `options` with what the input
 // decides filled in where unset — viewpoint_m (the frames' mean position),
 // one_viewpoint (one camera, every frame within 5 cm of the viewpoint), the
-// label-dependent σ (PlanOptions::ForLabels), ceiling_scale_sigma (σ_H /
-// (H − h), h the viewpoint's height).
+// label-dependent σ (PlanOptions::ForLabels) with, in contact_scale_sigma,
+// the camera height's share σ_h / h added in quadrature, ceiling_scale_sigma
+// (σ_H / (H − h), h the viewpoint's height).
 PlanOptions ResolvePlanOptions(const PlanInput& input, const PlanOptions& options);
 
 // A corner of the room: a point on the floor where two walls meet.

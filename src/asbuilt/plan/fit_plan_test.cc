@@ -1,8 +1,8 @@
 #include "asbuilt/plan/fit_plan.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 #include "asbuilt/plan/plan_test_rooms.h"
 #include "asbuilt/plan/room_iou.h"
@@ -60,6 +60,21 @@ TEST(ResolvePlanOptions, DecidesWhatTheInputSays) {
   EXPECT_FALSE(ResolvePlanOptions(input, {}).one_viewpoint);
   // What the caller set stays.
   EXPECT_NEAR(ResolvePlanOptions(input, {.viewpoint_m = Vec3(0, 0, 1)}).viewpoint_m->x(), 0.0, 1e-12);
+}
+
+// A camera height known to ±σ_h scales every contact's distance alike: the
+// room-wide scale mode gains σ_h / h, in quadrature with the labels' share,
+// unless the caller set that mode.
+TEST(ResolvePlanOptions, TheCameraHeightsSigmaScalesTheRoom) {
+  PlanInput input{.one_camera = true, .exact_labels = true, .camera_height_sigma_m = 0.005};
+  input.frames = {{.index = 0, .position_m = {1, 1, 1.6}}};
+  EXPECT_NEAR(*ResolvePlanOptions(input, {}).contact_scale_sigma, 0.005 / 1.6, 1e-12);
+  input.exact_labels = false;
+  EXPECT_NEAR(*ResolvePlanOptions(input, {}).contact_scale_sigma,
+              std::hypot(PlanOptions::kSegmentedContactScaleSigma, 0.005 / 1.6), 1e-12);
+  EXPECT_EQ(*ResolvePlanOptions(input, {.contact_scale_sigma = 0.01}).contact_scale_sigma, 0.01);
+  input.camera_height_sigma_m = NAN;  // Unknown (a plan from points alone): the labels' share only.
+  EXPECT_EQ(*ResolvePlanOptions(input, {}).contact_scale_sigma, PlanOptions::kSegmentedContactScaleSigma);
 }
 
 // A corner fixed off its place: the walls beside it pass through it, along
