@@ -27,8 +27,9 @@ void PanoViewsOptions::Check() const {
 }
 
 std::string PanoViewsSummary::BriefReport() const {
-  return fmt::format("{} view{}{}{} → {}", views, views == 1 ? "" : "s", labels ? (truth ? " + layout labels" : " + labels") : "",
-                     truth ? " + truth.json" : "", views_json.string());
+  return fmt::format("{} view{}{}{} → {}", views, views == 1 ? "" : "s",
+                     labels ? (truth ? " + layout labels" : " + labels") : "", truth ? " + truth.json" : "",
+                     views_json.string());
 }
 
 Image ReadEquirect(const fs::path& path) {
