@@ -1,17 +1,19 @@
 // bench_blender: the survey on rooms another renderer drew (issue 37). The
 // 24 rooms of bench/blender/render-rooms.sh (kept under the build folder;
-// rendered there by Blender Cycles on the first run, about 40 s a room on 2
-// cores) are surveyed as panorama captures three ways: with the exact labels
-// of Blender's own label pass, and with each shipped model. Odd-numbered
-// rooms are the calibration half, even-numbered the held-out half (issue
-// 37's split); the tables give each half apart. Writes
-// bench/results/blender.md.
+// rendered there by Blender Cycles on the first run, about 2 minutes a room
+// on 2 cores) are surveyed as panorama captures: with the exact labels of
+// Blender's own label pass (with the camera height exact, and off by a
+// tape's error), in the skirting experiment, and with each shipped model;
+// beside them, the same rooms drawn by asbuilt's renderer (rendered once
+// into each room's folder, about 30 s a room). Odd-numbered rooms are the
+// calibration half, even-numbered the held-out half (issue 37's split); the
+// tables give each half apart. Writes bench/results/blender.md.
 //
 //   bench_blender [RESULTS.md]
 //   env ASBUILT_BENCH_BLENDER_DIR (rooms rendered before, used as they are; default
 //   build/bench/blender, rendered there when missing),
-//   ASBUILT_BENCH_BLENDER_MODES (default "exact,skirting,renders,real": exact labels; the
-//   skirting experiment; each shipped model).
+//   ASBUILT_BENCH_BLENDER_MODES (default "exact,ours,skirting,renders,real": exact labels;
+//   the same rooms drawn by our renderer; the skirting experiment; each shipped model).
 
 #include <unistd.h>
 
@@ -31,6 +33,8 @@
 #include "asbuilt/pano/pano_views.h"
 #include "asbuilt/pipeline/survey.h"
 #include "asbuilt/plan/score.h"
+#include "asbuilt/render/capture_render.h"
+#include "asbuilt/scene/scene_json.h"
 #include "asbuilt/seg/segmenter.h"
 #include "asbuilt/util/file.h"
 #include "bench/bench_util.h"
@@ -82,6 +86,9 @@ struct Mode {
   // Survey with the camera height as a surveyor's tape gives it
   // (MeasuredCapture), not the exact one.
   bool measured_height = false;
+  // Survey the room as asbuilt's own renderer draws it (OurRendering), with
+  // that capture's exact labels, instead of Blender's panorama.
+  bool our_renderer = false;
   Half halves[2];  // [0] calibration (odd rooms), [1] held out (even rooms).
 };
 
@@ -99,6 +106,40 @@ fs::path MeasuredCapture(const fs::path& room, double sigma_m) {
   capture["position_m"][2] = capture["position_m"][2].get<double>() + error;
   WriteFileAtomic(path, capture.dump(1) + "\n");
   return path;
+}
+
+// The same room drawn by asbuilt's own renderer, for the table beside
+// Blender's: the survey's 12 panorama views (512 × 1024, 90° across) as a
+// turn in place of one camera (a mono capture; the rig's two eyes half a
+// millimetre apart, the left one's images), with its exact labels. Rendered
+// once into ROOM/ours/.
+fs::path OurRendering(const fs::path& room) {
+  const fs::path dir = room / "ours";
+  const fs::path mono = dir / "capture_mono.json";
+  if (fs::exists(mono)) return mono;
+  const TurnInPlaceOptions views = SurveyOptions{}.panorama_views;
+  CaptureRenderOptions o;
+  o.views = views.views;
+  o.width_px = views.width_px;
+  o.height_px = views.height_px;
+  o.fov_deg = 2 * std::atan(0.5 * views.width_px / views.fx) * 180 / std::numbers::pi;
+  o.baseline_m = 0.001;
+  o.render.samples_per_pixel = 4;
+  RenderCapture(ReadScene(room / "scene.json"), dir, o);
+  const nlohmann::json stereo = nlohmann::json::parse(ReadFile(dir / "capture.json"));
+  nlohmann::json camera = stereo["camera"];
+  camera.erase("baseline_m");
+  nlohmann::json frames = nlohmann::json::array();
+  for (const nlohmann::json& f : stereo["frames"]) {
+    frames.push_back({{"index", f["index"]},
+                      {"image", f["left"]},
+                      {"labels", f["labels"]},
+                      {"yaw_deg", f["yaw_deg"]},
+                      {"position_m", f["position_m"]}});
+  }
+  const nlohmann::json capture = {{"version", 1}, {"kind", "mono"}, {"camera", camera}, {"frames", frames}};
+  WriteFileAtomic(mono, capture.dump(1) + "\n");
+  return mono;
 }
 
 // The room's views with the labels of one label pass, cut once.
@@ -158,12 +199,17 @@ int main(int argc, char** argv) {
   }
 
   const char* mode_env = std::getenv("ASBUILT_BENCH_BLENDER_MODES");
-  const std::string wanted = mode_env ? mode_env : "exact,skirting,renders,real";
+  const std::string wanted = mode_env ? mode_env : "exact,ours,skirting,renders,real";
   std::vector<Mode> modes;
   if (wanted.find("exact") != std::string::npos) {
     modes.push_back({.name = "exact labels", .label_pass = "labels.exr"});
     modes.push_back(
         {.name = "exact labels, camera height by tape", .label_pass = "labels.exr", .measured_height = true});
+  }
+  if (wanted.find("ours") != std::string::npos) {
+    Mode ours{.name = "our renderer's 12 views, its exact labels", .our_renderer = true};
+    ours.options.use_capture_labels = true;
+    modes.push_back(ours);
   }
   if (wanted.find("skirting") != std::string::npos) {
     // The bias experiment: the same labels with feet not moved behind a
@@ -208,8 +254,9 @@ int main(int argc, char** argv) {
       Half& h = m.halves[half];
       std::string cell;
       try {
-        const fs::path capture = m.measured_height ? MeasuredCapture(room, FramePointsOptions{}.camera_height_sigma_m)
-                                                   : room / "capture.json";
+        const fs::path capture = m.our_renderer      ? OurRendering(room)
+                                 : m.measured_height ? MeasuredCapture(room, FramePointsOptions{}.camera_height_sigma_m)
+                                                     : room / "capture.json";
         options.truth_path = room / "truth.json";
         const SurveyResult r = RunSurvey(capture, out / fmt::format("{}_{}", name, m.name), options);
         if (!r.summary.score) throw Error("no score");
