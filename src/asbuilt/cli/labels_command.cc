@@ -18,6 +18,7 @@
 #include "asbuilt/labels/label_io.h"
 #include "asbuilt/labels/palette.h"
 #include "asbuilt/util/progress.h"
+#include "asbuilt/util/text.h"
 
 namespace asbuilt::cli {
 namespace {
@@ -212,9 +213,7 @@ int RunLabelsCommand(int argc, char** argv) {
       if (eq == std::string::npos || eq == 0 || !((id >= 0 && id <= 3) || id == 255)) {
         throw CLI::ValidationError("--name", fmt::format("'{}' is not NAME=ID with ID 0-3 or 255", n));
       }
-      std::string name = n.substr(0, eq);
-      for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      imp_options.labelme_names[name] = static_cast<std::uint8_t>(id);
+      imp_options.labelme_names[AsciiLower(n.substr(0, eq))] = static_cast<std::uint8_t>(id);
     }
     imp_options.Check();
     std::vector<fs::path> inputs =

@@ -6,23 +6,14 @@
 
 #include <fmt/format.h>
 
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
+#include "asbuilt/util/text.h"
 
 namespace asbuilt {
 namespace fs = std::filesystem;
 namespace {
-
-std::string Lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
-bool IsImageExtension(const fs::path& p) {
-  static const char* kExt[] = {".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"};
-  std::string ext = Lower(p.extension().string());
-  return std::any_of(std::begin(kExt), std::end(kExt), [&](const char* e) { return ext == e; });
-}
 
 // Regular files of `dir` with an accepted extension, by stem. Throws on an
 // unreadable folder or on two files with one stem.
@@ -37,7 +28,7 @@ std::map<std::string, fs::path> FilesByStem(const fs::path& dir, bool png_only) 
     std::string name = p.filename().string();
     if (name.empty() || name[0] == '.' || IsAtomicTempName(p)) continue;
     if (!entry.is_regular_file(ec)) continue;
-    if (png_only ? Lower(p.extension().string()) != ".png" : !IsImageExtension(p)) continue;
+    if (png_only ? AsciiLower(p.extension().string()) != ".png" : !IsImageExtension(p)) continue;
     auto [pos, inserted] = out.emplace(p.stem().string(), p);
     if (!inserted) {
       throw InputError(

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <vector>
 
 #include <fmt/format.h>
@@ -9,6 +10,7 @@
 
 #include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/util/error.h"
+#include "asbuilt/util/text.h"
 #include "asbuilt/util/file.h"
 
 namespace asbuilt {
@@ -81,6 +83,14 @@ cv::Mat ReadColourImage(const fs::path& path, const std::string& field) {
   }
   return image;
 }
+
+bool IsImageExtension(const fs::path& path) {
+  static const char* kExt[] = {".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"};
+  const std::string ext = AsciiLower(path.extension().string());
+  return std::any_of(std::begin(kExt), std::end(kExt), [&](const char* e) { return ext == e; });
+}
+
+void AllowOpenExr() { setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0); }
 
 cv::Mat ReadColourImageAnyDepth(const fs::path& path, const std::string& field) {
   cv::Mat image = Decode(path, field, cv::IMREAD_COLOR | cv::IMREAD_ANYDEPTH);

@@ -24,9 +24,19 @@ namespace asbuilt {
 // the path came from (e.g. "frames[3].left") and may be empty.
 cv::Mat ReadColourImage(const std::filesystem::path& path, const std::string& field = "");
 
+// Whether `path` names a photo by its extension, in any case: .png, .jpg,
+// .jpeg, .bmp, .tif, .tiff, .webp (what the image readers take from folders).
+bool IsImageExtension(const std::filesystem::path& path);
+
+// Lets OpenCV decode OpenEXR files in this process. OpenCV reads them only
+// when asked (the format's decoder has a CVE history), and reads the switch
+// once, before the first EXR: call this before reading an EXR the user or a
+// Debian package gave.
+void AllowOpenExr();
+
 // Reads a colour image at the depth it is stored in, as 3-channel BGR:
-// CV_8UC3, CV_16UC3 or CV_32FC3 (Radiance .hdr; OpenEXR where the process has
-// set OPENCV_IO_ENABLE_OPENEXR). For linear high-dynamic-range photos.
+// CV_8UC3, CV_16UC3 or CV_32FC3 (Radiance .hdr; OpenEXR after
+// AllowOpenExr()). For linear high-dynamic-range photos.
 cv::Mat ReadColourImageAnyDepth(const std::filesystem::path& path, const std::string& field = "");
 
 // A linear high-dynamic-range BGR image (CV_32FC3) as a photo-like 8-bit sRGB

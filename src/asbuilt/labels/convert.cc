@@ -12,6 +12,7 @@
 #include <tbb/task_arena.h>
 #include <tbb/parallel_for.h>
 
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/labels/label_io.h"
 #include "asbuilt/util/file.h"
 
@@ -121,15 +122,12 @@ ConvertSummary ConvertIdMapFiles(const ConvertOptions& options, const Palette& p
 std::vector<fs::path> ListImageFiles(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(dir.string(), "", "not a folder");
-  static const char* kExt[] = {".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"};
   std::vector<fs::path> out;
   for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec)) {
     const fs::path& p = entry.path();
     std::string name = p.filename().string();
     if (name.empty() || name[0] == '.' || IsAtomicTempName(p) || !entry.is_regular_file(ec)) continue;
-    std::string ext = p.extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (std::any_of(std::begin(kExt), std::end(kExt), [&](const char* e) { return ext == e; })) {
+    if (IsImageExtension(p)) {
       out.push_back(p);
     }
   }

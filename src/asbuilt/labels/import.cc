@@ -16,6 +16,7 @@
 #include "asbuilt/labels/label_io.h"
 #include "asbuilt/util/file.h"
 #include "asbuilt/util/json_reader.h"
+#include "asbuilt/util/text.h"
 
 namespace asbuilt {
 namespace fs = std::filesystem;
@@ -29,12 +30,6 @@ constexpr int kAdeWall = 1, kAdeWindowpane = 9, kAdeDoor = 15, kAdeScreenDoor = 
 // NYUv2 40-class ids (Gupta et al. 2013).
 constexpr int kNyuMaxId = 40;
 constexpr int kNyuWall = 1, kNyuDoor = 8, kNyuWindow = 9;
-
-std::string Lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
 
 std::string Trim(std::string s) {
   auto not_space = [](unsigned char c) { return !std::isspace(c); };
@@ -191,7 +186,7 @@ std::array<std::uint8_t, 256> Nyu40Mapping(bool unlabeled_to_ignore) {
 }
 
 std::uint8_t LabelMeNameToId(std::string_view name, const ImportOptions& options) {
-  std::string key = Lower(Trim(std::string(name)));
+  std::string key = AsciiLower(Trim(std::string(name)));
   if (auto it = options.labelme_names.find(key); it != options.labelme_names.end()) return it->second;
   const auto& defaults = DefaultLabelMeNames();
   if (auto it = defaults.find(key); it != defaults.end()) return it->second;
@@ -351,7 +346,7 @@ std::vector<fs::path> ListAnnotationFiles(const fs::path& dir, AnnotationFormat 
     const fs::path& p = entry.path();
     std::string name = p.filename().string();
     if (name.empty() || name[0] == '.' || IsAtomicTempName(p) || !entry.is_regular_file(ec)) continue;
-    if (Lower(p.extension().string()) == ".json") out.push_back(p);
+    if (AsciiLower(p.extension().string()) == ".json") out.push_back(p);
   }
   std::sort(out.begin(), out.end());
   return out;

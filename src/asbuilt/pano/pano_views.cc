@@ -14,6 +14,7 @@
 #include "asbuilt/pano/layout_labels.h"
 #include "asbuilt/util/error.h"
 #include "asbuilt/util/file.h"
+#include "asbuilt/util/text.h"
 
 namespace asbuilt {
 namespace fs = std::filesystem;
@@ -43,11 +44,10 @@ Image ReadEquirect(const fs::path& path) {
 }
 
 Image ReadLabelEquirect(const fs::path& path) {
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = AsciiLower(path.extension().string());
   cv::Mat labels;
   if (ext == ".exr") {
-    setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0);  // Read once per process, before the first EXR.
+    AllowOpenExr();  // A label pass the user names.
     const cv::Mat stored = ReadImageAsStored(path);
     cv::Mat first;
     cv::extractChannel(stored, first, 0);

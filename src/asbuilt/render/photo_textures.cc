@@ -16,15 +16,11 @@
 #include "asbuilt/imageio/image_cv.h"
 #include "asbuilt/imageio/image_io.h"
 #include "asbuilt/util/error.h"
+#include "asbuilt/util/text.h"
 
 namespace asbuilt {
 namespace fs = std::filesystem;
 namespace {
-
-std::string Lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
 
 bool Contains(const std::string& s, std::initializer_list<const char*> words) {
   for (const char* w : words) {
@@ -56,14 +52,12 @@ cv::Mat LinearFromSrgb8(const cv::Mat& bgr) {
 }
 
 std::optional<Photo> LoadPhoto(const fs::path& path, PhotoKind kind, int max_side_px) {
-  const std::string ext = Lower(path.extension().string());
+  const std::string ext = AsciiLower(path.extension().string());
   cv::Mat linear;
   if (ext == ".pat") {
     linear = LinearFromSrgb8(AsMat(ReadGimpPattern(path)));
   } else if (ext == ".exr" || ext == ".hdr") {
-    // OpenCV reads OpenEXR only when asked to (CVE history); these are
-    // files of a Debian package, and the switch is read once per process.
-    setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0);
+    AllowOpenExr();  // Files of a Debian package.
     cv::Mat m = ReadColourImageAnyDepth(path);
     m.convertTo(m, CV_32FC3);
     cv::cvtColor(m, linear, cv::COLOR_BGR2RGB);
@@ -165,11 +159,11 @@ void PhotoLibraryOptions::Check() const {
 }
 
 std::optional<PhotoKind> ClassifyPhoto(const fs::path& path) {
-  const std::string ext = Lower(path.extension().string());
-  const std::string name = Lower(path.stem().string());
-  const std::string full = Lower(path.generic_string());
+  const std::string ext = AsciiLower(path.extension().string());
+  const std::string name = AsciiLower(path.stem().string());
+  const std::string full = AsciiLower(path.generic_string());
   if (ext == ".pat") {
-    const std::string folder = Lower(path.parent_path().filename().string());
+    const std::string folder = AsciiLower(path.parent_path().filename().string());
     if (folder == "wood") {
       if (Contains(name, {"bark", "cork"})) return std::nullopt;  // Not a room surface; cork is blotchy.
       return PhotoKind::kWood;

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "asbuilt/util/file.h"
+#include "asbuilt/util/text.h"
 
 namespace asbuilt {
 
@@ -36,8 +37,7 @@ std::string Header(const HttpRequest& r, const std::string& name) {
 }
 
 std::string ImageContentType(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = AsciiLower(path.extension().string());
   if (ext == ".png") return "image/png";
   if (ext == ".jpg" || ext == ".jpeg") return "image/jpeg";
   return "application/octet-stream";
@@ -147,9 +147,7 @@ void RunReviewServer(ReviewBackend& session, const ReviewServerOptions& options,
     HttpRequest r{.method = req.method, .path = req.path, .body = req.body};
     for (const auto& [k, v] : req.params) r.params.emplace(k, v);
     for (const auto& [k, v] : req.headers) {
-      std::string name = k;
-      for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      r.headers.emplace(name, v);
+      r.headers.emplace(AsciiLower(k), v);
     }
     HttpResponse out;
     {
