@@ -201,8 +201,10 @@ std::vector<Field> OpeningFields(OpeningKind kind, const ToolLimits& limits) {
        .default_value = door ? 2.1 : 1.2},
       {.name = "count",
        .kind = FieldKind::kInteger,
-       .description = door ? "How many identical doors to space evenly along the wall."
-                           : "How many identical windows to space evenly along the wall.",
+       .description = door ? "How many identical doors to space evenly along the wall, each centred in one of "
+                             "`count` equal bays."
+                           : "How many identical windows to space evenly along the wall, each centred in one of "
+                             "`count` equal bays.",
        .minimum = 1.0,
        .maximum = 8.0,
        .default_value = 1},
@@ -319,13 +321,13 @@ ToolResult SceneTools::AddOpenings(const FieldArgs& a, OpeningKind kind) {
     }
     offsets.push_back(off);
   } else {
-    double gap = (length - count * width) / (count + 1);
-    if (gap < 0.05) {
+    // Each in one of `count` equal bays, 5 cm clear of its bay's ends at least.
+    if (length / count - width < 0.1) {
       throw InvalidArgument(
           fmt::format("arguments.width_m: {} {}{} {:.2f} m wide do not fit on wall {} ({:.2f} m long)", count, noun,
                       count == 1 ? "" : "s", width, wall, length));
     }
-    for (int i = 0; i < count; ++i) offsets.push_back(gap + i * (width + gap));
+    offsets = EvenlySpacedOffsets(length, std::vector<double>(count, width));
   }
 
   Scene next = scene_;

@@ -89,6 +89,9 @@ TEST_F(ToolsTest, BuildsARoomWithADoorAndTwoWindowsAndExportsItsPlan) {
       EXPECT_NEAR(o.width, 1.5, 1e-9);
       EXPECT_EQ(o.wall, 2);  // North wall.
       EXPECT_NEAR(*o.sill, 0.9, 1e-9);
+      // Each centred in one of two equal bays of the 6 m wall, as the text parser spaces them.
+      const double centre = o.Centre().x();
+      EXPECT_TRUE(std::abs(centre - 1.5) < 1e-9 || std::abs(centre - 4.5) < 1e-9) << centre;
     }
   }
   EXPECT_EQ(doors, 1);

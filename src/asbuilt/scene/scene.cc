@@ -335,6 +335,13 @@ std::optional<Vec2> CompassVector(std::string_view name) {
   return v.normalized();
 }
 
+std::vector<double> EvenlySpacedOffsets(double length_m, std::span<const double> widths_m) {
+  std::vector<double> offsets;
+  const std::size_t k = widths_m.size();
+  for (std::size_t i = 0; i < k; ++i) offsets.push_back((i + 0.5) * length_m / k - 0.5 * widths_m[i]);
+  return offsets;
+}
+
 std::vector<int> WallsFacing(const Room& room, std::string_view compass, double max_off_deg) {
   const std::optional<Vec2> dir = CompassVector(compass);
   if (!dir) return {};

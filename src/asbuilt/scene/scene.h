@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -220,6 +221,13 @@ std::vector<int> WallsFacing(const Room& room, std::string_view compass, double 
 // The wall a compass name means where one is wanted: the longest of
 // WallsFacing (the first of equals).
 std::optional<int> WallFacing(const Room& room, std::string_view compass, double max_off_deg = 180.0);
+
+// Where openings of these widths go when spread evenly along a wall
+// `length_m` long: each centred in one of equal bays, at (i + ½)·L/k for k
+// openings; the offsets of their starts (Opening::offset_m). The rule of the
+// text parser ("two windows") and of the MCP tools (`count`). Whether they
+// fit is the caller's to check.
+std::vector<double> EvenlySpacedOffsets(double length_m, std::span<const double> widths_m);
 // Centroid of the polygon's area (vertex mean for degenerate polygons).
 Vec2 PolygonCentroid(const std::vector<Vec2>& polygon);
 // Where a surveyor sets the tripod in a counter-clockwise room polygon: a

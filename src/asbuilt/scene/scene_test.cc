@@ -136,6 +136,22 @@ TEST(WallCompassName, NamesTheOutwardDirection) {
   EXPECT_EQ(WallCompassName(diamond, 1), "north-east");
 }
 
+// One rule for the text parser and the MCP tools: each opening centred in one
+// of equal bays.
+TEST(EvenlySpacedOffsets, CentresEachOpeningInOneOfEqualBays) {
+  const std::vector<double> two = {1.5, 1.5};
+  const std::vector<double> offsets = EvenlySpacedOffsets(6.0, two);
+  ASSERT_EQ(offsets.size(), 2u);
+  EXPECT_DOUBLE_EQ(offsets[0], 0.75);  // Centre 1.5 m: a quarter of the wall.
+  EXPECT_DOUBLE_EQ(offsets[1], 3.75);  // Centre 4.5 m.
+  const std::vector<double> mixed = {0.9, 1.2, 2.0};
+  const std::vector<double> m = EvenlySpacedOffsets(9.0, mixed);
+  EXPECT_DOUBLE_EQ(m[0] + 0.45, 1.5);
+  EXPECT_DOUBLE_EQ(m[1] + 0.6, 4.5);
+  EXPECT_DOUBLE_EQ(m[2] + 1.0, 7.5);
+  EXPECT_TRUE(EvenlySpacedOffsets(3.0, std::vector<double>{}).empty());
+}
+
 // One rule for the text parser and the MCP tools: the walls of that name,
 // else the nearest (the longest of equals) within the limit.
 TEST(WallFacing, NamedWallsElseTheNearestLongest) {

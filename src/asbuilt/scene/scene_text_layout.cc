@@ -136,15 +136,15 @@ void LayOutWall(const Room& room, int wall, std::vector<PendingOpening*>& ops, s
     }
     return lo < 0.1 - 1e-9 || hi > length - 0.1 + 1e-9;
   };
-  // Even spread: slot centres at (i + ½)·L/k.
+  // Even spread (EvenlySpacedOffsets), where it collides with nothing.
   const std::size_t k = automatic.size();
+  std::vector<double> widths;
+  for (const PendingOpening* p : automatic) widths.push_back(p->opening.width_m);
+  const std::vector<double> even = EvenlySpacedOffsets(length, widths);
   bool even_ok = true;
-  std::vector<double> even;
   for (std::size_t i = 0; i < k; ++i) {
-    double centre = (i + 0.5) * length / k;
-    double lo = centre - 0.5 * automatic[i]->opening.width_m;
+    double lo = even[i];
     double hi = lo + automatic[i]->opening.width_m;
-    even.push_back(lo);
     even_ok = even_ok && !overlaps(lo, hi);
     for (std::size_t j = 0; j < i; ++j) {
       double jlo = even[j], jhi = even[j] + automatic[j]->opening.width_m;
