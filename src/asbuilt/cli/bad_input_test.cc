@@ -138,10 +138,11 @@ std::vector<std::string> ListFiles(const fs::path& dir) {
 }
 
 // A capture.json of one frame; {L} {R} are the image paths, {CAM} the camera.
-std::string Capture(const std::string& left = "l.png", const std::string& right = "r.png",
-                    const std::string& camera =
-                        R"("width": 96, "height": 72, "fx": 60, "fy": 60, "cx": 47.5, "cy": 35.5, "baseline_m": 0.12)",
-                    const std::string& extra = "") {
+std::string CaptureJson(
+    const std::string& left = "l.png", const std::string& right = "r.png",
+    const std::string& camera =
+        R"("width": 96, "height": 72, "fx": 60, "fy": 60, "cx": 47.5, "cy": 35.5, "baseline_m": 0.12)",
+    const std::string& extra = "") {
   return R"({"version": 1, "camera": {)" + camera + R"(}, "rectified": true)" + extra +
          R"(, "frames": [{"index": 0, "left": ")" + left + R"(", "right": ")" + right +
          R"(", "yaw_deg": 0, "position_m": [0, 0, 1.5]}]})";
@@ -212,7 +213,7 @@ std::string CollinearPoints() {
 }
 
 std::vector<Case> Cases() {
-  const std::string cap_ok = Capture();
+  const std::string cap_ok = CaptureJson();
   return {
       // ---------------------------------------------------------------- usage (exit 2)
       {"UnknownCommand", {}, "frobnicate", 2, {"unknown command", "frobnicate"}},
@@ -248,7 +249,7 @@ std::vector<Case> Cases() {
        With(
            kPair,
            {{"c.json",
-             Capture(
+             CaptureJson(
                  "l.png", "r.png",
                  R"("width": "wide", "height": 72, "fx": 60, "fy": 60, "cx": 47.5, "cy": 35.5, "baseline_m": 0.12)")}}),
        "validate {d}/c.json",
@@ -257,7 +258,7 @@ std::vector<Case> Cases() {
       {"ValidateCaptureInfinity",
        With(kPair,
             {{"c.json",
-              Capture(
+              CaptureJson(
                   "l.png", "r.png",
                   R"("width": 96, "height": 72, "fx": 1e999, "fy": 60, "cx": 47.5, "cy": 35.5, "baseline_m": 0.12)")}}),
        "validate {d}/c.json",
@@ -266,7 +267,7 @@ std::vector<Case> Cases() {
       {"ValidateCaptureNaNToken",
        With(kPair,
             {{"c.json",
-              Capture(
+              CaptureJson(
                   "l.png", "r.png",
                   R"("width": 96, "height": 72, "fx": NaN, "fy": 60, "cx": 47.5, "cy": 35.5, "baseline_m": 0.12)")}}),
        "validate {d}/c.json",
@@ -275,15 +276,16 @@ std::vector<Case> Cases() {
       {"ValidateCaptureZeroBaseline",
        With(kPair,
             {{"c.json",
-              Capture("l.png", "r.png",
-                      R"("width": 96, "height": 72, "fx": 60, "fy": 60, "cx": 47.5, "cy": 35.5, "baseline_m": 0)")}}),
+              CaptureJson(
+                  "l.png", "r.png",
+                  R"("width": 96, "height": 72, "fx": 60, "fy": 60, "cx": 47.5, "cy": 35.5, "baseline_m": 0)")}}),
        "validate {d}/c.json",
        1,
        {"{d}/c.json", "baseline"}},
       {"ValidateCaptureNegativeSize",
        With(kPair,
             {{"c.json",
-              Capture(
+              CaptureJson(
                   "l.png", "r.png",
                   R"("width": -96, "height": 72, "fx": 60, "fy": 60, "cx": 47.5, "cy": 35.5, "baseline_m": 0.12)")}}),
        "validate {d}/c.json",
@@ -292,7 +294,7 @@ std::vector<Case> Cases() {
       {"ValidateCaptureAbsurdFocal",
        With(kPair,
             {{"c.json",
-              Capture(
+              CaptureJson(
                   "l.png", "r.png",
                   R"("width": 96, "height": 72, "fx": 1e9, "fy": 60, "cx": 47.5, "cy": 35.5, "baseline_m": 0.12)")}}),
        "validate {d}/c.json",
@@ -344,7 +346,7 @@ std::vector<Case> Cases() {
        1,
        {"l.png"}},
       {"SurveyTruncatedJpeg",
-       {{"l.jpg", "<jpg 96x72 noise"}, {"r.jpg", "<jpg 96x72 noise"}, {"capture.json", Capture("l.jpg", "r.jpg")}},
+       {{"l.jpg", "<jpg 96x72 noise"}, {"r.jpg", "<jpg 96x72 noise"}, {"capture.json", CaptureJson("l.jpg", "r.jpg")}},
        "survey {d}/capture.json -o {d}/out",
        1,
        {"r.jpg"}},  // r.jpg is truncated below (see TruncateAfter).
@@ -701,7 +703,7 @@ std::vector<Case> Cases() {
        {{"p.png", "<rgb 64x32 9"}},
        "pano views {d}/p.png -o {d}/out --pitch 95",
        2,
-       {"pitch_deg = 95"}},
+       {"--pitch-deg: must be > -90 and < 90, got 95"}},
       {"PanoViewsBadSize", {{"p.png", "<rgb 64x32 9"}}, "pano views {d}/p.png -o {d}/out --size 0x48", 2, {"--size"}},
       {"PanoViewsZindMalformed",
        {{"tour/zind_data.json", "{\"merger\": ["}},
@@ -740,7 +742,7 @@ std::vector<Case> Cases() {
        {},
        "eval zind --model {src}/models/segformer_b0_asbuilt.pt --zind {d}/tour -o {d}/out --views 0",
        2,
-       {"views = 0"}},
+       {"--views: must be an integer >= 1"}},
 
       // ---------------------------------------------------------------- mcp
       {"McpWorkspaceIsAFile", {{"ws", "just a file"}}, "mcp --workspace {d}/ws", 1, {"{d}/ws"}},

@@ -89,7 +89,8 @@ TEST(ClusterCommand, DryRunPrintsTheScriptsAndBadInputIsRefused) {
   ASSERT_EQ(dry.exit_code, 0) << dry.out;
   EXPECT_NE(dry.out.find("#SBATCH --partition=short"), std::string::npos) << dry.out;
   EXPECT_NE(dry.out.find("export ASBUILT_SHARDS=2\n"), std::string::npos) << dry.out;
-  EXPECT_NE(dry.out.find("export ASBUILT_ARGS='--count 4 --seed 9 --size 320x240 "), std::string::npos) << dry.out;
+  EXPECT_NE(dry.out.find("export ASBUILT_ARGS='--count 4 --seed 9 --width-px 320 --height-px 240 "), std::string::npos)
+      << dry.out;
   EXPECT_NE(dry.out.find("$ASBUILT\" dataset merge"), std::string::npos) << dry.out;
   EXPECT_FALSE(fs::exists(d / "ds")) << "a dry run writes nothing";
 

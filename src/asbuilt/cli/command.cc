@@ -79,24 +79,31 @@ void AddCommonFlags(CLI::App& app) {
       "-v,--verbose", [] { ConfigureLogging(Verbosity::kVerbose); }, "print debug messages");
 }
 
-void AddTurnInPlaceFlags(CLI::App& app, TurnInPlaceOptions* turn, std::string* size) {
+std::unique_ptr<FieldFlags> AddTurnInPlaceFlags(CLI::App& app, const TurnInPlaceOptions& defaults,
+                                                std::string_view group) {
   // The --pano-* spellings are `survey`'s for the same four.
-  app.add_option("--size,--pano-size", *size, "view size WIDTHxHEIGHT")
-      ->default_str(fmt::format("{}x{}", turn->width_px, turn->height_px));
-  app.add_option("--fx,--pano-fx", turn->fx, "focal length, pixels")->capture_default_str();
-  app.add_option("--fy", turn->fy, "vertical focal length, pixels (0 = fx)")->capture_default_str();
-  app.add_option("--views,--pano-views", turn->views, "views per panorama")->capture_default_str();
-  app.add_option("--yaw-step,--pano-yaw-step", turn->yaw_step_deg,
-                 "degrees between views, counter-clockwise seen from above")
-      ->capture_default_str();
-  app.add_option("--first-yaw", turn->first_yaw_deg,
-                 "yaw of the first view, degrees (0 looks along the pano frame's +Y)")
-      ->capture_default_str();
-  app.add_option("--pitch", turn->pitch_deg, "tilt of every view, degrees, up positive")->capture_default_str();
+  auto flags = std::make_unique<FieldFlags>(app, TurnInPlaceOptionFields().Fields(defaults),
+                                            std::vector<FlagAlias>{{"fx", "--pano-fx"},
+                                                                   {"views", "--pano-views"},
+                                                                   {"yaw_step_deg", "--yaw-step,--pano-yaw-step"},
+                                                                   {"first_yaw_deg", "--first-yaw"},
+                                                                   {"pitch_deg", "--pitch"}},
+                                            group);
+  flags->AddSize("width_px", "height_px", "--size,--pano-size", "view size");
+  return flags;
 }
 
-void ApplyTurnInPlaceSize(const std::string& size, TurnInPlaceOptions& turn) {
-  ParseSizeFlag(size, "--size", turn.width_px, turn.height_px);
+std::unique_ptr<FieldFlags> AddSegmentFlags(CLI::App& app, const SegmentOptions& defaults, std::string_view scale_names,
+                                            bool with_batch) {
+  std::vector<Field> fields;
+  for (Field& f : SegmentOptionFields().Fields(defaults)) {
+    if (with_batch || f.name != "batch_size") fields.push_back(std::move(f));
+  }
+  std::vector<FlagAlias> aliases;
+  if (with_batch) aliases.push_back({"batch_size", "--batch"});
+  auto flags = std::make_unique<FieldFlags>(app, std::move(fields), std::move(aliases));
+  flags->AddSize("scale_width_px", "scale_height_px", scale_names, "inference scale");
+  return flags;
 }
 
 void ParseSizeFlag(const std::string& text, const std::string& flag, int& w, int& h) {

@@ -10,14 +10,17 @@
 // command.cc. Errors are thrown (STYLE.md 7); main() maps them to exit codes.
 
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string>
-#include <vector>
 #include <string_view>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "asbuilt/cli/field_flags.h"
 #include "asbuilt/pano/perspective.h"
+#include "asbuilt/seg/segmenter.h"
 
 namespace asbuilt::cli {
 
@@ -42,12 +45,20 @@ void AddCommonFlags(CLI::App& app);
 // throws CLI::ValidationError naming the flag otherwise.
 void ParseSizeFlag(const std::string& text, const std::string& flag, int& w, int& h);
 
-// The views of a panorama (TurnInPlaceOptions), shared by `pano views` and
-// `eval zind`: --size WxH (into *size, parsed by ApplyTurnInPlaceSize),
-// --fx, --fy, --views, --yaw-step, --first-yaw, --pitch; --pano-size,
-// --pano-fx, --pano-views and --pano-yaw-step (survey's spellings) too.
-void AddTurnInPlaceFlags(CLI::App& app, TurnInPlaceOptions* turn, std::string* size);
-void ApplyTurnInPlaceSize(const std::string& size, TurnInPlaceOptions& turn);
+// The views of a panorama (TurnInPlaceOptionFields) as flags, shared by
+// `pano views` and `eval zind`: --width-px … --pitch-deg, with --size WxH and
+// the older spellings (--yaw-step, --first-yaw, --pitch; survey's --pano-size,
+// --pano-fx, --pano-views, --pano-yaw-step). Read the options after parsing
+// with ReadGiven(TurnInPlaceOptionFields(), turn).
+std::unique_ptr<FieldFlags> AddTurnInPlaceFlags(CLI::App& app, const TurnInPlaceOptions& defaults,
+                                                std::string_view group = {});
+
+// The segmenter's options (SegmentOptionFields) as flags: --mode,
+// --scale-width-px and --scale-height-px (WxH as `scale_names`), and
+// --batch-size (--batch) when `with_batch`. Read them after parsing with
+// ReadGiven(SegmentOptionFields(), options).
+std::unique_ptr<FieldFlags> AddSegmentFlags(CLI::App& app, const SegmentOptions& defaults,
+                                            std::string_view scale_names = "--scale", bool with_batch = true);
 
 // Thrown by Parse() after it printed the help text (main() exits 0).
 struct HelpPrinted {};

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include "asbuilt/cli/command.h"
 #include "asbuilt/util/progress.h"
@@ -18,66 +17,31 @@
 namespace asbuilt::cli {
 
 void AddDatasetSynthFlags(CLI::App& app, DatasetSynthFlags& flags) {
-  DatasetSynthOptions& o = flags.options;
-  app.add_option("--count", o.count, "items in the whole dataset")->capture_default_str();
-  app.add_option("--seed", o.seed, "scenes, views and rendering seed")->capture_default_str();
-  app.add_option("--size", flags.size, "image size WxH")->default_str("320x240");
-  app.add_option("--spp", o.render.samples_per_pixel, "RGB samples per pixel")->capture_default_str();
-  app.add_option("--effects", o.render.camera_effects, "camera effects strength [0, 1]")->capture_default_str();
-  app.add_option("--id-drift", o.render.id_drift, "ID-map colour drift [0, 1]")->capture_default_str();
-  app.add_option("--rig-share", o.rig_view_share, "share of level rig views")->capture_default_str();
-  app.add_option("--items-per-scene", o.items_per_scene, "consecutive items per room")->capture_default_str();
-  app.add_option("--levers", flags.levers,
-                 fmt::format("realism levers: all, none or a comma list of {}\n(\"all,-sunlight\" turns "
-                             "one off); docs/render.md \"Realism levers\"",
-                             fmt::join(SynthLeverNames(), ", ")))
-      ->default_str("none");
+  flags.fields = std::make_unique<FieldFlags>(app, DatasetSynthOptionFields().Fields(),
+                                              std::vector<FlagAlias>{{"samples_per_pixel", "--spp"},
+                                                                     {"camera_effects", "--effects"},
+                                                                     {"rig_view_share", "--rig-share"},
+                                                                     {"indirect_light", "!--no-indirect"}});
+  flags.fields->AddSize("width_px", "height_px", "--size", "image size");
   app.add_option("--photo-dir", flags.photo_dirs,
                  "folder of photos for photo_textures/outside_photos (repeatable; replaces the Debian\n"
                  "defaults: /usr/share/gimp/2.0/patterns, /usr/share/blender/datafiles/studiolights/world)");
-  app.add_flag("--no-indirect", flags.no_indirect, "direct light only (faster)");
-  app.add_flag("--layout-labels", o.render.layout_labels,
-               "label by the layout rule, as reviews and ZInD do: furniture and door leaves before a wall are\n"
-               "wall (docs/seg.md); default: what the ray meets first");
 }
 
 DatasetSynthOptions ResolveDatasetSynthFlags(const DatasetSynthFlags& flags) {
-  DatasetSynthOptions o = flags.options;
-  if (!flags.size.empty() && (std::sscanf(flags.size.c_str(), "%dx%d", &o.width_px, &o.height_px) != 2 ||
-                              o.width_px <= 0 || o.height_px <= 0)) {
-    throw CLI::ValidationError("--size", fmt::format("'{}' is not WxH (e.g. 320x240)", flags.size));
-  }
-  if (!flags.levers.empty()) o.levers = ParseSynthLevers(flags.levers);
+  DatasetSynthOptions o;
+  flags.fields->Read(DatasetSynthOptionFields(), o);
   if (!flags.photo_dirs.empty()) o.photo_dirs.assign(flags.photo_dirs.begin(), flags.photo_dirs.end());
-  o.render.indirect_light = !flags.no_indirect;
   o.Check();
   return o;
 }
 
 std::vector<std::string> DatasetSynthArgs(const DatasetSynthOptions& o) {
-  std::vector<std::string> args = {"--count",
-                                   std::to_string(o.count),
-                                   "--seed",
-                                   std::to_string(o.seed),
-                                   "--size",
-                                   fmt::format("{}x{}", o.width_px, o.height_px),
-                                   "--spp",
-                                   std::to_string(o.render.samples_per_pixel),
-                                   "--effects",
-                                   fmt::format("{}", o.render.camera_effects),
-                                   "--id-drift",
-                                   fmt::format("{}", o.render.id_drift),
-                                   "--rig-share",
-                                   fmt::format("{}", o.rig_view_share),
-                                   "--items-per-scene",
-                                   std::to_string(o.items_per_scene),
-                                   "--levers",
-                                   o.levers.ToString()};
+  std::vector<std::string> args =
+      FieldFlagArgs(DatasetSynthOptionFields().Fields(), DatasetSynthOptionFields().ToJson(o));
   if (o.levers.photo_textures || o.levers.outside_photos) {
     for (const auto& dir : o.photo_dirs) args.insert(args.end(), {"--photo-dir", dir.string()});
   }
-  if (!o.render.indirect_light) args.push_back("--no-indirect");
-  if (o.render.layout_labels) args.push_back("--layout-labels");
   return args;
 }
 

@@ -2,22 +2,24 @@
 #define ASBUILT_CLI_DATASET_SYNTH_FLAGS_H_
 
 // The flags of `asbuilt dataset synth` that make a dataset's items (not -o,
-// --shard, resume), stated once for `dataset synth` and `cluster synth`.
+// --shard, resume), stated once for `dataset synth` and `cluster synth`:
+// DatasetSynthOptionFields as flags, with the older spellings (--size WxH,
+// --spp, --effects, --rig-share, --no-indirect), and --photo-dir.
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "asbuilt/cli/field_flags.h"
 #include "asbuilt/render/dataset_synth.h"
 
 namespace asbuilt::cli {
 
 struct DatasetSynthFlags {
-  DatasetSynthOptions options;
-  std::string size, levers;
+  std::unique_ptr<FieldFlags> fields;
   std::vector<std::string> photo_dirs;
-  bool no_indirect = false;
 };
 
 void AddDatasetSynthFlags(CLI::App& app, DatasetSynthFlags& flags);

@@ -113,7 +113,7 @@ int RunEvalCommand(int argc, char** argv) {
   seg_cmd->add_option("--labels", seg_labels, "label folder");
   seg_cmd->add_option("--label-map", seg_options.label_map, "label ids: asbuilt, ade20k, nyu40")->capture_default_str();
   seg_cmd->add_option("--max-images", seg_options.max_images, "score at most N images (0 = all)");
-  seg_cmd->add_option("--mode", seg_segment.mode, "whole or slide")->capture_default_str();
+  const auto seg_segment_flags = AddSegmentFlags(*seg_cmd, seg_segment);
   seg_cmd->add_option("--json", seg_json, "also write the metrics as JSON to FILE");
   seg_cmd->add_option("--markdown", seg_md, "also write the Markdown table to FILE");
   std::string seg_shard;
@@ -139,7 +139,7 @@ int RunEvalCommand(int argc, char** argv) {
       "counts as wall; passages ignored), scored on whole views and on the upper half (above the horizon).\n"
       "Writes DIR/metrics.json, metrics.md, report.html and contact sheets. ZInD is for academic use only:\n"
       "research measurement, never training data (docs/seg.md)");
-  std::string zind_model, zind_tour, zind_out = "zind-eval", zind_size, zind_scale, zind_layout = "raw";
+  std::string zind_model, zind_tour, zind_out = "zind-eval", zind_layout = "raw";
   ZindEvalOptions zind_options;
   SegmentOptions zind_segment;
   bool zind_no_sheets = false;
@@ -150,9 +150,9 @@ int RunEvalCommand(int argc, char** argv) {
   zind_cmd->add_option("--zind", zind_tour, "ZInD tour folder (with zind_data.json and panos/)")->required();
   zind_cmd->add_option("-o,--out", zind_out, "output folder (never commit it: derived from ZInD)")
       ->capture_default_str();
-  AddTurnInPlaceFlags(*zind_cmd, &zind_options.turn, &zind_size);
-  zind_cmd->add_option("--seg-scale", zind_scale, "scale the segmenter sees, WxH (default: the view size)");
-  zind_cmd->add_option("--mode", zind_segment.mode, "whole or slide")->capture_default_str();
+  const auto zind_turn_flags = AddTurnInPlaceFlags(*zind_cmd, zind_options.turn);
+  // The segmenter reads the views at their own size unless --seg-scale says otherwise.
+  const auto zind_segment_flags = AddSegmentFlags(*zind_cmd, zind_segment, "--seg-scale", false);
   zind_cmd->add_option("--layout", zind_layout, "ZInD layout the labels come from: raw, complete, visible")
       ->check(CLI::IsMember({"raw", "complete", "visible"}))
       ->capture_default_str();
@@ -164,7 +164,7 @@ int RunEvalCommand(int argc, char** argv) {
   Parse(app, argc, argv);
 
   if (zind_cmd->parsed()) {
-    ApplyTurnInPlaceSize(zind_size, zind_options.turn);
+    zind_turn_flags->ReadGiven(TurnInPlaceOptionFields(), zind_options.turn);
     zind_options.write_sheets = !zind_no_sheets;
     zind_options.layout = zind_layout == "complete"  ? ZindLayoutKind::kComplete
                           : zind_layout == "visible" ? ZindLayoutKind::kVisible
@@ -172,7 +172,7 @@ int RunEvalCommand(int argc, char** argv) {
     zind_options.Check();
     zind_segment.scale_width_px = zind_options.turn.width_px;
     zind_segment.scale_height_px = zind_options.turn.height_px;
-    ParseSizeFlag(zind_scale, "--seg-scale", zind_segment.scale_width_px, zind_segment.scale_height_px);
+    zind_segment_flags->ReadGiven(SegmentOptionFields(), zind_segment);
     const ZindTour tour = ReadZindTour(zind_tour);
     auto segmenter = LoadSegmenter(ModelPathFor(zind_model), zind_segment);
     zind_options.segmenter_name = fmt::format(
@@ -215,6 +215,7 @@ int RunEvalCommand(int argc, char** argv) {
       auto [begin, end] = ShardRange(static_cast<int>(samples.size()), *shard);
       samples = std::vector<SegSample>(samples.begin() + begin, samples.begin() + end);
     }
+    seg_segment_flags->ReadGiven(SegmentOptionFields(), seg_segment);
     auto segmenter = LoadSegmenter(ModelPathFor(seg_model), seg_segment);
     ProgressPrinter printer;
     SegmentationMetrics m = EvaluateSegmentation(*segmenter, samples, seg_options, printer.Callback());

@@ -27,7 +27,6 @@ int RunExperimentCommand(int argc, char** argv) {
       "train and evaluate one segmenter per real/synthetic mix (R100, S100, RS5050, RS8020, …) on the same\n"
       "held-out real test set; writes OUT/results.md (the paper's table), results.json and plot.png");
   RatioExperimentOptions r;
-  TrainFlags flags;
   std::string real, synthetic, real_test, out, configs = "R100,S100,RS5050,RS8020";
   std::vector<std::string> extra_tests;
   ratios->add_option("--real", real, "dataset folder of real annotated photos");
@@ -40,7 +39,8 @@ int RunExperimentCommand(int argc, char** argv) {
   ratios->add_option("--total", r.total, "train + val pairs per config (0 = as many as allowed)")
       ->capture_default_str();
   ratios->add_option("-o,--out", out, "output folder")->required();
-  flags.Add(*ratios, r.train);
+  // The seed is the mix's too; each config splits its own validation set.
+  TrainFlags flags(*ratios, {"seed", "val_fraction", "stop_after_epoch", "dist_timeout_s"});
   ratios->add_option("--init", r.train.init, "initial weights for every config");
   ratios->add_option("--seed", r.seed, "mix and training seed")->capture_default_str();
 
@@ -64,7 +64,7 @@ int RunExperimentCommand(int argc, char** argv) {
     r.synthetic_dir = synthetic;
     r.real_test_dir = real_test;
     for (const std::string& e : extra_tests) r.extra_test_dirs.emplace_back(e);
-    flags.Apply(r.train);
+    flags.ReadGiven(r.train);
     r.out_dir = out;
     r.train.seed = r.seed;
     r.configs.clear();

@@ -1,6 +1,7 @@
 #include "asbuilt/cli/field_flags.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 #include <string_view>
 
@@ -44,6 +45,7 @@ std::string HelpText(const Field& f) {
   if (f.exclusive_minimum) notes.push_back(fmt::format("> {}", *f.exclusive_minimum));
   if (f.minimum) notes.push_back(fmt::format(">= {}", *f.minimum));
   if (f.maximum) notes.push_back(fmt::format("<= {}", *f.maximum));
+  if (f.exclusive_maximum) notes.push_back(fmt::format("< {}", *f.exclusive_maximum));
   if (!f.default_value.is_null()) notes.push_back(fmt::format("default {}", f.default_value.dump()));
   if (!notes.empty()) text += fmt::format(" [{}]", fmt::join(notes, "; "));
   return text;
@@ -99,6 +101,7 @@ FieldFlags::FieldFlags(CLI::App& app, std::vector<Field> fields, std::vector<Fla
     }
   }
   CLI::App* target = group.empty() ? &app : app.add_option_group(std::string(group));
+  target_ = target;
   for (const Field& f : fields_) {
     std::string names = FieldFlagName(f.name);
     std::string extra;
@@ -121,7 +124,24 @@ FieldFlags::FieldFlags(CLI::App& app, std::vector<Field> fields, std::vector<Fla
   }
 }
 
-FieldArgs FieldFlags::Args() const {
+void FieldFlags::AddSize(std::string_view width_field, std::string_view height_field, std::string_view names,
+                         std::string_view description) {
+  auto default_of = [&](std::string_view name) -> const nlohmann::json& {
+    for (const Field& f : fields_) {
+      if (f.name == name && f.kind == FieldKind::kInteger) return f.default_value;
+    }
+    throw std::logic_error(fmt::format("FieldFlags::AddSize {}: no integer field {}", names, name));
+  };
+  const nlohmann::json& w = default_of(width_field);
+  const nlohmann::json& h = default_of(height_field);
+  SizeFlag& size = sizes_.emplace_back(SizeFlag{std::string(width_field), std::string(height_field)});
+  std::string help =
+      fmt::format("{}, short for {} W {} H", description, FieldFlagName(width_field), FieldFlagName(height_field));
+  if (!w.is_null() && !h.is_null()) help += fmt::format(" [default {}x{}]", w.dump(), h.dump());
+  size.option = target_->add_option(std::string(names), size.text, help)->type_name("WxH");
+}
+
+nlohmann::json FieldFlags::GivenValues() const {
   nlohmann::json given = nlohmann::json::object();
   std::size_t text_index = 0, flag_index = 0;
   for (std::size_t i = 0; i < fields_.size(); ++i) {
@@ -131,20 +151,79 @@ FieldArgs FieldFlags::Args() const {
     if (options_[i]->count() == 0) continue;
     given[f.name] = is_bool ? nlohmann::json(flag_[at]) : ToJson(f, text_[at]);
   }
+  for (const SizeFlag& size : sizes_) {
+    if (size.option->count() == 0) continue;
+    const std::string flag = size.option->get_name();
+    if (given.contains(size.width_field) || given.contains(size.height_field)) {
+      throw CLI::ValidationError(flag, fmt::format("give {} or {} and {}, not both", flag,
+                                                   FieldFlagName(size.width_field), FieldFlagName(size.height_field)));
+    }
+    int w = 0, h = 0;
+    char x = 0, rest = 0;
+    if (std::sscanf(size.text.c_str(), "%d%c%d%c", &w, &x, &h, &rest) != 3 || (x != 'x' && x != 'X') || w <= 0 ||
+        h <= 0) {
+      throw CLI::ValidationError(flag,
+                                 fmt::format("expected WIDTHxHEIGHT, both > 0 (e.g. 640x480), got '{}'", size.text));
+    }
+    given[size.width_field] = w;
+    given[size.height_field] = h;
+  }
+  return given;
+}
+
+FieldArgs FieldFlags::Args() const {
+  const nlohmann::json given = GivenValues();
   try {
     return ParseFieldArgs(fields_, given);
   } catch (const FieldArgsError& e) {
-    // "arguments.plan.epsilon_m: …" → "--plan.epsilon-m: …".
+    // "arguments.plan.epsilon_m: …" → "--plan.epsilon-m: …"; a value a WxH
+    // flag gave → "--size (its --width-px): …".
     std::vector<std::string> lines;
     for (std::string problem : e.problems()) {
       if (problem.starts_with("arguments.")) {
-        std::size_t colon = problem.find(':');
-        problem = FieldFlagName(problem.substr(10, colon - 10)) + problem.substr(colon);
+        const std::size_t colon = problem.find(':');
+        const std::string field = problem.substr(10, colon - 10);
+        std::string flag = FieldFlagName(field);
+        for (const SizeFlag& size : sizes_) {
+          if (size.option->count() > 0 && (size.width_field == field || size.height_field == field)) {
+            flag = fmt::format("{} (its {})", size.option->get_name(), flag);
+          }
+        }
+        problem = flag + problem.substr(colon);
       }
       lines.push_back(problem);
     }
     throw CLI::ValidationError(fmt::format("{}", fmt::join(lines, "\n")));
   }
+}
+
+}  // namespace asbuilt::cli
+
+namespace asbuilt::cli {
+
+std::vector<std::string> FieldFlagArgs(std::span<const Field> fields, const nlohmann::json& values) {
+  std::vector<std::string> args;
+  for (const Field& f : fields) {
+    auto it = values.find(f.name);
+    if (it == values.end() || it->is_null()) continue;
+    std::string flag = FieldFlagName(f.name);
+    if (f.kind == FieldKind::kBool) {
+      const std::size_t leaf = flag.rfind('.') == std::string::npos ? 2 : flag.rfind('.') + 1;
+      args.push_back(it->get<bool>() ? flag : flag.substr(0, leaf) + "no-" + flag.substr(leaf));
+      continue;
+    }
+    args.push_back(flag);
+    if (it->is_string()) {
+      args.push_back(it->get<std::string>());
+    } else if (it->is_array()) {
+      std::vector<std::string> parts;
+      for (const nlohmann::json& v : *it) parts.push_back(v.dump());
+      args.push_back(fmt::format("{}", fmt::join(parts, ",")));
+    } else {
+      args.push_back(it->dump());
+    }
+  }
+  return args;
 }
 
 }  // namespace asbuilt::cli

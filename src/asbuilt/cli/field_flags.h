@@ -18,6 +18,7 @@
 //   flags.Read(CaptureRenderOptionFields(), options);
 
 #include <deque>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -49,6 +50,12 @@ class FieldFlags {
   FieldFlags(const FieldFlags&) = delete;
   FieldFlags& operator=(const FieldFlags&) = delete;
 
+  // A WIDTHxHEIGHT flag for two integer fields at once (`--size 640x480` for
+  // width_px and height_px), before parsing. Given together with either
+  // field's own flag, it is refused.
+  void AddSize(std::string_view width_field, std::string_view height_field, std::string_view names,
+               std::string_view description);
+
   // After parsing: the given flags plus defaults, validated against the
   // fields. Throws CLI::ValidationError naming every bad flag
   // ("--plan.epsilon-m: must be > 0, got -1"), which main() reports as a
@@ -62,14 +69,41 @@ class FieldFlags {
     list.Read(Args(), into);
   }
 
+  // After parsing: writes only the flags given (validated as Args()) into
+  // `into`, leaving the rest as `into` has them: flags over a recipe the
+  // command chose (`train --finetune`).
+  template <class T>
+  void ReadGiven(const FieldList<T>& list, T& into) const {
+    const FieldArgs args = Args();
+    const nlohmann::json given = GivenValues();
+    for (const BoundField<T>& f : list.bound()) {
+      if (given.contains(f.field.name)) f.set(into, args.raw().at(f.field.name));
+    }
+  }
+
   const std::vector<Field>& fields() const { return fields_; }
 
  private:
+  struct SizeFlag {
+    std::string width_field, height_field;
+    CLI::Option* option = nullptr;
+    std::string text;
+  };
+  nlohmann::json GivenValues() const;  // By field name, as typed (sizes split).
+
+  CLI::App* target_ = nullptr;
+  std::deque<SizeFlag> sizes_;
   std::vector<Field> fields_;
   std::vector<CLI::Option*> options_;
   std::deque<std::string> text_;  // Non-bool values as typed.
   std::deque<bool> flag_;         // Bool values.
 };
+
+// The command-line words that give `values` (by field name, as
+// FieldList::ToJson writes them) to a command binding `fields` with
+// FieldFlags: {"--count", "100", "--no-resume", …}, every value given, in
+// the fields' order. How a Slurm task gets its options.
+std::vector<std::string> FieldFlagArgs(std::span<const Field> fields, const nlohmann::json& values);
 
 }  // namespace asbuilt::cli
 

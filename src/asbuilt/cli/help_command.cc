@@ -1,14 +1,25 @@
 #include <fmt/format.h>
 
 #include "asbuilt/cli/command.h"
+#include "asbuilt/cli/option_tables.h"
 
 namespace asbuilt::cli {
 
 int RunHelpCommand(int argc, char** argv) {
   CLI::App app("List the commands, or show one command's help.", "asbuilt help");
-  std::string topic;
-  app.add_option("command", topic, "command to describe");
+  std::string topic, options_name;
+  app.add_option("command", topic, "command to describe, or `options` for every option's table (Markdown)");
+  app.add_option("name", options_name, "with `options`: only this struct's table (e.g. PlanOptions)");
   Parse(app, argc, argv);
+  if (topic == "options") {
+    if (!options_name.empty()) {
+      fmt::print("{}", OptionTableMarkdown(options_name));
+      return 0;
+    }
+    for (const OptionTable& t : OptionTables()) fmt::print("## {}\n\n{}\n", t.name, OptionTableMarkdown(t.name));
+    return 0;
+  }
+  if (!options_name.empty()) throw CLI::ValidationError("name", "only `asbuilt help options` takes a second word");
   if (!topic.empty()) {
     const Command* c = FindCommand(topic);
     if (c == nullptr) {
@@ -24,7 +35,8 @@ int RunHelpCommand(int argc, char** argv) {
       "usage: asbuilt <command> [options]\n\ncommands:\n");
   for (const Command& c : Commands()) fmt::print("  {:<12} {}\n", c.name, c.summary);
   fmt::print(
-      "\nRun `asbuilt <command> --help` for a command's options.\n"
+      "\nRun `asbuilt <command> --help` for a command's options, `asbuilt help options` for every\n"
+      "option with its bounds and default.\n"
       "Exit codes: 0 success, 1 bad input or failure, 2 usage error.\n");
   return 0;
 }

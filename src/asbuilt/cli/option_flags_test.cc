@@ -5,6 +5,7 @@
 // the flag.
 
 #include <algorithm>
+#include <filesystem>
 #include <regex>
 #include <set>
 #include <string>
@@ -13,7 +14,11 @@
 #include <gtest/gtest.h>
 
 #include "asbuilt/cli/cli_test_util.h"
+#include "asbuilt/pano/perspective.h"
 #include "asbuilt/plan/plan_options.h"
+#include "asbuilt/render/dataset_synth.h"
+#include "asbuilt/seg/segmenter.h"
+#include "asbuilt/seg/train.h"
 #include "asbuilt/stereo/frame_points_options.h"
 
 namespace asbuilt::cli {
@@ -101,6 +106,70 @@ TEST(OptionFlags, BadNestedValueIsAUsageErrorNamingTheFlag) {
   EXPECT_EQ(p.exit_code, 2) << p.out;
   EXPECT_NE(p.out.find("--disparity.block-size-px: must be an integer >= 1 and <= 255, got 0"), std::string::npos)
       << p.out;
+}
+
+std::vector<Field> Without(std::vector<Field> fields, const std::set<std::string>& names) {
+  std::erase_if(fields, [&](const Field& f) { return names.contains(f.name); });
+  return fields;
+}
+
+void ExpectAliases(const std::string& command, std::initializer_list<const char*> aliases) {
+  const std::set<std::string> help = HelpFlagsOf(command);
+  for (const char* alias : aliases) EXPECT_TRUE(help.contains(alias)) << command << " --help lacks " << alias;
+}
+
+TEST(OptionFlags, TrainAndExperimentHaveAFlagForEveryTrainingField) {
+  ExpectEveryFieldHasAFlag("train", TrainOptionFields().Fields(), "");
+  ExpectAliases("train", {"--batch", "--warmup", "--drop-path", "--val-max", "--stop-after", "--dist-timeout",
+                          "--scale", "--crop", "--ratio-min", "--ratio-max", "--no-flip", "--no-photometric",
+                          "--no-blur-noise", "--stray-light", "--augment.no-flip"});
+  ExpectEveryFieldHasAFlag(
+      "experiment ratios",
+      Without(TrainOptionFields().Fields(), {"seed", "val_fraction", "stop_after_epoch", "dist_timeout_s"}), "");
+  ExpectAliases("experiment ratios", {"--batch", "--scale", "--crop", "--seed"});
+}
+
+TEST(OptionFlags, DatasetAndClusterSynthHaveAFlagForEveryItemField) {
+  for (const char* command : {"dataset synth", "cluster synth"}) {
+    ExpectEveryFieldHasAFlag(command, DatasetSynthOptionFields().Fields(), "");
+    ExpectAliases(command, {"--size", "--spp", "--effects", "--rig-share", "--no-indirect", "--photo-dir"});
+  }
+}
+
+TEST(OptionFlags, PanoramaViewsAreTheSameFlagsWhereverTheyAreTaken) {
+  for (const char* command : {"pano views", "eval zind"}) {
+    ExpectEveryFieldHasAFlag(command, TurnInPlaceOptionFields().Fields(), "");
+    ExpectAliases(command, {"--size", "--pano-size", "--pano-fx", "--pano-views", "--yaw-step", "--pano-yaw-step",
+                            "--first-yaw", "--pitch"});
+  }
+  ExpectEveryFieldHasAFlag("survey", TurnInPlaceOptionFields().Fields(), "pano.");
+  ExpectAliases("survey", {"--pano-size", "--pano-fx", "--pano-views", "--pano-yaw-step"});
+}
+
+TEST(OptionFlags, SegmentingCommandsTakeTheSegmentOptions) {
+  for (const char* command : {"segment", "eval seg"}) {
+    ExpectEveryFieldHasAFlag(command, SegmentOptionFields().Fields(), "");
+    ExpectAliases(command, {"--scale", "--batch"});
+  }
+  ExpectEveryFieldHasAFlag("eval zind", Without(SegmentOptionFields().Fields(), {"batch_size"}), "");
+  ExpectAliases("eval zind", {"--seg-scale"});
+}
+
+TEST(OptionFlags, ASizeFlagAndItsFieldsFlagsTogetherAreAUsageError) {
+  RunResult r = RunAsbuilt("pano views missing.png -o /tmp/x --size 64x32 --width-px 64");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("not both"), std::string::npos) << r.out;
+  RunResult big = RunAsbuilt("pano views missing.png -o /tmp/x --size 40000x20");
+  EXPECT_EQ(big.exit_code, 2) << big.out;
+  EXPECT_NE(big.out.find("--size (its --width-px): must be an integer >= 1 and <= 32768, got 40000"), std::string::npos)
+      << big.out;
+}
+
+TEST(OptionFlags, AnUnknownLeverNamesIt) {
+  RunResult r = RunAsbuilt("dataset synth -o /tmp/asbuilt_no_synth --count 1 --levers sunlight,moonlight");
+  EXPECT_NE(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("moonlight"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::exists("/tmp/asbuilt_no_synth/synth.json"));
 }
 
 }  // namespace

@@ -55,12 +55,12 @@ int RunPanoCommand(int argc, char** argv) {
       "With --zind TOUR (a ZInD tour folder; PANO is then a pano id such as pano_15 or one of the tour's\n"
       "images) also layout labels DIR/labels/NNN.png and the room's plan DIR/truth.json, in the pano frame\n"
       "(docs/seg.md). ZInD is for academic use only: research measurement, never training data.");
-  std::string pano, out, size, zind_dir, layout = "raw";
+  std::string pano, out, zind_dir, layout = "raw";
   PanoViewsOptions options;
   double camera_height_m = 0;
   views_cmd->add_option("panorama", pano, "equirectangular image (2:1), or with --zind a pano id")->required();
   views_cmd->add_option("-o,--out", out, "output folder")->required();
-  AddTurnInPlaceFlags(*views_cmd, &options.turn, &size);
+  const auto turn_flags = AddTurnInPlaceFlags(*views_cmd, options.turn);
   views_cmd->add_option("--camera-height-m", camera_height_m,
                         "camera height above the floor for capture.json's position_m (default: ZInD's, else none)");
   views_cmd->add_option("--zind", zind_dir, "ZInD tour folder (with zind_data.json): also labels and truth.json");
@@ -103,7 +103,7 @@ int RunPanoCommand(int argc, char** argv) {
     return 0;
   }
 
-  ApplyTurnInPlaceSize(size, options.turn);
+  turn_flags->ReadGiven(TurnInPlaceOptionFields(), options.turn);
   if (camera_height_m != 0) options.camera_height_m = camera_height_m;
   options.layout = ParseLayoutKind(layout);
   options.Check();

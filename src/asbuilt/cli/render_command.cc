@@ -2,7 +2,6 @@
 // synthetic capture (left/right RGB, labels, ID map, depth, capture.json,
 // truth.json; render/capture_render.h).
 
-#include <cstdio>
 #include <string>
 
 #include <fmt/format.h>
@@ -26,11 +25,10 @@ int RunRenderCommand(int argc, char** argv) {
       "OUT/home.json for `asbuilt survey` (docs/home.md).",
       "asbuilt render");
   AddCommonFlags(app);
-  std::string scene_path, out_dir, size;
+  std::string scene_path, out_dir;
   bool no_resume = false;
   app.add_option("scene", scene_path, "scene JSON file")->required();
   app.add_option("-o,--out", out_dir, "output folder")->required();
-  app.add_option("--size", size, "image size WxH, short for --width-px W --height-px H");
   app.add_flag("--no-resume", no_resume, "re-render views that already exist");
   bool home = false;
   app.add_flag("--home", home, "one capture per room, each in its own frame, and OUT/home.json");
@@ -40,15 +38,10 @@ int RunRenderCommand(int argc, char** argv) {
                     {"camera_effects", "--effects"},
                     {"indirect_light", "!--no-indirect"},
                     {"instance_ids", "--instances"}});
+  flags.AddSize("width_px", "height_px", "--size", "image size");
   Parse(app, argc, argv);
 
   flags.Read(CaptureRenderOptionFields(), options);
-  if (!size.empty()) {
-    if (std::sscanf(size.c_str(), "%dx%d", &options.width_px, &options.height_px) != 2 || options.width_px <= 0 ||
-        options.height_px <= 0) {
-      throw CLI::ValidationError("--size", fmt::format("'{}' is not WxH (e.g. 640x480)", size));
-    }
-  }
   options.resume = !no_resume;
   options.Check();
 

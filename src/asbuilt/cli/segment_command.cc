@@ -24,10 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 
 bool IsImageFile(const fs::path& p) {
-  static const std::set<std::string> kExt = {".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"};
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return kExt.count(ext) > 0 && !IsAtomicTempName(p) && p.filename().string()[0] != '.';
+  return IsImageExtension(p) && !IsAtomicTempName(p) && p.filename().string()[0] != '.';
 }
 
 void WritePng(const fs::path& path, const cv::Mat& image) {
@@ -48,19 +45,14 @@ int RunSegmentCommand(int argc, char** argv) {
   std::vector<std::string> inputs;
   bool overlay = false;
   SegmentOptions o;
-  std::string scale;
   app.add_option("--model", model, "a checkpoint, a .tflite file, or a shipped model's name (default, renders, real)")
       ->required();
   app.add_option("images", inputs, "image files or folders")->required();
   app.add_option("-o,--out", out, "output folder")->required();
   app.add_flag("--overlay", overlay, "also write colour overlays");
-  app.add_option("--mode", o.mode, "whole (one pass) or slide (windows)")->capture_default_str();
-  app.add_option("--scale", scale, "inference scale WxH (default: the model's training scale)");
-  app.add_option("--batch", o.batch_size, "images (or windows) per forward pass")->capture_default_str();
+  const auto segment_flags = AddSegmentFlags(app, o);
   Parse(app, argc, argv);
-  if (!scale.empty() && std::sscanf(scale.c_str(), "%dx%d", &o.scale_width_px, &o.scale_height_px) != 2) {
-    throw CLI::ValidationError("--scale", fmt::format("expected WIDTHxHEIGHT, got '{}'", scale));
-  }
+  segment_flags->ReadGiven(SegmentOptionFields(), o);
 
   std::vector<fs::path> files;
   for (const std::string& in : inputs) {

@@ -30,6 +30,13 @@ const FieldList<SurveyOptions>& SurveyPointsFields() {
   return kList;
 }
 
+// The panorama's level views as --pano.NAME (TurnInPlaceOptionFields).
+const FieldList<SurveyOptions>& SurveyPanoViewFields() {
+  static const FieldList<SurveyOptions> kList =
+      FieldList<SurveyOptions>().Nest("pano", &SurveyOptions::panorama_views, TurnInPlaceOptionFields());
+  return kList;
+}
+
 const FieldList<SurveyOptions>& SurveyLayoutFields() {
   static const FieldList<SurveyOptions> kList =
       FieldList<SurveyOptions>().Nest("layout", &SurveyOptions::layout, PanoLayoutOptionFields());
@@ -95,15 +102,6 @@ int RunSurveyCommand(int argc, char** argv) {
   app.add_option("--report-frames", options.report_frames, "frames pictured in the report (0 = all)")
       ->capture_default_str();
   app.add_flag("--no-report", no_report, "skip report.html");
-  std::string pano_size = fmt::format("{}x{}", options.panorama_views.width_px, options.panorama_views.height_px);
-  app.add_option("--pano-size", pano_size, "panorama captures: size of the level views it is resampled into")
-      ->capture_default_str();
-  app.add_option("--pano-fx", options.panorama_views.fx, "panorama captures: the views' focal length (px)")
-      ->capture_default_str();
-  app.add_option("--pano-views", options.panorama_views.views, "panorama captures: number of views")
-      ->capture_default_str();
-  app.add_option("--pano-yaw-step", options.panorama_views.yaw_step_deg, "panorama captures: yaw step (deg)")
-      ->capture_default_str();
   app.add_flag("--pano-layout", options.pano_layout,
                "panorama captures: redraw the segmenter's labels on the room's layout found from the panorama's "
                "edges (writes layout.png; docs/survey.md)");
@@ -122,9 +120,15 @@ int RunSurveyCommand(int argc, char** argv) {
                            {"points.contacts", "--contacts"},
                            {"points.contact_snap_px", "--snap-contacts-px"}},
                           "Points options (FramePointsOptions, docs/stereo.md)");
+  FieldFlags pano_flags(
+      app, SurveyPanoViewFields().Fields(options),
+      {{"pano.fx", "--pano-fx"}, {"pano.views", "--pano-views"}, {"pano.yaw_step_deg", "--pano-yaw-step"}},
+      "Panorama captures: the level views it is resampled into (TurnInPlaceOptions, docs/survey.md)");
+  pano_flags.AddSize("pano.width_px", "pano.height_px", "--pano-size", "view size");
   FieldFlags layout_flags(app, SurveyLayoutFields().Fields(options), {},
                           "Panorama layout options (PanoLayoutOptions, docs/survey.md)");
   Parse(app, argc, argv);
+  pano_flags.ReadGiven(SurveyPanoViewFields(), options);
   layout_flags.Read(SurveyLayoutFields(), options);
   plan_flags.Read(SurveyPlanFields(), options);
   points_flags.Read(SurveyPointsFields(), options);
@@ -136,7 +140,6 @@ int RunSurveyCommand(int argc, char** argv) {
     ParseSizeFlag(seg_scale, "--seg-scale", w, h);
     options.segment_scale_px = std::pair{w, h};
   }
-  ParseSizeFlag(pano_size, "--pano-size", options.panorama_views.width_px, options.panorama_views.height_px);
   if (!labels_dir.empty()) options.labels_dir = labels_dir;
   if (!truth.empty()) options.truth_path = truth;
   options.write_report = !no_report;

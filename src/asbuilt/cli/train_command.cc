@@ -26,29 +26,13 @@ int RunTrainCommand(int argc, char** argv) {
       "Writes OUT/options.json, last.pt, best.pt, log.csv, log.jsonl, plot.png.",
       "asbuilt train");
   AddCommonFlags(app);
-  TrainOptions o;
-  TrainFlags flags;
   std::string manifest, images, labels, out, init, finetune;
-  bool no_resume = false, no_flip = false, distributed = false;
+  bool no_resume = false, distributed = false;
   app.add_option("--manifest", manifest, "dataset manifest.json (train/val pairs)");
   app.add_option("--images", images, "image folder (or a dataset folder when --labels is absent)");
   app.add_option("--labels", labels, "label folder (PNG, same stems as the images)");
   app.add_option("-o,--out", out, "output folder for checkpoints and logs")->required();
-  flags.Add(app, o);
-  app.add_option("--head-lr-mult", o.head_lr_mult, "decoder learning-rate multiplier (mmseg: 10)")
-      ->capture_default_str();
-  app.add_option("--poly-power", o.poly_power, "poly schedule power")->capture_default_str();
-  app.add_option("--drop-path", o.drop_path_rate, "stochastic depth rate")->capture_default_str();
-  app.add_option("--ratio-min", o.augment.ratio_min, "random resize ratio, min")->capture_default_str();
-  app.add_option("--ratio-max", o.augment.ratio_max, "random resize ratio, max")->capture_default_str();
-  app.add_flag("--no-flip", no_flip, "no horizontal flips");
-  app.add_option("--stray-light", o.augment.stray_light_probability,
-                 "share of crops given patches of sun/lamp light and dimmed windows, so bright is not window "
-                 "(real photos; 0 = off)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
-  app.add_option("--val-fraction", o.val_fraction, "folders: share held out for validation")->capture_default_str();
-  app.add_option("--seed", o.seed, "seed for split, order, augmentation, init")->capture_default_str();
+  TrainFlags flags(app);
   app.add_option("--init", init,
                  "initial weights: an asbuilt checkpoint (mismatched tensors skipped); with --arch tflite a .tflite "
                  "file or an asbuilt-tflite checkpoint");
@@ -59,53 +43,30 @@ int RunTrainCommand(int argc, char** argv) {
       ->excludes("--init")
       ->excludes("--arch");
   app.add_flag("--no-resume", no_resume, "start afresh even if OUT/last.pt exists");
-  app.add_option("--stop-after", o.stop_after_epoch, "end this run after epoch N (schedule still spans --epochs)");
   app.add_flag("--distributed", distributed,
                "data-parallel training: this process is one rank of `srun -n K` (SLURM_PROCID, SLURM_NTASKS, "
                "SLURM_STEP_NODELIST) or of RANK, WORLD_SIZE, MASTER_ADDR, MASTER_PORT; --batch is the global "
                "batch (divisible by K); rank 0 writes every file");
-  app.add_option("--dist-timeout", o.distributed.timeout_s,
-                 "seconds a rank waits for the others (rendezvous, each exchange) before it fails")
-      ->capture_default_str()
-      ->needs("--distributed");
   int check_ranks = 0;
   app.add_option("--check-flags", check_ranks,
                  "check the flags and options for a run of K ranks (1: one process), then stop without reading\n"
                  "data or training (asbuilt cluster train does so before it submits)");
   Parse(app, argc, argv);
 
+  // The recipe: the defaults, or the model's to fine-tune; the flags given win.
+  TrainOptions o;
   if (!finetune.empty()) {
     const std::filesystem::path model = ModelPathFor(finetune);
-    const TrainOptions f = FinetuneOptions(model, ReadSegmenterInfo(model));
-    auto unless_given = [&](const char* flag, auto& field, const auto& value) {
-      if (app.count(flag) == 0) field = value;
-    };
-    o.arch = f.arch;
-    o.num_classes = f.num_classes;
-    init = f.init.string();
-    unless_given("--epochs", o.epochs, f.epochs);
-    unless_given("--steps-per-epoch", o.steps_per_epoch, f.steps_per_epoch);
-    unless_given("--batch", o.batch_size, f.batch_size);
-    unless_given("--lr", o.lr, f.lr);
-    unless_given("--head-lr-mult", o.head_lr_mult, f.head_lr_mult);
-    unless_given("--warmup", o.warmup_steps, f.warmup_steps);
-    if (flags.scale.empty()) {
-      o.augment.scale_width_px = f.augment.scale_width_px;
-      o.augment.scale_height_px = f.augment.scale_height_px;
-    }
-    if (flags.crop.empty()) {
-      o.augment.crop_width_px = f.augment.crop_width_px;
-      o.augment.crop_height_px = f.augment.crop_height_px;
-    }
+    o = FinetuneOptions(model, ReadSegmenterInfo(model));
+    init = o.init.string();
   }
+  flags.ReadGiven(o);
   o.manifest = manifest;
   o.images_dir = images;
   o.labels_dir = labels;
   o.out_dir = out;
   o.init = init;
   o.resume = !no_resume;
-  o.augment.flip = !no_flip;
-  flags.Apply(o);
   if (check_ranks > 0) {
     o.distributed.world_size = check_ranks;  // A stand-in rendezvous: only the options are checked.
     o.distributed.master_addr = "localhost";

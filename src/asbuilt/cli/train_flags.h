@@ -2,50 +2,59 @@
 #define ASBUILT_CLI_TRAIN_FLAGS_H_
 
 // The training flags `asbuilt train` and `asbuilt experiment ratios` share,
-// stated once: the architecture, the schedule, the image scale and crop, the
-// augmentation switches, validation and threads.
+// stated once: TrainOptionFields (seg/train.h) as flags, with the older
+// spellings kept (--batch, --warmup, --scale WxH, --no-flip, …).
 
-#include <string>
+#include <algorithm>
+#include <memory>
+#include <string_view>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
-#include "asbuilt/cli/command.h"
+#include "asbuilt/cli/field_flags.h"
 #include "asbuilt/seg/train.h"
 
 namespace asbuilt::cli {
 
-// What the flags hold that is not a TrainOptions field as it is.
-struct TrainFlags {
-  std::string scale, crop;  // WxH; empty: the options' own.
-  bool no_photometric = false, no_blur_noise = false;
-
-  // Binds the shared flags to `o` (defaults shown from `o` as it is).
-  void Add(CLI::App& app, TrainOptions& o) {
-    app.add_option("--arch", o.arch,
-                   "architecture: b0, b1, b2, tiny, or tflite (fine-tunes the TFLite network of --init)")
-        ->capture_default_str();
-    app.add_option("--epochs", o.epochs, "epochs (paper: 50)")->capture_default_str();
-    app.add_option("--steps-per-epoch", o.steps_per_epoch, "steps per epoch; 0 = one pass over the data")
-        ->capture_default_str();
-    app.add_option("--batch", o.batch_size, "batch size (paper: 2)")->capture_default_str();
-    app.add_option("--lr", o.lr, "AdamW learning rate (paper: 1e-4)")->capture_default_str();
-    app.add_option("--weight-decay", o.weight_decay, "AdamW weight decay (paper: 1e-3)")->capture_default_str();
-    app.add_option("--warmup", o.warmup_steps, "linear warm-up steps")->capture_default_str();
-    app.add_option("--scale", scale, "base scale WxH images are fitted to (default 256x192)");
-    app.add_option("--crop", crop, "training crop WxH (default 192x192)");
-    app.add_flag("--no-photometric", no_photometric, "no photometric distortion");
-    app.add_flag("--no-blur-noise", no_blur_noise, "no blur / noise augmentation");
-    app.add_option("--val-max", o.val_max_images, "validate on at most N images (0 = all)")->capture_default_str();
-    app.add_option("--threads", o.threads, "LibTorch threads (0 = every core)")->capture_default_str();
+class TrainFlags {
+ public:
+  // Binds the fields to `app`, but those named in `omit` (what a command
+  // binds itself or does not use).
+  explicit TrainFlags(CLI::App& app, std::vector<std::string_view> omit = {}) {
+    std::vector<Field> fields;
+    for (Field& f : TrainOptionFields().Fields()) {
+      if (std::find(omit.begin(), omit.end(), f.name) == omit.end()) fields.push_back(std::move(f));
+    }
+    static const std::vector<FlagAlias> kAliases = {
+        {"batch_size", "--batch"},
+        {"warmup_steps", "--warmup"},
+        {"drop_path_rate", "--drop-path"},
+        {"val_max_images", "--val-max"},
+        {"stop_after_epoch", "--stop-after"},
+        {"dist_timeout_s", "--dist-timeout"},
+        {"augment.ratio_min", "--ratio-min"},
+        {"augment.ratio_max", "--ratio-max"},
+        {"augment.flip", "!--no-flip"},
+        {"augment.photometric", "!--no-photometric"},
+        {"augment.blur_noise", "!--no-blur-noise"},
+        {"augment.stray_light_probability", "--stray-light"},
+    };
+    std::vector<FlagAlias> aliases;
+    for (const FlagAlias& a : kAliases) {
+      if (std::find(omit.begin(), omit.end(), a.field) == omit.end()) aliases.push_back(a);
+    }
+    flags_ = std::make_unique<FieldFlags>(app, std::move(fields), std::move(aliases));
+    flags_->AddSize("augment.scale_width_px", "augment.scale_height_px", "--scale", "base scale images are fitted to");
+    flags_->AddSize("augment.crop_width_px", "augment.crop_height_px", "--crop", "training crop");
   }
 
-  // The scale, crop and switches into `o` (throws on a bad WxH).
-  void Apply(TrainOptions& o) const {
-    ParseSizeFlag(scale, "--scale", o.augment.scale_width_px, o.augment.scale_height_px);
-    ParseSizeFlag(crop, "--crop", o.augment.crop_width_px, o.augment.crop_height_px);
-    o.augment.photometric = !no_photometric;
-    o.augment.blur_noise = !no_blur_noise;
-  }
+  // After parsing: the flags given, over `o` (the defaults, or a recipe
+  // such as FinetuneOptions).
+  void ReadGiven(TrainOptions& o) const { flags_->ReadGiven(TrainOptionFields(), o); }
+
+ private:
+  std::unique_ptr<FieldFlags> flags_;
 };
 
 }  // namespace asbuilt::cli

@@ -55,6 +55,7 @@ void ToolLimits::Check() const {
   positive(max_lights, "max_lights");
   positive(max_materials, "max_materials");
   positive(max_views, "max_views");
+  positive(max_samples_per_pixel, "max_samples_per_pixel");
   CheckArgument(max_image_width_px >= 16,
                 fmt::format("ToolLimits.max_image_width_px = {}, must be >= 16", max_image_width_px));
   CheckArgument(max_image_height_px >= 16,

@@ -38,6 +38,7 @@ struct ToolLimits {
   int max_views = 72;             // Viewpoints per capture.
   int max_image_width_px = 1920;  // Rendered images (capture, camera preview).
   int max_image_height_px = 1440;
+  int max_samples_per_pixel = 256;        // render_capture: an agent's render stays minutes, not hours.
   int max_preview_width_px = 2048;        // Top-down plan picture.
   std::size_t max_text_chars = 4000;      // scene_from_text input.
   std::size_t max_file_bytes = 4u << 20;  // Files load_scene reads.

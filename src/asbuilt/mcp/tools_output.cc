@@ -23,13 +23,14 @@ namespace fs = std::filesystem;
 namespace {
 
 // render_capture's options: CaptureRenderOptions' field list with the view
-// count and image size capped by the server's limits.
+// count, image size and samples capped by the server's limits.
 std::vector<Field> CaptureRenderToolFields(const ToolLimits& limits) {
   std::vector<Field> fields = CaptureRenderOptionFields().Fields();
   for (Field& f : fields) {
     if (f.name == "views") f.maximum = limits.max_views;
     if (f.name == "width_px") f.maximum = limits.max_image_width_px;
     if (f.name == "height_px") f.maximum = limits.max_image_height_px;
+    if (f.name == "samples_per_pixel") f.maximum = limits.max_samples_per_pixel;
   }
   return fields;
 }

@@ -54,21 +54,29 @@ Vec3 DirectionFromEquirectPixel(const Vec2& pixel, int width_px, int height_px) 
   return Vec3(-std::sin(yaw) * std::cos(elevation), std::cos(yaw) * std::cos(elevation), std::sin(elevation));
 }
 
-void TurnInPlaceOptions::Check() const {
-  CheckArgument(width_px > 0 && width_px <= 32768,
-                fmt::format("TurnInPlaceOptions.width_px = {}, must be in 1..32768", width_px));
-  CheckArgument(height_px > 0 && height_px <= 32768,
-                fmt::format("TurnInPlaceOptions.height_px = {}, must be in 1..32768", height_px));
-  CheckArgument(std::isfinite(fx) && fx > 0, fmt::format("TurnInPlaceOptions.fx = {}, must be > 0", fx));
-  CheckArgument(std::isfinite(fy) && fy >= 0, fmt::format("TurnInPlaceOptions.fy = {}, must be >= 0 (0 = fx)", fy));
-  CheckArgument(views > 0 && views <= 3600, fmt::format("TurnInPlaceOptions.views = {}, must be in 1..3600", views));
-  CheckArgument(std::isfinite(yaw_step_deg),
-                fmt::format("TurnInPlaceOptions.yaw_step_deg = {}, must be finite", yaw_step_deg));
-  CheckArgument(std::isfinite(first_yaw_deg),
-                fmt::format("TurnInPlaceOptions.first_yaw_deg = {}, must be finite", first_yaw_deg));
-  CheckArgument(std::isfinite(pitch_deg) && std::abs(pitch_deg) < 90,
-                fmt::format("TurnInPlaceOptions.pitch_deg = {}, must be in (−90, 90)", pitch_deg));
+const FieldList<TurnInPlaceOptions>& TurnInPlaceOptionFields() {
+  using O = TurnInPlaceOptions;
+  static const FieldList<O> kList = {
+      Bind(&O::width_px, {.name = "width_px", .description = "View width, px.", .minimum = 1.0, .maximum = 32768.0}),
+      Bind(&O::height_px, {.name = "height_px", .description = "View height, px.", .minimum = 1.0, .maximum = 32768.0}),
+      Bind(&O::fx, {.name = "fx",
+                    .description = "Focal length, px (400 at 640 px wide: 77° horizontal field of view).",
+                    .exclusive_minimum = 0.0}),
+      Bind(&O::fy, {.name = "fy", .description = "Vertical focal length, px (0 = fx: square pixels).", .minimum = 0.0}),
+      Bind(&O::views, {.name = "views", .description = "Views per panorama.", .minimum = 1.0, .maximum = 3600.0}),
+      Bind(&O::yaw_step_deg,
+           {.name = "yaw_step_deg", .description = "Degrees between views, counter-clockwise seen from above."}),
+      Bind(&O::first_yaw_deg, {.name = "first_yaw_deg",
+                               .description = "Yaw of the first view, degrees (0 looks along the pano frame's +Y)."}),
+      Bind(&O::pitch_deg, {.name = "pitch_deg",
+                           .description = "Tilt of every view, degrees, up positive.",
+                           .exclusive_minimum = -90.0,
+                           .exclusive_maximum = 90.0}),
+  };
+  return kList;
 }
+
+void TurnInPlaceOptions::Check() const { TurnInPlaceOptionFields().CheckValues(*this, "TurnInPlaceOptions"); }
 
 std::vector<PanoView> TurnInPlaceViews(const TurnInPlaceOptions& options) {
   options.Check();

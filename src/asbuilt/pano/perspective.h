@@ -25,6 +25,7 @@
 
 #include "asbuilt/geometry/rig.h"
 #include "asbuilt/imageio/image.h"
+#include "asbuilt/util/fields.h"
 
 namespace asbuilt {
 
@@ -59,6 +60,8 @@ struct TurnInPlaceOptions {
   double pitch_deg = 0.0;  // Every view's tilt, up positive; |pitch| < 90.
   void Check() const;
 };
+// The field list (util/fields.h).
+const FieldList<TurnInPlaceOptions>& TurnInPlaceOptionFields();
 std::vector<PanoView> TurnInPlaceViews(const TurnInPlaceOptions& options);
 
 // The view's image sampled from an equirectangular panorama (any channel

@@ -72,7 +72,7 @@ TEST(TurnInPlaceOptions, DefaultsAreValidAndBadFieldsAreNamed) {
     TurnInPlaceOptions{.pitch_deg = 95}.Check();
     FAIL();
   } catch (const InvalidArgument& e) {
-    EXPECT_STREQ(e.what(), "TurnInPlaceOptions.pitch_deg = 95, must be in (−90, 90)");
+    EXPECT_STREQ(e.what(), "TurnInPlaceOptions.pitch_deg = 95, must be in (-90, 90)");
   }
   EXPECT_THROW(TurnInPlaceOptions{.views = 0}.Check(), InvalidArgument);
   EXPECT_THROW(TurnInPlaceOptions{.fx = 0}.Check(), InvalidArgument);

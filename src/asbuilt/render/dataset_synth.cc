@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
@@ -381,21 +382,55 @@ SceneLook MakeSceneLook(const SynthLevers& levers, const PhotoLibrary& photos, S
   return look;
 }
 
+const FieldList<DatasetSynthOptions>& DatasetSynthOptionFields() {
+  using O = DatasetSynthOptions;
+  static const std::string kLeversText = fmt::format(
+      "Realism levers: all, none or a comma list of {} (\"all,-sunlight\" turns one off); docs/render.md "
+      "\"Realism levers\".",
+      fmt::join(SynthLeverNames(), ", "));
+  static const FieldList<O> kList = [] {
+    FieldList<O> list = {
+        Bind(&O::count,
+             {.name = "count", .description = "Items in the whole dataset.", .minimum = 1.0, .maximum = 99999999.0}),
+        Bind(&O::seed, {.name = "seed", .description = "Scenes, views and rendering seed.", .minimum = 0.0}),
+        Bind(&O::width_px, {.name = "width_px", .description = "Image width, px.", .minimum = 8.0, .maximum = 8192.0}),
+        Bind(&O::height_px,
+             {.name = "height_px", .description = "Image height, px.", .minimum = 8.0, .maximum = 8192.0}),
+        Bind(&O::min_hfov_deg, {.name = "min_hfov_deg",
+                                .description = "Horizontal field of view, drawn per item: smallest, degrees.",
+                                .exclusive_minimum = 10.0,
+                                .exclusive_maximum = 170.0}),
+        Bind(&O::max_hfov_deg, {.name = "max_hfov_deg",
+                                .description = "… largest, degrees.",
+                                .exclusive_minimum = 10.0,
+                                .exclusive_maximum = 170.0}),
+        Bind(&O::rig_view_share, {.name = "rig_view_share",
+                                  .description = "Share of level rig views (the rest: photo-like views).",
+                                  .minimum = 0.0,
+                                  .maximum = 1.0}),
+        Bind(&O::items_per_scene, {.name = "items_per_scene",
+                                   .description = "Consecutive items that share a room (amortises building it).",
+                                   .minimum = 1.0}),
+        BindWith<O>(
+            {.name = "levers", .kind = FieldKind::kString, .description = kLeversText},
+            [](const O& o) { return nlohmann::json(o.levers.ToString()); },
+            [](O& o, const nlohmann::json& v) { o.levers = ParseSynthLevers(v.get<std::string>()); }),
+    };
+    list.Nest("", &O::render, RenderOptionFields(),
+              {"samples_per_pixel", "camera_effects", "id_drift", "indirect_light", "layout_labels"});
+    return list;
+  }();
+  return kList;
+}
+
 void DatasetSynthOptions::Check() const {
-  CheckArgument(count >= 1, fmt::format("DatasetSynthOptions.count = {}, must be >= 1", count));
-  CheckArgument(count <= 99999999, fmt::format("DatasetSynthOptions.count = {}, must be <= 99999999", count));
+  DatasetSynthOptionFields().CheckValues(*this, "DatasetSynthOptions");
   CheckArgument(shard_count >= 1, fmt::format("DatasetSynthOptions.shard_count = {}, must be >= 1", shard_count));
   CheckArgument(shard_index >= 0 && shard_index < shard_count,
                 fmt::format("DatasetSynthOptions.shard_index = {}, must be in [0, {})", shard_index, shard_count));
-  CheckArgument(width_px >= 8 && width_px <= 8192 && height_px >= 8 && height_px <= 8192,
-                fmt::format("DatasetSynthOptions size = {}x{}, must be in [8, 8192]", width_px, height_px));
-  CheckArgument(min_hfov_deg > 10 && max_hfov_deg >= min_hfov_deg && max_hfov_deg < 170,
-                fmt::format("DatasetSynthOptions.min_hfov_deg/max_hfov_deg = {}/{}, need 10 < min <= max < 170",
-                            min_hfov_deg, max_hfov_deg));
-  CheckArgument(rig_view_share >= 0 && rig_view_share <= 1,
-                fmt::format("DatasetSynthOptions.rig_view_share = {}, must be in [0, 1]", rig_view_share));
-  CheckArgument(items_per_scene >= 1,
-                fmt::format("DatasetSynthOptions.items_per_scene = {}, must be >= 1", items_per_scene));
+  CheckArgument(min_hfov_deg <= max_hfov_deg,
+                fmt::format("DatasetSynthOptions.min_hfov_deg/max_hfov_deg = {}/{}, need min <= max", min_hfov_deg,
+                            max_hfov_deg));
   render.Check();
   scene.Check();
 }

@@ -99,6 +99,11 @@ struct DatasetSynthOptions {
   void Check() const;
 };
 
+// The field list (util/fields.h): the options above but the shard, resume,
+// the scene's options and the photo folders; the render options it nests
+// keep their names (samples_per_pixel, …).
+const FieldList<DatasetSynthOptions>& DatasetSynthOptionFields();
+
 struct DatasetSynthSummary {
   int items = 0;  // In this shard.
   int rendered = 0;

@@ -238,16 +238,44 @@ std::string StereoCamera::ToString() const {
       viewpoint.yaw_deg, viewpoint.pitch_deg, baseline_m);
 }
 
-void RenderOptions::Check() const {
-  CheckArgument(samples_per_pixel > 0 && samples_per_pixel <= 4096,
-                fmt::format("RenderOptions.samples_per_pixel = {}, must be in [1, 4096]", samples_per_pixel));
-  CheckArgument(denoise_passes >= 0 && denoise_passes <= 8,
-                fmt::format("RenderOptions.denoise_passes = {}, must be in [0, 8]", denoise_passes));
-  CheckArgument(std::isfinite(id_drift) && id_drift >= 0 && id_drift <= 1,
-                fmt::format("RenderOptions.id_drift = {}, must be in [0, 1]", id_drift));
-  CheckArgument(std::isfinite(camera_effects) && camera_effects >= 0 && camera_effects <= 1,
-                fmt::format("RenderOptions.camera_effects = {}, must be in [0, 1]", camera_effects));
+const FieldList<RenderOptions>& RenderOptionFields() {
+  using R = RenderOptions;
+  static const FieldList<R> kList = {
+      Bind(&R::samples_per_pixel, {.name = "samples_per_pixel",
+                                   .description = "RGB path-tracing samples per pixel (less noise vs linear time).",
+                                   .minimum = 1.0,
+                                   .maximum = 4096.0}),
+      Bind(&R::camera_effects, {.name = "camera_effects",
+                                .description = "Strength of the randomised camera effects (exposure, white balance, "
+                                               "noise, blur, JPEG); 0 = clean.",
+                                .minimum = 0.0,
+                                .maximum = 1.0}),
+      Bind(&R::id_drift, {.name = "id_drift",
+                          .description = "How much ID-map colours follow the light; 0 = flat colours.",
+                          .minimum = 0.0,
+                          .maximum = 1.0}),
+      Bind(&R::denoise_passes, {.name = "denoise_passes",
+                                .description = "Edge-aware denoising passes over the lighting; 0 = raw.",
+                                .minimum = 0.0,
+                                .maximum = 8.0}),
+      Bind(&R::indirect_light,
+           {.name = "indirect_light",
+            .description = "One diffuse bounce; off = direct light + ambient only (about 2× faster)."}),
+      Bind(&R::normals, {.name = "normals", .description = "Also write normals/ (camera frame)."}),
+      Bind(&R::instance_ids,
+           {.name = "instance_ids", .description = "Also write instances/ (uint16 object index + 1, 0 = sky)."}),
+      Bind(&R::phone_camera, {.name = "phone_camera",
+                              .description = "Also a phone's processing: wider exposure, noise and JPEG ranges, "
+                                             "chromatic aberration, sharpening, saturation."}),
+      Bind(&R::layout_labels, {.name = "layout_labels",
+                               .description = "Label by the layout rule, as reviews and ZInD do: furniture and door "
+                                              "leaves before a wall are wall (docs/seg.md); off: what the ray meets "
+                                              "first."}),
+  };
+  return kList;
 }
+
+void RenderOptions::Check() const { RenderOptionFields().CheckValues(*this, "RenderOptions"); }
 
 Eigen::Isometry3d WorldFromStereoEye(const Viewpoint& viewpoint, double baseline_m, StereoEye eye) {
   RigPose pose{viewpoint.position_m, DegToRad(viewpoint.yaw_deg)};

@@ -28,6 +28,7 @@
 #include "asbuilt/render/photo_textures.h"
 #include "asbuilt/render/scene_mesh.h"
 #include "asbuilt/scene/scene.h"
+#include "asbuilt/util/fields.h"
 
 namespace asbuilt {
 
@@ -60,6 +61,10 @@ struct RenderOptions {
 
   void Check() const;
 };
+
+// The field list (util/fields.h) of every option but the seed, which each
+// caller binds with its own range (a JSON seed stays below 2^32).
+const FieldList<RenderOptions>& RenderOptionFields();
 
 // Where the rig is and what it sees.
 struct StereoCamera {

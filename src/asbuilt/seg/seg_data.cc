@@ -72,15 +72,45 @@ SegPair ReadSegPair(const SegSample& sample, int num_classes) {
   return p;
 }
 
+const FieldList<AugmentOptions>& AugmentOptionFields() {
+  using O = AugmentOptions;
+  static const FieldList<O> kList = {
+      Bind(&O::scale_width_px, {.name = "scale_width_px",
+                                .description = "Base scale: images are fitted (aspect kept) into this width, px.",
+                                .minimum = 1.0}),
+      Bind(&O::scale_height_px, {.name = "scale_height_px", .description = "… and this height, px.", .minimum = 1.0}),
+      Bind(&O::ratio_min, {.name = "ratio_min",
+                           .description = "Random resize after the fit, smallest ratio (mmseg: 0.5).",
+                           .exclusive_minimum = 0.0}),
+      Bind(
+          &O::ratio_max,
+          {.name = "ratio_max", .description = "Random resize, largest ratio (mmseg: 2.0).", .exclusive_minimum = 0.0}),
+      Bind(&O::crop_width_px, {.name = "crop_width_px",
+                               .description = "Random crop width, px; padded with ignore when the image is smaller.",
+                               .minimum = 1.0}),
+      Bind(&O::crop_height_px, {.name = "crop_height_px", .description = "Random crop height, px.", .minimum = 1.0}),
+      Bind(&O::cat_max_ratio, {.name = "cat_max_ratio",
+                               .description = "A crop one class covers more of is drawn again (mmseg RandomCrop).",
+                               .exclusive_minimum = 0.0,
+                               .maximum = 1.0}),
+      Bind(&O::flip, {.name = "flip", .description = "Horizontal flips, p = 0.5."}),
+      Bind(&O::photometric,
+           {.name = "photometric", .description = "Photometric distortion: brightness, contrast, saturation, hue."}),
+      Bind(&O::blur_noise, {.name = "blur_noise", .description = "Gaussian blur (p 0.3) and sensor noise (p 0.3)."}),
+      Bind(&O::stray_light_probability,
+           {.name = "stray_light_probability",
+            .description = "Share of crops given patches of sun or lamp light and dimmed windows, so that bright "
+                           "is not window (real photos; 0 = off).",
+            .minimum = 0.0,
+            .maximum = 1.0}),
+  };
+  return kList;
+}
+
 void AugmentOptions::Check() const {
-  CheckArgument(scale_width_px > 0 && scale_height_px > 0,
-                fmt::format("AugmentOptions scale {}x{}, must be > 0", scale_width_px, scale_height_px));
-  CheckArgument(crop_width_px > 0 && crop_height_px > 0,
-                fmt::format("AugmentOptions crop {}x{}, must be > 0", crop_width_px, crop_height_px));
-  CheckArgument(ratio_min > 0 && ratio_min <= ratio_max,
-                fmt::format("AugmentOptions ratio range [{}, {}] is empty or not positive", ratio_min, ratio_max));
-  CheckArgument(stray_light_probability >= 0 && stray_light_probability <= 1,
-                fmt::format("AugmentOptions stray_light_probability {}, must be in [0, 1]", stray_light_probability));
+  AugmentOptionFields().CheckValues(*this, "AugmentOptions");
+  CheckArgument(ratio_min <= ratio_max,
+                fmt::format("AugmentOptions ratio range [{}, {}] is empty", ratio_min, ratio_max));
 }
 
 cv::Size FitSize(cv::Size image, int width_px, int height_px) {

@@ -15,6 +15,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "asbuilt/util/fields.h"
+
 namespace asbuilt {
 
 struct SegSample {
@@ -69,6 +71,9 @@ struct AugmentOptions {
   double stray_light_probability = 0;
   void Check() const;
 };
+
+// The field list (util/fields.h): names, bounds and descriptions, stated once.
+const FieldList<AugmentOptions>& AugmentOptionFields();
 
 // AugmentOptions::stray_light_probability's change, always applied: light
 // patches over the image and, half the time, dimmed windows; labels untouched.

@@ -16,6 +16,7 @@
 #include <opencv2/core.hpp>
 
 #include "asbuilt/seg/segformer_config.h"
+#include "asbuilt/util/fields.h"
 
 namespace asbuilt {
 
@@ -31,6 +32,9 @@ struct SegmentOptions {
   int batch_size = 4;  // Images (whole) or windows (slide) per forward pass.
   void Check() const;
 };
+
+// The field list (util/fields.h).
+const FieldList<SegmentOptions>& SegmentOptionFields();
 
 // What a checkpoint says about its model.
 struct SegmenterInfo {

@@ -8,13 +8,30 @@
 
 namespace asbuilt {
 
+const FieldList<SegmentOptions>& SegmentOptionFields() {
+  using O = SegmentOptions;
+  static const FieldList<O> kList = {
+      BindChoice(&O::mode, {.name = "mode",
+                            .description = "whole: the image at the model's scale in one pass; slide: windows of the "
+                                           "training crop at a 2/3 stride, logits averaged.",
+                            .choices = {"whole", "slide"}}),
+      Bind(&O::scale_width_px, {.name = "scale_width_px",
+                                .description = "Inference scale the image is fitted to, px (0 = the model's training "
+                                               "scale).",
+                                .minimum = 0.0}),
+      Bind(&O::scale_height_px, {.name = "scale_height_px", .description = "… its height, px.", .minimum = 0.0}),
+      Bind(
+          &O::batch_size,
+          {.name = "batch_size", .description = "Images (whole) or windows (slide) per forward pass.", .minimum = 1.0}),
+  };
+  return kList;
+}
+
 void SegmentOptions::Check() const {
-  CheckArgument(mode == "whole" || mode == "slide",
-                fmt::format("SegmentOptions.mode = '{}', must be 'whole' or 'slide'", mode));
+  SegmentOptionFields().CheckValues(*this, "SegmentOptions");
   CheckArgument(
-      scale_width_px >= 0 && scale_height_px >= 0 && (scale_width_px == 0) == (scale_height_px == 0),
+      (scale_width_px == 0) == (scale_height_px == 0),
       fmt::format("SegmentOptions scale {}x{}: give both or neither (0 = model's)", scale_width_px, scale_height_px));
-  CheckArgument(batch_size > 0, fmt::format("SegmentOptions.batch_size = {}, must be > 0", batch_size));
 }
 
 std::string SegmenterInfo::ToString() const {

@@ -69,6 +69,11 @@ struct TrainOptions {
   nlohmann::json ToJson() const;
 };
 
+// The field list of the options above that are not paths (util/fields.h);
+// `augment.*` nests AugmentOptionFields, `dist_timeout_s` is
+// distributed.timeout_s.
+const FieldList<TrainOptions>& TrainOptionFields();
+
 struct EpochRecord {
   int epoch = 0;
   std::int64_t step = 0;

@@ -17,11 +17,78 @@ nlohmann::json Num(double x) { return std::isnan(x) ? nlohmann::json(nullptr) : 
 
 }  // namespace
 
+const FieldList<TrainOptions>& TrainOptionFields() {
+  using O = TrainOptions;
+  static const FieldList<O> kList = [] {
+    FieldList<O> list = {
+        BindChoice(&O::arch, {.name = "arch",
+                              .description = "Architecture: b0, b1, b2 (published SegFormer), tiny (b0, decoder 128), "
+                                             "or tflite (fine-tunes the TFLite network of `init`).",
+                              .choices = {"b0", "b1", "b2", "tiny", "tflite"}}),
+        Bind(&O::num_classes, {.name = "num_classes",
+                               .description = "Classes the head predicts (asbuilt's labels: 4).",
+                               .minimum = 2.0,
+                               .maximum = 255.0}),
+        Bind(&O::epochs, {.name = "epochs", .description = "Epochs (paper: 50).", .minimum = 1.0}),
+        Bind(&O::steps_per_epoch, {.name = "steps_per_epoch",
+                                   .description = "Steps per epoch; 0 = one pass over the training pairs.",
+                                   .minimum = 0.0}),
+        Bind(&O::batch_size, {.name = "batch_size",
+                              .description = "Batch size (paper: 2); with K ranks the global batch.",
+                              .minimum = 1.0}),
+        Bind(&O::lr, {.name = "lr", .description = "AdamW learning rate (paper: 1e-4).", .exclusive_minimum = 0.0}),
+        Bind(&O::weight_decay,
+             {.name = "weight_decay", .description = "AdamW weight decay (paper: 1e-3).", .minimum = 0.0}),
+        Bind(&O::head_lr_mult, {.name = "head_lr_mult",
+                                .description = "Decoder learning-rate multiplier (mmseg SegFormer: 10).",
+                                .exclusive_minimum = 0.0}),
+        Bind(&O::warmup_steps, {.name = "warmup_steps",
+                                .description = "Linear warm-up steps from warmup_ratio x lr; 0 = none.",
+                                .minimum = 0.0}),
+        Bind(&O::warmup_ratio, {.name = "warmup_ratio",
+                                .description = "Share of lr the warm-up starts from.",
+                                .minimum = 0.0,
+                                .maximum = 1.0}),
+        Bind(&O::poly_power, {.name = "poly_power",
+                              .description = "Poly schedule: lr = base x (1 - step/total)^power.",
+                              .minimum = 0.0}),
+        Bind(&O::drop_path_rate, {.name = "drop_path_rate",
+                                  .description = "Stochastic depth rate.",
+                                  .minimum = 0.0,
+                                  .exclusive_maximum = 1.0}),
+        Bind(&O::val_fraction, {.name = "val_fraction",
+                                .description = "Image folders only: share held out for validation.",
+                                .minimum = 0.0,
+                                .exclusive_maximum = 1.0}),
+        Bind(&O::val_max_images, {.name = "val_max_images",
+                                  .description = "Validate on at most this many images (0 = all).",
+                                  .minimum = 0.0}),
+        Bind(
+            &O::seed,
+            {.name = "seed", .description = "Split, sampling order, augmentation and initialisation.", .minimum = 0.0}),
+        Bind(&O::stop_after_epoch, {.name = "stop_after_epoch",
+                                    .description = "End this run after that epoch (0 = run to `epochs`); the "
+                                                   "schedule still spans `epochs`.",
+                                    .minimum = 0.0}),
+        Bind(&O::threads,
+             {.name = "threads", .description = "LibTorch intra-op threads (0 = every core).", .minimum = 0.0}),
+        Bind(&O::distributed, &DistributedOptions::timeout_s,
+             {.name = "dist_timeout_s",
+              .description = "Seconds a rank waits for the others (rendezvous, each exchange) before it fails.",
+              .exclusive_minimum = 0.0}),
+    };
+    list.Nest("augment", &O::augment, AugmentOptionFields());
+    return list;
+  }();
+  return kList;
+}
+
 void TrainOptions::Check() const {
   CheckArgument(!out_dir.empty(), "TrainOptions.out_dir is empty: give an output folder (-o)");
   CheckArgument(!manifest.empty() || !images_dir.empty(),
                 "TrainOptions: give a manifest (--manifest) or an image folder (--images [--labels])");
   CheckArgument(manifest.empty() || images_dir.empty(), "TrainOptions: give --manifest or --images, not both");
+  TrainOptionFields().CheckValues(*this, "TrainOptions");
   if (arch == "tflite") {
     CheckArgument(!init.empty(),
                   "TrainOptions.arch = tflite fine-tunes a TFLite graph: give it with --init "
@@ -32,20 +99,6 @@ void TrainOptions::Check() const {
   } else {
     SegformerConfigFor(arch, num_classes);  // Throws for an unknown arch.
   }
-  CheckArgument(epochs > 0, fmt::format("TrainOptions.epochs = {}, must be > 0", epochs));
-  CheckArgument(steps_per_epoch >= 0, fmt::format("TrainOptions.steps_per_epoch = {}, must be >= 0", steps_per_epoch));
-  CheckArgument(batch_size > 0, fmt::format("TrainOptions.batch_size = {}, must be > 0", batch_size));
-  CheckArgument(lr > 0, fmt::format("TrainOptions.lr = {}, must be > 0", lr));
-  CheckArgument(weight_decay >= 0, fmt::format("TrainOptions.weight_decay = {}, must be >= 0", weight_decay));
-  CheckArgument(head_lr_mult > 0, fmt::format("TrainOptions.head_lr_mult = {}, must be > 0", head_lr_mult));
-  CheckArgument(warmup_steps >= 0, fmt::format("TrainOptions.warmup_steps = {}, must be >= 0", warmup_steps));
-  CheckArgument(poly_power >= 0, fmt::format("TrainOptions.poly_power = {}, must be >= 0", poly_power));
-  CheckArgument(drop_path_rate >= 0 && drop_path_rate < 1,
-                fmt::format("TrainOptions.drop_path_rate = {}, must be in [0, 1)", drop_path_rate));
-  CheckArgument(val_max_images >= 0, fmt::format("TrainOptions.val_max_images = {}, must be >= 0", val_max_images));
-  CheckArgument(threads >= 0, fmt::format("TrainOptions.threads = {}, must be >= 0", threads));
-  CheckArgument(stop_after_epoch >= 0,
-                fmt::format("TrainOptions.stop_after_epoch = {}, must be >= 0", stop_after_epoch));
   augment.Check();
   distributed.Check();
   CheckArgument(batch_size % distributed.world_size == 0,

@@ -1,5 +1,6 @@
 #include "asbuilt/util/fields.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -370,6 +371,13 @@ std::optional<std::string> FieldValuesProblem(std::span<const Field> fields, con
   for (const Field& f : fields) {
     auto it = values.find(f.name);
     if (it == values.end() || it->is_null()) continue;
+    if (f.kind == FieldKind::kEnum) {
+      if (!it->is_string() ||
+          std::find(f.choices.begin(), f.choices.end(), it->get<std::string>()) == f.choices.end()) {
+        return fmt::format("{}.{} = {}, must be one of {}", prefix, f.name, it->dump(), fmt::join(f.choices, ", "));
+      }
+      continue;
+    }
     std::vector<nlohmann::json> numbers;
     switch (f.kind) {
       case FieldKind::kNumber:
@@ -393,9 +401,9 @@ std::optional<std::string> FieldValuesProblem(std::span<const Field> fields, con
   return std::nullopt;
 }
 
-std::string FieldsMarkdown(std::span<const Field> fields) {
+std::string FieldsMarkdown(std::span<const Field> fields, std::string_view first_column) {
   if (fields.empty()) return "No arguments.\n";
-  std::string out = "| argument | type | default | description |\n|---|---|---|---|\n";
+  std::string out = fmt::format("| {} | type | default | description |\n|---|---|---|---|\n", first_column);
   for (const Field& f : fields) {
     std::string type = TypeWord(f.kind);
     if (f.kind == FieldKind::kEnum) {

@@ -31,6 +31,7 @@
 #include <functional>
 #include <initializer_list>
 #include <optional>
+#include <stdexcept>
 #include <span>
 #include <string>
 #include <string_view>
@@ -135,8 +136,8 @@ std::optional<std::string> FieldValuesProblem(std::span<const Field> fields, con
                                               std::string_view prefix);
 
 // Markdown table of the fields (name, type, default, description), e.g. for
-// docs/mcp.md.
-std::string FieldsMarkdown(std::span<const Field> fields);
+// docs/mcp.md; `first_column` heads the names.
+std::string FieldsMarkdown(std::span<const Field> fields, std::string_view first_column = "argument");
 
 // ------------------------------------------------------------- binding
 
@@ -235,6 +236,15 @@ BoundField<T> BindEnum(E T::*member, Field field, std::vector<std::pair<std::str
           }};
 }
 
+// A string member that takes one of `field.choices` as a kEnum field (an
+// option whose values are words, such as SegmentOptions::mode).
+template <class T>
+BoundField<T> BindChoice(std::string T::*member, Field field) {
+  field.kind = FieldKind::kEnum;
+  return {std::move(field), [member](const T& t) { return nlohmann::json(t.*member); },
+          [member](T& t, const nlohmann::json& v) { t.*member = v.get<std::string>(); }};
+}
+
 // A field with its own reading and writing (types util does not know, such
 // as Eigen vectors); `field.kind` must be set.
 template <class T>
@@ -255,17 +265,37 @@ class FieldList {
     return *this;
   }
 
-  // Adds `inner`'s fields, named "prefix.name", reading and writing
-  // (t.*member).
+  // Adds `inner`'s fields, named "prefix.name" (as they are for an empty
+  // prefix), reading and writing (t.*member).
   template <class S>
   FieldList& Nest(std::string_view prefix, S T::*member, const FieldList<S>& inner) {
     for (const BoundField<S>& f : inner.bound()) {
       Field field = f.field;
-      field.name = std::string(prefix) + "." + field.name;
+      if (!prefix.empty()) field.name = std::string(prefix) + "." + field.name;
       fields_.push_back({std::move(field), [member, get = f.get](const T& t) { return get(t.*member); },
                          [member, set = f.set](T& t, const nlohmann::json& v) { set(t.*member, v); }});
     }
     return *this;
+  }
+
+  // Adds the fields of `inner` named in `names` (in `inner`'s order), named
+  // "prefix.name", or as they are for an empty prefix. Throws
+  // std::logic_error for a name `inner` lacks.
+  template <class S>
+  FieldList& Nest(std::string_view prefix, S T::*member, const FieldList<S>& inner,
+                  std::initializer_list<std::string_view> names) {
+    FieldList<S> some;
+    for (std::string_view name : names) {
+      bool found = false;
+      for (const BoundField<S>& f : inner.bound()) found = found || f.field.name == name;
+      if (!found) throw std::logic_error("FieldList::Nest: no field " + std::string(name));
+    }
+    for (const BoundField<S>& f : inner.bound()) {
+      for (std::string_view name : names) {
+        if (f.field.name == name) some.Add(f);
+      }
+    }
+    return Nest(prefix, member, some);
   }
 
   // The fields, each with its default_value read from `defaults`.
