@@ -59,7 +59,18 @@ std::vector<std::pair<size_t, size_t>> DenseRuns(const std::vector<double>& ts, 
   const double bin = binned.bin_m, t0 = binned.t0;
   const std::vector<int>& counts = binned.counts;
   const int nbins = static_cast<int>(counts.size());
-  const double level = std::max(2.0, 0.1 * binned.WellFilled());
+  // A tenth of a well-filled bin, or of the fullest bin within max_gap where
+  // that is less: a wall seen from one spot thins out towards its far end
+  // (its columns' footprints grow with the square of the distance), and its
+  // far bins are as much the wall as the near ones.
+  const int reach = static_cast<int>(std::ceil(max_gap / bin));
+  const double well_filled = binned.WellFilled();
+  std::vector<double> level(nbins);
+  for (int i = 0; i < nbins; ++i) {
+    int local = 0;
+    for (int j = std::max(0, i - reach); j <= std::min(nbins - 1, i + reach); ++j) local = std::max(local, counts[j]);
+    level[i] = std::max(2.0, 0.1 * std::min<double>(well_filled, local));
+  }
   int run_first = -1, run_last = -1;
   auto emit = [&]() {
     if (run_first < 0) return;
@@ -69,7 +80,7 @@ std::vector<std::pair<size_t, size_t>> DenseRuns(const std::vector<double>& ts, 
     if (e > b) runs.push_back({b, e});
   };
   for (int i = 0; i < nbins; ++i) {
-    if (counts[i] < level) continue;
+    if (counts[i] < level[i]) continue;
     if (run_first >= 0 && (i - run_last - 1) * bin > max_gap) {
       emit();
       run_first = -1;

@@ -93,9 +93,11 @@ BinnedPositions BinPositions(const std::vector<double>& ts, double bin_m);
 
 // Dense runs of sorted positions `ts` along a line (m), as index ranges
 // [begin, end). Positions are binned (10 cm); a bin is part of the wall when
-// it holds at least a tenth of a well-filled bin (the 75th percentile), so
-// that sparse outliers that happen to fall in the band neither bridge gaps
-// nor stretch a wall. Runs break at stretches longer than `max_gap` (m)
+// it holds at least two positions and a tenth of a well-filled bin (the 75th
+// percentile) or, where less, of the fullest bin within `max_gap`: sparse
+// outliers that happen to fall in the band neither bridge gaps nor stretch a
+// dense wall, and a wall that thins out with distance keeps its far end.
+// Runs break at stretches longer than `max_gap` (m)
 // without such bins. Few points (< 100): plain gaps between consecutive
 // points.
 std::vector<std::pair<size_t, size_t>> DenseRuns(const std::vector<double>& ts, double max_gap);
