@@ -95,17 +95,19 @@ TEST(OptionFlags, AliasAndItsNewNameSetTheSameField) {
   }
 }
 
+// `asbuilt ARGS` is a usage error (exit 2) whose message holds `text`.
+void ExpectUsageError(const std::string& args, const std::string& text) {
+  RunResult r = RunAsbuilt(args);
+  EXPECT_EQ(r.exit_code, 2) << args << ": " << r.out;
+  EXPECT_NE(r.out.find(text), std::string::npos) << args << ": " << r.out;
+}
+
 TEST(OptionFlags, BadNestedValueIsAUsageErrorNamingTheFlag) {
-  RunResult r = RunAsbuilt("survey missing.json -o /tmp/x --plan.epsilon-m -1");
-  EXPECT_EQ(r.exit_code, 2) << r.out;
-  EXPECT_NE(r.out.find("--plan.epsilon-m: must be > 0, got -1"), std::string::npos) << r.out;
-  RunResult c = RunAsbuilt("survey missing.json -o /tmp/x --points.contacts sometimes");
-  EXPECT_EQ(c.exit_code, 2) << c.out;
-  EXPECT_NE(c.out.find("--points.contacts: must be one of \"auto\", \"always\", \"off\""), std::string::npos) << c.out;
-  RunResult p = RunAsbuilt("points missing.json --use-capture-labels -o /tmp/x --disparity.block-size-px 0");
-  EXPECT_EQ(p.exit_code, 2) << p.out;
-  EXPECT_NE(p.out.find("--disparity.block-size-px: must be an integer >= 1 and <= 255, got 0"), std::string::npos)
-      << p.out;
+  ExpectUsageError("survey missing.json -o /tmp/x --plan.epsilon-m -1", "--plan.epsilon-m: must be > 0, got -1");
+  ExpectUsageError("survey missing.json -o /tmp/x --points.contacts sometimes",
+                   "--points.contacts: must be one of \"auto\", \"always\", \"off\"");
+  ExpectUsageError("points missing.json --use-capture-labels -o /tmp/x --disparity.block-size-px 0",
+                   "--disparity.block-size-px: must be an integer >= 1 and <= 255, got 0");
 }
 
 std::vector<Field> Without(std::vector<Field> fields, const std::set<std::string>& names) {
@@ -156,13 +158,9 @@ TEST(OptionFlags, SegmentingCommandsTakeTheSegmentOptions) {
 }
 
 TEST(OptionFlags, ASizeFlagAndItsFieldsFlagsTogetherAreAUsageError) {
-  RunResult r = RunAsbuilt("pano views missing.png -o /tmp/x --size 64x32 --width-px 64");
-  EXPECT_EQ(r.exit_code, 2) << r.out;
-  EXPECT_NE(r.out.find("not both"), std::string::npos) << r.out;
-  RunResult big = RunAsbuilt("pano views missing.png -o /tmp/x --size 40000x20");
-  EXPECT_EQ(big.exit_code, 2) << big.out;
-  EXPECT_NE(big.out.find("--size (its --width-px): must be an integer >= 1 and <= 32768, got 40000"), std::string::npos)
-      << big.out;
+  ExpectUsageError("pano views missing.png -o /tmp/x --size 64x32 --width-px 64", "not both");
+  ExpectUsageError("pano views missing.png -o /tmp/x --size 40000x20",
+                   "--size (its --width-px): must be an integer >= 1 and <= 32768, got 40000");
 }
 
 TEST(OptionFlags, AnUnknownLeverNamesIt) {
