@@ -8,8 +8,10 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include "asbuilt/cli/cli_test_util.h"
+#include "asbuilt/util/file.h"
 
 namespace asbuilt {
 namespace {
@@ -35,11 +37,19 @@ TEST(SegCommands, TrainSegmentAndEvaluateToyRooms) {
   EXPECT_NE(r.out.find("2 epochs"), std::string::npos) << r.out;
   EXPECT_TRUE(fs::exists(d / "run" / "best.pt"));
   EXPECT_TRUE(fs::exists(d / "run" / "options.json"));
-  r = RunAsbuilt(fmt::format("segment --model {} {} -o {} --overlay", (d / "run" / "best.pt").string(),
+  r = RunAsbuilt(fmt::format("segment --model {} {} -o {} --overlay --confidence", (d / "run" / "best.pt").string(),
                              (d / "toy" / "images").string(), (d / "seg").string()));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_TRUE(fs::exists(d / "seg" / "00000.png"));
   EXPECT_TRUE(fs::exists(d / "seg" / "00007_overlay.png"));
+  // How sure the model was: a grey map per image and one row per image.
+  const cv::Mat sure = cv::imread((d / "seg" / "00007_confidence.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(sure.empty());
+  EXPECT_EQ(sure.type(), CV_8UC1);
+  EXPECT_EQ(sure.size(), cv::imread((d / "seg" / "00007.png").string(), cv::IMREAD_UNCHANGED).size());
+  const std::string csv = ReadFile(d / "seg" / "confidence.csv");
+  EXPECT_EQ(csv.rfind("image,mean_confidence,unsure_share\n", 0), 0u) << csv;
+  EXPECT_NE(csv.find("\n00007.png,"), std::string::npos) << csv;
   r = RunAsbuilt(fmt::format("eval seg --model {} --images {} --json {}", (d / "run" / "best.pt").string(),
                              (d / "toy").string(), (d / "m.json").string()));
   ASSERT_EQ(r.exit_code, 0) << r.out;

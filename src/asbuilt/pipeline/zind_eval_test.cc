@@ -18,7 +18,9 @@ const fs::path kSampleTour = fs::path(ASBUILT_SHARED_DATA_DIR) / "zind_sample_to
 class AllWall : public Segmenter {
  public:
   cv::Mat Segment(const cv::Mat& bgr) override { return cv::Mat(bgr.size(), CV_8U, cv::Scalar(1)); }
-  std::vector<cv::Mat> SegmentBatch(const std::vector<cv::Mat>& bgr) override {
+  using Segmenter::SegmentBatch;
+  std::vector<cv::Mat> SegmentBatch(const std::vector<cv::Mat>& bgr, std::vector<double>* confidence) override {
+    if (confidence) confidence->assign(bgr.size(), 1.0);
     std::vector<cv::Mat> out;
     for (const cv::Mat& m : bgr) out.push_back(Segment(m));
     return out;

@@ -29,10 +29,12 @@ class TorchSegmenter : public Segmenter {
     if (options_.scale_height_px == 0) options_.scale_height_px = info_.scale_height_px;
   }
 
-  cv::Mat Segment(const cv::Mat& bgr) override { return SegmentBatch({bgr}).at(0); }
+  cv::Mat Segment(const cv::Mat& bgr) override { return SegmentBatch({bgr}, nullptr).at(0); }
 
-  std::vector<cv::Mat> SegmentBatch(const std::vector<cv::Mat>& images) override {
+  using Segmenter::SegmentBatch;
+  std::vector<cv::Mat> SegmentBatch(const std::vector<cv::Mat>& images, std::vector<double>* confidence) override {
     std::vector<cv::Mat> out(images.size());
+    if (confidence) confidence->assign(images.size(), 0.0);
     // Group images by size so that each group is one batched pass.
     std::map<std::pair<int, int>, std::vector<size_t>> groups;
     for (size_t i = 0; i < images.size(); ++i) {
@@ -46,7 +48,10 @@ class TorchSegmenter : public Segmenter {
           batch.push_back(images[idx[k]]);
         torch::Tensor logits = Logits(batch);  // (B, C, H, W) at image size.
         torch::Tensor pred = logits.argmax(1).to(torch::kUInt8).contiguous();
+        torch::Tensor sure;
+        if (confidence) sure = std::get<0>(torch::softmax(logits, 1).max(1)).mean({1, 2});
         for (size_t k = 0; k < batch.size(); ++k) {
+          if (confidence) (*confidence)[idx[start + k]] = sure[static_cast<int64_t>(k)].item<double>();
           cv::Mat m(size.first, size.second, CV_8UC1);
           std::memcpy(m.data, pred[static_cast<int64_t>(k)].data_ptr(), m.total());
           out[idx[start + k]] = m;

@@ -53,7 +53,11 @@ class Segmenter {
   // Labels (CV_8U, same size as `bgr`, ids 0..classes-1). `bgr` is CV_8UC3.
   virtual cv::Mat Segment(const cv::Mat& bgr) = 0;
   // Several images at once (batched forward passes where sizes allow).
-  virtual std::vector<cv::Mat> SegmentBatch(const std::vector<cv::Mat>& bgr) = 0;
+  std::vector<cv::Mat> SegmentBatch(const std::vector<cv::Mat>& bgr) { return SegmentBatch(bgr, nullptr); }
+  // The same, and per image how sure the model was: the mean over its
+  // pixels of the probability of the class chosen there (0–1), into
+  // `mean_confidence` when it is given.
+  virtual std::vector<cv::Mat> SegmentBatch(const std::vector<cv::Mat>& bgr, std::vector<double>* mean_confidence) = 0;
   // Per-class probabilities (CV_32F, one Mat per class) at the image size.
   virtual std::vector<cv::Mat> Probabilities(const cv::Mat& bgr) = 0;
   virtual const SegmenterInfo& info() const = 0;

@@ -166,6 +166,13 @@ TEST(TfliteSegmenter, SegmentsThroughLoadSegmenter) {
   EXPECT_NEAR(lo, 1.0, 1e-4);
   EXPECT_NEAR(hi, 1.0, 1e-4);
   EXPECT_EQ(seg->info().metadata.at("format"), "tflite");
+  // Its confidence is the mean probability of the classes it chose.
+  std::vector<double> confidence;
+  EXPECT_EQ(seg->SegmentBatch({bgr}, &confidence).size(), 1u);
+  ASSERT_EQ(confidence.size(), 1u);
+  cv::Mat top = p[0].clone();
+  for (const cv::Mat& c : p) cv::max(top, c, top);
+  EXPECT_NEAR(confidence[0], cv::mean(top)[0], 1e-4);
 }
 
 TEST(TfliteSegmenter, RefusesAFileThatIsNotAModel) {

@@ -29,12 +29,15 @@ class TfliteSegmenter : public Segmenter {
     }
   }
 
-  cv::Mat Segment(const cv::Mat& bgr) override { return SegmentBatch({bgr}).at(0); }
+  cv::Mat Segment(const cv::Mat& bgr) override { return SegmentBatch({bgr}, nullptr).at(0); }
 
-  std::vector<cv::Mat> SegmentBatch(const std::vector<cv::Mat>& images) override {
+  using Segmenter::SegmentBatch;
+  std::vector<cv::Mat> SegmentBatch(const std::vector<cv::Mat>& images, std::vector<double>* confidence) override {
     std::vector<cv::Mat> out;
+    if (confidence) confidence->clear();
     for (const cv::Mat& im : images) {
       torch::Tensor p = GroupProbabilities(im);
+      if (confidence) confidence->push_back(std::get<0>(p.max(0)).mean().item<double>());
       torch::Tensor pred = p.argmax(0).to(torch::kUInt8).contiguous();
       cv::Mat m(im.rows, im.cols, CV_8UC1);
       std::memcpy(m.data, pred.data_ptr(), m.total());

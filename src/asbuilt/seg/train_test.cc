@@ -73,6 +73,19 @@ TEST(TrainSegmenter, ReducesLossAndRaisesMiouOnToyRooms) {
   cv::Mat labels = seg->Segment(img);
   EXPECT_EQ(labels.size(), img.size());
   EXPECT_EQ(labels.type(), CV_8UC1);
+  // Its confidence in each image is the mean probability of the classes it chose.
+  std::vector<double> confidence;
+  const cv::Mat other(40, 60, CV_8UC3, cv::Scalar(30, 200, 90));
+  EXPECT_EQ(seg->SegmentBatch({img, other}, &confidence).size(), 2u);
+  ASSERT_EQ(confidence.size(), 2u);
+  for (int k = 0; k < 2; ++k) {
+    const std::vector<cv::Mat> p = seg->Probabilities(k == 0 ? img : other);
+    cv::Mat top = p.at(0).clone();
+    for (const cv::Mat& c : p) cv::max(top, c, top);
+    EXPECT_NEAR(confidence[k], cv::mean(top)[0], 1e-4) << k;
+    EXPECT_GE(confidence[k], 1.0 / p.size() - 1e-6);
+    EXPECT_LE(confidence[k], 1.0 + 1e-6);
+  }
   auto slide = LoadSegmenter(out / "best.pt", {.mode = "slide", .scale_width_px = 96, .scale_height_px = 72});
   EXPECT_EQ(slide->SegmentBatch({img, img}).size(), 2u);
   // Evaluating on the training folder agrees with the validation scale.
