@@ -490,8 +490,9 @@ std::optional<PlanOpening> MeasureOpening(const std::vector<OpeningPoint>& group
     op.height = z1 - casing - *op.sill;
   }
   // A strip thinner than its casings has no clear opening (and plan.json
-  // refuses a height ≤ 0).
-  if (*op.height <= 0.0) return std::nullopt;
+  // refuses a height ≤ 0); door labels that stay near the floor are a
+  // misread floor or rug, not a door.
+  if (*op.height <= 0.0 || (door && *op.height <= o.min_door_height_m)) return std::nullopt;
   // ±: each edge's variance plus the casing-width uncertainty.
   const double casing_var = o.casing_sigma_m * o.casing_sigma_m;
   op.width_sigma_m = std::sqrt(edges.var_a + edges.var_b + 2 * casing_var);
@@ -505,6 +506,46 @@ std::optional<PlanOpening> MeasureOpening(const std::vector<OpeningPoint>& group
   return op;
 }
 
+// A door and a window cannot fill the same stretch of one wall (a window
+// over a door, a transom, stands above the door's head): where they
+// overlap along the wall by more than half the narrower and in height, the
+// one with fewer points was misread (a window's frame labelled door, door
+// labels on the floor below a window) and is dropped.
+void DropOverlappingOpenings(const std::vector<PlanWall>& walls, const std::vector<std::size_t>& support,
+                             std::vector<PlanOpening>& openings) {
+  constexpr double kMinOverlap = 0.5;
+  auto span = [&](const PlanOpening& op) {
+    const Vec2 d = (walls[op.wall].end - walls[op.wall].start).normalized();
+    const double a = (op.start - walls[op.wall].start).dot(d), b = (op.end - walls[op.wall].start).dot(d);
+    return std::pair{std::min(a, b), std::max(a, b)};
+  };
+  std::vector<bool> drop(openings.size(), false);
+  for (std::size_t i = 0; i < openings.size(); ++i) {
+    for (std::size_t j = i + 1; j < openings.size(); ++j) {
+      const PlanOpening &a = openings[i], &b = openings[j];
+      if (a.wall != b.wall || a.kind == b.kind || drop[i] || drop[j]) continue;
+      const auto [a0, a1] = span(a);
+      const auto [b0, b1] = span(b);
+      const double along = std::min(a1, b1) - std::max(a0, b0);
+      if (along <= kMinOverlap * std::min(a1 - a0, b1 - b0)) continue;
+      const double a_bottom = a.sill.value_or(0.0), b_bottom = b.sill.value_or(0.0);
+      const double a_top = a_bottom + a.height.value_or(0.0), b_top = b_bottom + b.height.value_or(0.0);
+      if (std::min(a_top, b_top) <= std::max(a_bottom, b_bottom)) continue;  // One above the other.
+      drop[support[i] >= support[j] ? j : i] = true;
+    }
+  }
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < openings.size(); ++i) {
+    if (drop[i]) {
+      spdlog::debug("plan: wall {} {} {:.2f} m wide dropped: it overlaps a better-supported opening", openings[i].wall,
+                    openings[i].kind == OpeningKind::kDoor ? "door" : "window", openings[i].width);
+      continue;
+    }
+    openings[kept++] = openings[i];
+  }
+  openings.resize(kept);
+}
+
 }  // namespace
 
 FoundOpenings FindOpenings(const std::vector<const ClassPoint*>& points, const std::vector<PlanWall>& walls,
@@ -512,6 +553,7 @@ FoundOpenings FindOpenings(const std::vector<const ClassPoint*>& points, const s
   FoundOpenings out;
   const std::vector<std::vector<Vec2>> leaf_pts = LeafPointsPerWall(points, walls, o);
   std::vector<std::vector<OpeningPoint>> per_wall_kind = ProjectOntoWalls(points, walls, viewpoint, o);
+  std::vector<std::size_t> support;  // Per opening found, its points.
   for (size_t slot = 0; slot < per_wall_kind.size(); ++slot) {
     if (per_wall_kind[slot].empty()) continue;
     const int wi = static_cast<int>(slot / 2);
@@ -519,9 +561,11 @@ FoundOpenings FindOpenings(const std::vector<const ClassPoint*>& points, const s
     for (const std::vector<OpeningPoint>& group : GroupAlongWall(per_wall_kind[slot], o)) {
       if (auto op = MeasureOpening(group, wi, walls[wi], door, leaf_pts[wi], viewpoint, o, out.door_leaves)) {
         out.openings.push_back(*op);
+        support.push_back(group.size());
       }
     }
   }
+  DropOverlappingOpenings(walls, support, out.openings);
   std::stable_sort(out.openings.begin(), out.openings.end(), [&](const PlanOpening& a, const PlanOpening& b) {
     if (a.wall != b.wall) return a.wall < b.wall;
     return (a.start - walls[a.wall].start).norm() < (b.start - walls[b.wall].start).norm();

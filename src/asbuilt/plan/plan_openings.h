@@ -23,7 +23,8 @@
 // front of the wall along one line). The clear
 // opening is the extent minus the casing (door_casing_m, window_casing_m) on
 // each side, clamped to the wall; narrower than min_opening_width_m: none.
-// Height and sill come from the z extent minus the casing.
+// Height and sill come from the z extent minus the casing; a door no taller
+// than min_door_height_m is none (door labels on the floor).
 
 #include <vector>
 

@@ -86,6 +86,52 @@ TEST(FindOpenings, AStripThinnerThanItsCasingsIsNoOpening) {
   EXPECT_TRUE(FindOpenings(pointers, walls, Vec2(2, 1.5), o).openings.empty());
 }
 
+// Door labels from x0 to x1 on the wall y = 0, every 2 cm, from the floor to
+// `top`.
+std::vector<ClassPoint> DoorPoints(double x0, double x1, double top) {
+  std::vector<ClassPoint> points;
+  for (double x = x0; x <= x1 + 1e-9; x += 0.02) {
+    for (double z = 0.0; z <= top + 1e-9; z += 0.05) {
+      points.push_back({LabelClass::kDoor, Vec3(x, 0.0, z), 0.005, PointSource::kDense, 0});
+    }
+  }
+  return points;
+}
+
+// Door labels that stay near the floor (a rug, a misread floor) are no door.
+TEST(FindOpenings, DoorLabelsNearTheFloorAreNoDoor) {
+  const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}};
+  const PlanOptions o;
+  for (const double top : {0.3, 2.1}) {
+    const std::vector<ClassPoint> points = DoorPoints(1.0, 1.9, top);
+    std::vector<const ClassPoint*> pointers;
+    for (const ClassPoint& p : points) pointers.push_back(&p);
+    EXPECT_EQ(FindOpenings(pointers, walls, Vec2(2, 1.5), o).openings.size(), top > o.min_door_height_m ? 1u : 0u)
+        << top;
+  }
+}
+
+// A window's frame read as door over part of the window: the opening with
+// fewer points goes; a door under a transom window stays with it.
+TEST(FindOpenings, ADoorAndAWindowFillingOneStretchOfWallAreOneOpening) {
+  const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}};
+  std::vector<ClassPoint> points = WindowPoints({0.85, 1.5, 0.05});  // x 1.0–2.2, every cm.
+  const std::vector<ClassPoint> frame = DoorPoints(1.6, 2.2, 1.6);
+  points.insert(points.end(), frame.begin(), frame.end());
+  std::vector<const ClassPoint*> pointers;
+  for (const ClassPoint& p : points) pointers.push_back(&p);
+  const FoundOpenings found = FindOpenings(pointers, walls, Vec2(2, 1.5), {});
+  ASSERT_EQ(found.openings.size(), 1u);
+  EXPECT_EQ(found.openings[0].kind, OpeningKind::kWindow);
+
+  std::vector<ClassPoint> transom = WindowPoints({2.15, 0.4, 0.05});  // Above a door 2.1 m high.
+  const std::vector<ClassPoint> door = DoorPoints(1.2, 2.0, 2.1);
+  transom.insert(transom.end(), door.begin(), door.end());
+  pointers.clear();
+  for (const ClassPoint& p : transom) pointers.push_back(&p);
+  EXPECT_EQ(FindOpenings(pointers, walls, Vec2(2, 1.5), {}).openings.size(), 2u);
+}
+
 // Fewer than min_opening_points points are no opening.
 TEST(FindOpenings, NeedsEnoughPoints) {
   std::vector<ClassPoint> points;

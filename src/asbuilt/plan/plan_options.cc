@@ -122,6 +122,11 @@ const FieldList<PlanOptions>& PlanOptionFields() {
       Bind(&O::min_opening_width_m, {.name = "min_opening_width_m",
                                      .description = "Narrower clear openings are dropped, m.",
                                      .exclusive_minimum = 0.0}),
+      Bind(&O::min_door_height_m,
+           {.name = "min_door_height_m",
+            .description = "Door labels reaching no higher than this above the floor are no door (a blob on the "
+                           "floor), m.",
+            .minimum = 0.0}),
       Bind(&O::edge_level, {.name = "edge_level",
                             .description = "Opening extent: 2 cm bins with at least this fraction of a full bin (< 1).",
                             .exclusive_minimum = 0.0,

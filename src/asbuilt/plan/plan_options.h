@@ -44,6 +44,7 @@ struct PlanOptions {
   double opening_gap_m = 0.25;    // Openings on one wall are split at gaps longer than this, m.
   int min_opening_points = 12;    // Fewer points: not an opening.
   double min_opening_width_m = 0.25;  // Narrower clear openings are dropped, m.
+  double min_door_height_m = 0.5;     // Door labels reaching no higher than this are no door (a blob on the floor), m.
   double edge_level = 0.01;           // Opening extent: 2 cm bins with at least this fraction of a full bin.
   int min_boundary_points = 4;        // Label-edge points needed per side to measure a width from them.
   double leaf_max_distance_m = 1.5;   // An open door's leaf: door points up to this far in front of the wall, m…
