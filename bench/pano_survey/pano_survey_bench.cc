@@ -327,8 +327,11 @@ int main(int argc, char** argv) {
     };
     const std::vector<VerdictSample> labels = samples(by_labels, "layout labels"), model = samples(by_model, "model"),
                                      teacher = samples(by_teacher, "teacher");
+    std::vector<std::vector<VerdictSample>> other;
+    for (std::size_t k = 0; k < others.size(); ++k) other.push_back(samples(by_other[k], others[k]->name));
     std::vector<VerdictSample> all = labels;
     all.insert(all.end(), model.begin(), model.end());
+    for (const auto& o : other) all.insert(all.end(), o.begin(), o.end());
     all.insert(all.end(), teacher.begin(), teacher.end());
     md += "### The verdict on these plans (issue 42)\n\n";
     md +=
@@ -339,6 +342,9 @@ int main(int argc, char** argv) {
     md += VerdictTableHeader();
     md += VerdictRow("layout labels", labels);
     if (!model.empty()) md += VerdictRow("shipped model", model);
+    for (std::size_t k = 0; k < others.size(); ++k) {
+      if (!other[k].empty()) md += VerdictRow(fmt::format("`--model {}`", others[k]->name), other[k]);
+    }
     if (!teacher.empty()) md += VerdictRow("ADE20K teacher", teacher);
     md += VerdictRow("all", all) + "\n";
   }

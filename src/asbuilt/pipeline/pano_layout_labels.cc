@@ -27,6 +27,7 @@ PanoLayoutLabels::PanoLayoutLabels(std::unique_ptr<LabelSource> inner, const cv:
     }
     for (FrameLabels& l : inner->Label(frames)) inner_labels.push_back(std::move(l.left));
   }
+  inner_confidence_ = inner->MeanConfidence();
   const cv::Mat gathered = EquirectFromViewLabels(views, inner_labels, options.width_px);
   layout_ = EstimatePanoLayout(equirect_bgr, camera_height_m, gathered, options);
   spdlog::info("survey: {}", layout_.BriefReport());

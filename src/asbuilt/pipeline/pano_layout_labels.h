@@ -8,6 +8,7 @@
 // wall band (its floor and ceiling edges) with the segmenter's doors and
 // windows inside it.
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,6 +31,7 @@ class PanoLayoutLabels final : public LabelSource {
   std::vector<FrameLabels> Label(const std::vector<FrameImages>& frames) override;
   std::string Describe() const override;
   std::string StageName() const override { return "layout labels"; }
+  double MeanConfidence() const override { return inner_confidence_; }  // The segmenter's, on the views.
 
   const PanoLayout& layout() const { return layout_; }
   const cv::Mat& picture() const { return picture_; }  // The panorama with the layout drawn (DrawPanoLayout).
@@ -37,6 +39,7 @@ class PanoLayoutLabels final : public LabelSource {
 
  private:
   std::string inner_description_;
+  double inner_confidence_ = NAN;
   PanoLayout layout_;
   std::vector<cv::Mat> labels_;  // Per view.
   cv::Mat picture_;

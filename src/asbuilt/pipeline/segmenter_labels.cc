@@ -94,7 +94,7 @@ std::vector<SegmenterLabels::TurnedView> SegmenterLabels::TurnedViews(const Pinh
   return views;
 }
 
-cv::Mat SegmenterLabels::SegmentWide(const cv::Mat& bgr) const {
+cv::Mat SegmenterLabels::SegmentWide(const cv::Mat& bgr, double& confidence) const {
   CheckArgument(bgr.cols == wide_camera_->width_px && bgr.rows == wide_camera_->height_px,
                 "SegmenterLabels: a wide view is not the size of its camera");
   std::vector<cv::Mat> sum;  // Per class, weighted probabilities.
@@ -115,18 +115,23 @@ cv::Mat SegmenterLabels::SegmentWide(const cv::Mat& bgr) const {
         sum[c] += back;
     }
   }
-  // argmax of the blended probabilities.
+  // argmax of the blended probabilities; the chosen class's share of the
+  // pixel's total weight is its blended probability.
   cv::Mat labels(bgr.size(), CV_8U, cv::Scalar(0));
+  double top_sum = 0.0;
   for (int v = 0; v < bgr.rows; ++v) {
     auto* out = labels.ptr<uchar>(v);
     for (int u = 0; u < bgr.cols; ++u) {
-      float best = -1;
+      float best = -1, total = 0;
       for (std::size_t c = 0; c < sum.size(); ++c) {
         const float value = sum[c].at<float>(v, u);
+        total += value;
         if (value > best) best = value, out[u] = static_cast<uchar>(c);
       }
+      if (total > 0) top_sum += best / total;
     }
   }
+  confidence = top_sum / static_cast<double>(labels.total());
   return labels;
 }
 
@@ -138,11 +143,14 @@ std::vector<FrameLabels> SegmenterLabels::Label(const std::vector<FrameImages>& 
     if (!f.right.empty()) images.push_back(f.right);
   }
   std::vector<cv::Mat> segmented;
+  std::vector<double> confidence(images.size(), 0.0);
   if (wide_camera_) {
-    for (const cv::Mat& im : images) segmented.push_back(SegmentWide(im));
+    for (std::size_t i = 0; i < images.size(); ++i) segmented.push_back(SegmentWide(images[i], confidence[i]));
   } else {
-    segmented = segmenter_->SegmentBatch(images);
+    segmented = segmenter_->SegmentBatch(images, &confidence);
   }
+  for (double c : confidence) confidence_sum_ += c;
+  images_labelled_ += static_cast<int>(images.size());
   std::vector<FrameLabels> out;
   std::size_t next = 0;
   for (const FrameImages& f : frames) {
@@ -151,6 +159,10 @@ std::vector<FrameLabels> SegmenterLabels::Label(const std::vector<FrameImages>& 
     out.push_back(std::move(labels));
   }
   return out;
+}
+
+double SegmenterLabels::MeanConfidence() const {
+  return images_labelled_ > 0 ? confidence_sum_ / images_labelled_ : NAN;
 }
 
 }  // namespace asbuilt

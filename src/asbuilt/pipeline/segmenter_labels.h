@@ -46,6 +46,7 @@ class SegmenterLabels final : public LabelSource {
   std::vector<FrameLabels> Label(const std::vector<FrameImages>& frames) override;
   std::string Describe() const override { return description_; }
   std::string StageName() const override { return "segment"; }
+  double MeanConfidence() const override;
 
  private:
   // One turned view: the homography from the wide image to it, and each wide
@@ -56,13 +57,16 @@ class SegmenterLabels final : public LabelSource {
     cv::Mat weight;  // CV_32F, the wide image's size.
   };
   static std::vector<TurnedView> TurnedViews(const PinholeCamera& camera);
-  // Labels of one wide image through the turned views.
-  cv::Mat SegmentWide(const cv::Mat& bgr) const;
+  // Labels of one wide image through the turned views, and the mean over
+  // its pixels of the blended probability of the class chosen.
+  cv::Mat SegmentWide(const cv::Mat& bgr, double& confidence) const;
 
   std::unique_ptr<Segmenter> segmenter_;
   std::optional<PinholeCamera> wide_camera_;  // Set when the images are wide views.
   std::vector<TurnedView> turned_;
   std::string description_;
+  double confidence_sum_ = 0.0;  // Of each image labelled, its mean confidence.
+  int images_labelled_ = 0;
 };
 
 }  // namespace asbuilt

@@ -477,6 +477,7 @@ void PlanStage(Survey& s) {
   SurveySummary& summary = s.summary();
   Plan& plan = s.result.plan;
   s.plan_input = SurveyPlanInput(s);
+  if (s.labels) s.verdict_context.label_confidence = s.labels->MeanConfidence();
   try {
     PlanResult reconstructed = FitPlan(s.plan_input, s.options.plan);
     if (summary.panorama_tilt && summary.panorama_tilt->found) {
@@ -620,9 +621,13 @@ void ReportStage(Survey& s) {
 // The figures behind the verdict, plan-wide and per wall (null: not measured).
 nlohmann::json VerdictEvidenceJson(const PlanVerdict& v) {
   auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
-  nlohmann::json js = {
-      {"agreement", number(v.agreement)}, {"coverage", number(v.coverage)}, {"floor_ceiling", number(v.floor_ceiling)},
-      {"short_walls", v.short_walls},     {"odd_corners", v.odd_corners},   {"walls", nlohmann::json::array()}};
+  nlohmann::json js = {{"agreement", number(v.agreement)},
+                       {"coverage", number(v.coverage)},
+                       {"floor_ceiling", number(v.floor_ceiling)},
+                       {"label_confidence", number(v.label_confidence)},
+                       {"short_walls", v.short_walls},
+                       {"odd_corners", v.odd_corners},
+                       {"walls", nlohmann::json::array()}};
   if (std::isfinite(v.tilt.tilt_deg)) {
     js["tilt_from_edges"] = {{"tilt_deg", v.tilt.tilt_deg},         {"sigma_deg", v.tilt.sigma_deg},
                              {"toward_deg", v.tilt.toward_deg},     {"samples", v.tilt.samples},

@@ -115,6 +115,7 @@ void VerdictOptions::Check() const {
   positive(min_area_m2, "min_area_m2");
   fraction(hidden_floor_check, "hidden_floor_check");
   fraction(max_odd_corner_share, "max_odd_corner_share");
+  fraction(check_label_confidence, "check_label_confidence");
   positive(max_tilt_scatter_m, "max_tilt_scatter_m");
   positive(tilt_check_deg, "tilt_check_deg");
   positive(max_photo_tilt_deg, "max_photo_tilt_deg");
@@ -376,6 +377,15 @@ void JudgeWholePlan(const PlanInput& input, const PlanResult& fit, const std::ve
                       "walls blindly",
                       context.photo_tilt_deg, context.photo_tilt_sigma_deg));
   }
+  // A segmenter unsure of much of what it labelled. Its confidence tracks
+  // how right a plan is but adds nothing to the geometric evidence
+  // (docs/verdict.md), so only a gross doubt counts.
+  out.label_confidence = context.label_confidence;
+  if (out.label_confidence < options.check_label_confidence) {
+    judge(Verdict::kCheck, 1.0,
+          fmt::format("the segmenter was unsure of what it saw (mean confidence {:.2f}): read its labels with care",
+                      out.label_confidence));
+  }
   if (out.short_walls > options.max_short_walls) {
     judge(Verdict::kCheck, 0.8,
           fmt::format("{} walls shorter than {:.2f} m: jogs a room rarely has", out.short_walls, options.short_wall_m));
@@ -398,12 +408,20 @@ void JudgeWholePlan(const PlanInput& input, const PlanResult& fit, const std::ve
   } else if (input.one_camera && !std::isfinite(ceiling) && !tilted) {
     judge(Verdict::kCheck, 0.85, "the ceiling's height could not be measured: walls rest on the floor edge alone");
   }
+  // A door of a height no door has: with a ceiling of a plausible height
+  // measured, the door was misread; without one, the camera height may be
+  // wrong (it scales the whole room).
+  const bool ceiling_plausible =
+      std::isfinite(scale_ceiling) && scale_ceiling >= options.min_ceiling_m && scale_ceiling <= options.max_ceiling_m;
   for (const PlanOpening& o : plan.openings) {
     if (o.kind != OpeningKind::kDoor || !o.height) continue;
     if (*o.height < options.min_door_height_m || *o.height > options.max_door_height_m) {
-      judge(
-          Verdict::kCheck, 0.8,
-          fmt::format("a door {:.2f} m high: is the camera height right? (the whole room scales with it)", *o.height));
+      judge(Verdict::kCheck, 0.8,
+            ceiling_plausible
+                ? fmt::format("a door {:.2f} m high under a {:.2f} m ceiling: a misread door (check it on the photo)",
+                              *o.height, scale_ceiling)
+                : fmt::format("a door {:.2f} m high: is the camera height right? (the whole room scales with it)",
+                              *o.height));
       break;
     }
   }

@@ -68,6 +68,7 @@ struct VerdictOptions {
   double tilt_unreliable_deg = 1.5;  // …more than this "unreliable".
   double hidden_floor_check =
       0.9;  // A wall whose floor edge is hidden along more than this share of its seen span: "check".
+  double check_label_confidence = 0.8;  // The segmenter's mean confidence below this: "check".
 
   void Check() const;
 };
@@ -84,6 +85,9 @@ struct VerdictContext {
   // (pano/level.h); NaN: not estimated.
   double photo_tilt_deg = NAN;
   double photo_tilt_sigma_deg = NAN;
+  // How sure the segmenter was of the labels (LabelSource::MeanConfidence);
+  // NaN: labels given or exact.
+  double label_confidence = NAN;
 };
 
 // A camera's tilt read from its floor and ceiling edges: round the room,
@@ -131,9 +135,10 @@ struct PlanVerdict {
   std::vector<std::string> reasons;  // Why not "good" (empty when good).
   std::vector<WallVerdict> walls;    // Per plan wall.
   // Plan-wide evidence.
-  double agreement = NAN;      // Share of seen bins that agree.
-  double coverage = NAN;       // Share of bins (of the turn about the viewpoint) seen.
-  double floor_ceiling = NAN;  // Median relative floor/ceiling disagreement.
+  double agreement = NAN;         // Share of seen bins that agree.
+  double coverage = NAN;          // Share of bins (of the turn about the viewpoint) seen.
+  double floor_ceiling = NAN;     // Median relative floor/ceiling disagreement.
+  double label_confidence = NAN;  // The segmenter's (VerdictContext).
   int short_walls = 0;
   int odd_corners = 0;
   LabelTilt tilt;

@@ -98,6 +98,38 @@ TEST(JudgePlan, AnImplausibleCeilingNamesTheCameraHeight) {
   EXPECT_NE(v.BriefReport().find("camera height"), std::string::npos) << v.BriefReport();
 }
 
+TEST(JudgePlan, ADoorOfNoDoorsHeightUnderAPlausibleCeilingIsMisread) {
+  PlanResult fit = Fit(BoxPlan());
+  fit.plan.openings.push_back({.kind = OpeningKind::kDoor,
+                               .wall = 0,
+                               .start = {-1.0, kY0},
+                               .end = {-0.1, kY0},
+                               .width = 0.9,
+                               .height = 1.1,
+                               .sill = 0.0});
+  const PlanVerdict v = JudgePlan(BoxInput(), fit);
+  EXPECT_EQ(v.verdict, Verdict::kCheck);
+  EXPECT_NE(v.BriefReport().find("a misread door"), std::string::npos) << v.BriefReport();
+  EXPECT_EQ(v.BriefReport().find("camera height"), std::string::npos) << v.BriefReport();
+}
+
+TEST(JudgePlan, AGrosslyUnsureSegmenterMakesAPlanCheck) {
+  const PlanInput in = BoxInput();
+  const PlanResult fit = Fit(BoxPlan());
+  auto judged = [&](double label_confidence) {
+    VerdictContext context;
+    context.label_confidence = label_confidence;
+    return JudgePlan(in, fit, {}, context);
+  };
+  const PlanVerdict sure = judged(0.95), lost = judged(0.70);
+  EXPECT_EQ(sure.verdict, Verdict::kGood) << sure.BriefReport();
+  EXPECT_DOUBLE_EQ(sure.confidence, JudgePlan(in, fit).confidence);
+  EXPECT_EQ(lost.verdict, Verdict::kCheck);
+  EXPECT_NE(lost.BriefReport().find("segmenter was unsure"), std::string::npos) << lost.BriefReport();
+  EXPECT_DOUBLE_EQ(lost.label_confidence, 0.70);
+  EXPECT_EQ(judged(NAN).verdict, Verdict::kGood);  // Given or exact labels: nothing to doubt.
+}
+
 TEST(TiltFromCeilingSamples, RecoversALeanAndIgnoresTopsOfFurniture) {
   // Samples as a camera leaning 1.2° toward bearing 60° gives them: each
   // column's rays seem ε = g·u higher than they are.
@@ -154,6 +186,9 @@ TEST(VerdictOptions, BoundsAreChecked) {
   EXPECT_THROW(o.Check(), InvalidArgument);
   o = {};
   o.bin_deg = 0;
+  EXPECT_THROW(o.Check(), InvalidArgument);
+  o = {};
+  o.check_label_confidence = 1.5;
   EXPECT_THROW(o.Check(), InvalidArgument);
 }
 

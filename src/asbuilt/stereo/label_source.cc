@@ -1,5 +1,7 @@
 #include "asbuilt/stereo/label_source.h"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "asbuilt/imageio/image_io.h"
@@ -7,6 +9,8 @@
 
 namespace asbuilt {
 namespace fs = std::filesystem;
+
+double LabelSource::MeanConfidence() const { return NAN; }
 
 std::vector<FrameLabels> DirectoryLabels::Label(const std::vector<FrameImages>& frames) {
   std::vector<FrameLabels> out;

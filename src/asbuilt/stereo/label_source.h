@@ -45,6 +45,10 @@ class LabelSource {
   virtual std::string Describe() const = 0;
   // The stage its time is reported under: "load labels" or "segment".
   virtual std::string StageName() const { return "load labels"; }
+  // How sure a segmenter was of the images labelled so far: the mean over
+  // them of each image's mean probability of the classes chosen (0–1). NaN
+  // for labels that come with no such measure (given, exact).
+  virtual double MeanConfidence() const;
 };
 
 // Left labels from DIR/NNN.png (frame index, three digits); right labels
