@@ -269,6 +269,32 @@ void JudgeWallLines(const std::vector<BinStats>& bins, const PlanSummary& summar
   }
 }
 
+// Walls beyond a jog at either end of wall w that are parallel to it.
+struct RunOn {
+  double metres = 0.0;  // Their lengths along w.
+  double jog_m = 0.0;   // The first jog's length.
+  int beyond = -1;      // The first such wall.
+};
+RunOn RunOnPastJogs(const Plan& plan, int w, const VerdictOptions& options) {
+  const int n = static_cast<int>(plan.walls.size());
+  const Vec2 d = (plan.walls[w].end - plan.walls[w].start).normalized();
+  const double cos_parallel = std::cos(DegToRad(options.odd_angle_deg));
+  RunOn out;
+  for (int step : {-1, 1}) {
+    int k = w;
+    for (int visited = 0; visited < n; ++visited) {
+      const int jog = (k + step + n) % n, next = (jog + step + n) % n;
+      if (jog == w || next == w || plan.walls[jog].Length() >= options.short_wall_m) break;
+      const Vec2 e = plan.walls[next].end - plan.walls[next].start;
+      if (e.norm() < 1e-9 || e.dot(d) < cos_parallel * e.norm()) break;  // Not running on the same way.
+      if (out.beyond < 0) out.beyond = next, out.jog_m = plan.walls[jog].Length();
+      out.metres += e.dot(d);
+      k = next;
+    }
+  }
+  return out;
+}
+
 // A wall's length runs between the corners its neighbours make: it is no
 // better than they are; very short walls are suspect.
 void JudgeWallLengths(const Plan& plan, const VerdictOptions& options, const std::vector<bool>& confirmed,
@@ -292,6 +318,18 @@ void JudgeWallLengths(const Plan& plan, const VerdictOptions& options, const std
     if (plan.walls[w].Length() < options.short_wall_m) {
       v.verdict = Worse(v.verdict, Verdict::kCheck);
       v.reasons.push_back(fmt::format("only {:.2f} m long: a jog the photo may not have", plan.walls[w].Length()));
+      v.confidence = std::min(v.confidence, 0.5);
+    }
+    // A wall that ends at a jog with a wall parallel to it beyond may be one
+    // wall with it: a misread floor edge steps where the wall does not.
+    const RunOn run_on = RunOnPastJogs(plan, w, options);
+    v.evidence.run_on_m = run_on.metres;
+    if (run_on.metres > 0.0) {
+      if (v.verdict == Verdict::kGood) v.verdict = Verdict::kCheck;
+      v.reasons.push_back(
+          fmt::format("it ends at a {:.2f} m jog: it may be one wall with wall {} beyond it ({:.2f} m "
+                      "longer)",
+                      run_on.jog_m, run_on.beyond, run_on.metres));
       v.confidence = std::min(v.confidence, 0.5);
     }
   }
@@ -613,6 +651,8 @@ void MarkPlan(const PlanVerdict& verdict, Plan& plan) {
       const double offset = verdict.walls[k].evidence.offset_sigma_m;
       if (k != w && std::isfinite(offset)) variance += offset * offset;
     }
+    const double run_on = verdict.walls[w].evidence.run_on_m;
+    variance += run_on * run_on;
     wall.length_sigma_m = std::sqrt(variance);
   }
   if (verdict.verdict == Verdict::kUnreliable) {

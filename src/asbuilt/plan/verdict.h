@@ -117,6 +117,10 @@ struct WallEvidenceFigures {
   double hidden_floor = 0.0;   // Share of its seen span with ceiling contacts but no floor contact.
   double offset_sigma_m =
       NAN;  // 68th percentile of its bins' |median distance error|, m: how far its points scatter off it.
+  // How far it may run on past a jog at either end, m: the walls beyond a
+  // jog (a wall under short_wall_m) that are parallel to it, one wall with
+  // it if the jog is a misread step. Enters its length's ± (MarkPlan).
+  double run_on_m = 0.0;
 };
 
 struct WallVerdict {
@@ -157,7 +161,8 @@ PlanVerdict JudgePlan(const PlanInput& input, const PlanResult& fit, const Verdi
 // PlanVerdictNote and each wall's word; an unreliable wall loses its ±, and
 // an unreliable plan its area's ±. Every other wall's ± takes in, in
 // quadrature, how far the points scatter about its two neighbours (their
-// offset_sigma_m): its ends are where they cross it.
+// offset_sigma_m): its ends are where they cross it; and how far it may run
+// on past a jog (run_on_m).
 void MarkPlan(const PlanVerdict& verdict, Plan& plan);
 
 // Worse of two verdicts.

@@ -113,6 +113,31 @@ TEST(JudgePlan, ADoorOfNoDoorsHeightUnderAPlausibleCeilingIsMisread) {
   EXPECT_EQ(v.BriefReport().find("camera height"), std::string::npos) << v.BriefReport();
 }
 
+// The south wall drawn as two, 5 cm apart, joined by a jog: each piece may
+// be one wall with the other, and its length's ± says so.
+TEST(JudgePlan, AWallEndingAtAJogMayRunOnPastIt) {
+  Plan p;
+  const std::vector<Vec2> c = {{kX0, kY0}, {0.0, kY0}, {0.0, kY0 + 0.05}, {kX1, kY0 + 0.05}, {kX1, kY1}, {kX0, kY1}};
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    p.walls.push_back({.start = c[i], .end = c[(i + 1) % c.size()], .length_sigma_m = 0.01});
+  }
+  p.rooms.push_back({.polygon = c, .area_m2 = PolygonArea(c), .area_sigma_m2 = 0.02});
+  const PlanVerdict v = JudgePlan(BoxInput(), Fit(p));
+  ASSERT_EQ(v.walls.size(), 6u);
+  for (int w : {0, 2}) {
+    EXPECT_EQ(v.walls[w].verdict, Verdict::kCheck) << w << ": " << v.walls[w].Why();
+    EXPECT_NEAR(v.walls[w].evidence.run_on_m, 2.0, 1e-9) << w;
+    EXPECT_NE(v.walls[w].Why().find("jog"), std::string::npos) << v.walls[w].Why();
+  }
+  EXPECT_EQ(v.walls[3].evidence.run_on_m, 0.0);  // Its neighbours are no jogs.
+  EXPECT_EQ(v.walls[1].evidence.run_on_m, 0.0);  // The jog itself is judged as a jog.
+  MarkPlan(v, p);
+  ASSERT_TRUE(p.walls[0].length_sigma_m);
+  EXPECT_GE(*p.walls[0].length_sigma_m, 2.0);
+  ASSERT_TRUE(p.walls[3].length_sigma_m);
+  EXPECT_LT(*p.walls[3].length_sigma_m, 0.2);
+}
+
 TEST(JudgePlan, AGrosslyUnsureSegmenterMakesAPlanCheck) {
   const PlanInput in = BoxInput();
   const PlanResult fit = Fit(BoxPlan());
