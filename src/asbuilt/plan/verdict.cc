@@ -269,27 +269,34 @@ void JudgeWallLines(const std::vector<BinStats>& bins, const PlanSummary& summar
   }
 }
 
-// Walls beyond a jog at either end of wall w that are parallel to it.
+// Walls beyond a jog at either end of wall w that run on the same way. A
+// jog is one or more walls under short_wall_m (a misread floor edge can
+// step several times); the first longer wall past it must be parallel to w.
 struct RunOn {
-  double metres = 0.0;  // Their lengths along w.
+  double metres = 0.0;  // Along w: the jogs and parallel walls passed.
   double jog_m = 0.0;   // The first jog's length.
-  int beyond = -1;      // The first such wall.
+  int beyond = -1;      // The first parallel wall past a jog.
 };
 RunOn RunOnPastJogs(const Plan& plan, int w, const VerdictOptions& options) {
   const int n = static_cast<int>(plan.walls.size());
   const Vec2 d = (plan.walls[w].end - plan.walls[w].start).normalized();
   const double cos_parallel = std::cos(DegToRad(options.odd_angle_deg));
+  auto along = [&](int k) { return (plan.walls[k].end - plan.walls[k].start).dot(d); };
   RunOn out;
   for (int step : {-1, 1}) {
-    int k = w;
-    for (int visited = 0; visited < n; ++visited) {
-      const int jog = (k + step + n) % n, next = (jog + step + n) % n;
-      if (jog == w || next == w || plan.walls[jog].Length() >= options.short_wall_m) break;
-      const Vec2 e = plan.walls[next].end - plan.walls[next].start;
-      if (e.norm() < 1e-9 || e.dot(d) < cos_parallel * e.norm()) break;  // Not running on the same way.
-      if (out.beyond < 0) out.beyond = next, out.jog_m = plan.walls[jog].Length();
-      out.metres += e.dot(d);
-      k = next;
+    int k = (w + step + n) % n;
+    for (int visited = 0; visited < n && k != w;) {
+      double passed = 0.0, jog = 0.0;
+      while (k != w && visited < n && plan.walls[k].Length() < options.short_wall_m) {
+        passed += along(k), jog += plan.walls[k].Length();
+        k = (k + step + n) % n, ++visited;
+      }
+      if (jog == 0.0 || k == w || visited >= n) break;  // No jog, or round the whole ring.
+      const double len = plan.walls[k].Length();
+      if (along(k) < cos_parallel * len) break;  // Not running on the same way.
+      if (out.beyond < 0) out.beyond = k, out.jog_m = jog;
+      out.metres += passed + along(k);
+      k = (k + step + n) % n, ++visited;
     }
   }
   return out;

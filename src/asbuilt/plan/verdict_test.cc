@@ -138,6 +138,23 @@ TEST(JudgePlan, AWallEndingAtAJogMayRunOnPastIt) {
   EXPECT_LT(*p.walls[3].length_sigma_m, 0.2);
 }
 
+// A misread floor edge can step more than once: the jog is every short
+// wall up to the next longer one.
+TEST(JudgePlan, AJogOfSeveralShortWallsIsStillAJog) {
+  Plan p;
+  const std::vector<Vec2> c = {{kX0, kY0},        {0.0, kY0}, {0.1, kY0 + 0.05}, {0.1, kY0 + 0.08},
+                               {kX1, kY0 + 0.08}, {kX1, kY1}, {kX0, kY1}};
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    p.walls.push_back({.start = c[i], .end = c[(i + 1) % c.size()], .length_sigma_m = 0.01});
+  }
+  p.rooms.push_back({.polygon = c, .area_m2 = PolygonArea(c), .area_sigma_m2 = 0.02});
+  const PlanVerdict v = JudgePlan(BoxInput(), Fit(p));
+  ASSERT_EQ(v.walls.size(), 7u);
+  EXPECT_NEAR(v.walls[0].evidence.run_on_m, 2.0, 1e-9);  // 0.1 along it in the jog, then 1.9.
+  EXPECT_NEAR(v.walls[3].evidence.run_on_m, 2.1, 1e-9);
+  EXPECT_EQ(v.walls[0].verdict, Verdict::kCheck);
+}
+
 TEST(JudgePlan, AGrosslyUnsureSegmenterMakesAPlanCheck) {
   const PlanInput in = BoxInput();
   const PlanResult fit = Fit(BoxPlan());
