@@ -1,8 +1,8 @@
 // bench_verdict: does the verdict (plan/verdict.h, issue 42) tell good plans
 // from bad ones on rooms with truth that ZInD is not (bench_pano_survey has
 // ZInD's): the three hand-annotated CC0 photos of real rooms (the shipped
-// model and the ADE20K teacher zero-shot), the rooms Blender rendered
-// (the shipped model and their exact labels), and the synthetic rooms with
+// model, the `real` model and the ADE20K teacher zero-shot), the rooms
+// Blender rendered (both models and their exact labels), and the synthetic rooms with
 // faults put in of pipeline/verdict_survey_test.cc are its tests.
 
 #include <chrono>
@@ -31,6 +31,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_verdict: no segmenter in this build; %s left as it was\n", results.c_str());
     return 0;
   }
+  const fs::path real = ModelPathFor("real");
+  const bool with_real = fs::exists(real) && !fs::equivalent(real, DefaultModelPath());
   const auto start = std::chrono::steady_clock::now();
   auto survey = [&](const fs::path& capture, const std::string& name, SurveyOptions options) {
     options.report_frames = 4;
@@ -49,6 +51,7 @@ int main(int argc, char** argv) {
     const fs::path capture = data / "cc0-panoramas" / "annotated" / room / "capture.json";
     if (!fs::exists(capture)) continue;
     cc0.push_back(survey(capture, fmt::format("cc0_{}_default", room), {}));
+    if (with_real) cc0.push_back(survey(capture, fmt::format("cc0_{}_real", room), {.model_path = real}));
     if (fs::exists(teacher))
       cc0.push_back(survey(capture, fmt::format("cc0_{}_teacher", room), {.model_path = teacher}));
   }
@@ -56,6 +59,7 @@ int main(int argc, char** argv) {
     const fs::path capture = data / "blender-rooms-public" / room / "capture.json";
     if (!fs::exists(capture)) continue;
     blender.push_back(survey(capture, fmt::format("blender_{}_default", room), {}));
+    if (with_real) blender.push_back(survey(capture, fmt::format("blender_{}_real", room), {.model_path = real}));
     blender.push_back(survey(capture, fmt::format("blender_{}_exact_labels", room), {.use_capture_labels = true}));
   }
   std::vector<VerdictSample> all = cc0;
@@ -67,8 +71,8 @@ int main(int argc, char** argv) {
       "Issue 42. Each plan's verdict (`good` / `check` / `unreliable`, plan/verdict.h, docs/verdict.md) against its "
       "room IoU with the truth. Sets: the three CC0 photos of real rooms with hand-made truth "
       "(`../shared/data/cc0-panoramas/annotated`, tone-mapped, camera height 1.6 m as assumed there), surveyed with "
-      "the shipped model and with the ADE20K teacher zero-shot; the two Blender-rendered rooms of "
-      "`../shared/data/blender-rooms-public` (stereo), with the shipped model and with their exact labels. ZInD's "
+      "the shipped model, with `--model real` and with the ADE20K teacher zero-shot; the two Blender-rendered rooms "
+      "of `../shared/data/blender-rooms-public` (stereo), with both models and with their exact labels. ZInD's "
       "figures are in the pano_survey section. Measured {} on {} hardware threads, {:.0f} s.\n\n",
       Today(), std::thread::hardware_concurrency(), seconds);
   md += VerdictTableHeader();

@@ -490,9 +490,10 @@ std::optional<PlanOpening> MeasureOpening(const std::vector<OpeningPoint>& group
     op.height = z1 - casing - *op.sill;
   }
   // A strip thinner than its casings has no clear opening (and plan.json
-  // refuses a height ≤ 0); door labels that stay near the floor are a
-  // misread floor or rug, not a door.
-  if (*op.height <= 0.0 || (door && *op.height <= o.min_door_height_m)) return std::nullopt;
+  // refuses a height ≤ 0); door labels that all stay near the floor are a
+  // misread floor or rug, not a door (their highest point: a point file's
+  // rows may be further apart than the binned extent bridges).
+  if (*op.height <= 0.0 || (door && zs.back() <= o.min_door_height_m)) return std::nullopt;
   // ±: each edge's variance plus the casing-width uncertainty.
   const double casing_var = o.casing_sigma_m * o.casing_sigma_m;
   op.width_sigma_m = std::sqrt(edges.var_a + edges.var_b + 2 * casing_var);
