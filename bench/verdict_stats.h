@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "asbuilt/pipeline/survey.h"
+#include "asbuilt/plan/score.h"
 
 namespace asbuilt::bench {
 
@@ -21,13 +22,11 @@ struct VerdictSample {
   std::string name;
   Verdict verdict = Verdict::kUnreliable;
   double confidence = 0.0;
-  double iou = 0.0;            // 0 without a plan.
-  int good_walls = 0;          // Walls called good…
-  int good_walls_matched = 0;  // …matched to a truth wall…
-  int good_walls_off = 0;      // …and more than 10 % off in length.
-  int sigma_walls = 0;         // Matched walls with a ± (not unreliable)…
-  int within_1sigma = 0;       // …whose true length lies within 1σ…
-  int within_2sigma = 0;       // …and within 2σ.
+  double iou = 0.0;                         // 0 without a plan.
+  int good_walls = 0;                       // Walls called good…
+  int good_walls_matched = 0;               // …matched to a truth wall…
+  int good_walls_off = 0;                   // …and more than 10 % off in length.
+  UncertaintyCalibration walls_with_sigma;  // Matched walls that keep a ± (not unreliable).
 };
 
 inline VerdictSample SampleOf(const std::string& name, const SurveySummary& s) {
@@ -35,9 +34,8 @@ inline VerdictSample SampleOf(const std::string& name, const SurveySummary& s) {
   v.iou = s.room_overlap ? s.room_overlap->Iou() : 0.0;
   if (s.score) {
     for (const WallMatch& m : s.score->wall_matches) {
-      if (!m.predicted_length_sigma_m || *m.predicted_length_sigma_m <= 0) continue;
-      const double z = std::abs(m.predicted_length_m - m.truth_length_m) / *m.predicted_length_sigma_m;
-      ++v.sigma_walls, v.within_1sigma += z <= 1.0, v.within_2sigma += z <= 2.0;
+      if (m.predicted_length_sigma_m && *m.predicted_length_sigma_m > 0)
+        v.walls_with_sigma.Add(m.predicted_length_m, m.truth_length_m, m.predicted_length_sigma_m);
     }
   }
   for (std::size_t w = 0; w < s.verdict.walls.size(); ++w) {
@@ -82,7 +80,7 @@ inline double SpearmanRho(const std::vector<double>& a, const std::vector<double
 // One row of the verdict table: a set of plans.
 inline std::string VerdictRow(const std::string& set, const std::vector<VerdictSample>& samples) {
   int good = 0, check = 0, unreliable = 0, low_good = 0, high = 0, high_good = 0, walls = 0, matched = 0, off = 0;
-  int sigma_walls = 0, within1 = 0, within2 = 0;
+  UncertaintyCalibration walls_with_sigma;
   std::vector<double> confidence, iou;
   for (const VerdictSample& s : samples) {
     good += s.verdict == Verdict::kGood, check += s.verdict == Verdict::kCheck;
@@ -90,15 +88,16 @@ inline std::string VerdictRow(const std::string& set, const std::vector<VerdictS
     low_good += s.iou < 0.80 && s.verdict == Verdict::kGood;
     high += s.iou >= 0.95, high_good += s.iou >= 0.95 && s.verdict == Verdict::kGood;
     walls += s.good_walls, matched += s.good_walls_matched, off += s.good_walls_off;
-    sigma_walls += s.sigma_walls, within1 += s.within_1sigma, within2 += s.within_2sigma;
+    walls_with_sigma.items.insert(walls_with_sigma.items.end(), s.walls_with_sigma.items.begin(),
+                                  s.walls_with_sigma.items.end());
     confidence.push_back(s.confidence), iou.push_back(s.iou);
   }
   const double rho = SpearmanRho(confidence, iou);
   std::string coverage = "–";
-  if (sigma_walls > 0) {
-    const double p1 = double(within1) / sigma_walls, p2 = double(within2) / sigma_walls;
+  if (!walls_with_sigma.items.empty()) {
+    const double p1 = *walls_with_sigma.Within(1.0), p2 = *walls_with_sigma.Within(2.0);
     coverage = fmt::format("{:.0f} % {} / {:.0f} % {} of {}", 100 * p1, p1 >= 0.55 && p1 <= 0.80 ? "✓" : "✗", 100 * p2,
-                           p2 >= 0.85 && p2 <= 0.98 ? "✓" : "✗", sigma_walls);
+                           p2 >= 0.85 && p2 <= 0.98 ? "✓" : "✗", walls_with_sigma.items.size());
   }
   return fmt::format("| {} | {} | {} / {} / {} | {} {} | {} | {} | {} of {} ({} matched) {} | {} |\n", set,
                      samples.size(), good, check, unreliable, low_good, low_good == 0 ? "✓" : "✗",
