@@ -274,7 +274,7 @@ void JudgeWallLines(const std::vector<BinStats>& bins, const PlanSummary& summar
 // step several times); the first longer wall past it must be parallel to w.
 struct RunOn {
   double metres = 0.0;  // Along w: the jogs and parallel walls passed.
-  double jog_m = 0.0;   // The first jog's length.
+  double jog_m = 0.0;   // The first jog's length (its short walls together).
   int beyond = -1;      // The first parallel wall past a jog.
 };
 RunOn RunOnPastJogs(const Plan& plan, int w, const VerdictOptions& options) {
@@ -331,7 +331,7 @@ void JudgeWallLengths(const Plan& plan, const VerdictOptions& options, const std
     // wall with it: a misread floor edge steps where the wall does not.
     const RunOn run_on = RunOnPastJogs(plan, w, options);
     v.evidence.run_on_m = run_on.metres;
-    if (run_on.metres > 0.0) {
+    if (run_on.beyond >= 0) {
       if (v.verdict == Verdict::kGood) v.verdict = Verdict::kCheck;
       v.reasons.push_back(
           fmt::format("it ends at a {:.2f} m jog: it may be one wall with wall {} beyond it ({:.2f} m "
