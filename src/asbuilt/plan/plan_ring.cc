@@ -262,22 +262,43 @@ void JoinAcrossVertices(std::vector<WallLine>& ring, const RoomVertices& vertice
 }
 
 // Merges ring neighbours that continue each other (one wall seen in pieces),
-// at the better supported one's direction and σ.
+// at the better supported one's direction and σ. Two pieces of one wall with
+// up to kMaxWobbleLines short lines between them, every end of which lies
+// within the two pieces' collinearity band of the merged line, are one wall
+// too: a floor edge misread along one wall (furniture, a door's casing, a
+// label that frays) wobbles about it in steps no deeper than its own noise.
 void MergeRingNeighbours(const std::vector<WallPoint>& pts, std::vector<WallLine>& ring, const PlanOptions& o) {
+  constexpr size_t kMaxWobbleLines = 6;
+  auto try_merge = [&](size_t i, size_t k) {
+    const size_t n = ring.size(), j = (i + k) % n;
+    if (k > 1 && n - k < 3) return false;
+    if (!CollinearLines(ring[i], ring[j], o)) return false;
+    std::vector<int> all = ring[i].members;
+    for (size_t m = 1; m <= k; ++m) {
+      const std::vector<int>& more = ring[(i + m) % n].members;
+      all.insert(all.end(), more.begin(), more.end());
+    }
+    const WallLine& big = ring[i].votes >= ring[j].votes ? ring[i] : ring[j];
+    WallLine fit = FitWallLine(pts, std::move(all), big.theta, o.max_independent_points, o.max_gap_m);
+    const double band = CollinearTolerance(ring[i], ring[j], o);
+    for (size_t m = 1; m < k; ++m) {
+      const WallLine& wobble = ring[(i + m) % n];
+      if (std::abs(fit.Distance(wobble.Start())) >= band || std::abs(fit.Distance(wobble.End())) >= band) return false;
+    }
+    fit.var_theta = big.var_theta;
+    ring[i] = std::move(fit);
+    for (size_t m = 1; m <= k; ++m) {
+      const size_t e = i + 1 < ring.size() ? i + 1 : 0;  // What follows i, wrapping.
+      ring.erase(ring.begin() + e);
+      if (e < i) --i;
+    }
+    return true;
+  };
   for (bool merged = true; merged && ring.size() > 2;) {
     merged = false;
-    for (size_t i = 0; i < ring.size() && ring.size() > 2; ++i) {
-      size_t j = (i + 1) % ring.size();
-      if (!CollinearLines(ring[i], ring[j], o)) continue;
-      std::vector<int> all = ring[i].members;
-      all.insert(all.end(), ring[j].members.begin(), ring[j].members.end());
-      const WallLine& big = ring[i].votes >= ring[j].votes ? ring[i] : ring[j];
-      WallLine fit = FitWallLine(pts, std::move(all), big.theta, o.max_independent_points, o.max_gap_m);
-      fit.var_theta = big.var_theta;
-      ring[i] = std::move(fit);
-      ring.erase(ring.begin() + j);
-      merged = true;
-      break;
+    for (size_t k = 1; k <= kMaxWobbleLines + 1 && !merged; ++k) {
+      for (size_t i = 0; i < ring.size() && ring.size() > 2 && k < ring.size() && !merged; ++i)
+        merged = try_merge(i, k);
     }
   }
 }

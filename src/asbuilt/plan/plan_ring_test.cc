@@ -204,5 +204,52 @@ TEST(PlanRing, AVertexJoinsTwoWallsAcrossALineSeenThroughThem) {
   }
 }
 
+// Lines fitted to runs of wall points, one per run, in the order given.
+struct RunLines {
+  WallPoints walls;
+  std::vector<WallLine> lines;
+  void Add(const Vec2& a, const Vec2& b) {
+    std::vector<int> idx;
+    const int n = std::max(2, static_cast<int>((b - a).norm() / 0.01));
+    for (int k = 0; k <= n; ++k) {
+      idx.push_back(static_cast<int>(walls.points.size()));
+      walls.points.push_back(
+          {.p = a + (b - a) * k / n, .z = 1.0, .w = 1e4, .sigma = 0.01, .thr = 0.05, .vote = 1.0, .contact = false});
+    }
+    lines.push_back(FitWallLine(walls.points, std::move(idx), std::nullopt, 500, 1.0));
+  }
+  std::vector<Vec2> Corners(const PlanOptions& o) const {
+    return RingCorners(CloseRoom(walls, lines, {}, DirectionFrame{}, o).walls);
+  }
+};
+
+// A floor edge misread along one wall: the 5 m south wall of a 5 × 4 m room
+// comes in two pieces with a 0.4 m line 13° off between them, no end of which
+// leaves the pieces' band. It is one wall; a 0.3 m deep pilaster is not.
+TEST(PlanRing, AWallWobblingWithinItsBandIsOneWall) {
+  const PlanOptions o{.viewpoint_m = Vec3(2.5, 2.0, 1.5)};
+  RunLines wobble;
+  wobble.Add({0, 0}, {2, 0});
+  wobble.Add({2.0, 0.0}, {2.4, 0.09});
+  wobble.Add({2.45, 0}, {5, 0});
+  wobble.Add({5, 0}, {5, 4});
+  wobble.Add({5, 4}, {0, 4});
+  wobble.Add({0, 4}, {0, 0});
+  const std::vector<Vec2> corners = wobble.Corners(o);
+  ASSERT_EQ(corners.size(), 4u);
+  EXPECT_NEAR(PolygonArea(corners), 20.0, 0.1);
+
+  RunLines pilaster;
+  pilaster.Add({0, 0}, {2, 0});
+  pilaster.Add({2, 0}, {2, 0.3});
+  pilaster.Add({2, 0.3}, {2.6, 0.3});
+  pilaster.Add({2.6, 0.3}, {2.6, 0});
+  pilaster.Add({2.6, 0}, {5, 0});
+  pilaster.Add({5, 0}, {5, 4});
+  pilaster.Add({5, 4}, {0, 4});
+  pilaster.Add({0, 4}, {0, 0});
+  EXPECT_EQ(pilaster.Corners(o).size(), 8u);
+}
+
 }  // namespace
 }  // namespace asbuilt

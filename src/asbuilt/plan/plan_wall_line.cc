@@ -154,10 +154,14 @@ std::optional<Vec2> IntersectLines(const WallLine& a, const WallLine& b) {
 }
 
 // Why a short piece may lie 10° off: docs/plan.md, step 2.
+double CollinearTolerance(const WallLine& a, const WallLine& b, const PlanOptions& o) {
+  return std::max(2 * o.epsilon_m, 3 * std::sqrt(a.var_rho + b.var_rho));
+}
+
 bool CollinearLines(const WallLine& a, const WallLine& b, const PlanOptions& o) {
   const double diff = std::abs(AngleDiffModPi(a.theta, b.theta));
   if (diff > DegToRad(10.0)) return false;
-  double tol = std::max(2 * o.epsilon_m, 3 * std::sqrt(a.var_rho + b.var_rho));
+  const double tol = CollinearTolerance(a, b, o);
   if (diff <= DegToRad(3.0) && std::abs(a.Distance(b.c)) < tol && std::abs(b.Distance(a.c)) < tol) return true;
   const bool a_longer = a.t_max - a.t_min >= b.t_max - b.t_min;
   const WallLine& longer = a_longer ? a : b;

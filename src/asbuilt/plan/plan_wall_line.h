@@ -175,6 +175,8 @@ std::optional<Vec2> IntersectLines(const WallLine& a, const WallLine& b);
 // (max(2ε, 3σ of their offsets)); or, up to 10° apart, the shorter one lies
 // whole in the longer one's band (a short piece's angle is loosely fixed).
 bool CollinearLines(const WallLine& a, const WallLine& b, const PlanOptions& o);
+// The half-width of the band CollinearLines asks each line to lie in: max(2ε, 3σ of their offsets), m.
+double CollinearTolerance(const WallLine& a, const WallLine& b, const PlanOptions& o);
 
 // Debug log of `lines` (ends, θ ± σ, ρ σ, point count) under the heading `stage`.
 void LogWallLines(const char* stage, const std::vector<WallLine>& lines);
