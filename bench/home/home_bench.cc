@@ -57,26 +57,41 @@ struct Run {
 // The review's scripted surveyor for a home: while a room is not within the
 // tolerances, it moves the first such room to its true place (move_room,
 // held there) and the home is placed again, the other rooms kept where they
-// were where they fit as well (as the review does). Returns the edits it took
-// (capped at twice the rooms), with the rooms misplaced at first.
+// were where they fit as well (as the review does). It judges and moves rooms
+// in the frame it first saw the home in (the truth aligned on the rooms then
+// right), as a person keeps the drawing they look at. Returns the edits it
+// took (capped at twice the rooms), with the rooms misplaced at first.
 int ScriptedEdits(const std::vector<HomeRoomInput>& rooms, const std::vector<Eigen::Isometry2d>& truth,
                   const std::vector<std::vector<Vec2>>& outlines, int* misplaced_at_start) {
   PlacementConstraints c;
   const int n = static_cast<int>(rooms.size());
+  std::vector<Vec2> centre(rooms.size(), Vec2::Zero());
+  for (int k = 0; k < n; ++k) {
+    if (rooms[k].plan.rooms.empty()) continue;
+    const std::vector<Vec2>& polygon = rooms[k].plan.rooms.front().polygon;
+    for (const Vec2& v : polygon) centre[k] += v / static_cast<double>(polygon.size());
+  }
+  Eigen::Isometry2d home_from_truth = Eigen::Isometry2d::Identity();
   for (int edits = 0; edits <= 2 * n; ++edits) {
     const PlacementResult r = PlaceRooms(rooms, {}, c);
     const HomeScore s = ScoreHome(rooms, r.best, truth, outlines);
-    if (edits == 0) *misplaced_at_start = n - s.within;
+    if (edits == 0) {
+      *misplaced_at_start = n - s.within;
+      home_from_truth = s.truth_from_home.inverse();
+    }
     if (s.within == n) return edits;
-    const Eigen::Isometry2d home_from_truth = s.truth_from_home.inverse();
     c.previous.clear();
     for (const RoomPlacement& p : r.best.rooms) {
       c.previous.push_back(p.placed ? std::optional<PlanPose>(TransformPose(p.floor_from_room)) : std::nullopt);
     }
     for (int k = 0; k < n; ++k) {
-      if (r.best.rooms[k].placed && s.centroid_error_m[k] <= 0.10 && s.yaw_error_deg[k] <= 1.0) continue;
+      const Eigen::Isometry2d want = home_from_truth * truth[k], got = r.best.rooms[k].floor_from_room;
+      const double dp = (want * centre[k] - got * centre[k]).norm();
+      const double dyaw =
+          std::abs(std::remainder(YawOf(want) - YawOf(got), 2 * std::numbers::pi)) * 180 / std::numbers::pi;
+      if (r.best.rooms[k].placed && dp <= 0.10 && dyaw <= 1.0) continue;
       std::erase_if(c.fixed, [&](const auto& f) { return f.first == k; });
-      c.fixed.push_back({k, TransformPose(home_from_truth * truth[k])});
+      c.fixed.push_back({k, TransformPose(want)});
       break;
     }
   }

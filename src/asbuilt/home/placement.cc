@@ -137,6 +137,17 @@ PlacementResult PlaceRooms(const std::vector<HomeRoomInput>& rooms, const Placem
   for (const auto& [room, pose] : constraints.fixed) {
     if (room == seed) seed_pose = PoseTransform(pose);
   }
+  // A person who moves the room the home grew from moves that room, not the
+  // home: grown from it, every room would follow it by the same links. The
+  // home then grows from a room they did not move, where it was.
+  if (fixed[seed] && !constraints.previous.empty()) {
+    for (std::size_t r = 0; r < rooms.size(); ++r) {
+      if (fixed[r] || !constraints.previous[r] || placer.geoms()[r].doors.empty()) continue;
+      seed = static_cast<int>(r);
+      seed_pose = PoseTransform(*constraints.previous[r]);
+      break;
+    }
+  }
   std::vector<State> done = placer.Search(seed, seed_pose);
   // The home grown from other rooms too (the two with the most doors): an
   // early wrong link from one side is often plain from another. Their

@@ -159,6 +159,27 @@ TEST(PlaceRooms, APersonsLinksWin) {
   EXPECT_THROW(PlaceRooms(s.rooms, {}, PlacementConstraints{.same = {{{0, 9}, {1, 0}}}}), InvalidArgument);
 }
 
+// The hall is the room the home grows from. A person who drags it away
+// moves the hall; the east rooms, which hang together by their own door,
+// stay where they were (before the fix the whole home followed the hall).
+TEST(PlaceRooms, MovingTheFirstRoomMovesThatRoomNotTheHome) {
+  const Surveyed s = Survey(TestHome{}, 6);
+  const PlacementResult before = PlaceRooms(s.rooms);
+  ASSERT_EQ(before.best.Placed(), 5);
+  PlacementConstraints c;
+  for (const RoomPlacement& p : before.best.rooms) c.previous.push_back(TransformPose(p.floor_from_room));
+  Pose hall = before.best.rooms[0].floor_from_room;
+  hall.translation() += Vec2(20, 0);
+  c.fixed.push_back({0, TransformPose(hall)});
+  const PlacementResult after = PlaceRooms(s.rooms, {}, c);
+  EXPECT_TRUE(after.best.rooms[0].floor_from_room.isApprox(hall, 1e-9));
+  for (int r : {1, 2}) {
+    ASSERT_TRUE(after.best.rooms[r].placed) << s.rooms[r].name;
+    const Pose moved = before.best.rooms[r].floor_from_room.inverse() * after.best.rooms[r].floor_from_room;
+    EXPECT_LT(moved.translation().norm(), 0.02) << s.rooms[r].name << ": " << after.best.rooms[r].placed_by;
+  }
+}
+
 TEST(PlaceRooms, ARoomWithoutADoorIsNotGuessedUnlessHinted) {
   Surveyed s = Survey(TestHome{}, 6);
   HomeRoomInput store{.name = "store", .plan = TestHome{}.RoomPlan(0)};
