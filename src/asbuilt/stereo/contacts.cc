@@ -461,6 +461,29 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
                  .frame = frame.index};
     ++result->ceiling_contacts;
     cover(u, static_cast<int>(ceiling_edge + 0.5), 1);
+    for (int x = u; x < std::min(cols, u + options.contact_col_step_px); ++x) {
+      result->ceiling_rise[x] = static_cast<float>(r.direction.z());
+    }
+    // A one-camera view's column with no floor contact (a near wall: its foot
+    // lies below the view) that runs from the ceiling edge down into a door
+    // or window: the opening's top edge is on the wall, at the ceiling
+    // contact's depth (PendingContacts::CeilingBoundary).
+    if (!floor_point && frame.labels_right.empty()) {
+      int v = static_cast<int>(ceiling_edge + 0.5);
+      while (v < rows && label_at(v, u) == kLabelWall) ++v;
+      const unsigned char below = v < rows ? label_at(v, u) : 0;
+      if ((below == kLabelDoor || below == kLabelWindow) &&
+          runs(
+              v, 1, run, [below](unsigned char l) { return l == below; }, u)) {
+        result->pending.ceiling_boundaries.push_back({.edge = {.label = static_cast<LabelClass>(below),
+                                                               .origin_m = origin,
+                                                               .direction = ray(u, v - 0.5),
+                                                               .fy_px = cam.fy,
+                                                               .frame = frame.index},
+                                                      .wall_rise = r.direction.z(),
+                                                      .source = PointSource::kContact});
+      }
+    }
     result->pending.ceiling_rays.push_back(r);
   }
   const std::optional<double> skirting_top = options.skirting_depth_m > 0 ? skirting.Top() : std::nullopt;
@@ -478,6 +501,7 @@ FrameContacts FindFrameContacts(const StereoFrame& frame, const cv::Mat& dispari
   FrameContacts result;
   result.covered = cv::Mat::zeros(frame.labels_left.size(), CV_8U);
   result.wall_disparity_px.assign(frame.labels_left.cols, NAN);
+  result.ceiling_rise.assign(frame.labels_left.cols, NAN);
   const Eigen::Isometry3d world_from_cam = WorldFromCamera(frame.pose, frame.baseline_m, StereoEye::kLeft);
   std::vector<FloorColumn> floor_columns;
   AddContactPoints(frame, disparity_px, options, world_from_cam, &result, &floor_columns);
@@ -623,6 +647,7 @@ bool CeilingEdgeContradicted(const ClassPoint& p, const std::vector<PendingConta
 
 void PendingContacts::Append(PendingContacts&& other) {
   ceiling_rays.insert(ceiling_rays.end(), other.ceiling_rays.begin(), other.ceiling_rays.end());
+  ceiling_boundaries.insert(ceiling_boundaries.end(), other.ceiling_boundaries.begin(), other.ceiling_boundaries.end());
   paired_floor.insert(paired_floor.end(), other.paired_floor.begin(), other.paired_floor.end());
   topped_floor.insert(topped_floor.end(), other.topped_floor.begin(), other.topped_floor.end());
   top_edges.insert(top_edges.end(), other.top_edges.begin(), other.top_edges.end());
@@ -717,6 +742,17 @@ ResolvedContacts PendingContacts::Resolve(const FramePointsOptions& options) con
     const auto kept = std::partition(ceiling_points.begin(), ceiling_points.end(), std::not_fn(contradicted));
     out.ceiling_rejected = static_cast<int>(ceiling_points.end() - kept);
     out.points.insert(out.points.end(), ceiling_points.begin(), kept);
+    const double sigma_h = std::hypot(options.camera_height_sigma_m, out.ceiling->sigma_m);
+    for (const CeilingBoundary& b : ceiling_boundaries) {
+      const double dh = out.ceiling->height_m - b.edge.origin_m.z();
+      if (!(dh > 0.05) || !(b.wall_rise > 1e-9)) continue;
+      const double z = dh / b.wall_rise;  // The wall's camera depth in the edge's column.
+      if (z < options.min_depth_m || z > options.max_depth_m) continue;
+      out.points.push_back({b.edge.label, b.edge.origin_m + b.edge.direction * z,
+                            ContactSigma(z, dh, b.edge.fy_px, options.contact_sigma_px, sigma_h), b.source,
+                            b.edge.frame});
+      ++out.ceiling_boundary_points;
+    }
   } else {
     out.ceiling_unused = static_cast<int>(ceiling_rays.size());
   }

@@ -48,10 +48,11 @@ struct CeilingHeight {
 struct ResolvedContacts {
   std::vector<ClassPoint> points;
   std::optional<CeilingHeight> ceiling;
-  std::string how;           // "given", "from 812 of 950 columns …".
-  int floor_rejected = 0;    // Floor contacts that disagreed with the ceiling (paired or topped).
-  int ceiling_unused = 0;    // Ceiling contacts left unused (no height).
-  int ceiling_rejected = 0;  // Ceiling contacts that a frame from the same spot saw wall above.
+  std::string how;                  // "given", "from 812 of 950 columns …".
+  int floor_rejected = 0;           // Floor contacts that disagreed with the ceiling (paired or topped).
+  int ceiling_unused = 0;           // Ceiling contacts left unused (no height).
+  int ceiling_rejected = 0;         // Ceiling contacts that a frame from the same spot saw wall above.
+  int ceiling_boundary_points = 0;  // Opening edges placed at the depth of the ceiling contacts beside them.
   // Every floor contact whose column also saw the wall's ceiling edge.
   std::vector<CeilingSample> ceiling_samples;
 };
@@ -86,7 +87,20 @@ struct PendingContacts {
     PinholeCamera camera;
     std::vector<int> wall_to_row;
   };
+  // A door or window's side edge where no floor contact gives the wall's
+  // depth beside it (a near door: its foot lies below the view): the wall's
+  // ceiling edge beside it gives that depth once the ceiling's height is
+  // known. A level camera sees the wall at one depth down each column.
+  // So does the head of an opening below a ceiling contact in a column with
+  // no floor contact: one of the opening's own points (kContact), where a
+  // side edge is a label edge (kBoundary).
+  struct CeilingBoundary {
+    ContactRay edge;   // The label edge's pixel (its label the opening's).
+    double wall_rise;  // World rise per unit camera depth of the ceiling contacts beside it.
+    PointSource source = PointSource::kBoundary;
+  };
   std::vector<ContactRay> ceiling_rays;
+  std::vector<CeilingBoundary> ceiling_boundaries;
   std::vector<PairedFloor> paired_floor;
   std::vector<ToppedFloor> topped_floor;
   std::vector<TopEdge> top_edges;
@@ -98,7 +112,7 @@ struct PendingContacts {
   // The ceiling's height (options.ceiling_height_m when given, else the
   // densest cluster of the paired samples, else of the stereo ones); the
   // paired floor contacts that agree with it, the topped ones it does not
-  // rule out, and the ceiling contacts.
+  // rule out, the ceiling contacts, and the opening edges placed by them.
   ResolvedContacts Resolve(const FramePointsOptions& options) const;
 };
 
@@ -119,6 +133,9 @@ struct FrameContacts {
   // Per image column: the wall's disparity (px) at its floor contact's
   // depth, f·B/z (NaN: no floor contact there).
   std::vector<float> wall_disparity_px;
+  // Per image column: the world rise per unit camera depth of its ceiling
+  // contact's ray (NaN: none), for CeilingBoundary.
+  std::vector<float> ceiling_rise;
   int floor_contacts = 0;
   int floor_rejected = 0;  // Candidates whose floor disparity said "occluded".
   int ceiling_contacts = 0;

@@ -150,6 +150,7 @@ struct FramePass {
   // disparity at its floor contact (NaN: none): FrameContacts.
   cv::Mat covered;
   std::vector<float> contact_disparity;
+  std::vector<float> ceiling_rise;  // Per column, FrameContacts::ceiling_rise.
   FramePointsResult* result = nullptr;
 
   const cv::Mat& disparity() const { return result->disparity.disparity_px; }
@@ -292,6 +293,27 @@ void AddVertexPoints(const FramePass& pass) {
   }
 }
 
+// A one-camera view's opening edge with no floor contact beside it: it
+// waits for the ceiling's height, at the depth of the wall's ceiling edge in
+// the columns u0 + dir·k, k in [0, to] (PendingContacts::CeilingBoundary).
+void AddCeilingBoundary(const FramePass& pass, unsigned char label, const Vec2& px, int u0, int dir, int to) {
+  std::vector<float> rises;
+  for (int k = 0; k <= to; ++k) {
+    const int x = u0 + dir * k;
+    if (x < 0 || x >= static_cast<int>(pass.ceiling_rise.size())) break;
+    if (std::isfinite(pass.ceiling_rise[x])) rises.push_back(pass.ceiling_rise[x]);
+  }
+  if (rises.empty()) return;
+  std::nth_element(rises.begin(), rises.begin() + rises.size() / 2, rises.end());
+  const Vec3 direction = pass.world_from_cam.linear() * UnprojectToCamera(pass.frame.camera, px, 1.0);
+  pass.result->contacts.ceiling_boundaries.push_back({.edge = {.label = static_cast<LabelClass>(label),
+                                                               .origin_m = pass.world_from_cam.translation(),
+                                                               .direction = direction,
+                                                               .fy_px = pass.frame.camera.fy,
+                                                               .frame = pass.frame.index},
+                                                      .wall_rise = rises[rises.size() / 2]});
+}
+
 // Boundaries: where a door/window label meets the wall along a row, the
 // label edge lies halfway between the two pixel centres; it is placed at
 // the wall's depth there, so the opening's edge is measured on the wall
@@ -368,7 +390,13 @@ void AddBoundaryPoints(const FramePass& pass) {
               ? side_disparity(v, u_wall, to_wall, options.boundary_wall_gap_px,
                                options.boundary_wall_gap_px + options.boundary_wall_span_px, 1)
               : contact_side(u_wall, to_wall, options.boundary_wall_gap_px + options.boundary_wall_span_px);
-      if (!std::isfinite(d_wall)) continue;
+      if (!std::isfinite(d_wall)) {
+        if (!pass.wall_stereo && frame.labels_right.empty()) {
+          AddCeilingBoundary(pass, c, Vec2(u - 0.5, v), u_wall, to_wall,
+                             options.boundary_wall_gap_px + options.boundary_wall_span_px);
+        }
+        continue;
+      }
       // (Without the wall's stereo, the opening's own is no better: no check.)
       if (pass.wall_stereo) {
         const double d_in = side_disparity(v, u_open, -to_wall, 0, options.boundary_inside_px - 1, c);
@@ -509,6 +537,7 @@ FramePointsResult FramePointsPass(const StereoFrame& frame, const FramePointsOpt
     result.cues.skirting_height_m = found.skirting_height_m;
     pass.covered = std::move(found.covered);
     pass.contact_disparity = std::move(found.wall_disparity_px);
+    pass.ceiling_rise = std::move(found.ceiling_rise);
     if (!wall_stereo) {
       const WallStereoCheck check = CheckWallStereo(frame.labels_left, result.disparity, options);
       result.cues.stereo_checked = check.checked;
@@ -517,6 +546,7 @@ FramePointsResult FramePointsPass(const StereoFrame& frame, const FramePointsOpt
   } else {
     pass.covered = cv::Mat::zeros(frame.labels_left.size(), CV_8U);
     pass.contact_disparity.assign(frame.labels_left.cols, NAN);
+    pass.ceiling_rise.assign(frame.labels_left.cols, NAN);
   }
   if (options.use_corners) AddCornerPoints(pass);
   if (options.use_edges) AddEdgePoints(pass);
