@@ -177,9 +177,9 @@ std::optional<double> PairScore(const RoomGeom& x, const RoomGeom& y, const Plac
   if (!BoxesNear(x, y, o.max_wall_thickness_m + 0.05)) return 0.0;
   double score = 0.0;
   if (!x.outline.rooms.empty() && !y.outline.rooms.empty()) {
-    const auto overlap = RoomPolygonOverlap(x.outline, y.outline, RoomIouOptions{.row_step_m = 0.02});
+    const auto overlap = RoomIntersectionArea(x.outline, y.outline, RoomIouOptions{.row_step_m = 0.02});
     if (overlap) {
-      const double shared = overlap->intersection_m2;
+      const double shared = *overlap;
       if (shared > o.max_overlap * std::min(x.area, y.area)) return std::nullopt;
       score -= kOverlapPerM2 * shared;
     }

@@ -35,6 +35,11 @@ struct RoomOverlap {
 std::optional<RoomOverlap> RoomPolygonOverlap(const Plan& predicted, const Plan& truth,
                                               const RoomIouOptions& options = {});
 
+// RoomPolygonOverlap(a, b, options)->intersection_m2, scanning only the rows
+// where both have a room (the placement of a home asks it of every
+// candidate pose); nullopt as RoomPolygonOverlap.
+std::optional<double> RoomIntersectionArea(const Plan& a, const Plan& b, const RoomIouOptions& options = {});
+
 }  // namespace asbuilt
 
 #endif  // ASBUILT_PLAN_ROOM_IOU_H_

@@ -57,6 +57,23 @@ TEST(RoomPolygonOverlap, NoRoomGivesNothing) {
   EXPECT_FALSE(RoomPolygonOverlap(Plan{}, RoomPlan({{0, 0}, {1, 0}, {1, 1}})));
 }
 
+// The placement's fast path gives RoomPolygonOverlap's intersection, row for row.
+TEST(RoomIntersectionArea, IsRoomPolygonOverlapsIntersection) {
+  const Plan l_shape = RoomPlan({{0, 0}, {3, 0}, {3, 1}, {1, 1}, {1, 3}, {0, 3}});
+  const std::vector<Plan> others = {RoomPlan({{0.5, 0.5}, {4, 0.5}, {4, 5}, {0.5, 5}}),
+                                    RoomPlan({{2.5, -1.3}, {6, -1.3}, {6, 0.4}, {2.5, 0.4}}),
+                                    RoomPlan({{0, 3.1}, {2, 3.1}, {2, 4}, {0, 4}}), l_shape};
+  for (double step : {0.02, 0.05}) {
+    for (const Plan& other : others) {
+      const auto full = RoomPolygonOverlap(l_shape, other, {.row_step_m = step});
+      const auto fast = RoomIntersectionArea(l_shape, other, {.row_step_m = step});
+      ASSERT_TRUE(full && fast);
+      EXPECT_NEAR(*fast, full->intersection_m2, 1e-9) << step;
+    }
+  }
+  EXPECT_FALSE(RoomIntersectionArea(Plan{}, l_shape));
+}
+
 TEST(RoomIouOptions, BadRowStepIsRefused) {
   EXPECT_THROW(RoomIouOptions{.row_step_m = 0}.Check(), InvalidArgument);
   EXPECT_NO_THROW(RoomIouOptions{}.Check());
