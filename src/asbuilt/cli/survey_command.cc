@@ -106,8 +106,8 @@ int RunSurveyCommand(int argc, char** argv) {
                "panorama captures: redraw the segmenter's labels on the room's layout found from the panorama's "
                "edges (writes layout.png; docs/survey.md)");
   app.add_flag("--level,!--no-level", options.level_panorama,
-               "panorama captures read by the segmenter: estimate the photo's tilt from its lines and level it "
-               "before the survey (default on; docs/survey.md \"Levelling a panorama\")")
+               "panorama and mono captures read by the segmenter: estimate the photo's (or the turning rig's) tilt "
+               "from its lines and level it before the survey (default on; docs/survey.md \"Levelling a panorama\")")
       ->capture_default_str();
   app.add_flag("--segment-turned", options.segment_wide_views,
                "panorama captures: segment each tall view through three square views turned 40° up, level and "

@@ -59,6 +59,31 @@ double YawOf(const Vec3& d) { return std::atan2(-d.x(), d.y()); }
 // Wraps an angle to (−π, π].
 double WrapPi(double a) { return std::remainder(a, 2 * kPi); }
 
+// The line segments of one view (8-bit grey) as planes through the centre,
+// appended to `out`; with a finite `half_sector_rad`, only those whose
+// midpoint's yaw lies within it of the view's.
+void ViewSegments(const cv::Mat& grey, const PanoView& view, const LevelOptions& options, double half_sector_rad,
+                  std::vector<Segment>& out) {
+  const cv::Ptr<cv::LineSegmentDetector> lsd = cv::createLineSegmentDetector(cv::LSD_REFINE_STD);
+  const double min_length_rad = DegToRad(options.min_segment_deg);
+  const double max_normal_z = std::sin(DegToRad(options.max_tilt_deg));
+  std::vector<cv::Vec4f> lines;
+  lsd->detect(grey, lines);
+  const double view_yaw = DegToRad(view.yaw_deg);
+  for (const cv::Vec4f& l : lines) {
+    const Vec3 r1 = view.RayInWorld(Vec2(l[0], l[1])).normalized();
+    const Vec3 r2 = view.RayInWorld(Vec2(l[2], l[3])).normalized();
+    const Vec3 cross = r1.cross(r2);
+    const double length_rad = std::atan2(cross.norm(), r1.dot(r2));
+    if (length_rad < min_length_rad) continue;
+    const Vec3 normal = cross.normalized();
+    const bool vertical = std::abs(normal.z()) <= max_normal_z;  // Its plane passes near the frame's up.
+    const Vec3 midpoint = (r1 + r2).normalized();
+    if (std::abs(WrapPi(YawOf(midpoint) - view_yaw)) > half_sector_rad) continue;  // Another view's.
+    out.push_back({.normal = normal, .midpoint = midpoint, .length_rad = length_rad, .vertical = vertical});
+  }
+}
+
 // Line segments of every view, as planes through the centre, each kept by
 // the one view whose yaw sector holds its midpoint.
 std::vector<Segment> DetectSegments(const cv::Mat& grey, const LevelOptions& options) {
@@ -77,27 +102,9 @@ std::vector<Segment> DetectSegments(const cv::Mat& grey, const LevelOptions& opt
     views.insert(views.end(), turn.begin(), turn.end());
   }
   const Image pano = AsImage(grey);
-  const cv::Ptr<cv::LineSegmentDetector> lsd = cv::createLineSegmentDetector(cv::LSD_REFINE_STD);
-  const double min_length_rad = DegToRad(options.min_segment_deg);
-  const double max_normal_z = std::sin(DegToRad(options.max_tilt_deg));
   std::vector<Segment> segments;
   for (const PanoView& view : views) {
-    const cv::Mat image = AsMat(RenderPanoView(pano, view));
-    std::vector<cv::Vec4f> lines;
-    lsd->detect(image, lines);
-    const double view_yaw = DegToRad(view.yaw_deg);
-    for (const cv::Vec4f& l : lines) {
-      const Vec3 r1 = view.RayInWorld(Vec2(l[0], l[1])).normalized();
-      const Vec3 r2 = view.RayInWorld(Vec2(l[2], l[3])).normalized();
-      const Vec3 cross = r1.cross(r2);
-      const double length_rad = std::atan2(cross.norm(), r1.dot(r2));
-      if (length_rad < min_length_rad) continue;
-      const Vec3 normal = cross.normalized();
-      const bool vertical = std::abs(normal.z()) <= max_normal_z;  // Its plane passes near the frame's up.
-      const Vec3 midpoint = (r1 + r2).normalized();
-      if (std::abs(WrapPi(YawOf(midpoint) - view_yaw)) > DegToRad(0.5 * sector_deg)) continue;  // Another view's.
-      segments.push_back({.normal = normal, .midpoint = midpoint, .length_rad = length_rad, .vertical = vertical});
-    }
+    ViewSegments(AsMat(RenderPanoView(pano, view)), view, options, DegToRad(0.5 * sector_deg), segments);
   }
   return segments;
 }
@@ -284,6 +291,8 @@ double BootstrapSigma(const std::vector<Segment>& segments, const std::vector<in
   return std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(covariance).eigenvalues()(1));
 }
 
+PanoTilt TiltFromSegments(const std::vector<Segment>& segments, const LevelOptions& options);
+
 }  // namespace
 
 void LevelOptions::Check() const {
@@ -322,7 +331,30 @@ PanoTilt EstimatePanoTilt(const Image& equirect, const LevelOptions& options) {
   cv::Mat grey = AsMat(equirect);
   if (grey.channels() == 3) cv::cvtColor(grey, grey, cv::COLOR_BGR2GRAY);
 
-  const std::vector<Segment> segments = DetectSegments(grey, options);
+  return TiltFromSegments(DetectSegments(grey, options), options);
+}
+
+PanoTilt EstimateViewsTilt(const std::vector<Image>& views, const std::vector<PanoView>& geometry,
+                           const LevelOptions& options) {
+  options.Check();
+  CheckArgument(!views.empty() && views.size() == geometry.size(),
+                fmt::format("EstimateViewsTilt: {} views for {} view geometries", views.size(), geometry.size()));
+  std::vector<Segment> segments;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    CheckArgument(views[i].type() == PixelType::kU8 && (views[i].channels() == 1 || views[i].channels() == 3) &&
+                      views[i].width() == geometry[i].camera.width_px &&
+                      views[i].height() == geometry[i].camera.height_px,
+                  fmt::format("EstimateViewsTilt: view {} must be 8-bit grey or BGR of its camera's size", i));
+    cv::Mat grey = AsMat(views[i]);
+    if (grey.channels() == 3) cv::cvtColor(grey, grey, cv::COLOR_BGR2GRAY);
+    ViewSegments(grey, geometry[i], options, kPi, segments);
+  }
+  return TiltFromSegments(segments, options);
+}
+
+namespace {
+
+PanoTilt TiltFromSegments(const std::vector<Segment>& segments, const LevelOptions& options) {
   std::vector<int> vertical, all;
   for (std::size_t i = 0; i < segments.size(); ++i) {
     all.push_back(static_cast<int>(i));
@@ -368,6 +400,8 @@ PanoTilt EstimatePanoTilt(const Image& equirect, const LevelOptions& options) {
   return tilt;
 }
 
+}  // namespace
+
 Mat3 LevelFromPano(const Vec3& up_in_pano) {
   const Vec3 axis = up_in_pano.cross(Vec3::UnitZ());
   const double angle = std::atan2(axis.norm(), up_in_pano.dot(Vec3::UnitZ()));
@@ -397,6 +431,34 @@ Image LevelPanorama(const Image& equirect, const PanoTilt& tilt) {
   cv::Mat padded, out;
   cv::copyMakeBorder(pano, padded, 0, 0, kSeamPad, kSeamPad, cv::BORDER_WRAP);
   cv::remap(padded, out, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  return AsImage(out);
+}
+
+Image LevelView(const Image& view, const PanoView& geometry, const PanoTilt& tilt) {
+  CheckArgument(!view.empty() && view.width() == geometry.camera.width_px && view.height() == geometry.camera.height_px,
+                fmt::format("LevelView: the view is {}x{}, its camera {}x{}", view.width(), view.height(),
+                            geometry.camera.width_px, geometry.camera.height_px));
+  const cv::Mat image = AsMat(view);
+  if (!tilt.found) return AsImage(image.clone());
+  // A level view's pixel → its ray in the level frame → the rig's frame →
+  // the camera that took the view, which saw it at the pixel sampled.
+  const Mat3 rig_from_level = LevelFromPano(tilt.up_in_pano).transpose();
+  const Mat3 world_from_camera = geometry.WorldFromCamera();
+  const Mat3 camera_from_level = world_from_camera.transpose() * rig_from_level;
+  const PinholeCamera& cam = geometry.camera;
+  cv::Mat map_x(image.rows, image.cols, CV_32F), map_y(image.rows, image.cols, CV_32F);
+  for (int v = 0; v < image.rows; ++v) {
+    float* mx = map_x.ptr<float>(v);
+    float* my = map_y.ptr<float>(v);
+    for (int u = 0; u < image.cols; ++u) {
+      const Vec3 ray = camera_from_level * geometry.RayInWorld(Vec2(u, v));
+      const bool ahead = ray.z() > 1e-9;
+      mx[u] = ahead ? static_cast<float>(cam.fx * ray.x() / ray.z() + cam.cx) : -1.0f;
+      my[u] = ahead ? static_cast<float>(cam.fy * ray.y() / ray.z() + cam.cy) : -1.0f;
+    }
+  }
+  cv::Mat out;
+  cv::remap(image, out, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
   return AsImage(out);
 }
 

@@ -32,9 +32,11 @@
 // −360°·(u + 0.5)/W).
 
 #include <string>
+#include <vector>
 
 #include "asbuilt/geometry/rig.h"
 #include "asbuilt/imageio/image.h"
+#include "asbuilt/pano/perspective.h"
 
 namespace asbuilt {
 
@@ -93,6 +95,22 @@ PanoTilt EstimatePanoTilt(const Image& equirect, const LevelOptions& options = {
 // is 0) gives an unchanged copy. Throws InvalidArgument for an empty image,
 // one not 2:1 or a non-unit up_in_pano.
 Image LevelPanorama(const Image& equirect, const PanoTilt& tilt);
+
+// The tilt of a rig of perspective views taken from one spot (a mono
+// capture: one camera turning in place, its views said to be level), from
+// the same lines in all of them: each view's segments are turned into the
+// rig's frame by its geometry (yaw, camera), and the world's up is found
+// there as for a panorama (a tripod whose axis leans tilts every view
+// alike). Views must be 8-bit grey or BGR, one geometry each, of its
+// camera's size; throws InvalidArgument otherwise. found is false, as for a
+// panorama, with too few vertical lines.
+PanoTilt EstimateViewsTilt(const std::vector<Image>& views, const std::vector<PanoView>& geometry,
+                           const LevelOptions& options = {});
+
+// One view of such a rig resampled as the level view of the same yaw and
+// camera would see it (bilinear; pixels that fall outside take the nearest
+// edge's). A tilt not found gives an unchanged copy.
+Image LevelView(const Image& view, const PanoView& geometry, const PanoTilt& tilt);
 
 // The rotation LevelPanorama applies: level_from_pano · up_in_pano = +Z.
 Mat3 LevelFromPano(const Vec3& up_in_pano);

@@ -144,6 +144,27 @@ TEST(EstimatePanoTilt, VerticalLinesAloneRecoverAKnownTiltToo) {
   EXPECT_EQ(tilt.lines_used, tilt.vertical_lines);
 }
 
+// A tripod whose axis leans: eight 640×480 views turned 45° apart, each
+// said to be level, all tilted alike. Their lines give the lean, and each
+// view resampled level gives none.
+TEST(EstimateViewsTilt, RecoversATurningRigsLeanAndLevelViewRemovesIt) {
+  const Mat3 world_from_rig = Tilted(1.5, 70.0);
+  const Vec3 truth_up = world_from_rig.transpose() * Vec3::UnitZ();
+  const Image pano = RenderRoom(world_from_rig, 2048);
+  const std::vector<PanoView> geometry = TurnInPlaceViews({.views = 8, .yaw_step_deg = 45.0});
+  std::vector<Image> views, levelled;
+  for (const PanoView& g : geometry) views.push_back(RenderPanoView(pano, g));
+  const PanoTilt tilt = EstimateViewsTilt(views, geometry);
+  ASSERT_TRUE(tilt.found) << tilt.BriefReport();
+  EXPECT_LT(AngleDeg(tilt.up_in_pano, truth_up), 0.1) << tilt.BriefReport();
+  for (std::size_t i = 0; i < views.size(); ++i) levelled.push_back(LevelView(views[i], geometry[i], tilt));
+  const PanoTilt after = EstimateViewsTilt(levelled, geometry);
+  ASSERT_TRUE(after.found) << after.BriefReport();
+  EXPECT_LT(after.tilt_deg, 0.1) << after.BriefReport();
+  EXPECT_THROW(EstimateViewsTilt(views, {geometry.front()}), InvalidArgument);
+  EXPECT_THROW(LevelView(views.front(), PanoView{.camera = {.width_px = 320}}, tilt), InvalidArgument);
+}
+
 TEST(LevelPanorama, UndoesAKnownTiltWithoutTurningTheYaw) {
   const Mat3 world_from_pano = Tilted(2.0, 60.0);
   const PanoTilt truth{.up_in_pano = world_from_pano.transpose() * Vec3::UnitZ(), .found = true};

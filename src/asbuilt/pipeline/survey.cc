@@ -219,7 +219,7 @@ struct Survey {
   Clock::time_point start = Clock::now();
   StageTimes times;
   Capture capture;
-  std::optional<MonoViews> views;  // A panorama's level views.
+  std::optional<MonoViews> views;  // A panorama's level views, or a mono capture's levelled ones.
   cv::Mat equirect;                // With pano_layout: the panorama (8-bit BGR) and its views.
   std::vector<PanoView> pano_views;
   std::pair<int, int> pano_size_px{0, 0};  // The panorama's width and height.
@@ -308,6 +308,42 @@ void LevelStage(Survey& s, Image& equirect) {
   s.times.Add("level", Since(t));
 }
 
+// A mono capture read by the segmenter: its turning rig's tilt from the
+// lines of all its views, and each view resampled level (kept in memory, as
+// a panorama's are) when the rig leans enough to matter.
+void LevelMonoStage(Survey& s) {
+  const SurveyOptions& o = s.options;
+  if (!o.level_panorama || o.labels_dir || o.use_capture_labels) return;
+  for (const CaptureFrame& f : s.capture.frames) {
+    if (f.pitch_deg != 0) return;  // Refused by the frame loop, which says why.
+  }
+  const auto t = Clock::now();
+  SurveySummary& summary = s.summary();
+  const PinholeCamera camera = s.capture.camera.Pinhole();
+  std::vector<Image> images;
+  std::vector<PanoView> geometry;
+  for (std::size_t i = 0; i < s.capture.frames.size(); ++i) {
+    const CaptureFrame& f = s.capture.frames[i];
+    images.push_back(AsImage(ReadColourImage(s.capture.Resolve(f.left), fmt::format("frames[{}].image", i))));
+    geometry.push_back({.camera = camera, .yaw_deg = f.yaw_deg});
+  }
+  summary.panorama_tilt = EstimateViewsTilt(images, geometry, o.level);
+  const PanoTilt& tilt = *summary.panorama_tilt;
+  if (tilt.found && tilt.tilt_deg >= o.min_level_tilt_deg) {
+    s.views = MonoViews{.kind = summary.capture_kind, .camera = camera, .frames = s.capture.frames};
+    for (std::size_t i = 0; i < images.size(); ++i) {
+      s.views->images.push_back(AsMat(LevelView(images[i], geometry[i], tilt)));
+    }
+    summary.panorama_levelled = true;
+    summary.notes.push_back(fmt::format("the views were levelled before the survey: the rig {}", tilt.BriefReport()));
+  } else if (!tilt.found) {
+    summary.notes.push_back(
+        fmt::format("the views' tilt could not be estimated ({}): surveyed as level", tilt.BriefReport()));
+  }
+  spdlog::info("survey: mono rig {}", tilt.BriefReport());
+  s.times.Add("level", Since(t));
+}
+
 // capture.json, the truth plan, and a panorama's level views (in memory).
 void ReadCaptureStage(Survey& s) {
   const auto t = Clock::now();
@@ -332,6 +368,8 @@ void ReadCaptureStage(Survey& s) {
                                  .position_m = pano.position_m});
       s.views->images.push_back(AsMat(RenderPanoView(equirect, views[i])));
     }
+  } else if (s.capture.kind == CaptureKind::kMono) {
+    LevelMonoStage(s);
   }
   s.summary().frames = static_cast<int>(s.frames().size());
   s.times.Add("read capture", Since(t));
@@ -351,7 +389,9 @@ void LabelSourceStage(Survey& s) {
     const cv::Size image = s.views ? cv::Size(s.views->camera.width_px, s.views->camera.height_px)
                                    : cv::Size(s.capture.camera.width, s.capture.camera.height);
     std::optional<PinholeCamera> wide;
-    if (s.views && options.segment_wide_views) wide = s.views->camera;
+    if (options.segment_wide_views && (s.views || s.capture.kind == CaptureKind::kMono)) {
+      wide = s.views ? s.views->camera : s.capture.camera.Pinhole();
+    }
     const fs::path model = options.model_path.empty() ? DefaultModelPath() : options.model_path;
     s.labels = std::make_unique<SegmenterLabels>(model, options.segment_scale_px, image, wide);
     s.times.Add("load model", Since(t));
@@ -360,7 +400,7 @@ void LabelSourceStage(Survey& s) {
           "the segmentation model has seen rendered rooms only; for a photo of a real room `--model real` reads it "
           "far better (models/MODEL_CARD.md)");
     }
-    if (s.views && options.pano_layout) {
+    if (s.capture.panorama && options.pano_layout) {
       auto layout = std::make_unique<PanoLayoutLabels>(std::move(s.labels), s.equirect, s.pano_views, s.views->images,
                                                        s.capture.panorama->position_m.z(), options.layout);
       s.times.Add("segment + layout", layout->seconds());
@@ -568,8 +608,14 @@ ReviewInput SurveyReviewInput(const Survey& s) {
   const PinholeCamera camera = s.capture.camera.Pinhole();
   for (std::size_t i = 0; i < s.capture.frames.size(); ++i) {
     const CaptureFrame& f = s.capture.frames[i];
+    fs::path image = s.capture.Resolve(f.left);
+    if (s.views) {  // Levelled: the review draws on the views as surveyed.
+      image = s.out_dir / "review" / "views" / fmt::format("{:03d}.jpg", f.index);
+      fs::create_directories(image.parent_path());
+      WriteFileAtomic(image, EncodeJpeg(s.views->images[i], camera.width_px));
+    }
     in.images.push_back({.frame = f.index,
-                         .image = s.capture.Resolve(f.left),
+                         .image = image,
                          .width_px = camera.width_px,
                          .height_px = camera.height_px,
                          .camera = camera,

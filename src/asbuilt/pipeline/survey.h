@@ -85,10 +85,11 @@ struct SurveyOptions {
   // labels_dir are used as they are either way.
   bool pano_layout = false;
   PanoLayoutOptions layout;
-  // Panorama captures read by the segmenter: estimate the photo's tilt from
-  // its own lines and resample it level first (pano/level.h) when it leans
-  // at least min_level_tilt_deg. Label images given (labels_dir) belong to
-  // the panorama as it is, so it is then left as it is.
+  // Panorama and mono captures read by the segmenter: estimate the photo's
+  // (or the turning rig's) tilt from its own lines and resample it level
+  // first (pano/level.h) when it leans at least min_level_tilt_deg. Label
+  // images given (labels_dir) belong to the images as they are, so they are
+  // then left as they are.
   bool level_panorama = true;
   double min_level_tilt_deg = 0.1;
   LevelOptions level;
