@@ -275,6 +275,30 @@ void MoveWallFeetBehindSkirting(double depth_m, const Eigen::Isometry3d& world_f
   }
 }
 
+// A one-camera view's column with no floor contact (a near wall: its foot
+// lies below the view) that runs from its ceiling contact `ceiling` (edge at
+// row ceiling_edge) down into a door or window: the opening's top edge is on
+// the wall, at the ceiling contact's depth (PendingContacts::CeilingBoundary).
+// `rot` turns camera vectors into the world.
+void AddOpeningHeadBelowCeiling(const cv::Mat& labels, int u, double ceiling_edge, int run, const ContactRay& ceiling,
+                                const PinholeCamera& cam, const Mat3& rot, PendingContacts* pending) {
+  auto label_at = [&](int v) { return labels.ptr<unsigned char>(v)[u]; };
+  int v = static_cast<int>(ceiling_edge + 0.5);
+  while (v < labels.rows && label_at(v) == kLabelWall) ++v;
+  const unsigned char below = v < labels.rows ? label_at(v) : 0;
+  if (below != kLabelDoor && below != kLabelWindow) return;
+  for (int k = 0; k < run; ++k) {
+    if (v + k >= labels.rows || label_at(v + k) != below) return;
+  }
+  pending->ceiling_boundaries.push_back({.edge = {.label = static_cast<LabelClass>(below),
+                                                  .origin_m = ceiling.origin_m,
+                                                  .direction = rot * UnprojectToCamera(cam, Vec2(u, v - 0.5), 1.0),
+                                                  .fy_px = cam.fy,
+                                                  .frame = ceiling.frame},
+                                         .wall_rise = ceiling.direction.z(),
+                                         .source = PointSource::kContact});
+}
+
 // FindFrameContacts (contacts.h), before the per-column wall disparity.
 // Label edges lie halfway between pixel centres. `result->covered` (zeros
 // on entry) receives each contacted column's wall run, from the contact
@@ -464,25 +488,8 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
     for (int x = u; x < std::min(cols, u + options.contact_col_step_px); ++x) {
       result->ceiling_rise[x] = static_cast<float>(r.direction.z());
     }
-    // A one-camera view's column with no floor contact (a near wall: its foot
-    // lies below the view) that runs from the ceiling edge down into a door
-    // or window: the opening's top edge is on the wall, at the ceiling
-    // contact's depth (PendingContacts::CeilingBoundary).
     if (!floor_point && frame.labels_right.empty()) {
-      int v = static_cast<int>(ceiling_edge + 0.5);
-      while (v < rows && label_at(v, u) == kLabelWall) ++v;
-      const unsigned char below = v < rows ? label_at(v, u) : 0;
-      if ((below == kLabelDoor || below == kLabelWindow) &&
-          runs(
-              v, 1, run, [below](unsigned char l) { return l == below; }, u)) {
-        result->pending.ceiling_boundaries.push_back({.edge = {.label = static_cast<LabelClass>(below),
-                                                               .origin_m = origin,
-                                                               .direction = ray(u, v - 0.5),
-                                                               .fy_px = cam.fy,
-                                                               .frame = frame.index},
-                                                      .wall_rise = r.direction.z(),
-                                                      .source = PointSource::kContact});
-      }
+      AddOpeningHeadBelowCeiling(labels, u, ceiling_edge, run, r, cam, rot, &result->pending);
     }
     result->pending.ceiling_rays.push_back(r);
   }
