@@ -686,7 +686,10 @@ nlohmann::json VerdictEvidenceJson(const PlanVerdict& v) {
                            {"seen", w.evidence.seen},
                            {"agreement", number(w.evidence.agreement)},
                            {"floor_ceiling", number(w.evidence.floor_ceiling)},
-                           {"median_error", number(w.evidence.median_error)}});
+                           {"median_error", number(w.evidence.median_error)},
+                           {"hidden_floor", w.evidence.hidden_floor},
+                           {"offset_sigma_m", number(w.evidence.offset_sigma_m)},
+                           {"run_on_m", w.evidence.run_on_m}});
   }
   return js;
 }

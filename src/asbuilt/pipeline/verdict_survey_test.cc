@@ -184,6 +184,13 @@ TEST(Verdict, AWallHiddenByFurnitureIsNamed) {
   EXPECT_TRUE(Mentions(v, "furniture")) << Reasons(v);
   EXPECT_NE(v.walls[0].verdict, Verdict::kGood) << Reasons(v);  // The south wall, y = −2.
   EXPECT_FALSE(Mentions(v, "tilt")) << Reasons(v);              // The sideboard's top is no lean.
+  // summary.json carries each wall's evidence, the hidden floor edge among it.
+  const nlohmann::json summary =
+      nlohmann::json::parse(ReadFile(fs::temp_directory_path() / "asbuilt_verdict_furniture/out/summary.json"));
+  const nlohmann::json& south = summary.at("verdict_evidence").at("walls").at(0);
+  EXPECT_NEAR(south.at("hidden_floor").get<double>(), v.walls[0].evidence.hidden_floor, 1e-9) << south.dump();
+  EXPECT_GT(south.at("hidden_floor").get<double>(), 0.5) << south.dump();
+  EXPECT_TRUE(south.contains("offset_sigma_m") && south.contains("run_on_m")) << south.dump();
 }
 
 }  // namespace verdict_room
