@@ -293,25 +293,33 @@ void AddVertexPoints(const FramePass& pass) {
   }
 }
 
+// The median of a per-column figure over the columns u0 + dir·k, k in
+// [0, to], where it is finite; NaN if nowhere.
+double SideMedian(const std::vector<float>& per_column, int u0, int dir, int to) {
+  std::vector<float> vals;
+  for (int k = 0; k <= to; ++k) {
+    const int x = u0 + dir * k;
+    if (x < 0 || x >= static_cast<int>(per_column.size())) break;
+    if (std::isfinite(per_column[x])) vals.push_back(per_column[x]);
+  }
+  if (vals.empty()) return NAN;
+  std::nth_element(vals.begin(), vals.begin() + vals.size() / 2, vals.end());
+  return vals[vals.size() / 2];
+}
+
 // A one-camera view's opening edge with no floor contact beside it: it
 // waits for the ceiling's height, at the depth of the wall's ceiling edge in
 // the columns u0 + dir·k, k in [0, to] (PendingContacts::CeilingBoundary).
 void AddCeilingBoundary(const FramePass& pass, unsigned char label, const Vec2& px, int u0, int dir, int to) {
-  std::vector<float> rises;
-  for (int k = 0; k <= to; ++k) {
-    const int x = u0 + dir * k;
-    if (x < 0 || x >= static_cast<int>(pass.ceiling_rise.size())) break;
-    if (std::isfinite(pass.ceiling_rise[x])) rises.push_back(pass.ceiling_rise[x]);
-  }
-  if (rises.empty()) return;
-  std::nth_element(rises.begin(), rises.begin() + rises.size() / 2, rises.end());
+  const double rise = SideMedian(pass.ceiling_rise, u0, dir, to);
+  if (!std::isfinite(rise)) return;
   const Vec3 direction = pass.world_from_cam.linear() * UnprojectToCamera(pass.frame.camera, px, 1.0);
   pass.result->contacts.ceiling_boundaries.push_back({.edge = {.label = static_cast<LabelClass>(label),
                                                                .origin_m = pass.world_from_cam.translation(),
                                                                .direction = direction,
                                                                .fy_px = pass.frame.camera.fy,
                                                                .frame = pass.frame.index},
-                                                      .wall_rise = rises[rises.size() / 2]});
+                                                      .wall_rise = rise});
 }
 
 // Boundaries: where a door/window label meets the wall along a row, the
@@ -348,17 +356,7 @@ void AddBoundaryPoints(const FramePass& pass) {
   };
   // The contact disparity of the wall beside the edge: the median over the
   // contacted columns u0 + dir·k, k in [0, to]; NaN if none.
-  auto contact_side = [&](int u0, int dir, int to) {
-    std::vector<float> vals;
-    for (int k = 0; k <= to; ++k) {
-      const int x = u0 + dir * k;
-      if (x < 0 || x >= cols) break;
-      if (std::isfinite(pass.contact_disparity[x])) vals.push_back(pass.contact_disparity[x]);
-    }
-    if (vals.empty()) return static_cast<double>(NAN);
-    std::nth_element(vals.begin(), vals.begin() + vals.size() / 2, vals.end());
-    return static_cast<double>(vals[vals.size() / 2]);
-  };
+  auto contact_side = [&](int u0, int dir, int to) { return SideMedian(pass.contact_disparity, u0, dir, to); };
   auto run_of = [&](const unsigned char* row, int u0, int dir, unsigned char label, int n) {
     for (int k = 0; k < n; ++k) {
       const int x = u0 + dir * k;
