@@ -27,6 +27,8 @@ export function fail(message) { console.error("FAIL: " + message); process.exit(
 // Starts `asbuilt review OUT --no-open`; resolves with {child, url} (the first stdout line).
 export function startReview(asbuilt, out) {
   const child = spawn(asbuilt, ["review", out, "--no-open", "-q"], {stdio: ["ignore", "pipe", "inherit"]});
+  // A failed check exits at once: the server goes too (else ctest waits on its pipe).
+  process.on("exit", () => child.kill());
   return new Promise((resolve, reject) => {
     let text = "";
     const timer = setTimeout(() => reject(new Error("no address within 60 s")), 60000);

@@ -5,7 +5,8 @@
 // plan's numbers change, undoes, drags again, saves with Ctrl-S and checks
 // the written plan.json. Exit 77 (skip) without chromium.
 //
-// It also draws a window (w, drag a box) and checks plan.json has it.
+// It also draws a window (w, drag a box) and checks plan.json has it, and on
+// the panorama finds the box room's door with one click inside it (d, click).
 //
 //   node review_browser_test.mjs ASBUILT [SCREENSHOT.png]
 import {spawnSync} from "node:child_process";
@@ -66,6 +67,13 @@ function labelOfRay(ray) {
   if (!hit || hit[2] < 0 || hit[2] > H) return 0;
   if (Math.abs(hit[1] - Y1) < 1e-9 && hit[0] > -0.6 && hit[0] < 0.3 && hit[2] < 2.0) return 2;
   return 1;
+}
+// The panorama pixel of a world point (docs/formats.md), as labelOfRay's rays.
+function pixelOf(p) {
+  const d = [0, 1, 2].map(i => p[i] - CAM[i]);
+  const yaw = Math.atan2(-d[0], d[1]), elev = Math.atan2(d[2], Math.hypot(d[0], d[1]));
+  const u = ((-yaw / (2 * Math.PI)) * 1024 - 0.5 + 1024) % 1024;
+  return [u, (0.5 - elev / Math.PI) * 512 - 0.5];
 }
 function panoramaSurvey() {
   const dir = path.join(work, "pano");
@@ -180,12 +188,40 @@ async function checkSurvey(browser, name, out) {
     await page.keyboard.press("c");
     let expectedEdits = 4;
     if (name === "panorama") {
+      // One click inside the door (d, click): asbuilt finds its jambs and head
+      // in the photo. The survey found it: select it, Delete, then click.
+      await page.keyboard.press("0");
+      const doors = async () => (await page.evaluate(() => state.openings)).filter(o => o.kind === "door");
+      const surveyed = await doors();
+      if (surveyed.length !== 1) fail(`${name}: the survey found ${surveyed.length} doors, not the one`);
+      await page.locator(`.opening[data-id="${surveyed[0].id}"]`).first().click();
+      await page.keyboard.press("Delete");
+      await page.waitForFunction(() => document.querySelector("#rv-edits").textContent === "5", null, {timeout: 20000});
+      if ((await doors()).length !== 0) fail(`${name}: the survey's door was not deleted`);
+      const [du, dv] = pixelOf([-0.15, Y1, 1.0]);
+      const at = await page.evaluate(([u, v]) => {
+        const svg = document.querySelector("#rv-photo"), layer = document.querySelector("#rv-layer");
+        const pt = svg.createSVGPoint();
+        pt.x = u; pt.y = v;
+        const s = pt.matrixTransform(layer.getScreenCTM());
+        return [s.x, s.y];
+      }, [du, dv]);
+      await page.keyboard.press("Escape");  // Nothing selected: a click adds, not redraws.
+      await page.keyboard.press("d");
+      await page.mouse.click(at[0], at[1]);
+      await page.waitForFunction(() => document.querySelector("#rv-edits").textContent === "6", null, {timeout: 20000});
+      const found = await doors();
+      if (found.length !== 1) fail(`${name}: a click inside the door added no door`);
+      const door = found[found.length - 1];
+      const xs = [door.start_m[0], door.end_m[0]].sort((a, b) => a - b);
+      if (Math.abs(xs[0] + 0.6) > 0.05 || Math.abs(xs[1] - 0.3) > 0.05) fail(`${name}: the clicked door spans x ${xs}, not -0.6..0.3`);
+      await page.keyboard.press("c");
       // Straighten: select a corner, Ctrl-click the one two along, s: the corner between goes.
       const ids = await page.evaluate(() => state.corners.map(c => c.id));
       await page.locator(`circle.corner[data-id="${ids[0]}"]`).click();
       await page.locator(`circle.corner[data-id="${ids[2]}"]`).click({modifiers: ["Control"]});
       await page.keyboard.press("s");
-      await page.waitForFunction(() => document.querySelector("#rv-edits").textContent === "5", null, {timeout: 20000});
+      await page.waitForFunction(() => document.querySelector("#rv-edits").textContent === "7", null, {timeout: 20000});
       const left = await page.evaluate(() => state.corners.map(c => c.id));
       if (left.length !== ids.length - 1 || left.includes(ids[1])) fail(`${name}: straighten left corners ${left} of ${ids}`);
       // Trace: t, a click on each corner in turn, Enter: the same outline, every corner the person's.
@@ -196,10 +232,10 @@ async function checkSurvey(browser, name, out) {
       }
       if ((await page.locator("circle.trace-point").count()) !== left.length) fail(`${name}: trace drew no points`);
       await page.keyboard.press("Enter");
-      await page.waitForFunction(() => document.querySelector("#rv-edits").textContent === "6", null, {timeout: 20000});
+      await page.waitForFunction(() => document.querySelector("#rv-edits").textContent === "8", null, {timeout: 20000});
       const traced = await page.evaluate(() => state.corners.map(c => c.by));
       if (traced.length !== left.length || traced.some(by => by !== "user")) fail(`${name}: trace gave corners ${traced}`);
-      expectedEdits = 6;
+      expectedEdits = 8;
     }
     const saved = await area(page);
     await page.keyboard.press("?");

@@ -9,12 +9,14 @@
 #include <cmath>
 
 #include "asbuilt/formats/plan_file.h"
+#include "asbuilt/imageio/image_io.h"
 #include "asbuilt/pipeline/report.h"
 #include "asbuilt/pipeline/review_input.h"
 #include "asbuilt/plan/drawing.h"
 #include "asbuilt/plan/fit_plan.h"
 #include "asbuilt/plan/plan_wall_line.h"
 #include "asbuilt/plan/verdict.h"
+#include "asbuilt/review/opening_finder.h"
 #include "asbuilt/review/review_layout.h"
 #include "asbuilt/review/training_example.h"
 #include "asbuilt/review/view_geometry.h"
@@ -46,6 +48,15 @@ struct ReviewSession::Impl {
   nlohmann::json log = nlohmann::json::array();  // Every edit in order (corrections.json).
   double fit_seconds = 0.0;
   std::string no_walls_note;  // Set when the survey's own plan had no walls.
+  // Per image of input.images, read when an opening is first found by a click.
+  mutable std::vector<std::optional<ImageGradients>> gradients;
+
+  const ImageGradients& GradientsFor(const ReviewImage& image) const {
+    const auto i = static_cast<std::size_t>(&image - input.images.data());
+    if (gradients.size() != input.images.size()) gradients.assign(input.images.size(), std::nullopt);
+    if (!gradients.at(i)) gradients[i] = GradientsOf(ReadGrayImage(image.image, "review image"));
+    return *gradients[i];
+  }
 
   const ReviewImage& ImageOf(const nlohmann::json& edit) const {
     if (input.kind == "panorama") return input.images.front();
@@ -145,6 +156,7 @@ struct ReviewSession::Impl {
       return o;
     }
     const ReviewImage& image = ImageOf(edit);
+    if (!edit.contains("u0") && edit.contains("u")) return OpeningAtClick(edit, image, id);
     const double v_top = Number(edit, "v_top"), v_bottom = Number(edit, "v_bottom");
     const Vec2 p0 = PixelOf(edit, image, "u0", "v_top"), p1 = PixelOf(edit, image, "u1", "v_bottom");
     if (!(v_top < v_bottom))
@@ -172,6 +184,27 @@ struct ReviewSession::Impl {
       throw EditError(fmt::format("{}: head ({:.2f} m) and sill ({:.2f} m) leave no opening", op, o.top_m, o.bottom_m));
     }
     return o;
+  }
+
+  // An opening found around one click on it (review/opening_finder.h).
+  Opening OpeningAtClick(const nlohmann::json& edit, const ReviewImage& image, int id) const {
+    const std::string op = edit.value("op", "");
+    const Vec2 pixel = PixelOf(edit, image, "u", "v");
+    const OpeningKind kind = edit["kind"] == "window" ? OpeningKind::kWindow : OpeningKind::kDoor;
+    std::string why;
+    const std::optional<FoundOpening> found =
+        FindOpeningAt(GradientsFor(image), image, fit.plan, pixel, kind, CeilingM(), &why);
+    if (!found) {
+      throw EditError(fmt::format("{}: ({:.1f}, {:.1f}): {}; draw the {} as a box instead", op, pixel.x(), pixel.y(),
+                                  why, OpeningKindName(kind)));
+    }
+    return {.id = id,
+            .kind = kind,
+            .start_m = found->start_m,
+            .end_m = found->end_m,
+            .bottom_m = found->bottom_m,
+            .top_m = found->top_m,
+            .user = true};
   }
 
   // Where a new corner at xy goes in l's corners: of the places where the
