@@ -68,9 +68,10 @@ struct RoomResult {
   // Openings (doors and windows of the truth on the room's walls).
   int truth_openings = 0;
   int openings_right_start = 0, openings_right_end = 0;
-  int opening_edits = 0;   // add / move / delete edits.
-  int opening_clicks = 0;  // A box (add, move) is two clicks, a delete one.
-  int openings_done = -1;  // Opening edits until every opening is right; −1: not within the budget.
+  int opening_edits = 0;                   // add / move / delete edits.
+  int opening_clicks = 0;                  // A box (add, move) is two clicks, a delete one.
+  int openings_done = -1;                  // Opening edits until every opening is right; −1: not within the budget.
+  int clicks_tried = 0, clicks_right = 0;  // One-click adds, and those right at once.
 };
 
 // An opening of the state is right for a truth opening: the same kind, both
@@ -91,16 +92,20 @@ double Iou(const nlohmann::json& state, const Plan& truth) {
   return overlap ? overlap->Iou() : 0.0;
 }
 
-// The openings, after the corners: add a missing one (a box from its head on one side to
-// its sill on the other), else redraw a wrong one (the nearest of its kind
-// within 1 m), else delete a spurious one of the survey's; each truth
-// opening drawn once at most; until every opening is right, nothing is
-// left to do, or the budget (two edits an opening, and four) is spent.
-// Edits go through `edit` (false: refused), which keeps `state` current.
+// The openings, after the corners: add a missing one — with one click
+// inside it (the review finds its jambs, head and sill in the photo), or,
+// where that was tried or `one_click` is off, a box from its head on one
+// side to its sill on the other — else redraw a wrong one as a box (the
+// nearest of its kind within 1 m), else delete a spurious one of the
+// survey's or of a click's; each truth opening drawn as a box once at most;
+// until every opening is right, nothing is left to do, or the budget (three
+// edits an opening, and four) is spent. Edits go through `edit` (false:
+// refused), which keeps `state` current.
 void CorrectOpenings(const Plan& truth, int width, const std::function<Vec2(const Vec3&)>& pixel,
-                     const std::function<bool(nlohmann::json)>& edit, const nlohmann::json& state, RoomResult& r) {
+                     const std::function<bool(nlohmann::json)>& edit, const nlohmann::json& state, bool one_click,
+                     RoomResult& r) {
   r.truth_openings = static_cast<int>(truth.openings.size());
-  const int budget = 2 * r.truth_openings + 4;
+  const int budget = 3 * r.truth_openings + 4;
   auto count_right = [&] {
     int right = 0;
     for (const PlanOpening& t : truth.openings) {
@@ -112,7 +117,13 @@ void CorrectOpenings(const Plan& truth, int width, const std::function<Vec2(cons
   r.openings_right_start = count_right();
   // A truth opening drawn once is where the photo shows it: a person does
   // not draw it again (its ends can still be off where the walls are).
-  std::vector<bool> drawn(truth.openings.size(), false);
+  std::vector<bool> drawn(truth.openings.size(), false), clicked(truth.openings.size(), false);
+  std::vector<int> found_by_click;  // Ids of the openings one click added.
+  struct Candidate {
+    int clicks = 1;
+    nlohmann::json edit;
+    int draws = -1, clicks_on = -1;  // The truth opening it draws as a box, or finds by a click.
+  };
   while (r.opening_edits < budget) {
     std::vector<bool> used(state["openings"].size(), false);
     std::vector<int> wrong;
@@ -128,8 +139,7 @@ void CorrectOpenings(const Plan& truth, int width, const std::function<Vec2(cons
       r.openings_done = r.opening_edits;
       break;
     }
-    std::vector<std::pair<int, nlohmann::json>> candidates;  // (clicks, edit)
-    std::vector<int> drawing;                                // The truth opening each candidate draws, or −1.
+    std::vector<Candidate> candidates;
     for (int t : wrong) {
       if (drawn[t]) continue;
       const PlanOpening& o = truth.openings[t];
@@ -149,32 +159,57 @@ void CorrectOpenings(const Plan& truth, int width, const std::function<Vec2(cons
         const Vec2 c = 0.5 * (Vec2(p["start_m"][0], p["start_m"][1]) + Vec2(p["end_m"][0], p["end_m"][1]));
         if (!used[i] && p["kind"] == box["kind"] && (c - mid).norm() < best) best = (c - mid).norm(), nearest = int(i);
       }
+      if (nearest < 0 && one_click && !clicked[t]) {
+        const Vec2 c = pixel(Vec3(mid.x(), mid.y(), 0.5 * (sill + top)));
+        candidates.push_back({.clicks = 1,
+                              .edit = {{"op", "add_opening"},
+                                       {"kind", OpeningKindName(o.kind)},
+                                       {"u", std::clamp(c.x(), 0.0, width - 1.0)},
+                                       {"v", c.y()}},
+                              .clicks_on = t});
+        continue;
+      }
       box["op"] = nearest >= 0 ? "move_opening" : "add_opening";
       if (nearest >= 0) {
         box["id"] = state["openings"][nearest]["id"];
         used[nearest] = true;
       }
-      candidates.push_back({2, box});
-      drawing.push_back(t);
+      candidates.push_back({.clicks = 2, .edit = box, .draws = t});
     }
     for (std::size_t i = 0; i < used.size(); ++i) {
-      if (!used[i] && state["openings"][i]["by"] != "user") {
-        candidates.push_back({1, {{"op", "delete_opening"}, {"id", state["openings"][i]["id"]}}});
-        drawing.push_back(-1);
+      const int id = state["openings"][i]["id"];
+      if (!used[i] && (state["openings"][i]["by"] != "user" ||
+                       std::find(found_by_click.begin(), found_by_click.end(), id) != found_by_click.end())) {
+        candidates.push_back({.clicks = 1, .edit = {{"op", "delete_opening"}, {"id", id}}});
       }
     }
     bool done = false;
     for (std::size_t c = 0; c < candidates.size() && r.opening_edits < budget && !done; ++c) {
-      r.opening_clicks += candidates[c].first;
-      done = edit(candidates[c].second);
-      if (drawing[c] >= 0) drawn[drawing[c]] = true;
+      r.opening_clicks += candidates[c].clicks;
+      done = edit(candidates[c].edit);
+      if (candidates[c].draws >= 0) drawn[candidates[c].draws] = true;
+      if (candidates[c].clicks_on >= 0) {
+        clicked[candidates[c].clicks_on] = true;
+        ++r.clicks_tried;
+        if (done) {
+          found_by_click.push_back(state["openings"].back()["id"]);
+          r.clicks_right += OpeningRight(state["openings"].back(), truth.openings[candidates[c].clicks_on]);
+          if (std::getenv("ASBUILT_BENCH_REVIEW_TRACE")) {
+            const PlanOpening& t = truth.openings[candidates[c].clicks_on];
+            std::fprintf(stderr, "  one click %s: truth (%.2f,%.2f)-(%.2f,%.2f) %.2f m, %.2f–%.2f; found %s\n",
+                         OpeningKindName(t.kind), t.start.x(), t.start.y(), t.end.x(), t.end.y(), t.width,
+                         t.sill.value_or(0.0), t.sill.value_or(0.0) + t.height.value_or(2.0),
+                         state["openings"].back().dump().c_str());
+          }
+        }
+      }
     }
     if (!done) break;
   }
   r.openings_right_end = count_right();
 }
 
-RoomResult Correct(const fs::path& survey, const ZindPanorama& pano, std::mt19937& rng) {
+RoomResult Correct(const fs::path& survey, const ZindPanorama& pano, std::mt19937& rng, bool one_click) {
   RoomResult r{.pano = pano.pano_id, .label = pano.label};
   ReviewSession session = ReviewSession::Open(survey);
   nlohmann::json state = session.State();
@@ -320,13 +355,13 @@ RoomResult Correct(const fs::path& survey, const ZindPanorama& pano, std::mt1993
   r.end_iou = iou;
 
   counter = &r.opening_edits;
-  CorrectOpenings(truth, width, pixel, edit, state, r);
+  CorrectOpenings(truth, width, pixel, edit, state, one_click, r);
   return r;
 }
 
 // Surveys every panorama with `model` and corrects each survey.
 std::vector<RoomResult> RunModel(const fs::path& model, const std::vector<const ZindPanorama*>& panos,
-                                 const fs::path& out, bool reuse) {
+                                 const fs::path& out, bool reuse, bool one_click) {
   std::mt19937 rng(1);
   std::vector<RoomResult> rooms;
   for (const ZindPanorama* pano : panos) {
@@ -339,7 +374,7 @@ std::vector<RoomResult> RunModel(const fs::path& model, const std::vector<const 
         fs::remove_all(dir / "survey");
         RunSurvey(dir / "capture.json", dir / "survey", {.model_path = model, .write_report = false});
       }
-      r = Correct(dir / "survey", *pano, rng);
+      r = Correct(dir / "survey", *pano, rng, one_click);
     } catch (const std::exception& e) {
       r.error = e.what();
     }
@@ -351,10 +386,11 @@ std::vector<RoomResult> RunModel(const fs::path& model, const std::vector<const 
 }
 
 // The figures against the targets, then a row per room.
-std::string ModelSection(const std::string& title, const std::vector<RoomResult>& rooms) {
+std::string ModelSection(const std::string& title, const std::vector<RoomResult>& rooms,
+                         const std::vector<RoomResult>& boxes) {
   std::vector<double> noc, refits;
   int within = 0, total_edits = 0, opening_clicks = 0, truth_openings = 0, right_start = 0, right_end = 0,
-      openings_done = 0;
+      openings_done = 0, clicks_tried = 0, clicks_right = 0;
   std::string table =
       "| panorama | room | IoU start | IoU end | NoC@0.95 | edits (refused) | openings right, start → end | "
       "opening edits (clicks) | re-fit median ms |\n"
@@ -374,12 +410,20 @@ std::string ModelSection(const std::string& title, const std::vector<RoomResult>
     right_start += r.openings_right_start;
     right_end += r.openings_right_end;
     openings_done += r.openings_done >= 0;
+    clicks_tried += r.clicks_tried;
+    clicks_right += r.clicks_right;
     table += fmt::format("| {} | {} | {:.3f} | {:.3f} | {} | {} ({}) | {} → {} of {} | {} ({}) | {:.2f} |\n", r.pano,
                          r.label, r.start_iou, r.end_iou,
                          r.noc >= 0 ? std::to_string(r.noc) : fmt::format("> {}", kMaxEdits), r.edits, r.refused,
                          r.openings_right_start, r.openings_right_end, r.truth_openings,
                          r.openings_done >= 0 ? std::to_string(r.openings_done) : fmt::format("> {}", r.opening_edits),
                          r.opening_clicks, r.refit_ms.empty() ? 0.0 : asbuilt::bench::Median(r.refit_ms));
+  }
+  int box_corners = 0, box_openings = 0, box_done = 0;
+  for (const RoomResult& r : boxes) {
+    box_corners += r.edits;
+    box_openings += r.opening_clicks;
+    box_done += r.openings_done >= 0;
   }
   std::sort(refits.begin(), refits.end());
   const double p95 = refits.empty() ? 0.0 : refits[std::min(refits.size() - 1, std::size_t(0.95 * refits.size()))];
@@ -394,9 +438,13 @@ std::string ModelSection(const std::string& title, const std::vector<RoomResult>
              "| openings right (ends within {:.2f} m), before → after | {} → {} of {} | all |\n"
              "| rooms with every opening right | {}/{} | all |\n"
              "| clicks, all rooms: corners and ceiling + openings | {} + {} = {} | ≤ 40 % of 153 = 61 |\n"
+             "| one-click openings right at once | {} of {} | – |\n"
+             "| the same surveyor drawing every opening as a box (same run) | {} + {} = {} clicks, {}/{} rooms with "
+             "every opening right | – |\n"
              "| re-fit, p95 over {} edits | {:.2f} ms | ≤ 100 ms |\n\n",
              title, asbuilt::bench::Median(noc), mean, within, rooms.size(), kOpeningEndM, right_start, right_end,
              truth_openings, openings_done, rooms.size(), total_edits, opening_clicks, total_edits + opening_clicks,
+             clicks_right, clicks_tried, box_corners, box_openings, box_corners + box_openings, box_done, boxes.size(),
              refits.size(), p95) +
          table + "\n";
 }
@@ -435,13 +483,17 @@ int main(int argc, char** argv) {
       "{} edits counts as {}. The surveyor traces the outline afresh where fewer than half the corners are near the "
       "truth (a click per corner and Enter, counted as that many edits), else adds a missing corner, else straightens "
       "a run of spurious corners into "
-      "one wall, else deletes one, else moves the worst-placed one; then it adds each missing door or window (a box, "
-      "two clicks), redraws a wrong one, deletes a spurious one, until every opening has both ends within 0.15 m of "
+      "one wall, else deletes one, else moves the worst-placed one; then it adds each missing door or window with one "
+      "click inside it "
+      "(asbuilt finds its jambs, head and sill in the photo; where that comes out wrong, it redraws it as a box: two "
+      "more clicks), redraws a wrong one of the survey's as a box, deletes a spurious one, until every opening has "
+      "both ends within 0.15 m of "
       "the truth (bench/review/review_bench.cc).\n\n",
       Today(), panos.size(), kMaxEdits, kMaxEdits + 1);
   for (const auto& [title, model] : models) {
-    const std::vector<RoomResult> rooms = RunModel(model, panos, out, reuse);
-    md += ModelSection(fmt::format("From {} ({})", title, model.filename().string()), rooms);
+    const std::vector<RoomResult> rooms = RunModel(model, panos, out, reuse, /*one_click=*/true);
+    const std::vector<RoomResult> boxes = RunModel(model, panos, out, /*reuse=*/true, /*one_click=*/false);
+    md += ModelSection(fmt::format("From {} ({})", title, model.filename().string()), rooms, boxes);
   }
   WriteSection(results, md);
   return 0;
