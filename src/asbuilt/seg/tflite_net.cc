@@ -1,5 +1,6 @@
 #include "asbuilt/seg/tflite_net.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -203,6 +204,30 @@ torch::Tensor TfliteNetImpl::Requantize(const torch::Tensor& x, int tensor) cons
   return torch::clamp(x, (0.f - q.zero_point) * q.scale, (255.f - q.zero_point) * q.scale);
 }
 
+namespace {
+
+// The mean of x (B, C, H, W) over windows of `share` of its length along
+// `dim`, 2/3 of a window apart (the last one flush with the end), and per
+// row or column the average of the means of the windows that cover it:
+// (B, C, 1, W) or (B, C, H, 1).
+torch::Tensor WindowedMean(const torch::Tensor& x, int dim, double share) {
+  const int64_t length = x.size(dim);
+  const int64_t side = std::clamp<int64_t>(std::llround(share * length), 1, length);
+  const int64_t stride = std::max<int64_t>(1, side * 2 / 3);
+  std::vector<int64_t> shape = {x.size(0), x.size(1), 1, 1};
+  shape[dim] = length;
+  torch::Tensor sum = torch::zeros(shape, x.options()), count = torch::zeros({length}, x.options());
+  for (int64_t start = 0;; start += stride) {
+    const int64_t s = std::min(start, length - side);
+    sum.narrow(dim, s, side).add_(x.narrow(dim, s, side).mean({2, 3}, true));
+    count.narrow(0, s, side).add_(1);
+    if (s + side >= length) break;
+  }
+  return sum / (dim == 2 ? count.view({1, 1, length, 1}) : count.view({1, 1, 1, length}));
+}
+
+}  // namespace
+
 torch::Tensor TfliteNetImpl::forward(const torch::Tensor& rgb) {
   TORCH_CHECK(rgb.dim() == 4 && rgb.size(1) == 3, "TfliteNet: input must be (B, 3, H, W)");
   const double ratio_h = static_cast<double>(rgb.size(2)) / input_h_;
@@ -247,7 +272,12 @@ torch::Tensor TfliteNetImpl::forward(const torch::Tensor& rgb) {
         torch::Tensor y;
         if (o.filter_h == declared[1] && o.filter_w == declared[2]) {
           // A pool over the whole declared map is a global pool at any input size.
-          y = avg ? x.mean({2, 3}, true) : x.amax({2, 3}, true);
+          const int64_t in_long = std::max(rgb.size(2), rgb.size(3)), in_short = std::min(rgb.size(2), rgb.size(3));
+          if (avg && pool_window_px_ > 0 && in_long > in_short * 5 / 4 && pool_window_px_ < in_long) {
+            y = WindowedMean(x, rgb.size(2) > rgb.size(3) ? 2 : 3, static_cast<double>(pool_window_px_) / in_long);
+          } else {
+            y = avg ? x.mean({2, 3}, true) : x.amax({2, 3}, true);
+          }
         } else {
           torch::Tensor padded = x;
           if (o.padding_same) {

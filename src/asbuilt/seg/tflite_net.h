@@ -47,6 +47,11 @@ class TfliteNetImpl : public torch::nn::Module {
   int input_height_px() const { return input_h_; }
   const TfliteNetOptions& options() const { return options_; }
   void set_emulate_uint8(bool on) { options_.emulate_uint8 = on; }
+  // Global average pools of an input whose long side exceeds its short side
+  // by more than a quarter: over windows of `px` input pixels along the long
+  // side (the squares the network was trained on), each row or column taking
+  // the mean of the windows that cover it; 0 (the default): over the whole map.
+  void set_pool_window(int px) { pool_window_px_ = px; }
   // The graph without its filters and biases (they are this module's
   // parameters): what a checkpoint stores to rebuild the network.
   const TfliteModel& graph() const { return graph_; }
@@ -66,6 +71,7 @@ class TfliteNetImpl : public torch::nn::Module {
   std::vector<torch::Tensor> weights_, biases_;  // Per operator (undefined when none).
   int input_tensor_ = 0, logits_tensor_ = 0, last_op_ = 0;
   int input_w_ = 0, input_h_ = 0, num_classes_ = 0;
+  int pool_window_px_ = 0;
 };
 TORCH_MODULE(TfliteNet);
 

@@ -89,6 +89,36 @@ TEST(TfliteNet, ReproducesTheTeachersIousOnTheIndoorAdeImage) {
   }
 }
 
+// A 4:3 image read in one pass with the global pool over 480² squares
+// (set_pool_window) labels its pixels as reading the two squares one by one
+// and averaging their logits does, and closer than a plain pass.
+TEST(TfliteNet, AWideImageWithItsPoolOverSquaresReadsAsItsSquaresDo) {
+  SKIP_WITHOUT_TEACHERS();
+  TfliteNet net(ReadTflite(kDeeplab), TfliteNetOptions{.stop_before_final_resize = false});
+  net->eval();
+  torch::NoGradGuard no_grad;
+  cv::Mat bgr = cv::imread((kAdeSamples / "images/ADE_val_00001519.png").string(), cv::IMREAD_COLOR);
+  ASSERT_FALSE(bgr.empty());
+  cv::resize(bgr, bgr, {640, 480}, 0, 0, cv::INTER_LINEAR);
+  const torch::Tensor x = RgbTensor({bgr});
+  torch::Tensor squares = torch::zeros({1, net->num_classes(), 480, 640});
+  torch::Tensor count = torch::zeros({1, 1, 1, 640});
+  for (int64_t start : {0, 160}) {
+    squares.narrow(3, start, 480).add_(net->forward(x.narrow(3, start, 480)));
+    count.narrow(3, start, 480).add_(1);
+  }
+  const torch::Tensor by_squares = (squares / count).argmax(1);
+  const torch::Tensor plain = net->forward(x).argmax(1);
+  net->set_pool_window(480);
+  const torch::Tensor windowed = net->forward(x).argmax(1);
+  net->set_pool_window(0);
+  const double agree = windowed.eq(by_squares).to(torch::kFloat).mean().item<double>();
+  const double agree_plain = plain.eq(by_squares).to(torch::kFloat).mean().item<double>();
+  std::printf("agreement with the squares' reading: pool over squares %.4f, plain pass %.4f\n", agree, agree_plain);
+  EXPECT_GE(agree, 0.95);
+  EXPECT_GT(agree, agree_plain);
+}
+
 TEST(TfliteNet, AgreesWithMlperfsRecordedArgmaxWhereTheFixturesAgree) {
   SKIP_WITHOUT_TEACHERS();
   TfliteNet net = FaithfulNet(kDeeplab);
