@@ -88,7 +88,8 @@ void HomeLayoutOptions::Check() const {
   }
   if (!(min_room_m >= 1.0)) fail("min_room_m must be at least 1 m");
   if (!(wall_thickness_m > 0 && wall_thickness_m <= 0.5)) fail("wall_thickness_m must be in (0, 0.5]");
-  if (!(extra_door >= 0 && extra_door <= 1 && window >= 0 && window <= 1)) fail("chances must be in [0, 1]");
+  if (!(extra_door >= 0 && extra_door <= 1 && window >= 0 && window <= 1 && exterior_door >= 0 && exterior_door <= 1))
+    fail("chances must be in [0, 1]");
 }
 
 HomeLayout MakeHomeLayout(SceneRng& rng, const HomeLayoutOptions& o) {
@@ -129,7 +130,15 @@ HomeLayout MakeHomeLayout(SceneRng& rng, const HomeLayoutOptions& o) {
     const bool exterior[4] = {rc.y0 <= 1e-9, rc.x1 >= fx1 - 1e-9, rc.y1 >= fy1 - 1e-9, rc.x0 <= 1e-9};
     const double length[4] = {rc.W(), rc.H(), rc.W(), rc.H()};
     for (int k = 0; k < 4; ++k) {
-      if (!exterior[k] || length[k] < 2.0 || !rng.Chance(o.window)) continue;
+      if (!exterior[k]) continue;
+      // A door to the outside (front, patio or garage door; a door to a
+      // space nobody surveyed looks the same): a door of one room only.
+      if (o.exterior_door > 0 && length[k] >= 1.5 && rng.Chance(o.exterior_door)) {
+        const double w = rng.Chance(0.25) ? rng.Uniform(1.5, std::min(2.4, length[k] - 0.2)) : rng.Uniform(0.8, 1.0);
+        layout.openings.push_back({r, k, OpeningKind::kDoor, 0.1 + rng.Uniform(0, 1) * (length[k] - 0.2 - w), w});
+        continue;
+      }
+      if (length[k] < 2.0 || !rng.Chance(o.window)) continue;
       const double w = rng.Uniform(1.0, 1.4);
       layout.openings.push_back({r, k, OpeningKind::kWindow, 0.3 + rng.Uniform(0, 1) * (length[k] - 0.6 - w), w});
     }

@@ -24,6 +24,9 @@ struct HomeLayoutOptions {
   double wall_thickness_m = 0.10;  // Partitions.
   double extra_door = 0.3;         // Chance of a door where two rooms already connect another way.
   double window = 0.7;             // Chance of a window per exterior wall of 2 m or more.
+  // Chance of a door to the outside per exterior wall of 1.5 m or more (in
+  // place of its window; a quarter of them 1.5–2.4 m wide).
+  double exterior_door = 0.0;
   void Check() const;
 };
 
