@@ -5,8 +5,6 @@
 #include <utility>
 #include <vector>
 
-#include <fmt/format.h>
-
 #include "asbuilt/review/view_geometry.h"
 #include "asbuilt/util/error.h"
 
@@ -23,6 +21,7 @@ double Sample(const cv::Mat& m, const Vec2& p, bool wrap) {
   if (wrap) {
     x = std::fmod(x, static_cast<double>(m.cols));
     if (x < 0) x += m.cols;
+    if (x >= m.cols) x = 0.0;  // -1e-17 + cols rounds to cols.
   } else {
     x = std::clamp(x, 0.0, m.cols - 1.0);
   }
@@ -56,20 +55,6 @@ double LineStrength(const ImageGradients& g, const ReviewImage& image, const Vec
   const auto k = s.begin() + static_cast<std::ptrdiff_t>(quantile * (s.size() - 1));
   std::nth_element(s.begin(), k, s.end());
   return *k;
-}
-
-// The photo's mean grey along the 3D segment a→b (NaN out of view).
-double LineMean(const ImageGradients& g, const ReviewImage& image, const Vec3& a, const Vec3& b) {
-  const bool panorama = image.frame < 0;
-  double sum = 0.0;
-  int n = 0;
-  for (int k = 0; k < kSamplesPerLine; k += 2) {
-    const std::optional<Vec2> u = PixelOfPoint(image, a + (b - a) * ((k + 0.5) / kSamplesPerLine));
-    if (!u || !PixelInside(image, *u)) continue;
-    sum += Sample(g.grey, *u, panorama);
-    ++n;
-  }
-  return n > 0 ? sum / n : NAN;
 }
 
 double Median(std::vector<double> v) {
@@ -183,15 +168,17 @@ void OpeningSearchOptions::Check() const {
   if (!(min_door_m > 0 && max_door_m > min_door_m && min_window_m > 0 && max_window_m > min_window_m)) {
     throw InvalidArgument("opening search: width limits must be positive and increasing");
   }
-  if (!(reach_m > 0 && step_m > 0 && step_m < reach_m && quantile >= 0 && quantile <= 1 && min_contrast >= 1)) {
-    throw InvalidArgument("opening search: reach_m, step_m, quantile or min_contrast out of range");
+  if (!(reach_m > 0 && step_m > 0 && step_m < reach_m && quantile >= 0 && quantile <= 1 && min_contrast >= 1 &&
+        jamb_share > 0 && jamb_share <= 1 && window_band_m > 0 && door_head_max_m > door_head_min_m)) {
+    throw InvalidArgument(
+        "opening search: reach_m, step_m, quantile, min_contrast, jamb_share, window_band_m or the door head range "
+        "out of range");
   }
 }
 
 ImageGradients GradientsOf(const cv::Mat& grey) {
   CV_Assert(grey.type() == CV_8UC1);
-  ImageGradients g{cv::Mat(), cv::Mat(grey.size(), CV_32F, cv::Scalar(0)), cv::Mat(grey.size(), CV_32F, cv::Scalar(0))};
-  grey.convertTo(g.grey, CV_32F);
+  ImageGradients g{cv::Mat(grey.size(), CV_32F, cv::Scalar(0)), cv::Mat(grey.size(), CV_32F, cv::Scalar(0))};
   for (int y = 0; y < grey.rows; ++y) {
     const uchar* up = grey.ptr<uchar>(std::max(0, y - 1));
     const uchar* row = grey.ptr<uchar>(y);

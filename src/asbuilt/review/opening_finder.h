@@ -34,9 +34,9 @@ struct OpeningSearchOptions {
   void Check() const;
 };
 
-// The grey image and its gradients (CV_32F), computed once per image.
+// The grey image's gradients (CV_32F), computed once per image.
 struct ImageGradients {
-  cv::Mat grey, gx, gy;
+  cv::Mat gx, gy;
 };
 ImageGradients GradientsOf(const cv::Mat& grey);
 
