@@ -7,6 +7,7 @@
 
 #include "asbuilt/review/view_geometry.h"
 #include "asbuilt/util/error.h"
+#include "asbuilt/util/stats.h"
 
 namespace asbuilt {
 namespace {
@@ -57,13 +58,6 @@ double LineStrength(const ImageGradients& g, const ReviewImage& image, const Vec
   return *k;
 }
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto k = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), k, v.end());
-  return *k;
-}
-
 // A wall of the plan as a line on the floor.
 struct WallLine {
   Vec2 a, d;  // Start and unit direction.
@@ -90,7 +84,7 @@ Jambs FindJambs(const ImageGradients& g, const ReviewImage& image, const WallLin
     s.push_back(x);
     e.push_back(LineStrength(g, image, w.At(x, z0), w.At(x, z1), w.Dir(), o.quantile));
   }
-  const double floor = o.min_contrast * Median(e);
+  const double floor = o.min_contrast * UpperMedian(e);
   // Each side's strongest line; a jamb is the line nearest the click at
   // least `o.jamb_share` as strong (an edge beyond it, a cupboard's or a
   // corner's, is outside the opening).
@@ -129,7 +123,7 @@ std::optional<double> FindLevel(const ImageGradients& g, const ReviewImage& imag
     e.push_back(LineStrength(g, image, w.At(s0 + inset, x), w.At(s1 - inset, x), Vec3::UnitZ(), o.quantile));
   }
   const auto best = std::max_element(e.begin(), e.end());
-  if (best == e.end() || *best <= o.min_contrast * Median(e)) return std::nullopt;
+  if (best == e.end() || *best <= o.min_contrast * UpperMedian(e)) return std::nullopt;
   return z[static_cast<std::size_t>(best - e.begin())];
 }
 
@@ -150,7 +144,7 @@ std::pair<double, double> JambExtent(const ImageGradients& g, const ReviewImage&
   };
   std::vector<double> band;
   for (double z = z0; z <= z1 + 1e-9; z += kStepM) band.push_back(strength(z));
-  const double tau = 0.5 * Median(band);
+  const double tau = 0.5 * UpperMedian(band);
   auto walk = [&](double dir, double limit) {
     double last = z_click, z = z_click;
     while ((dir < 0 ? z - kStepM >= limit : z + kStepM <= limit) && std::abs(z - last) <= kGapM + 1e-9) {
