@@ -56,6 +56,7 @@ struct EdgePair {
   double a = 0, b = 0;
   double var_a = 0, var_b = 0;
   bool from_boundary_a = false, from_boundary_b = false;
+  int n_a = 0, n_b = 0;  // Label-edge points on each side.
 };
 
 // Edges of one opening from its label-edge (boundary) positions, sorted,
@@ -68,6 +69,8 @@ EdgePair BoundaryEdges(const std::vector<double>& ts, double a, double b, double
   const double mid = 0.5 * (a + b);
   const std::vector<double> lo(ts.begin(), std::lower_bound(ts.begin(), ts.end(), mid));
   const std::vector<double> hi(std::lower_bound(ts.begin(), ts.end(), mid), ts.end());
+  out.n_a = static_cast<int>(lo.size());
+  out.n_b = static_cast<int>(hi.size());
   auto median_var = [](const std::vector<double>& v) {
     const double m = SortedQuantile(v, 0.5);
     std::vector<double> dev;
@@ -98,6 +101,35 @@ struct OpeningPoint {
   double sigma;
   bool boundary;  // A label edge on the wall surface (PointSource::kBoundary).
 };
+
+// A handful of label edges inside an opening (an open leaf's outline, a
+// segmenter's stray edge) opposite a well-seen edge are not its edge: where
+// one side has under 1/8 of the other side's label-edge points and more
+// than max_own_beyond_label_edge of the opening's own points lie beyond its
+// edge (past the casing and 3 cm), that side takes the extent instead (and
+// a door's open leaf may then give its width).
+void DropContradictedLabelEdges(const std::vector<OpeningPoint>& group, double casing, double extent_a, double extent_b,
+                                double extent_var, const PlanOptions& o, EdgePair& edges) {
+  constexpr double kSlack = 0.03, kStray = 0.125;
+  int own = 0, beyond_a = 0, beyond_b = 0;
+  for (const OpeningPoint& g : group) {
+    if (g.boundary) continue;
+    ++own;
+    beyond_a += g.t < edges.a - casing - kSlack;
+    beyond_b += g.t > edges.b + casing + kSlack;
+  }
+  if (own == 0) return;
+  if (edges.from_boundary_a && beyond_a > o.max_own_beyond_label_edge * own && edges.n_a < kStray * edges.n_b) {
+    edges.a = extent_a;
+    edges.var_a = extent_var;
+    edges.from_boundary_a = false;
+  }
+  if (edges.from_boundary_b && beyond_b > o.max_own_beyond_label_edge * own && edges.n_b < kStray * edges.n_a) {
+    edges.b = extent_b;
+    edges.var_b = extent_var;
+    edges.from_boundary_b = false;
+  }
+}
 
 // Two openings on one wall closer than `opening_gap_m` (windows either side
 // of a 20 cm pier) fall into one group. The pier shows as a gap in the
@@ -448,6 +480,7 @@ std::optional<PlanOpening> MeasureOpening(const std::vector<OpeningPoint>& group
   // Label edges on the wall surface fix an edge better than the extent
   // of the opening's points (recessed glass, jambs, depth noise).
   EdgePair edges = BoundaryEdges(boundary_ts, extent_a, extent_b, extent_var, o);
+  DropContradictedLabelEdges(group, casing, extent_a, extent_b, extent_var, o, edges);
   CorrectFarLabelEdges(edges, w, d, o);
   spdlog::debug("plan: wall {} {} group: extent [{:.3f}, {:.3f}], edges [{:.3f}{}, {:.3f}{}], {} boundary points", wi,
                 door ? "door" : "window", extent_a, extent_b, edges.a, edges.from_boundary_a ? " (label edge)" : "",
@@ -547,10 +580,48 @@ void DropOverlappingOpenings(const std::vector<PlanWall>& walls, const std::vect
   openings.resize(kept);
 }
 
+// A segmenter may paint a band of door down a plain wall from the ceiling,
+// with the wall seen and labelled wall below it. A doorway shows no wall
+// low on its face (0.1–1 m up: its leaf, or the room beyond, or the floor
+// through it), so a door whose clear span shows mostly wall there is no
+// door. Bins of 10 cm across the span: a bin is wall where at least 3 wall
+// points at the face (within opening_band_m behind it, 0.1 m in front) and
+// more than twice its door points stand there; a floor contact of the wall
+// (the wall's base seen in that column: a panorama's wall points) counts 3.
+bool WallBelowDoor(const PlanOpening& op, const PlanWall& w, const WallPoints& wall_points,
+                   const std::vector<OpeningPoint>& door_points, const PlanOptions& o) {
+  constexpr double kBin = 0.1, kLow = 0.1, kHigh = 1.0, kFront = 0.1;
+  constexpr int kMinWallPoints = 3;
+  const double len = w.Length();
+  if (o.door_wall_below_share >= 1.0 || len < 1e-9) return false;
+  const Vec2 d = (w.end - w.start) / len, inward(-d.y(), d.x());
+  const double a = std::min(d.dot(op.start - w.start), d.dot(op.end - w.start));
+  const double b = std::max(d.dot(op.start - w.start), d.dot(op.end - w.start));
+  const int bins = static_cast<int>(std::floor((b - a) / kBin));
+  if (bins < 1) return false;
+  std::vector<int> wall(bins, 0), door(bins, 0);
+  auto bin_of = [&](double t) { return static_cast<int>(std::floor((t - a) / kBin)); };
+  for (const WallPoint& p : wall_points.points) {
+    const bool floor_contact = p.contact && p.z < kLow;
+    if (!floor_contact && (p.z < kLow || p.z > kHigh)) continue;
+    const double r = inward.dot(p.p - w.start);
+    if (r > kFront || r < -o.opening_band_m) continue;
+    const int i = bin_of(d.dot(p.p - w.start));
+    if (i >= 0 && i < bins) wall[i] += floor_contact ? kMinWallPoints : 1;
+  }
+  for (const OpeningPoint& p : door_points) {
+    const int i = bin_of(p.t);
+    if (p.z >= kLow && p.z <= kHigh && i >= 0 && i < bins) ++door[i];
+  }
+  int wall_bins = 0;
+  for (int i = 0; i < bins; ++i) wall_bins += wall[i] >= kMinWallPoints && wall[i] > 2 * door[i];
+  return wall_bins > o.door_wall_below_share * bins;
+}
+
 }  // namespace
 
 FoundOpenings FindOpenings(const std::vector<const ClassPoint*>& points, const std::vector<PlanWall>& walls,
-                           const Vec2& viewpoint, const PlanOptions& o) {
+                           const Vec2& viewpoint, const PlanOptions& o, const WallPoints* wall_points) {
   FoundOpenings out;
   const std::vector<std::vector<Vec2>> leaf_pts = LeafPointsPerWall(points, walls, o);
   std::vector<std::vector<OpeningPoint>> per_wall_kind = ProjectOntoWalls(points, walls, viewpoint, o);
@@ -561,6 +632,10 @@ FoundOpenings FindOpenings(const std::vector<const ClassPoint*>& points, const s
     const bool door = slot % 2 == 0;
     for (const std::vector<OpeningPoint>& group : GroupAlongWall(per_wall_kind[slot], o)) {
       if (auto op = MeasureOpening(group, wi, walls[wi], door, leaf_pts[wi], viewpoint, o, out.door_leaves)) {
+        if (door && wall_points && WallBelowDoor(*op, walls[wi], *wall_points, per_wall_kind[slot], o)) {
+          spdlog::debug("plan: wall {} door {:.2f} m wide dropped: wall seen low across it", wi, op->width);
+          continue;
+        }
         out.openings.push_back(*op);
         support.push_back(group.size());
       }

@@ -24,13 +24,15 @@
 // opening is the extent minus the casing (door_casing_m, window_casing_m) on
 // each side, clamped to the wall; narrower than min_opening_width_m: none.
 // Height and sill come from the z extent minus the casing; a door no taller
-// than min_door_height_m is none (door labels on the floor).
+// than min_door_height_m is none (door labels on the floor), and so is a
+// door with wall seen low across its span (door_wall_below_share).
 
 #include <vector>
 
 #include "asbuilt/formats/plan_file.h"
 #include "asbuilt/formats/points_file.h"
 #include "asbuilt/plan/plan_options.h"
+#include "asbuilt/plan/plan_wall_line.h"
 
 namespace asbuilt {
 
@@ -43,9 +45,11 @@ struct FoundOpenings {
 // left); `viewpoint`: in plan, m, where the walls were seen from (the ring's
 // viewpoint); it places points along their rays only when
 // PlanOptions::viewpoint_m is set, and always scales the ± of label edges
-// (label_edge_sigma_mrad). Deterministic for a given PlanOptions::seed.
+// (label_edge_sigma_mrad). `wall_points`, when given, drop a door whose
+// clear span shows wall low on the face (door_wall_below_share: a door label
+// painted down a plain wall). Deterministic for a given PlanOptions::seed.
 FoundOpenings FindOpenings(const std::vector<const ClassPoint*>& points, const std::vector<PlanWall>& walls,
-                           const Vec2& viewpoint, const PlanOptions& o);
+                           const Vec2& viewpoint, const PlanOptions& o, const WallPoints* wall_points = nullptr);
 
 }  // namespace asbuilt
 

@@ -111,6 +111,70 @@ TEST(FindOpenings, DoorLabelsNearTheFloorAreNoDoor) {
   }
 }
 
+// A door label painted down a plain wall from the ceiling to 1 m, with the
+// wall seen below it, is no door; a doorway with wall only beside it stays,
+// and so does the band when no wall points are given.
+TEST(FindOpenings, ADoorBandWithWallSeenBelowItIsNoDoor) {
+  const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}};
+  const PlanOptions o;
+  const auto wall_points = [](double x0, double x1, double z0, double z1) {
+    WallPoints wall;
+    for (double x = x0; x <= x1 + 1e-9; x += 0.02) {
+      for (double z = z0; z <= z1 + 1e-9; z += 0.05) {
+        wall.points.push_back(
+            {.p = {x, 0.0}, .z = z, .w = 1e4, .sigma = 0.01, .thr = 0.05, .vote = 1.0, .contact = false});
+      }
+    }
+    return wall;
+  };
+  std::vector<ClassPoint> band;
+  for (const ClassPoint& p : DoorPoints(1.0, 1.9, 2.4)) {
+    if (p.position_m.z() >= 1.0) band.push_back(p);
+  }
+  std::vector<const ClassPoint*> band_pointers;
+  for (const ClassPoint& p : band) band_pointers.push_back(&p);
+  const WallPoints below = wall_points(1.0, 1.9, 0.0, 0.95);
+  EXPECT_TRUE(FindOpenings(band_pointers, walls, Vec2(2, 1.5), o, &below).openings.empty());
+  EXPECT_EQ(FindOpenings(band_pointers, walls, Vec2(2, 1.5), o).openings.size(), 1u);
+  PlanOptions never = o;
+  never.door_wall_below_share = 1.0;
+  EXPECT_EQ(FindOpenings(band_pointers, walls, Vec2(2, 1.5), never, &below).openings.size(), 1u);
+
+  const std::vector<ClassPoint> doorway = DoorPoints(1.0, 1.9, 2.1);
+  std::vector<const ClassPoint*> doorway_pointers;
+  for (const ClassPoint& p : doorway) doorway_pointers.push_back(&p);
+  WallPoints beside = wall_points(0.0, 0.98, 0.0, 2.5);
+  const WallPoints right = wall_points(1.92, 4.0, 0.0, 2.5);
+  beside.points.insert(beside.points.end(), right.points.begin(), right.points.end());
+  EXPECT_EQ(FindOpenings(doorway_pointers, walls, Vec2(2, 1.5), o, &beside).openings.size(), 1u);
+}
+
+// A well-seen label edge on one side and a handful of stray ones inside the
+// door on the other (an open leaf's outline): the stray side is where the
+// door's points stop, not where the strays are.
+TEST(FindOpenings, AHandfulOfStrayLabelEdgesInsideADoorIsNotItsEdge) {
+  const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}};
+  std::vector<ClassPoint> points = DoorPoints(1.0, 1.9, 2.1);
+  for (int i = 0; i < 40; ++i) {
+    points.push_back({LabelClass::kDoor, Vec3(1.9, 0.0, 0.05 * i), 0.005, PointSource::kBoundary, 0});
+  }
+  for (int i = 0; i < 4; ++i) {
+    points.push_back({LabelClass::kDoor, Vec3(1.35, 0.0, 0.5 * i), 0.005, PointSource::kBoundary, 0});
+  }
+  std::vector<const ClassPoint*> pointers;
+  for (const ClassPoint& p : points) pointers.push_back(&p);
+  PlanOptions o;
+  o.viewpoint_m = Vec3(2, 1.5, 1.5);
+  const FoundOpenings found = FindOpenings(pointers, walls, Vec2(2, 1.5), o);
+  ASSERT_EQ(found.openings.size(), 1u);
+  EXPECT_NEAR(found.openings[0].start.x(), 1.0 + o.door_casing_m, 0.02);
+  EXPECT_NEAR(found.openings[0].end.x(), 1.9 - o.door_casing_m, 0.02);
+  o.max_own_beyond_label_edge = 1.0;  // Never: the strays' median is the edge.
+  const FoundOpenings trusting = FindOpenings(pointers, walls, Vec2(2, 1.5), o);
+  ASSERT_EQ(trusting.openings.size(), 1u);
+  EXPECT_NEAR(trusting.openings[0].start.x(), 1.35 + o.door_casing_m, 0.02);
+}
+
 // A window's frame read as door over part of the window: the opening with
 // fewer points goes; a door under a transom window stays with it.
 TEST(FindOpenings, ADoorAndAWindowFillingOneStretchOfWallAreOneOpening) {

@@ -43,14 +43,16 @@ struct PlanOptions {
   double opening_front_m = 0.03;  // …and within this in front: casings (not sill boards, not open leaves).
   double opening_gap_m = 0.25;    // Openings on one wall are split at gaps longer than this, m.
   int min_opening_points = 12;    // Fewer points: not an opening.
-  double min_opening_width_m = 0.25;  // Narrower clear openings are dropped, m.
-  double min_door_height_m = 0.5;     // Door labels reaching no higher than this are no door (a blob on the floor), m.
-  double edge_level = 0.01;           // Opening extent: 2 cm bins with at least this fraction of a full bin.
-  int min_boundary_points = 4;        // Label-edge points needed per side to measure a width from them.
-  double leaf_max_distance_m = 1.5;   // An open door's leaf: door points up to this far in front of the wall, m…
-  int leaf_min_points = 20;           // …at least this many, along one line (its width gives the door's).
-  double leaf_edge_sigma_m = 0.08;    // 1σ of a door edge placed one leaf width from the seen one, m.
-  double extent_edge_sigma_m = 0.06;  // 1σ of an opening edge where its points stop (no label edge there), m.
+  double min_opening_width_m = 0.25;   // Narrower clear openings are dropped, m.
+  double min_door_height_m = 0.5;      // Door labels reaching no higher than this are no door (a blob on the floor), m.
+  double door_wall_below_share = 0.5;  // A door whose clear span shows wall low on the face over this share: none.
+  double edge_level = 0.01;            // Opening extent: 2 cm bins with at least this fraction of a full bin.
+  int min_boundary_points = 4;         // Label-edge points needed per side to measure a width from them.
+  double max_own_beyond_label_edge = 0.1;  // More of an opening's own points beyond a label edge: not its edge.
+  double leaf_max_distance_m = 1.5;        // An open door's leaf: door points up to this far in front of the wall, m…
+  int leaf_min_points = 20;                // …at least this many, along one line (its width gives the door's).
+  double leaf_edge_sigma_m = 0.08;         // 1σ of a door edge placed one leaf width from the seen one, m.
+  double extent_edge_sigma_m = 0.06;       // 1σ of an opening edge where its points stop (no label edge there), m.
   // 1σ of an opening's label edge beyond its points' spread, as an angle
   // seen from the viewpoint (a segmenter's edge off alike all along it by a
   // fraction of a pixel or more); along the wall it is range²/h times that,

@@ -188,7 +188,8 @@ PlanResult PlanFromRingStages(const RingStages& stages, const Ring& ring, const 
   if (skip_openings) return result;
 
   // 6. Openings on the walls.
-  FoundOpenings openings = FindOpenings(stages.planar.openings, result.plan.walls, ring.viewpoint, options);
+  FoundOpenings openings =
+      FindOpenings(stages.planar.openings, result.plan.walls, ring.viewpoint, options, &stages.planar.walls);
   result.plan.openings = std::move(openings.openings);
   s.door_leaves = openings.door_leaves;
   s.openings = static_cast<int>(result.plan.openings.size());
