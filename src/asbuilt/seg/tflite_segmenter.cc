@@ -74,22 +74,49 @@ class TfliteSegmenter : public Segmenter {
   // were trained on square crops; averaged over a whole tall or wide image
   // their global pools read it badly (the floor at the bottom of a tall
   // panorama view comes out as wall). An image whose sides differ by more
-  // than a quarter is read in one pass with those pools taken over squares of
-  // its shorter side, 2/3 of a side apart, each row or column taking the mean
-  // of the squares over it (TfliteNetImpl::set_pool_window): what reading the
-  // squares one by one and averaging their logits gave on the Blender rooms'
-  // surveys, in two thirds of the time for a 4:3 view.
+  // than a quarter is read as squares of its shorter side, 2/3 of a side
+  // apart, their logits averaged. Up to 3:2 (a 4:3 view: two squares that
+  // overlap by two thirds) one pass with those pools taken over the squares,
+  // each row or column the mean of the squares over it
+  // (TfliteNetImpl::set_pool_window), reads it as the squares do in two
+  // thirds of the time. Beyond (a panorama's 1:2 views, three squares) the
+  // pass sees across the squares' borders what each square alone does not,
+  // and reads real rooms worse: the squares are read one by one.
   torch::Tensor Tiled(const torch::Tensor& x) {
-    const int64_t H = x.size(2), W = x.size(3), side = std::min(H, W);
+    const int64_t H = x.size(2), W = x.size(3), side = std::min(H, W), length = std::max(H, W);
+    if (length > side * 3 / 2) return Squares(x);
     struct Whole {  // The pools over the whole map again after this pass, however it ends.
       TfliteNet& net;
       ~Whole() { net->set_pool_window(0); }
     } whole{net_};
-    if (std::max(H, W) > side * 5 / 4) net_->set_pool_window(static_cast<int>(side));
-    torch::Tensor logits = F::interpolate(
-        net_->forward(x),
-        F::InterpolateFuncOptions().size(std::vector<int64_t>{H, W}).mode(torch::kBilinear).align_corners(false));
-    return logits;
+    if (length > side * 5 / 4) net_->set_pool_window(static_cast<int>(side));
+    return Logits(x);
+  }
+
+  // The squares of the shorter side, 2/3 of a side apart, read one by one,
+  // their logits averaged.
+  torch::Tensor Squares(const torch::Tensor& x) {
+    const int64_t H = x.size(2), W = x.size(3), side = std::min(H, W), length = std::max(H, W);
+    const int64_t stride = std::max<int64_t>(1, side * 2 / 3);
+    const int dim = H > W ? 2 : 3;
+    torch::Tensor sum, count = torch::zeros({length});
+    for (int64_t start = 0;; start += stride) {
+      const int64_t s = std::min(start, length - side);
+      torch::Tensor tile = Logits(x.narrow(dim, s, side));
+      if (!sum.defined()) sum = torch::zeros({1, tile.size(1), H, W});
+      sum.narrow(dim, s, side).add_(tile);
+      count.narrow(0, s, side).add_(1);
+      if (s + side >= length) break;
+    }
+    return sum / (dim == 2 ? count.view({1, 1, length, 1}) : count.view({1, 1, 1, length}));
+  }
+
+  // One pass, upsampled to the input's size.
+  torch::Tensor Logits(const torch::Tensor& x) {
+    return F::interpolate(net_->forward(x), F::InterpolateFuncOptions()
+                                                .size(std::vector<int64_t>{x.size(2), x.size(3)})
+                                                .mode(torch::kBilinear)
+                                                .align_corners(false));
   }
 
   TfliteNet net_;
