@@ -302,6 +302,12 @@ RunOn RunOnPastJogs(const Plan& plan, int w, const VerdictOptions& options) {
   return out;
 }
 
+// Whether two walls meet within odd_angle_deg of a right angle.
+bool MeetSquare(const PlanWall& a, const PlanWall& b, const VerdictOptions& options) {
+  const Vec2 da = (a.end - a.start).normalized(), db = (b.end - b.start).normalized();
+  return std::abs(da.dot(db)) <= std::sin(DegToRad(options.odd_angle_deg));
+}
+
 // A wall's length runs between the corners its neighbours make: it is no
 // better than they are; very short walls are suspect.
 void JudgeWallLengths(const Plan& plan, const VerdictOptions& options, const std::vector<bool>& confirmed,
@@ -313,12 +319,19 @@ void JudgeWallLengths(const Plan& plan, const VerdictOptions& options, const std
     WallVerdict& v = walls[w];
     if (w < static_cast<int>(confirmed.size()) && confirmed[w]) continue;
     // An unreliable neighbour leaves this wall's end in doubt; one shorter
-    // than a jog moves it by less than its own length.
+    // than a jog that meets it square moves it by less than its own length.
+    // A neighbour shorter than a jog at an odd angle, whatever its own
+    // evidence, is a misread floor edge: where this wall ends is a guess.
     for (int k : {(w + n - 1) % n, (w + 1) % n}) {
-      if (k == w || lines[k].verdict != Verdict::kUnreliable || plan.walls[k].Length() < options.short_wall_m) continue;
+      if (k == w) continue;
+      const bool jog = plan.walls[k].Length() < options.short_wall_m;
+      const bool square = MeetSquare(plan.walls[w], plan.walls[k], options);
+      if (jog ? square : lines[k].verdict != Verdict::kUnreliable) continue;
       if (v.verdict == Verdict::kGood) {
         v.verdict = Verdict::kCheck;
-        v.reasons.push_back(fmt::format("its end at wall {} is in doubt", k));
+        v.reasons.push_back(jog ? fmt::format("its end at wall {}, a {:.2f} m piece at an odd angle, is in doubt", k,
+                                              plan.walls[k].Length())
+                                : fmt::format("its end at wall {} is in doubt", k));
       }
       v.confidence = std::min(v.confidence, 0.5 + 0.5 * lines[k].confidence);
     }

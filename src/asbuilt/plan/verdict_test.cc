@@ -155,6 +155,24 @@ TEST(JudgePlan, AJogOfSeveralShortWallsIsStillAJog) {
   EXPECT_EQ(v.walls[0].verdict, Verdict::kCheck);
 }
 
+// A short piece at an odd angle beside a wall is a misread floor edge, not
+// a jog of the room: where the wall ends is in doubt, even with no wall
+// parallel to it beyond.
+TEST(JudgePlan, AShortPieceAtAnOddAngleLeavesItsNeighboursEndInDoubt) {
+  Plan p;
+  const std::vector<Vec2> c = {{kX0, kY0}, {1.0, kY0}, {1.15, kY0 + 0.2}, {1.15, kY1}, {kX0, kY1}};
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    p.walls.push_back({.start = c[i], .end = c[(i + 1) % c.size()], .length_sigma_m = 0.01});
+  }
+  p.rooms.push_back({.polygon = c, .area_m2 = PolygonArea(c), .area_sigma_m2 = 0.02});
+  const PlanVerdict v = JudgePlan(BoxInput(), Fit(p));
+  ASSERT_EQ(v.walls.size(), 5u);
+  EXPECT_EQ(v.walls[0].own, Verdict::kGood) << v.walls[0].Why();
+  EXPECT_EQ(v.walls[0].evidence.run_on_m, 0.0);  // Nothing parallel beyond: no run-on.
+  EXPECT_EQ(v.walls[0].verdict, Verdict::kCheck);
+  EXPECT_NE(v.walls[0].Why().find("odd angle"), std::string::npos) << v.walls[0].Why();
+}
+
 TEST(JudgePlan, AGrosslyUnsureSegmenterMakesAPlanCheck) {
   const PlanInput in = BoxInput();
   const PlanResult fit = Fit(BoxPlan());
