@@ -689,7 +689,8 @@ nlohmann::json VerdictEvidenceJson(const PlanVerdict& v) {
                            {"median_error", number(w.evidence.median_error)},
                            {"hidden_floor", w.evidence.hidden_floor},
                            {"offset_sigma_m", number(w.evidence.offset_sigma_m)},
-                           {"run_on_m", w.evidence.run_on_m}});
+                           {"run_on_m", w.evidence.run_on_m},
+                           {"doubtful_reach_m", w.evidence.doubtful_reach_m}});
   }
   return js;
 }

@@ -121,6 +121,10 @@ struct WallEvidenceFigures {
   // jog (a wall under short_wall_m) that are parallel to it, one wall with
   // it if the jog is a misread step. Enters its length's ± (MarkPlan).
   double run_on_m = 0.0;
+  // Where an end is in doubt (an unreliable neighbour, a shorter one at an
+  // odd angle), how far the walls beyond it reach along its line, m: where
+  // it may at most run on. As 1.5σ it enters its length's ± (MarkPlan).
+  double doubtful_reach_m = 0.0;
 };
 
 struct WallVerdict {

@@ -157,7 +157,7 @@ TEST(JudgePlan, AJogOfSeveralShortWallsIsStillAJog) {
 
 // A short piece at an odd angle beside a wall is a misread floor edge, not
 // a jog of the room: where the wall ends is in doubt, even with no wall
-// parallel to it beyond.
+// parallel to it beyond, and its ± takes in how far it may run on.
 TEST(JudgePlan, AShortPieceAtAnOddAngleLeavesItsNeighboursEndInDoubt) {
   Plan p;
   const std::vector<Vec2> c = {{kX0, kY0}, {1.0, kY0}, {1.15, kY0 + 0.2}, {1.15, kY1}, {kX0, kY1}};
@@ -168,9 +168,16 @@ TEST(JudgePlan, AShortPieceAtAnOddAngleLeavesItsNeighboursEndInDoubt) {
   const PlanVerdict v = JudgePlan(BoxInput(), Fit(p));
   ASSERT_EQ(v.walls.size(), 5u);
   EXPECT_EQ(v.walls[0].own, Verdict::kGood) << v.walls[0].Why();
-  EXPECT_EQ(v.walls[0].evidence.run_on_m, 0.0);  // Nothing parallel beyond: no run-on.
   EXPECT_EQ(v.walls[0].verdict, Verdict::kCheck);
   EXPECT_NE(v.walls[0].Why().find("odd angle"), std::string::npos) << v.walls[0].Why();
+  // It may run on as far as the pieces beyond its end reach along it (the
+  // 0.15 m piece; the wall after it runs across), not past its start, where
+  // a wall the photo confirms stands square to it.
+  EXPECT_EQ(v.walls[0].evidence.run_on_m, 0.0);  // Nothing parallel beyond: no jog's run-on.
+  EXPECT_NEAR(v.walls[0].evidence.doubtful_reach_m, 0.15, 1e-9);
+  MarkPlan(v, p);
+  ASSERT_TRUE(p.walls[0].length_sigma_m);
+  EXPECT_GE(*p.walls[0].length_sigma_m, 0.1);
 }
 
 TEST(JudgePlan, AGrosslyUnsureSegmenterMakesAPlanCheck) {
