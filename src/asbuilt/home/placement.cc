@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "asbuilt/home/placement_geometry.h"
+#include "asbuilt/home/placement_improve.h"
 #include "asbuilt/home/placement_refine.h"
 #include "asbuilt/home/placement_search.h"
 #include "asbuilt/util/error.h"
@@ -44,6 +45,7 @@ void PlacementOptions::Check() const {
   if (!(max_overlap >= 0 && max_overlap <= 1)) fail("max_overlap must be in [0, 1]");
   if (beam_width < 1 || beam_width > 1000) fail("beam_width must be in [1, 1000]");
   if (alternatives < 0 || alternatives > 100) fail("alternatives must be in [0, 100]");
+  if (improve < 0 || improve > 100) fail("improve must be in [0, 100]");
 }
 
 int HomePlacement::Placed() const {
@@ -170,6 +172,11 @@ PlacementResult PlaceRooms(const std::vector<HomeRoomInput>& rooms, const Placem
         done.push_back(std::move(s));
       }
     }
+  }
+  // The best few placements improved by swapping links, then ranked again.
+  std::sort(done.begin(), done.end(), [](const State& x, const State& y) { return x.score > y.score; });
+  for (int i = 0; i < options.improve && i < static_cast<int>(done.size()); ++i) {
+    placement::ImproveBySwaps(placer.geoms(), seed, options, constraints, done[i]);
   }
   PlacementResult result;
   std::sort(done.begin(), done.end(), [](const State& x, const State& y) { return x.score > y.score; });

@@ -98,6 +98,7 @@ struct PlacementOptions {
   // Link a door seen from one side only to the other room's plain wall.
   bool one_sided_links = true;
   int alternatives = 3;  // Further complete placements kept beside the best.
+  int improve = 3;       // Best placements improved by swapping links (placement_improve.h) before ranking.
   void Check() const;
 };
 

@@ -95,8 +95,40 @@ RoomGeom Transformed(const RoomGeom& g, const Pose& t) {
   return out;
 }
 
+Pose LinkTransform(const Hole& a, const Hole& b, double thickness) {
+  const double yaw = std::atan2(-a.n.y(), -a.n.x()) - std::atan2(b.n.y(), b.n.x());
+  Pose t = Pose::Identity();
+  t.linear() = Eigen::Rotation2Dd(yaw).toRotationMatrix();
+  t.translation() = a.c + thickness * a.n - t.linear() * b.c;
+  return t;
+}
+
+Pose FaceTransform(const Face& f, double u, const Face& g, double s, double thickness) {
+  const double yaw = std::atan2(-f.n.y(), -f.n.x()) - std::atan2(g.n.y(), g.n.x());
+  Pose t = Pose::Identity();
+  t.linear() = Eigen::Rotation2Dd(yaw).toRotationMatrix();
+  t.translation() = f.a + u * f.Dir() + thickness * f.n - t.linear() * (g.a + s * g.Dir());
+  return t;
+}
+
+std::vector<double> Slides(double u, double lf, double lg, double width) {
+  std::vector<double> out;
+  for (double s : {0.5 * lg, lf - u, lg - u}) {
+    if (s < 0.5 * width + 0.05 || s > lg - 0.5 * width - 0.05) continue;
+    if (std::none_of(out.begin(), out.end(), [&](double t) { return std::abs(t - s) < 0.02; })) out.push_back(s);
+  }
+  return out;
+}
+
 bool WidthsMatch(double a, double b, const PlacementOptions& o) {
   return std::abs(a - b) <= std::max(o.max_width_difference_m, o.width_tolerance * std::max(a, b));
+}
+
+bool DoorsMeet(const Hole& da, const Hole& db, const PlacementOptions& o) {
+  if (da.n.dot(db.n) > -kAntiParallel || !WidthsMatch(da.width, db.width, o)) return false;
+  const double across = (db.c - da.c).dot(da.n);
+  const double along = std::abs((db.c - da.c).dot(Perp(da.n)));
+  return across >= -0.05 && across <= o.max_wall_thickness_m && along <= 0.35;
 }
 
 FaceHit ProjectOnFace(const Face& f, const Vec2& p, double inset) {
@@ -104,17 +136,19 @@ FaceHit ProjectOnFace(const Face& f, const Vec2& p, double inset) {
   return {s, s >= inset && s <= f.Length() - inset};
 }
 
+const Face* FaceInFront(const Hole& h, const RoomGeom& y, const PlacementOptions& o) {
+  for (const Face& f : y.walls) {
+    if (h.n.dot(f.n) > -kAntiParallel) continue;
+    const double dist = (f.a - h.c).dot(h.n);
+    if (dist < -0.05 || dist > o.max_wall_thickness_m) continue;
+    if (ProjectOnFace(f, h.c, 0.1).within) return &f;
+  }
+  return nullptr;
+}
+
 double OpeningsAgainstWalls(const RoomGeom& x, const RoomGeom& y, const PlacementOptions& o) {
   double score = 0.0;
-  auto face_in_front = [&](const Hole& h) -> const Face* {
-    for (const Face& f : y.walls) {
-      if (h.n.dot(f.n) > -kAntiParallel) continue;
-      const double dist = (f.a - h.c).dot(h.n);
-      if (dist < -0.05 || dist > o.max_wall_thickness_m) continue;
-      if (ProjectOnFace(f, h.c, 0.1).within) return &f;
-    }
-    return nullptr;
-  };
+  auto face_in_front = [&](const Hole& h) { return FaceInFront(h, y, o); };
   for (const Hole& d : x.doors) {
     const Face* f = face_in_front(d);
     if (f == nullptr) continue;

@@ -24,14 +24,17 @@ using Pose = Eigen::Isometry2d;
 inline constexpr double kPlacedRoom = 2.0;      // Each room placed.
 inline constexpr double kContactPerM = 1.0;     // Partition faces shared, per metre.
 inline constexpr double kDoorsMeet = 3.0;       // A door lands on a door of a placed room.
-inline constexpr double kDoorIntoWall = 2.0;    // A door lands on a placed room's plain wall.
+inline constexpr double kDoorIntoWall = 1.0;    // A door lands on a placed room's plain wall.
 inline constexpr double kWindowIntoWall = 2.0;  // A window looks into a placed room.
 inline constexpr double kWidthPerM = 10.0;      // Linked doors' width difference.
 inline constexpr double kOverlapPerM2 = 2.0;    // Floor shared with a placed room.
 inline constexpr double kUserLink = 1000.0;     // A link the person asked for comes first.
 inline constexpr double kEmptyPerM2 = 0.05;     // Floor of the home's bounding box no room covers.
 inline constexpr double kContinues = 1.0;       // A wall continues another room's across a partition.
-inline constexpr double kOneSided = 4.0;        // A door seen from one side only.
+// Each room the door links left unplaced, when the best of their placements
+// are picked to fill in by one-sided links: what such a room adds there.
+inline constexpr double kRoomLeft = 12.0;
+inline constexpr double kNoDoorOfItsOwn = 4.0;  // A one-sided link places a room whose survey found no door.
 inline constexpr int kPlainWalls = 6;           // Plain walls per room a one-sided link may open onto.
 inline constexpr double kThicknessPrior = 0.5;  // Weight of the partition's prior against one link's metre.
 inline constexpr double kThinnestWall = 0.05;   // A partition thinner is none.
@@ -70,8 +73,25 @@ RoomGeom GeomOf(const Plan& plan);
 // `g` moved by `t` (its box recomputed).
 RoomGeom Transformed(const RoomGeom& g, const Pose& t);
 
+// B's pose relative to A's when A's door `a` and B's door `b` are one door,
+// the faces `thickness` apart: B's door turned to face A's, centre on centre.
+Pose LinkTransform(const Hole& a, const Hole& b, double thickness);
+
+// B's pose when the point `s` along B's face g (its own frame) lies across
+// the partition from the point `u` along the placed face f: g turned to face f.
+Pose FaceTransform(const Face& f, double u, const Face& g, double s, double thickness);
+
+// Where along a plain face of length `lg` a door seen at `u` along a face of
+// length `lf` (turned to face it) can open: the faces' ends lined up either
+// way, or centred on the door.
+std::vector<double> Slides(double u, double lf, double lg, double width);
+
 // Whether two doors are close enough in width to be one.
 bool WidthsMatch(double a, double b, const PlacementOptions& o);
+
+// Whether two placed doors face each other across a partition, centre on
+// centre within 0.35 m, widths matching: one door seen from both sides.
+bool DoorsMeet(const Hole& da, const Hole& db, const PlacementOptions& o);
 
 // Where `f`'s line lies along `n` from `p`, and whether `p` projects onto the
 // face at least `inset` from its ends.
@@ -80,6 +100,10 @@ struct FaceHit {
   bool within = false;
 };
 FaceHit ProjectOnFace(const Face& f, const Vec2& p, double inset);
+
+// The face of `y` a door or window of a placed room opens onto (within a
+// partition's thickness in front of it), or nullptr.
+const Face* FaceInFront(const Hole& h, const RoomGeom& y, const PlacementOptions& o);
 
 // What the openings of `x` make of the walls of `y` (both placed): a door
 // that meets a door of y's on the same partition closes a loop; a door or

@@ -53,10 +53,7 @@ void FindLoops(const std::vector<RoomGeom>& geoms, const State& s, const Placeme
         for (const Hole& db : gb.doors) {
           if (linked({a, da.opening}) || linked({b, db.opening}) || forbidden({a, da.opening}, {b, db.opening}))
             continue;
-          if (da.n.dot(db.n) > -kAntiParallel || !WidthsMatch(da.width, db.width, o)) continue;
-          const double across = (db.c - da.c).dot(da.n);
-          const double along = std::abs((db.c - da.c).dot(Perp(da.n)));
-          if (across < -0.05 || across > o.max_wall_thickness_m || along > 0.35) continue;
+          if (!DoorsMeet(da, db, o)) continue;
           links.push_back({.a = {a, da.opening}, .b = {b, db.opening}, .loop = true});
         }
       }

@@ -9,38 +9,6 @@
 namespace asbuilt::placement {
 namespace {
 
-// B's pose relative to A's when A's door i and B's door j are one door, the
-// faces `thickness` apart: B's door turned to face A's, centre on centre.
-Pose LinkTransform(const Hole& a, const Hole& b, double thickness) {
-  const double yaw = std::atan2(-a.n.y(), -a.n.x()) - std::atan2(b.n.y(), b.n.x());
-  Pose t = Pose::Identity();
-  t.linear() = Eigen::Rotation2Dd(yaw).toRotationMatrix();
-  t.translation() = a.c + thickness * a.n - t.linear() * b.c;
-  return t;
-}
-
-// B's pose when the point `s` along B's face g (its own frame) lies across
-// the partition from the point `u` along the placed face f: g turned to face f.
-Pose FaceTransform(const Face& f, double u, const Face& g, double s, double thickness) {
-  const double yaw = std::atan2(-f.n.y(), -f.n.x()) - std::atan2(g.n.y(), g.n.x());
-  Pose t = Pose::Identity();
-  t.linear() = Eigen::Rotation2Dd(yaw).toRotationMatrix();
-  t.translation() = f.a + u * f.Dir() + thickness * f.n - t.linear() * (g.a + s * g.Dir());
-  return t;
-}
-
-// Where along a plain face of length `lg` a door seen at `u` along a face of
-// length `lf` (turned to face it) can open: the faces' ends lined up either
-// way, or centred on the door.
-std::vector<double> Slides(double u, double lf, double lg, double width) {
-  std::vector<double> out;
-  for (double s : {0.5 * lg, lf - u, lg - u}) {
-    if (s < 0.5 * width + 0.05 || s > lg - 0.5 * width - 0.05) continue;
-    if (std::none_of(out.begin(), out.end(), [&](double t) { return std::abs(t - s) < 0.02; })) out.push_back(s);
-  }
-  return out;
-}
-
 // The box of a placed room's walls in the home's axes (the first room's frame
 // turned by `axes`).
 void GrowBox(const RoomGeom& g, const Eigen::Matrix2d& axes, Vec2& lo, Vec2& hi) {
@@ -78,7 +46,11 @@ std::vector<State> Placer::Search(int seed, const Pose& seed_pose) {
   std::vector<State> doors = Beam({Start(seed, seed_pose)});
   if (!o_.one_sided_links) return doors;
   one_sided_ = true;
-  std::sort(doors.begin(), doors.end(), [](const State& x, const State& y) { return x.score > y.score; });
+  // The best few fill in, each room still unplaced counted at what a
+  // one-sided link may add: a placement that left out a room whose door
+  // another survey missed is not outranked by one that linked it wrongly.
+  auto key = [&](const State& x) { return x.score + kRoomLeft * static_cast<double>(rooms_.size() - x.count); };
+  std::sort(doors.begin(), doors.end(), [&](const State& x, const State& y) { return key(x) > key(y); });
   // The door links decided the home; one-sided links fill it in from its
   // best few placements, with a narrower beam (they are many more).
   width_ = std::max(1, o_.beam_width / 4);
@@ -103,6 +75,7 @@ State Placer::Start(int seed, const Pose& seed_pose) {
   axes_.col(0) = d;
   axes_.col(1) = Perp(d);
   placed_cache_.clear();
+  pair_cache_.clear();
   GrowBox(PlacedGeom(seed, seed_pose), axes_, start.lo, start.hi);
   start.covered_m2 = first.area;
   for (const auto& [room, pose] : c_.fixed) {
@@ -160,9 +133,13 @@ bool Placer::AskedFor(const OpeningRef& x, const OpeningRef& y) const {
   return false;
 }
 
+Placer::PoseKey Placer::KeyOf(int room, const Pose& pose) {
+  return {room, std::llround(pose.translation().x() * 1e4), std::llround(pose.translation().y() * 1e4),
+          std::llround(YawOf(pose) * 1e6)};
+}
+
 const RoomGeom& Placer::PlacedGeom(int room, const Pose& pose) {
-  const PoseKey key{room, std::llround(pose.translation().x() * 1e4), std::llround(pose.translation().y() * 1e4),
-                    std::llround(YawOf(pose) * 1e6)};
+  const PoseKey key = KeyOf(room, pose);
   auto it = placed_cache_.find(key);
   if (it == placed_cache_.end()) it = placed_cache_.emplace(key, Transformed(geoms_[room], pose)).first;
   return it->second;
@@ -229,7 +206,7 @@ std::vector<Candidate> Placer::Expand(const State& s, int index) {
                  .b_door = -1,
                  .b_wall = k,
                  .pose = FaceTransform(f, u, g, sl, o_.wall_thickness_m)},
-                kDoorIntoWall - kOneSided);
+                kDoorIntoWall - (gb.doors.empty() ? kNoDoorOfItsOwn : 0.0));
           }
         }
       }
@@ -251,7 +228,7 @@ std::vector<Candidate> Placer::Expand(const State& s, int index) {
                  .b_door = j,
                  .a_wall = k,
                  .pose = FaceTransform(f, uu, g, sc, o_.wall_thickness_m)},
-                kDoorIntoWall - kOneSided);
+                kDoorIntoWall);
           }
         }
       }
@@ -271,14 +248,31 @@ std::optional<double> Placer::Score(const State& s, int room, const Pose& pose) 
   }
   for (std::size_t c = 0; c < rooms_.size(); ++c) {
     if (!s.placed[c]) continue;
-    const std::optional<double> term = PairScore(g, *placed_now_[c], o_);
+    const std::pair<PoseKey, PoseKey> key{KeyOf(room, pose), KeyOf(static_cast<int>(c), s.pose[c])};
+    auto it = pair_cache_.find(key);
+    if (it == pair_cache_.end()) it = pair_cache_.emplace(key, PairScore(g, *placed_now_[c], o_)).first;
+    const std::optional<double> term = it->second;
     if (!term) return std::nullopt;
     score += *term;
   }
   return score;
 }
 
-State Placer::Apply(const State& from, const Candidate& c) const {
+void MarkMeetingDoors(const std::vector<const RoomGeom*>& placed, int room, const PlacementOptions& o, State& s) {
+  const RoomGeom& x = *placed[room];
+  for (std::size_t y = 0; y < placed.size(); ++y) {
+    if (static_cast<int>(y) == room || placed[y] == nullptr || !BoxesNear(x, *placed[y], o.max_wall_thickness_m + 0.05))
+      continue;
+    for (std::size_t i = 0; i < x.doors.size(); ++i) {
+      for (std::size_t j = 0; j < placed[y]->doors.size(); ++j) {
+        if (s.used[room][i] || s.used[y][j] || !DoorsMeet(x.doors[i], placed[y]->doors[j], o)) continue;
+        s.used[room][i] = s.used[y][j] = 1;
+      }
+    }
+  }
+}
+
+State Placer::Apply(const State& from, const Candidate& c) {
   State s = from;
   s.placed[c.b_room] = 1;
   s.pose[c.b_room] = c.pose;
@@ -297,6 +291,11 @@ State Placer::Apply(const State& from, const Candidate& c) const {
   s.hi = c.hi;
   s.covered_m2 += geoms_[c.b_room].area;
   ++s.count;
+  std::vector<const RoomGeom*> placed(rooms_.size(), nullptr);
+  for (std::size_t r = 0; r < rooms_.size(); ++r) {
+    if (s.placed[r]) placed[r] = &PlacedGeom(static_cast<int>(r), s.pose[r]);
+  }
+  MarkMeetingDoors(placed, c.b_room, o_, s);
   return s;
 }
 

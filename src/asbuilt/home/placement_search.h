@@ -36,6 +36,12 @@ struct State {
   std::string Signature() const;
 };
 
+// Marks as used the doors of placed room `room` that meet a door of another
+// placed room (a loop the home closes there), and those doors: a door seen
+// from both sides links nothing else. `placed`: each room's geometry at its
+// pose (nullptr: not placed).
+void MarkMeetingDoors(const std::vector<const RoomGeom*>& placed, int room, const PlacementOptions& o, State& s);
+
 // One more room placed from a state by one link.
 struct Candidate {
   int from_state = 0;
@@ -84,7 +90,7 @@ class Placer {
   std::optional<double> Score(const State& s, int room, const Pose& pose);
 
   // `from` with the candidate's room placed.
-  State Apply(const State& from, const Candidate& c) const;
+  State Apply(const State& from, const Candidate& c);
 
   const std::vector<HomeRoomInput>& rooms_;
   const PlacementOptions& o_;
@@ -102,7 +108,16 @@ class Placer {
       return h;
     }
   };
+  static PoseKey KeyOf(int room, const Pose& pose);
   std::unordered_map<PoseKey, RoomGeom, PoseKeyHash> placed_cache_;
+  // PairScore of two rooms at two poses: the beam's states share most of
+  // their rooms, so most pairs are scored again and again.
+  struct PairKeyHash {
+    std::size_t operator()(const std::pair<PoseKey, PoseKey>& k) const {
+      return PoseKeyHash()(k.first) * 1000003u ^ PoseKeyHash()(k.second);
+    }
+  };
+  std::unordered_map<std::pair<PoseKey, PoseKey>, std::optional<double>, PairKeyHash> pair_cache_;
   std::vector<const RoomGeom*> placed_now_;  // The expanded state's placed rooms (nullptr: not placed).
   Eigen::Matrix2d axes_ = Eigen::Matrix2d::Identity();
   bool one_sided_ = false;
