@@ -51,12 +51,8 @@ for hdr in "$SHARED"/cc0-panoramas/*.hdr; do
   ln -sfn "$hdr" "$WORK/panoramas/$name.hdr"
   echo "| $name | ../shared/data/cc0-panoramas/$name.hdr | Poly Haven asset $name (cc0-panoramas/README.md) | CC0 1.0 |" >> "$sources"
 done
-if [ ! -f "$WORK/panoramas/pmndrs-assets.tgz" ]; then
-  (cd "$WORK/panoramas" && npm pack --silent @pmndrs/assets@1.7.0 > /dev/null && mv pmndrs-assets-1.7.0.tgz pmndrs-assets.tgz)
-fi
 for name in hall lab workshop apartment; do
-  tar -xzOf "$WORK/panoramas/pmndrs-assets.tgz" "package/hdri/$name.exr.js" |
-    sed -e "s/^export default 'data:application\/exr;base64,//" -e "s/'[; ]*$//" | base64 -d > "$WORK/panoramas/pmndrs_$name.exr"
+  [ -f "$WORK/panoramas/pmndrs_$name.exr" ] || "$HERE/scripts/pmndrs-hdri.sh" "$name" "$WORK/panoramas/pmndrs_$name.exr"
   echo "| pmndrs_$name | package/hdri/$name.exr.js of npm @pmndrs/assets 1.7.0 | pmndrs/assets (npm) | CC0-1.0 |" >> "$sources"
 done
 

@@ -38,15 +38,11 @@ mkdir -p "$WORK/panoramas" "$WORK/reviews"
 export OPENCV_IO_ENABLE_OPENEXR=1
 
 # 1. Each room's photo as a panorama capture at an assumed 1.6 m.
-if [ ! -f "$WORK/panoramas/pmndrs-assets.tgz" ]; then
-  (cd "$WORK/panoramas" && npm pack --silent @pmndrs/assets@1.7.0 > /dev/null && mv pmndrs-assets-1.7.0.tgz pmndrs-assets.tgz)
-fi
 for room in $ROOMS; do
   case $room in
     pmndrs_*)
       photo="$WORK/panoramas/$room.exr"
-      tar -xzOf "$WORK/panoramas/pmndrs-assets.tgz" "package/hdri/${room#pmndrs_}.exr.js" |
-        sed -e "s/^export default 'data:application\/exr;base64,//" -e "s/'[; ]*$//" | base64 -d > "$photo" ;;
+      [ -f "$photo" ] || "$HERE/scripts/pmndrs-hdri.sh" "${room#pmndrs_}" "$photo" ;;
     *) photo="$SHARED/cc0-panoramas/$room.hdr" ;;
   esac
   mkdir -p "$WORK/captures/$room"

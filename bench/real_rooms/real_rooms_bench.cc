@@ -62,19 +62,10 @@ std::optional<Photo> FindPhoto(const std::string& room, const fs::path& data, co
   fs::path path = data / "cc0-panoramas" / (room + ".hdr");
   if (room.rfind("pmndrs_", 0) == 0) {
     path = cache / (room + ".exr");
-    const fs::path tgz = cache / "pmndrs-assets-1.7.0.tgz";
-    if (!fs::exists(tgz)) {
-      fs::create_directories(cache);
-      const std::string pack =
-          fmt::format("cd '{}' && npm pack --silent @pmndrs/assets@1.7.0 > /dev/null 2>&1", cache.string());
-      if (std::system(pack.c_str()) != 0) return std::nullopt;
-    }
     if (!fs::exists(path)) {
-      const std::string unpack = fmt::format(
-          "tar -xzOf '{}' 'package/hdri/{}.exr.js' | sed -e \"s/^export default 'data:application\\/exr;base64,//\" "
-          "-e \"s/'[; ]*$//\" | base64 -d > '{}.tmp' && mv '{}.tmp' '{}'",
-          tgz.string(), room.substr(7), path.string(), path.string(), path.string());
-      if (std::system(unpack.c_str()) != 0) return std::nullopt;
+      const std::string fetch = fmt::format("'{}/scripts/pmndrs-hdri.sh' '{}' '{}' '{}'", ASBUILT_SOURCE_DIR,
+                                            room.substr(7), path.string(), cache.string());
+      if (std::system(fetch.c_str()) != 0) return std::nullopt;
     }
   }
   if (!fs::exists(path)) return std::nullopt;
