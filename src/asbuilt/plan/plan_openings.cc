@@ -99,7 +99,8 @@ struct OpeningPoint {
   double t;  // Along the wall from its start.
   double z;
   double sigma;
-  bool boundary;  // A label edge on the wall surface (PointSource::kBoundary).
+  bool boundary;        // A label edge on the wall surface (PointSource::kBoundary).
+  bool behind = false;  // Seen behind the face (glass, a reveal) and sent along its ray onto it.
 };
 
 // A handful of label edges inside an opening (an open leaf's outline, a
@@ -341,7 +342,8 @@ std::vector<std::vector<OpeningPoint>> ProjectOntoWalls(const std::vector<const 
     }
     if (best < 0) continue;
     int slot = 2 * best + (p->label == LabelClass::kWindow ? 1 : 0);
-    per_wall_kind[slot].push_back({best_t, p->position_m.z(), sigma, p->source == PointSource::kBoundary});
+    per_wall_kind[slot].push_back({best_t, p->position_m.z(), sigma, p->source == PointSource::kBoundary,
+                                   o.viewpoint_m.has_value() && best_r < -0.01});
   }
   return per_wall_kind;
 }
@@ -506,7 +508,23 @@ std::optional<PlanOpening> MeasureOpening(const std::vector<OpeningPoint>& group
   if (edges.from_boundary_a) edges.var_a += label_edge_var(edges.a);
   if (edges.from_boundary_b) edges.var_b += label_edge_var(edges.b);
   const double a = edges.a, b = edges.b;
-  double t0 = std::clamp(a + casing, 0.0, len), t1 = std::clamp(b - casing, 0.0, len);
+  // An edge where the opening's points stop is the casing's outer side when
+  // they stop on the face; where they are seen through the opening, behind
+  // the face, it is the clear opening's edge itself.
+  const auto through = [&](double edge, double toward) {
+    int behind = 0, all = 0;
+    for (const OpeningPoint& g : group) {
+      if (g.boundary || std::abs(g.t - edge) > 0.02 || (g.t - edge) * (toward - edge) < 0) continue;
+      ++all;
+      behind += g.behind;
+    }
+    return all > 0 && behind >= 0.8 * all;
+  };
+  const bool a_from_extent = !edges.from_boundary_a && !(from_leaf && edges.from_boundary_b);
+  const bool b_from_extent = !edges.from_boundary_b && !(from_leaf && edges.from_boundary_a);
+  const double casing_a = a_from_extent && through(a, b) ? 0.0 : casing;
+  const double casing_b = b_from_extent && through(b, a) ? 0.0 : casing;
+  double t0 = std::clamp(a + casing_a, 0.0, len), t1 = std::clamp(b - casing_b, 0.0, len);
   if (t1 - t0 < o.min_opening_width_m) return std::nullopt;
   auto [z0, z1] = BinnedExtent(zs, o.edge_level, o.opening_gap_m);
   PlanOpening op;

@@ -22,7 +22,9 @@
 // its open leaf when one is found (door points up to leaf_max_distance_m in
 // front of the wall along one line). The clear
 // opening is the extent minus the casing (door_casing_m, window_casing_m) on
-// each side, clamped to the wall; narrower than min_opening_width_m: none.
+// each side (not where the points stop behind the face: glass seen through
+// the opening ends at the clear opening's edge), clamped to the wall;
+// narrower than min_opening_width_m: none.
 // Height and sill come from the z extent minus the casing; a door no taller
 // than min_door_height_m is none (door labels on the floor), and so is a
 // door with wall seen low across its span (door_wall_below_share).

@@ -73,6 +73,45 @@ TEST(FindOpenings, EdgesWithoutLabelEdgesTakeTheExtentEdgeSigma) {
   EXPECT_NEAR(sigma({.extent_edge_sigma_m = 0, .label_edge_sigma_mrad = 5}), plain, 1e-9);
 }
 
+// Glass seen through a window 1.0–2.2 m along the wall y = 0 from (2, 1.5),
+// 15 cm behind the face, every cm of the face's opening and 5 cm up: where
+// the opening's points stop behind the face, that is the clear opening's
+// edge, not the outer side of a casing on the face, so no casing comes off.
+// With the casing's label on the face beyond both ends it does.
+TEST(FindOpenings, AnEdgeSeenThroughTheOpeningIsTheClearOpeningsOwn) {
+  const Vec3 view(2, 1.5, 1.4);
+  std::vector<ClassPoint> points;
+  for (int i = 0; i <= 120; ++i) {
+    const double x_face = 1.0 + 0.01 * i, x_glass = view.x() + (x_face - view.x()) * 1.65 / 1.5;
+    for (int k = 0; k <= 24; ++k) {
+      points.push_back({LabelClass::kWindow, Vec3(x_glass, -0.15, 1.0 + 0.05 * k), 0.005, PointSource::kDense, 0});
+    }
+  }
+  const std::vector<PlanWall> walls = {{.start = {0, 0}, .end = {4, 0}}};
+  PlanOptions o;
+  o.viewpoint_m = view;
+  const auto find = [&](const std::vector<ClassPoint>& pts) {
+    std::vector<const ClassPoint*> pointers;
+    for (const ClassPoint& p : pts) pointers.push_back(&p);
+    return FindOpenings(pointers, walls, view.head<2>(), o).openings;
+  };
+  std::vector<PlanOpening> found = find(points);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_NEAR(found[0].start.x(), 1.0, 0.01);
+  EXPECT_NEAR(found[0].end.x(), 2.2, 0.01);
+  for (int i = 0; i <= 5; ++i) {
+    for (int k = 0; k <= 24; ++k) {
+      for (double x : {0.95 + 0.01 * i, 2.2 + 0.01 * i}) {
+        points.push_back({LabelClass::kWindow, Vec3(x, 0.0, 1.0 + 0.05 * k), 0.005, PointSource::kDense, 0});
+      }
+    }
+  }
+  found = find(points);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_NEAR(found[0].start.x(), 1.0, 0.01);
+  EXPECT_NEAR(found[0].end.x(), 2.2, 0.01);
+}
+
 // A window label strip thinner than its two casings (a sill or a lintel
 // edge seen as window) leaves no clear height: no opening, never a negative
 // height that plan.json would refuse.
