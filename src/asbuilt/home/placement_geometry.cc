@@ -120,6 +120,38 @@ std::vector<double> Slides(double u, double lf, double lg, double width) {
   return out;
 }
 
+std::vector<OneSidedLink> OneSidedLinks(const RoomGeom& placed_a, const RoomGeom& b, const std::vector<char>& used_a,
+                                        const std::vector<char>& used_b, double thickness) {
+  std::vector<OneSidedLink> out;
+  for (int i = 0; i < static_cast<int>(placed_a.doors.size()); ++i) {
+    if (used_a[i]) continue;
+    const Hole& da = placed_a.doors[i];
+    const Face& f = placed_a.walls[da.wall];
+    const double u = ProjectOnFace(f, da.c, 0).along;
+    for (int k : b.plain_walls) {
+      const Face& g = b.walls[k];
+      if (g.Length() < da.width + 0.1) continue;
+      for (double sl : Slides(u, f.Length(), g.Length(), da.width)) {
+        out.push_back({.a_door = i, .b_wall = k, .pose = FaceTransform(f, u, g, sl, thickness)});
+      }
+    }
+  }
+  for (int j = 0; j < static_cast<int>(b.doors.size()); ++j) {
+    if (used_b[j]) continue;
+    const Hole& db = b.doors[j];
+    const Face& g = b.walls[db.wall];
+    const double sc = ProjectOnFace(g, db.c, 0).along;
+    for (int k : placed_a.plain_walls) {
+      const Face& f = placed_a.walls[k];
+      if (f.Length() < db.width + 0.1) continue;
+      for (double uu : Slides(sc, g.Length(), f.Length(), db.width)) {
+        out.push_back({.b_door = j, .a_wall = k, .pose = FaceTransform(f, uu, g, sc, thickness)});
+      }
+    }
+  }
+  return out;
+}
+
 bool WidthsMatch(double a, double b, const PlacementOptions& o) {
   return std::abs(a - b) <= std::max(o.max_width_difference_m, o.width_tolerance * std::max(a, b));
 }

@@ -86,6 +86,17 @@ Pose FaceTransform(const Face& f, double u, const Face& g, double s, double thic
 // way, or centred on the door.
 std::vector<double> Slides(double u, double lf, double lg, double width);
 
+// A door one room's survey missed: placed room A's door onto one of B's plain
+// walls, or B's door onto one of A's, slid as Slides says; B's pose for each.
+// Door indices into RoomGeom::doors (−1 on the plain side), walls into
+// RoomGeom::walls (−1 on the door's side). Doors marked in `used_*` are skipped.
+struct OneSidedLink {
+  int a_door = -1, b_door = -1, a_wall = -1, b_wall = -1;
+  Pose pose = Pose::Identity();
+};
+std::vector<OneSidedLink> OneSidedLinks(const RoomGeom& placed_a, const RoomGeom& b, const std::vector<char>& used_a,
+                                        const std::vector<char>& used_b, double thickness);
+
 // Whether two doors are close enough in width to be one.
 bool WidthsMatch(double a, double b, const PlacementOptions& o);
 

@@ -56,34 +56,15 @@ std::vector<Swap> SwapsBetween(const std::vector<RoomGeom>& geoms, const std::ve
                      .part_room = b,
                      .pose = s.pose[a] * LinkTransform(da, db, o.wall_thickness_m)});
     }
-    // A's door onto a plain wall of B.
-    const Face& f = pa.walls[pa.doors[i].wall];
-    const double u = ProjectOnFace(f, pa.doors[i].c, 0).along;
-    for (int k : gb.plain_walls) {
-      const Face& g = gb.walls[k];
-      if (g.Length() < da.width + 0.1) continue;
-      for (double sl : Slides(u, f.Length(), g.Length(), da.width)) {
-        out.push_back({.link = {.a = {a, da.opening}, .b = {b, -1}, .wall_b = k},
-                       .part_room = b,
-                       .pose = FaceTransform(f, u, g, sl, o.wall_thickness_m)});
-      }
-    }
   }
-  // B's door onto a plain wall of A.
-  for (int j = 0; j < static_cast<int>(gb.doors.size()); ++j) {
-    if (used[b][j]) continue;
-    const Hole& db = gb.doors[j];
-    const Face& g = gb.walls[db.wall];
-    const double sc = ProjectOnFace(g, db.c, 0).along;
-    for (int k : ga.plain_walls) {
-      const Face& f = pa.walls[k];
-      if (f.Length() < db.width + 0.1) continue;
-      for (double uu : Slides(sc, g.Length(), f.Length(), db.width)) {
-        out.push_back({.link = {.a = {a, -1}, .b = {b, db.opening}, .wall_a = k},
-                       .part_room = b,
-                       .pose = FaceTransform(f, uu, g, sc, o.wall_thickness_m)});
-      }
-    }
+  // A door one of the two surveys missed.
+  for (const OneSidedLink& l : OneSidedLinks(pa, gb, used[a], used[b], o.wall_thickness_m)) {
+    out.push_back({.link = {.a = {a, l.a_door >= 0 ? ga.doors[l.a_door].opening : -1},
+                            .b = {b, l.b_door >= 0 ? gb.doors[l.b_door].opening : -1},
+                            .wall_a = l.a_wall,
+                            .wall_b = l.b_wall},
+                   .part_room = b,
+                   .pose = l.pose});
   }
   return out;
 }

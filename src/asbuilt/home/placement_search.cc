@@ -190,47 +190,20 @@ std::vector<Candidate> Placer::Expand(const State& s, int index) {
                .by_user = asked},
               -kWidthPerM * std::abs(da.width - db.width) + (asked ? kUserLink : 0.0));
         }
-        if (!one_sided_) continue;
-        // A's door onto a plain wall of B (B's survey missed the door).
-        const Hole& placed_door = pa.doors[i];
-        const Face& f = pa.walls[placed_door.wall];
-        const double u = ProjectOnFace(f, placed_door.c, 0).along;
-        for (int k : gb.plain_walls) {
-          const Face& g = gb.walls[k];
-          if (g.Length() < da.width + 0.1) continue;
-          for (double sl : Slides(u, f.Length(), g.Length(), da.width)) {
-            add({.from_state = index,
-                 .a_room = a,
-                 .a_door = i,
-                 .b_room = b,
-                 .b_door = -1,
-                 .b_wall = k,
-                 .pose = FaceTransform(f, u, g, sl, o_.wall_thickness_m)},
-                kDoorIntoWall - (gb.doors.empty() ? kNoDoorOfItsOwn : 0.0));
-          }
-        }
       }
       if (!one_sided_) continue;
-      // B's door onto a plain wall of A (A's survey missed the door).
-      for (int j = 0; j < static_cast<int>(gb.doors.size()); ++j) {
-        if (s.used[b][j]) continue;
-        const Hole& db = gb.doors[j];
-        const Face& g = gb.walls[db.wall];
-        const double sc = ProjectOnFace(g, db.c, 0).along;
-        for (int k : ga.plain_walls) {
-          const Face& f = pa.walls[k];
-          if (f.Length() < db.width + 0.1) continue;
-          for (double uu : Slides(sc, g.Length(), f.Length(), db.width)) {
-            add({.from_state = index,
-                 .a_room = a,
-                 .a_door = -1,
-                 .b_room = b,
-                 .b_door = j,
-                 .a_wall = k,
-                 .pose = FaceTransform(f, uu, g, sc, o_.wall_thickness_m)},
-                kDoorIntoWall);
-          }
-        }
+      // A door one of the two surveys missed. A room whose survey found no
+      // door at all pays for being placed so.
+      for (const OneSidedLink& l : OneSidedLinks(pa, gb, s.used[a], s.used[b], o_.wall_thickness_m)) {
+        add({.from_state = index,
+             .a_room = a,
+             .a_door = l.a_door,
+             .b_room = b,
+             .b_door = l.b_door,
+             .a_wall = l.a_wall,
+             .b_wall = l.b_wall,
+             .pose = l.pose},
+            kDoorIntoWall - (l.b_door < 0 && gb.doors.empty() ? kNoDoorOfItsOwn : 0.0));
       }
     }
   }
