@@ -234,6 +234,18 @@ int ContinuingWalls(const RoomGeom& x, const RoomGeom& y, const PlacementOptions
 
 }  // namespace
 
+void GrowBox(const RoomGeom& g, const Eigen::Matrix2d& axes, Vec2& lo, Vec2& hi) {
+  for (const Face& f : g.walls) {
+    for (const Vec2& p : {f.a, f.b}) {
+      const Vec2 q = axes.transpose() * p;
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+  }
+}
+
+double BoxArea(const Vec2& lo, const Vec2& hi) { return lo.x() > hi.x() ? 0.0 : (hi - lo).prod(); }
+
 bool BoxesNear(const RoomGeom& x, const RoomGeom& y, double margin) {
   return x.lo.x() <= y.hi.x() + margin && y.lo.x() <= x.hi.x() + margin && x.lo.y() <= y.hi.y() + margin &&
          y.lo.y() <= x.hi.y() + margin;

@@ -128,6 +128,12 @@ double SharedFaces(const RoomGeom& x, const RoomGeom& y, const PlacementOptions&
 // Whether the two rooms' boxes are at most `margin` apart.
 bool BoxesNear(const RoomGeom& x, const RoomGeom& y, double margin);
 
+// Grows the box [lo, hi] by a placed room's walls in the home's axes (the
+// first room's frame turned by `axes`).
+void GrowBox(const RoomGeom& g, const Eigen::Matrix2d& axes, Vec2& lo, Vec2& hi);
+// The area of the box [lo, hi]; 0 while it is empty (lo above hi).
+double BoxArea(const Vec2& lo, const Vec2& hi);
+
 // The terms of room x placed beside placed room y; nullopt: refused (they
 // share too much floor).
 std::optional<double> PairScore(const RoomGeom& x, const RoomGeom& y, const PlacementOptions& o);

@@ -72,16 +72,8 @@ std::vector<Swap> SwapsBetween(const std::vector<RoomGeom>& geoms, const std::ve
 // The area of the box of the rooms' walls in the home's axes.
 double BoxOf(const std::vector<const RoomGeom*>& rooms, const Eigen::Matrix2d& axes) {
   Vec2 lo = Vec2::Constant(1e300), hi = Vec2::Constant(-1e300);
-  for (const RoomGeom* g : rooms) {
-    for (const Face& f : g->walls) {
-      for (const Vec2& p : {f.a, f.b}) {
-        const Vec2 q = axes.transpose() * p;
-        lo = lo.cwiseMin(q);
-        hi = hi.cwiseMax(q);
-      }
-    }
-  }
-  return lo.x() > hi.x() ? 0.0 : (hi - lo).prod();
+  for (const RoomGeom* g : rooms) GrowBox(*g, axes, lo, hi);
+  return BoxArea(lo, hi);
 }
 
 // Each room's link from the roots (the seed, the rooms a person fixed):

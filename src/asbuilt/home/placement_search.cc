@@ -7,22 +7,6 @@
 #include <fmt/format.h>
 
 namespace asbuilt::placement {
-namespace {
-
-// The box of a placed room's walls in the home's axes (the first room's frame
-// turned by `axes`).
-void GrowBox(const RoomGeom& g, const Eigen::Matrix2d& axes, Vec2& lo, Vec2& hi) {
-  for (const Face& f : g.walls) {
-    for (const Vec2& p : {f.a, f.b}) {
-      const Vec2 q = axes.transpose() * p;
-      lo = lo.cwiseMin(q);
-      hi = hi.cwiseMax(q);
-    }
-  }
-}
-double BoxArea(const Vec2& lo, const Vec2& hi) { return lo.x() > hi.x() ? 0.0 : (hi - lo).prod(); }
-
-}  // namespace
 
 std::string State::Signature() const {
   std::string s;
