@@ -131,16 +131,46 @@ bool SkirtingSeen(std::vector<double> heights, int wall_feet, double* height_m) 
   return true;
 }
 
-// FramePointsOptions::skirting_depth_m: a frame's wall feet pooled by height
-// above the floor. At each foot (column u, floor edge at `floor_row`, depth
-// z) the signed brightness steps 3–25 cm above it (SignedVerticalSteps) are
-// added into 5 mm bins, from 3 rows above the foot's own edge up. A
-// skirting's top is one height all round the room and one sign of step
-// (the board lighter or darker than the wall), so it adds up across the feet
-// while sensor or render noise, which one column cannot tell from a step,
-// cancels.
-// Each foot is also read on its own (SkirtingTop); where those readings
-// agree (SkirtingSeen, sharp images) they decide.
+// FramePointsOptions::skirting_depth_m: wall feet pooled by height above
+// the floor (SkirtingEvidence). At each foot (column u, floor edge at
+// `floor_row`, depth z) the signed brightness steps 3–25 cm above it
+// (SignedVerticalSteps) are added into 5 mm bins, from 3 rows above the
+// foot's own edge up. A skirting's top is one height all round the room and
+// one sign of step (the board lighter or darker than the wall), so it adds
+// up across the feet — of a frame, and of all frames of a capture — while
+// sensor or render noise, which one column cannot tell from a step, cancels.
+constexpr double kSkirtingBinM = 0.005;
+double SkirtingBinHeight(int bin) { return 0.03 + (bin + 0.5) * kSkirtingBinM; }
+
+// The board's height from pooled feet: the bin whose mean step stands out
+// most from zero, when it does by kMinScore standard errors (each taken as
+// if only every third foot were independent: neighbouring columns share the
+// blur) and lies inside the range.
+std::optional<double> PooledSkirtingTop(const SkirtingEvidence& e) {
+  constexpr double kMinScore = 7.0;
+  constexpr int kBins = SkirtingEvidence::kBins, kFirstBin = 3;  // Searched from 4.5 cm up.
+  if (e.feet < 10) return std::nullopt;
+  std::array<double, kBins> score{};
+  for (int b = 0; b < kBins; ++b) {
+    if (e.count[b] < 10) continue;
+    const double n = e.count[b], mean = e.sum[b] / n;
+    const double var = std::max(1e-9, e.sum_sq[b] / n - mean * mean);
+    score[b] = mean / std::sqrt(3.0 * var / n);
+  }
+  // The lowest bins carry the tail of the foot's own edge, blurred upwards
+  // (a plain wall scores up to 5.6 there in a 1024-wide Blender panorama).
+  const auto abs_less = [](double a, double b) { return std::abs(a) < std::abs(b); };
+  const int best = static_cast<int>(std::max_element(score.begin() + kFirstBin, score.end(), abs_less) - score.begin());
+  if (best == kFirstBin || best == kBins - 1 || std::abs(score[best]) < kMinScore) return std::nullopt;
+  const double a = std::abs(score[best - 1]), c = std::abs(score[best + 1]), m = std::abs(score[best]);
+  const double den = a - 2 * m + c;
+  const double offset = den < 0 ? std::clamp(0.5 * (a - c) / den, -0.5, 0.5) : 0.0;
+  return SkirtingBinHeight(best) + offset * kSkirtingBinM;
+}
+
+// One frame's feet: pooled (SkirtingEvidence), and each also read on its
+// own (SkirtingTop); where those readings agree (SkirtingSeen, sharp
+// images) they decide.
 class SkirtingProfile {
  public:
   SkirtingProfile(const cv::Mat& steps, const cv::Mat& signed_steps, double min_step)
@@ -150,83 +180,68 @@ class SkirtingProfile {
     if (steps_.empty() || signed_steps_.empty()) return;
     if (const auto s = SkirtingTop(steps_, u, floor_row, z, h, cam, min_step_)) per_column_.push_back(*s);
     const cv::Mat& signed_steps = signed_steps_;
-    ++feet_;
-    for (int b = 0; b < kBins; ++b) {
-      const double edge = cam.cy + cam.fy * (h - Height(b)) / z;  // Image position of the edge at that height.
-      const double k = edge - 0.5;                                // Step row k: between rows k and k + 1.
+    ++evidence_.feet;
+    for (int b = 0; b < SkirtingEvidence::kBins; ++b) {
+      const double edge = cam.cy + cam.fy * (h - SkirtingBinHeight(b)) / z;  // Image row of that height.
+      const double k = edge - 0.5;                                           // Step row k: between rows k and k + 1.
       if (k < 0 || k > floor_row - 3.5 || k + 1 >= signed_steps.rows) continue;
       const int k0 = static_cast<int>(k);
       const double f = k - k0;
       const double x = (1 - f) * signed_steps.at<float>(k0, u) + f * signed_steps.at<float>(k0 + 1, u);
-      sum_[b] += x;
-      sum_sq_[b] += x * x;
-      ++count_[b];
+      evidence_.sum[b] += x;
+      evidence_.sum_sq[b] += x * x;
+      ++evidence_.count[b];
     }
   }
 
-  // The skirting top's height above the floor: the bin whose mean step
-  // stands out most from zero, when it does by kMinScore standard errors
-  // (each taken as if only every third foot were independent: neighbouring
-  // columns share the blur) and lies inside the range.
+  // The skirting top's height above the floor from this frame's feet: their
+  // own readings where they agree (SkirtingSeen, sharp images), else the
+  // pooled profile (PooledSkirtingTop).
   std::optional<double> Top() const {
-    if (double top = NAN; SkirtingSeen(per_column_, feet_, &top)) return top;
-    if (feet_ < 10) return std::nullopt;
-    std::array<double, kBins> score{};
-    for (int b = 0; b < kBins; ++b) {
-      if (count_[b] < 10) continue;
-      const double n = count_[b], mean = sum_[b] / n;
-      const double var = std::max(1e-9, sum_sq_[b] / n - mean * mean);
-      score[b] = mean / std::sqrt(3.0 * var / n);
-    }
-    // The lowest bins carry the tail of the foot's own edge, blurred upwards
-    // (a plain wall scores up to 5.6 there in a 1024-wide Blender panorama).
-    const auto abs_less = [](double a, double b) { return std::abs(a) < std::abs(b); };
-    const int best =
-        static_cast<int>(std::max_element(score.begin() + kFirstBin, score.end(), abs_less) - score.begin());
-    if (best == kFirstBin || best == kBins - 1 || std::abs(score[best]) < kMinScore) return std::nullopt;
-    const double a = std::abs(score[best - 1]), c = std::abs(score[best + 1]), m = std::abs(score[best]);
-    const double den = a - 2 * m + c;
-    const double offset = den < 0 ? std::clamp(0.5 * (a - c) / den, -0.5, 0.5) : 0.0;
-    return Height(best) + offset * kBinM;
+    if (double top = NAN; SkirtingSeen(per_column_, evidence_.feet, &top)) return top;
+    return PooledSkirtingTop(evidence_);
   }
+  const SkirtingEvidence& evidence() const { return evidence_; }
 
  private:
-  static constexpr double kLowestM = 0.03, kBinM = 0.005, kMinScore = 7.0;
-  static constexpr int kBins = 44;     // 3–25 cm…
-  static constexpr int kFirstBin = 3;  // …searched from 4.5 cm up.
-  static double Height(int bin) { return kLowestM + (bin + 0.5) * kBinM; }
   cv::Mat steps_, signed_steps_;
   double min_step_;
   std::vector<double> per_column_;  // Each foot's own reading, where it had one.
-  std::array<double, kBins> sum_{}, sum_sq_{};
-  std::array<int, kBins> count_{};
-  int feet_ = 0;
+  SkirtingEvidence evidence_;
 };
 
-// Moves the wall floor contacts this frame added (from the given indices
-// on) `depth_m` back from the camera, along the wall's normal there (from
-// the contacts 2 columns either side), and rescales their ceiling samples:
-// the wall's face stands behind the skirting's foot.
+// One frame's wall floor contacts, wherever they were filed: `points`
+// from index first_point, `pending`'s paired and topped ones from theirs;
+// with `frame` ≥ 0 only that frame's. `samples`: each foot's paired ceiling
+// sample, or null.
+void GatherWallFeet(std::vector<ClassPoint>& points, std::size_t first_point, PendingContacts& pending,
+                    std::size_t first_paired, std::size_t first_topped, int frame, std::vector<ClassPoint*>* feet,
+                    std::vector<double*>* samples) {
+  const auto wanted = [&](const ClassPoint& p) {
+    return p.source == PointSource::kContact && p.label == LabelClass::kWall && (frame < 0 || p.frame == frame);
+  };
+  for (std::size_t i = first_point; i < points.size(); ++i) {
+    ClassPoint& p = points[i];
+    if (wanted(p) && p.position_m.z() == 0.0) feet->push_back(&p), samples->push_back(nullptr);
+  }
+  for (std::size_t i = first_paired; i < pending.paired_floor.size(); ++i) {
+    auto& pf = pending.paired_floor[i];
+    if (wanted(pf.point)) feet->push_back(&pf.point), samples->push_back(&pf.ceiling_sample_m);
+  }
+  for (std::size_t i = first_topped; i < pending.topped_floor.size(); ++i) {
+    auto& tf = pending.topped_floor[i];
+    if (wanted(tf.point)) feet->push_back(&tf.point), samples->push_back(nullptr);
+  }
+}
+
+// Moves one frame's wall floor contacts (GatherWallFeet) `depth_m` back
+// from the camera, along the wall's normal there (from the contacts 2
+// columns either side), and rescales their ceiling samples: the wall's face
+// stands behind the skirting's foot. `floor_columns` (may be null): the
+// frame's columns, whose depths the boundary points take.
 void MoveWallFeetBehindSkirting(double depth_m, const Eigen::Isometry3d& world_from_cam, const PinholeCamera& cam,
-                                std::size_t first_point, std::size_t first_paired, std::size_t first_topped,
-                                FrameContacts* result, std::vector<FloorColumn>* floor_columns) {
-  // This frame's wall feet in column order, wherever they were filed.
-  std::vector<ClassPoint*> feet;
-  std::vector<double*> samples;  // The paired ceiling sample of each foot, or null.
-  for (std::size_t i = first_point; i < result->points.size(); ++i) {
-    ClassPoint& p = result->points[i];
-    if (p.source == PointSource::kContact && p.label == LabelClass::kWall && p.position_m.z() == 0.0) {
-      feet.push_back(&p), samples.push_back(nullptr);
-    }
-  }
-  for (std::size_t i = first_paired; i < result->pending.paired_floor.size(); ++i) {
-    auto& pf = result->pending.paired_floor[i];
-    if (pf.point.label == LabelClass::kWall) feet.push_back(&pf.point), samples.push_back(&pf.ceiling_sample_m);
-  }
-  for (std::size_t i = first_topped; i < result->pending.topped_floor.size(); ++i) {
-    auto& tf = result->pending.topped_floor[i];
-    if (tf.point.label == LabelClass::kWall) feet.push_back(&tf.point), samples.push_back(nullptr);
-  }
+                                const std::vector<ClassPoint*>& feet, const std::vector<double*>& samples,
+                                std::vector<FloorColumn>* floor_columns) {
   const Eigen::Isometry3d cam_from_world = world_from_cam.inverse();
   const Vec3 origin = world_from_cam.translation();
   const double h = origin.z();
@@ -264,7 +279,7 @@ void MoveWallFeetBehindSkirting(double depth_m, const Eigen::Isometry3d& world_f
     if (samples[i]) *samples[i] = h + (*samples[i] - h) * ratio[i];
   }
   // The boundary points take their wall depth from these columns.
-  if (feet.empty()) return;
+  if (feet.empty() || floor_columns == nullptr) return;
   for (FloorColumn& c : *floor_columns) {
     if (c.label != kLabelWall) continue;
     const double b = (c.u - cam.cx) / cam.fx;
@@ -297,6 +312,30 @@ void AddOpeningHeadBelowCeiling(const cv::Mat& labels, int u, double ceiling_edg
                                                   .frame = ceiling.frame},
                                          .wall_rise = ceiling.direction.z(),
                                          .source = PointSource::kContact});
+}
+
+// Where a frame's own wall feet show a board (SkirtingProfile::Top), they
+// move `depth_m` back; either way the frame's evidence is kept for the
+// capture (PendingContacts::MoveFeetBehindSkirting). `first`: where this
+// frame's feet begin in result's points, paired and topped floor contacts.
+void SettleFrameSkirting(const SkirtingProfile& skirting, int frame, const Eigen::Isometry3d& world_from_cam,
+                         const PinholeCamera& cam, double depth_m, std::array<std::size_t, 3> first,
+                         FrameContacts* result, std::vector<FloorColumn>* floor_columns) {
+  const std::optional<double> top = skirting.Top();
+  if (top) {
+    result->skirting_height_m = *top;
+    std::vector<ClassPoint*> feet;
+    std::vector<double*> samples;
+    GatherWallFeet(result->points, first[0], result->pending, first[1], first[2], -1, &feet, &samples);
+    MoveWallFeetBehindSkirting(depth_m, world_from_cam, cam, feet, samples, floor_columns);
+  }
+  if (skirting.evidence().feet == 0) return;
+  SkirtingEvidence e = skirting.evidence();
+  e.frame = frame;
+  e.moved = top.has_value();
+  e.world_from_cam = world_from_cam;
+  e.camera = cam;
+  result->pending.skirting.push_back(std::move(e));
 }
 
 // FindFrameContacts (contacts.h), before the per-column wall disparity.
@@ -493,11 +532,9 @@ void AddContactPoints(const StereoFrame& frame, const cv::Mat& disparity, const 
     }
     result->pending.ceiling_rays.push_back(r);
   }
-  const std::optional<double> skirting_top = options.skirting_depth_m > 0 ? skirting.Top() : std::nullopt;
-  if (skirting_top) {
-    result->skirting_height_m = *skirting_top;
-    MoveWallFeetBehindSkirting(options.skirting_depth_m, world_from_cam, cam, first_point, first_paired, first_topped,
-                               result, floor_columns);
+  if (options.skirting_depth_m > 0) {
+    SettleFrameSkirting(skirting, frame.index, world_from_cam, cam, options.skirting_depth_m,
+                        {first_point, first_paired, first_topped}, result, floor_columns);
   }
 }
 
@@ -659,7 +696,34 @@ void PendingContacts::Append(PendingContacts&& other) {
   topped_floor.insert(topped_floor.end(), other.topped_floor.begin(), other.topped_floor.end());
   top_edges.insert(top_edges.end(), other.top_edges.begin(), other.top_edges.end());
   stereo_samples_m.insert(stereo_samples_m.end(), other.stereo_samples_m.begin(), other.stereo_samples_m.end());
+  skirting.insert(skirting.end(), other.skirting.begin(), other.skirting.end());
   other = {};
+}
+
+std::optional<double> PendingContacts::MoveFeetBehindSkirting(double depth_m, std::vector<ClassPoint>* points) {
+  if (!(depth_m > 0) || std::all_of(skirting.begin(), skirting.end(), [](const auto& e) { return e.moved; })) {
+    return std::nullopt;
+  }
+  SkirtingEvidence all;
+  for (const SkirtingEvidence& e : skirting) {
+    all.feet += e.feet;
+    for (int b = 0; b < SkirtingEvidence::kBins; ++b) {
+      all.sum[b] += e.sum[b];
+      all.sum_sq[b] += e.sum_sq[b];
+      all.count[b] += e.count[b];
+    }
+  }
+  const std::optional<double> top = PooledSkirtingTop(all);
+  if (!top) return std::nullopt;
+  for (SkirtingEvidence& e : skirting) {
+    if (e.moved) continue;
+    std::vector<ClassPoint*> feet;
+    std::vector<double*> samples;
+    GatherWallFeet(*points, 0, *this, 0, 0, e.frame, &feet, &samples);
+    MoveWallFeetBehindSkirting(depth_m, e.world_from_cam, e.camera, feet, samples, nullptr);
+    e.moved = true;
+  }
+  return top;
 }
 
 ResolvedContacts PendingContacts::Resolve(const FramePointsOptions& options) const {

@@ -15,6 +15,7 @@
 // pixels give no stereo points), and the wall's stereo can be checked
 // without truth (cue_choice.h). docs/stereo.md, "How a frame becomes points" 6.
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,7 +58,21 @@ struct ResolvedContacts {
   std::vector<CeilingSample> ceiling_samples;
 };
 
-// Contacts that need the whole capture: the ceiling's height comes from all
+// One frame's wall feet pooled by height above the floor (the skirting
+// profile of contacts.cc): the signed brightness steps above each foot in
+// 5 mm bins from 3 cm up. Kept so the frames of one capture decide together
+// where no frame alone saw a board (PendingContacts::MoveFeetBehindSkirting).
+struct SkirtingEvidence {
+  static constexpr int kBins = 44;  // 3–25 cm.
+  std::array<double, kBins> sum{}, sum_sq{};
+  std::array<int, kBins> count{};
+  int feet = 0;
+  int frame = -1;
+  bool moved = false;  // The frame's own feet told, and were moved behind the board.
+  Eigen::Isometry3d world_from_cam = Eigen::Isometry3d::Identity();
+  PinholeCamera camera;
+};
+
 // frames together. Collect each frame's with Append, then Resolve once.
 struct PendingContacts {
   struct PairedFloor {
@@ -107,8 +122,16 @@ struct PendingContacts {
   // Rougher heights, from the wall's stereo depth just below each ceiling
   // contact: the fallback when too few columns see both of a wall's edges.
   std::vector<double> stereo_samples_m;
+  std::vector<SkirtingEvidence> skirting;  // One per frame with wall feet.
 
   void Append(PendingContacts&& other);
+  // A skirting's top is one height all round a room: where no frame's own
+  // feet told, the feet of all frames together may. When they do, the wall
+  // floor contacts of every frame that did not move its own (in `points`,
+  // and the paired and topped ones here) move `depth_m` back, as a frame
+  // moves them (before Resolve: the paired samples follow). Returns the
+  // board's height, or nullopt (nothing moved).
+  std::optional<double> MoveFeetBehindSkirting(double depth_m, std::vector<ClassPoint>* points);
   // The ceiling's height (options.ceiling_height_m when given, else the
   // densest cluster of the paired samples, else of the stereo ones); the
   // paired floor contacts that agree with it, the topped ones it does not

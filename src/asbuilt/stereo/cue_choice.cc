@@ -122,6 +122,13 @@ CapturePoints::Result CapturePoints::Finish() {
   }
   if (out.frames.empty()) out.frames = std::move(stereo_cues_);
   if (out.contacts_used) {
+    // Frames whose own feet did not show a board: all frames together may.
+    const std::optional<double> board = pending_.MoveFeetBehindSkirting(options_.skirting_depth_m, &out.points);
+    if (board) {
+      for (FrameCues& c : out.frames) {
+        if (std::isnan(c.skirting_height_m)) c.skirting_height_m = *board;
+      }
+    }
     out.contacts = pending_.Resolve(options_);
     out.points.insert(out.points.end(), out.contacts.points.begin(), out.contacts.points.end());
     out.contacts.points.clear();

@@ -833,14 +833,15 @@ namespace {
 
 // A level 512×1024 view of a plain wall 3 m ahead, 1.5 m below the lens to
 // its foot, with a board 8 cm tall and lighter than the wall at its foot
-// (or none), under sensor noise of σ `noise` grey levels.
-MonoFrame WallWithSkirting(bool skirting, double noise) {
+// (or none), under sensor noise of σ `noise` grey levels (its own draw per
+// frame `index`).
+MonoFrame WallWithSkirting(bool skirting, double noise, int index = 0) {
   const PinholeCamera cam{.width_px = 512, .height_px = 1024, .fx = 256, .fy = 256, .cx = 255.5, .cy = 511.5};
   const double z = 3.0, h = 1.5;
   const auto row_at = [&](double height_m) { return cam.cy + cam.fy * (h - height_m) / z; };
   cv::Mat image(cam.height_px, cam.width_px, CV_8UC3), labels(cam.height_px, cam.width_px, CV_8UC1);
   cv::Mat grain(image.size(), CV_32FC3);
-  cv::RNG rng(7);
+  cv::RNG rng(7 + index);
   rng.fill(grain, cv::RNG::NORMAL, 0.0, noise);
   for (int v = 0; v < image.rows; ++v) {
     const bool wall = v > row_at(2.7) && v < row_at(0.0);
@@ -854,7 +855,7 @@ MonoFrame WallWithSkirting(bool skirting, double noise) {
       labels.at<std::uint8_t>(v, u) = wall ? 1 : 0;
     }
   }
-  return {.image = image, .labels = labels, .camera = cam, .pose = {Vec3(0, 0, h), 0.0}, .index = 0};
+  return {.image = image, .labels = labels, .camera = cam, .pose = {Vec3(0, 0, h), 0.0}, .index = index};
 }
 
 // The wall feet of a mono frame's result, wherever they were filed.
@@ -885,6 +886,43 @@ TEST(ComputeMonoFramePoints, FindsASkirtingUnderNoiseByPoolingTheWallFeet) {
   const FramePointsResult plain = ComputeMonoFramePoints(WallWithSkirting(false, 80), options);
   EXPECT_FALSE(std::isfinite(plain.cues.skirting_height_m));
   EXPECT_NEAR(Percentile(FootDistances(plain), 0.5), 3.0, 0.002);
+}
+
+// Noise so strong that no frame's feet show the board on their own (σ 240
+// grey levels against a step of 40): the board is one height all round the
+// room, so the feet of all frames together show it, and every frame's feet
+// move back to the wall's face (CapturePoints, PendingContacts::
+// MoveFeetBehindSkirting); a plain wall under the same noise moves nothing.
+TEST(CapturePoints, FindsASkirtingNoFrameShowsAloneByPoolingAllFramesFeet) {
+  FramePointsOptions options;
+  options.contacts = ContactUse::kAlways;
+  options.ResolveSnaps(/*exact_labels=*/true);
+  constexpr int kFrames = 12;
+  for (const bool skirting : {true, false}) {
+    SCOPED_TRACE(skirting ? "board" : "plain wall");
+    CapturePoints gathered(options);
+    for (int i = 0; i < kFrames; ++i) {
+      FramePointsResult r = ComputeMonoFramePoints(WallWithSkirting(skirting, 240, i), options);
+      EXPECT_FALSE(std::isfinite(r.cues.skirting_height_m)) << "frame " << i << " saw the board alone";
+      EXPECT_NEAR(Percentile(FootDistances(r), 0.5), 3.0, 0.002);
+      gathered.Add(r);
+    }
+    const CapturePoints::Result out = gathered.Finish();
+    std::vector<double> feet;
+    for (const ClassPoint& p : out.points) {
+      if (p.source == PointSource::kContact && p.position_m.z() == 0.0) feet.push_back(p.position_m.y());
+    }
+    ASSERT_GT(feet.size(), 1000u);
+    EXPECT_NEAR(Percentile(feet, 0.5), 3.0 + (skirting ? options.skirting_depth_m : 0.0), 0.002);
+    ASSERT_EQ(out.frames.size(), static_cast<std::size_t>(kFrames));
+    for (const FrameCues& c : out.frames) {
+      if (skirting) {
+        EXPECT_NEAR(c.skirting_height_m, 0.08, 0.02);
+      } else {
+        EXPECT_FALSE(std::isfinite(c.skirting_height_m));
+      }
+    }
+  }
 }
 
 }  // namespace
