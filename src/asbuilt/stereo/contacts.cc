@@ -143,26 +143,43 @@ constexpr double kSkirtingBinM = 0.005;
 double SkirtingBinHeight(int bin) { return 0.03 + (bin + 0.5) * kSkirtingBinM; }
 
 // The board's height from pooled feet: the bin whose mean step stands out
-// most from zero, when it does by kMinScore standard errors (each taken as
-// if only every third foot were independent: neighbouring columns share the
-// blur) and lies inside the range.
+// most from the profile's own level, when it does by kMinScore standard
+// errors (each taken as if only every third foot were independent:
+// neighbouring columns share the blur) and lies inside the range. The level
+// (the median bin) is shading: a wall darkening towards the floor shifts
+// every bin alike, and over a room's thousands of feet even a grey level of
+// it lies many standard errors from zero (Blender rooms 06 and 07, no
+// skirting: −8 to −17 in every bin), where a board's top is a peak (rooms
+// 01, 03: +20 to +30 above a level of −14).
 std::optional<double> PooledSkirtingTop(const SkirtingEvidence& e) {
   constexpr double kMinScore = 7.0;
   constexpr int kBins = SkirtingEvidence::kBins, kFirstBin = 3;  // Searched from 4.5 cm up.
+  constexpr int kShoulder = 6;                                   // 3 cm.
   if (e.feet < 10) return std::nullopt;
   std::array<double, kBins> score{};
+  std::vector<double> level;
   for (int b = 0; b < kBins; ++b) {
     if (e.count[b] < 10) continue;
     const double n = e.count[b], mean = e.sum[b] / n;
     const double var = std::max(1e-9, e.sum_sq[b] / n - mean * mean);
     score[b] = mean / std::sqrt(3.0 * var / n);
+    if (b >= kFirstBin) level.push_back(score[b]);
   }
+  if (level.size() < 5) return std::nullopt;
+  std::nth_element(level.begin(), level.begin() + level.size() / 2, level.end());
+  const double median = level[level.size() / 2];
+  for (int b = 0; b < kBins; ++b) score[b] = e.count[b] < 10 ? 0.0 : std::abs(score[b] - median);
   // The lowest bins carry the tail of the foot's own edge, blurred upwards
   // (a plain wall scores up to 5.6 there in a 1024-wide Blender panorama).
-  const auto abs_less = [](double a, double b) { return std::abs(a) < std::abs(b); };
-  const int best = static_cast<int>(std::max_element(score.begin() + kFirstBin, score.end(), abs_less) - score.begin());
-  if (best == kFirstBin || best == kBins - 1 || std::abs(score[best]) < kMinScore) return std::nullopt;
-  const double a = std::abs(score[best - 1]), c = std::abs(score[best + 1]), m = std::abs(score[best]);
+  const int best = static_cast<int>(std::max_element(score.begin() + kFirstBin, score.end()) - score.begin());
+  if (best == kFirstBin || best == kBins - 1 || score[best] < kMinScore) return std::nullopt;
+  // A peak, not a ramp: kMinScore above the bins kShoulder away on either
+  // side (Blender room 05, no skirting: a rise towards 25 cm, +7 at its end).
+  if (best < kShoulder || best + kShoulder >= kBins ||
+      score[best] - std::max(score[best - kShoulder], score[best + kShoulder]) < kMinScore) {
+    return std::nullopt;
+  }
+  const double a = score[best - 1], c = score[best + 1], m = score[best];
   const double den = a - 2 * m + c;
   const double offset = den < 0 ? std::clamp(0.5 * (a - c) / den, -0.5, 0.5) : 0.0;
   return SkirtingBinHeight(best) + offset * kSkirtingBinM;
