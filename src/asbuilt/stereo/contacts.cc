@@ -142,43 +142,49 @@ bool SkirtingSeen(std::vector<double> heights, int wall_feet, double* height_m) 
 constexpr double kSkirtingBinM = 0.005;
 double SkirtingBinHeight(int bin) { return 0.03 + (bin + 0.5) * kSkirtingBinM; }
 
-// The board's height from pooled feet: the bin whose mean step stands out
-// most from the profile's own level, when it does by kMinScore standard
-// errors (each taken as if only every third foot were independent:
-// neighbouring columns share the blur) and lies inside the range. The level
-// (the median bin) is shading: a wall darkening towards the floor shifts
-// every bin alike, and over a room's thousands of feet even a grey level of
-// it lies many standard errors from zero (Blender rooms 06 and 07, no
-// skirting: −8 to −17 in every bin), where a board's top is a peak (rooms
-// 01, 03: +20 to +30 above a level of −14).
-std::optional<double> PooledSkirtingTop(const SkirtingEvidence& e) {
+// The board's height from pooled feet, or nullopt. For one frame's feet:
+// the bin whose mean step stands out most from zero, when it does by
+// kMinScore standard errors (each taken as if only every third foot were
+// independent: neighbouring columns share the blur) and lies inside the
+// range. For a whole capture's (`capture_wide`), thousands of feet, even
+// shading (a wall darkening towards the floor) lies many standard errors
+// from zero in every bin (Blender rooms 06 and 07, no skirting: −8 to −17),
+// so the bin must stand out from the profile's own level (its median bin),
+// by kMinScore and by three times the median bin's distance from it (our
+// renderer's views of room 05, no skirting: a bump of 9 among bins 4 off;
+// room 01's board: 41 among 8), 3 cm inside the range (room 05 rises
+// towards 25 cm).
+std::optional<double> PooledSkirtingTop(const SkirtingEvidence& e, bool capture_wide) {
   constexpr double kMinScore = 7.0;
   constexpr int kBins = SkirtingEvidence::kBins, kFirstBin = 3;  // Searched from 4.5 cm up.
-  constexpr int kShoulder = 6;                                   // 3 cm.
+  constexpr int kInside = 6;                                     // 3 cm, capture-wide.
   if (e.feet < 10) return std::nullopt;
   std::array<double, kBins> score{};
-  std::vector<double> level;
   for (int b = 0; b < kBins; ++b) {
     if (e.count[b] < 10) continue;
     const double n = e.count[b], mean = e.sum[b] / n;
     const double var = std::max(1e-9, e.sum_sq[b] / n - mean * mean);
     score[b] = mean / std::sqrt(3.0 * var / n);
-    if (b >= kFirstBin) level.push_back(score[b]);
   }
-  if (level.size() < 5) return std::nullopt;
-  std::nth_element(level.begin(), level.begin() + level.size() / 2, level.end());
-  const double median = level[level.size() / 2];
-  for (int b = 0; b < kBins; ++b) score[b] = e.count[b] < 10 ? 0.0 : std::abs(score[b] - median);
+  double level = 0.0, spread = 0.0;
+  if (capture_wide) {
+    std::vector<double> v;
+    for (int b = kFirstBin; b < kBins; ++b) {
+      if (e.count[b] >= 10) v.push_back(score[b]);
+    }
+    if (v.size() < 5) return std::nullopt;
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    level = v[v.size() / 2];
+    for (double& x : v) x = std::abs(x - level);
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    spread = v[v.size() / 2];
+  }
+  for (int b = 0; b < kBins; ++b) score[b] = e.count[b] < 10 ? 0.0 : std::abs(score[b] - level);
   // The lowest bins carry the tail of the foot's own edge, blurred upwards
   // (a plain wall scores up to 5.6 there in a 1024-wide Blender panorama).
   const int best = static_cast<int>(std::max_element(score.begin() + kFirstBin, score.end()) - score.begin());
-  if (best == kFirstBin || best == kBins - 1 || score[best] < kMinScore) return std::nullopt;
-  // A peak, not a ramp: kMinScore above the bins kShoulder away on either
-  // side (Blender room 05, no skirting: a rise towards 25 cm, +7 at its end).
-  if (best < kShoulder || best + kShoulder >= kBins ||
-      score[best] - std::max(score[best - kShoulder], score[best + kShoulder]) < kMinScore) {
-    return std::nullopt;
-  }
+  if (best == kFirstBin || best == kBins - 1 || score[best] < std::max(kMinScore, 3 * spread)) return std::nullopt;
+  if (capture_wide && (best < kInside || best + kInside >= kBins)) return std::nullopt;
   const double a = score[best - 1], c = score[best + 1], m = score[best];
   const double den = a - 2 * m + c;
   const double offset = den < 0 ? std::clamp(0.5 * (a - c) / den, -0.5, 0.5) : 0.0;
@@ -216,7 +222,7 @@ class SkirtingProfile {
   // pooled profile (PooledSkirtingTop).
   std::optional<double> Top() const {
     if (double top = NAN; SkirtingSeen(per_column_, evidence_.feet, &top)) return top;
-    return PooledSkirtingTop(evidence_);
+    return PooledSkirtingTop(evidence_, /*capture_wide=*/false);
   }
   const SkirtingEvidence& evidence() const { return evidence_; }
 
@@ -730,7 +736,7 @@ std::optional<double> PendingContacts::MoveFeetBehindSkirting(double depth_m, st
       all.count[b] += e.count[b];
     }
   }
-  const std::optional<double> top = PooledSkirtingTop(all);
+  const std::optional<double> top = PooledSkirtingTop(all, /*capture_wide=*/true);
   if (!top) return std::nullopt;
   for (SkirtingEvidence& e : skirting) {
     if (e.moved) continue;
