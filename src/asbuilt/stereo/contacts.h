@@ -73,6 +73,7 @@ struct SkirtingEvidence {
   PinholeCamera camera;
 };
 
+// Contacts that need the whole capture: the ceiling's height comes from all
 // frames together. Collect each frame's with Append, then Resolve once.
 struct PendingContacts {
   struct PairedFloor {
