@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <iterator>
+#include <map>
 #include <numeric>
 
 #include <fmt/format.h>
@@ -233,15 +234,14 @@ class SkirtingProfile {
   SkirtingEvidence evidence_;
 };
 
-// One frame's wall floor contacts, wherever they were filed: `points`
-// from index first_point, `pending`'s paired and topped ones from theirs;
-// with `frame` ≥ 0 only that frame's. `samples`: each foot's paired ceiling
-// sample, or null.
+// Wall floor contacts, wherever they were filed: `points` from index
+// first_point, `pending`'s paired and topped ones from theirs. `samples`:
+// each foot's paired ceiling sample, or null.
 void GatherWallFeet(std::vector<ClassPoint>& points, std::size_t first_point, PendingContacts& pending,
-                    std::size_t first_paired, std::size_t first_topped, int frame, std::vector<ClassPoint*>* feet,
+                    std::size_t first_paired, std::size_t first_topped, std::vector<ClassPoint*>* feet,
                     std::vector<double*>* samples) {
-  const auto wanted = [&](const ClassPoint& p) {
-    return p.source == PointSource::kContact && p.label == LabelClass::kWall && (frame < 0 || p.frame == frame);
+  const auto wanted = [](const ClassPoint& p) {
+    return p.source == PointSource::kContact && p.label == LabelClass::kWall;
   };
   for (std::size_t i = first_point; i < points.size(); ++i) {
     ClassPoint& p = points[i];
@@ -349,7 +349,7 @@ void SettleFrameSkirting(const SkirtingProfile& skirting, int frame, const Eigen
     result->skirting_height_m = *top;
     std::vector<ClassPoint*> feet;
     std::vector<double*> samples;
-    GatherWallFeet(result->points, first[0], result->pending, first[1], first[2], -1, &feet, &samples);
+    GatherWallFeet(result->points, first[0], result->pending, first[1], first[2], &feet, &samples);
     MoveWallFeetBehindSkirting(depth_m, world_from_cam, cam, feet, samples, floor_columns);
   }
   if (skirting.evidence().feet == 0) return;
@@ -738,11 +738,23 @@ std::optional<double> PendingContacts::MoveFeetBehindSkirting(double depth_m, st
   }
   const std::optional<double> top = PooledSkirtingTop(all, /*capture_wide=*/true);
   if (!top) return std::nullopt;
+  // Every wall foot once, sorted into the frames that still have to move.
+  std::vector<ClassPoint*> all_feet;
+  std::vector<double*> all_samples;
+  GatherWallFeet(*points, 0, *this, 0, 0, &all_feet, &all_samples);
+  std::map<int, std::pair<std::vector<ClassPoint*>, std::vector<double*>>> by_frame;
+  for (const SkirtingEvidence& e : skirting) {
+    if (!e.moved) by_frame[e.frame];
+  }
+  for (std::size_t i = 0; i < all_feet.size(); ++i) {
+    const auto it = by_frame.find(all_feet[i]->frame);
+    if (it == by_frame.end()) continue;
+    it->second.first.push_back(all_feet[i]);
+    it->second.second.push_back(all_samples[i]);
+  }
   for (SkirtingEvidence& e : skirting) {
     if (e.moved) continue;
-    std::vector<ClassPoint*> feet;
-    std::vector<double*> samples;
-    GatherWallFeet(*points, 0, *this, 0, 0, e.frame, &feet, &samples);
+    const auto& [feet, samples] = by_frame[e.frame];
     MoveWallFeetBehindSkirting(depth_m, e.world_from_cam, e.camera, feet, samples, nullptr);
     e.moved = true;
   }
